@@ -1,0 +1,43 @@
+/* main.c — the `atmo` command: dispatch to a subcommand. */
+#include <stdio.h>
+#include <string.h>
+#include "atmo/status.h"
+#include "commands.h"
+
+static const atmo_command commands[] = {
+    {"render", "render a scene to images (PNG, HDR, EXR, PFM)", cmd_render},
+    {"devices", "list OpenCL platforms and devices", cmd_devices},
+    {"params", "list every scene parameter with unit, default and range", cmd_params},
+    {"presets", "list the built-in scenes", cmd_presets},
+};
+
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: atmo COMMAND [options]   (atmo COMMAND --help for its options)\n\n"
+               "A physically based renderer of Earth-like planets.\n\ncommands:\n");
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        fprintf(f, "  %-10s %s\n", commands[i].name, commands[i].summary);
+    fprintf(f, "\n  --version  print the version\n  --help     this text\n");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return ATMO_ERR_USAGE;
+    }
+    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
+        strcmp(argv[1], "help") == 0) {
+        usage(stdout);
+        return ATMO_OK;
+    }
+    if (strcmp(argv[1], "--version") == 0) {
+        printf("atmo %s\n", ATMO_VERSION);
+        return ATMO_OK;
+    }
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        if (strcmp(argv[1], commands[i].name) == 0)
+            return commands[i].run(argc - 1, argv + 1);
+    fprintf(stderr, "atmo: unknown command '%s'; run 'atmo --help' for the list\n", argv[1]);
+    return ATMO_ERR_USAGE;
+}

@@ -1,0 +1,47 @@
+/* Implementation of tests/testlib.h. */
+#include <stdlib.h>
+#include <CL/cl.h>
+#include "testlib.h"
+
+int test_failures;
+int test_checks;
+
+int test_check_abs(const char *file, int line, const char *what, double got, double want,
+                   double tol)
+{
+    test_checks++;
+    if (fabs(got - want) <= tol)
+        return 1;
+    test_failures++;
+    fprintf(stderr, "%s:%d: %s = %.9g, want %.9g within %.3g (off by %.3g)\n", file, line, what,
+            got, want, tol, fabs(got - want));
+    return 0;
+}
+
+int test_check_rel(const char *file, int line, const char *what, double got, double want,
+                   double rel)
+{
+    test_checks++;
+    double err = fabs(got - want) / fabs(want);
+    if (err <= rel && isfinite(got))
+        return 1;
+    test_failures++;
+    fprintf(stderr, "%s:%d: %s = %.9g, want %.9g within %.3g relative (off by %.3g)\n", file,
+            line, what, got, want, rel, err);
+    return 0;
+}
+
+void test_require_opencl(void)
+{
+    cl_uint platforms = 0;
+    if (clGetPlatformIDs(0, NULL, &platforms) != CL_SUCCESS || platforms == 0) {
+        fprintf(stderr, "no OpenCL platform: test not run\n");
+        exit(77);
+    }
+}
+
+int test_finish(void)
+{
+    printf("%d passed, %d failed\n", test_checks - test_failures, test_failures);
+    return test_failures ? 1 : 0;
+}
