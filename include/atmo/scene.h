@@ -1,0 +1,120 @@
+/* scene.h — everything a render depends on, as the user states it.
+ *
+ * A scene is the default values of every parameter, then a preset's or a JSON file's values, then
+ * --set overrides (dotted keys, e.g. sun.zenith_deg=60). The parameter registry (scene.c) lists
+ * each key with its type, unit, default, valid range and meaning; `atmo params` prints it, the
+ * JSON reader and --set go through it, and --save-scene writes every key back. Units are those
+ * of the key's name: degrees where a key says _deg, metres for _m, SI elsewhere.
+ *
+ * Derived quantities (the atmosphere at the render wavelengths, the camera basis, the sun
+ * direction) are computed from a scene by the plan, not stored here. */
+#ifndef ATMO_SCENE_H
+#define ATMO_SCENE_H
+#include <stddef.h>
+#include "atmo/status.h"
+
+enum { ATMO_CAMERA_PERSPECTIVE = 0, ATMO_CAMERA_PANORAMA = 1 };
+enum { ATMO_QUANTITY_RADIANCE = 0, ATMO_QUANTITY_LUMINANCE = 1 };
+enum {
+    ATMO_TONEMAP_NONE = 0,
+    ATMO_TONEMAP_EXPOSURE,
+    ATMO_TONEMAP_REINHARD,
+    ATMO_TONEMAP_REINHARD_WHITE,
+    ATMO_TONEMAP_ACES,
+    ATMO_TONEMAP_UNREAL3,
+    ATMO_TONEMAP_UCHIMURA,
+    ATMO_TONEMAP_LOTTES,
+};
+enum { ATMO_TRANSFER_SRGB = 0, ATMO_TRANSFER_GAMMA22 = 1 };
+
+typedef struct atmo_scene {
+    struct {
+        int width, height;
+        int samples; /* samples per pixel */
+        int seed;    /* RNG seed, >= 0 */
+    } image;
+    struct {
+        int kind;              /* ATMO_CAMERA_* */
+        double position_m[3];  /* world: metres, Y up, planet centre (0, -bottom_radius, 0) */
+        double pitch_deg;      /* thesis convention, presets.md: forward = (-cos p sin y, sin p, */
+        double yaw_deg;        /*   cos p cos y), right = (cos y, 0, sin y) */
+        double fov_deg;        /* vertical field of view (perspective) */
+    } camera;
+    struct {
+        double zenith_deg;     /* angle between world +Y and the direction to the sun */
+        double azimuth_deg;    /* direction = (sin z sin a, cos z, sin z cos a) */
+        double angular_radius_deg;
+        double irradiance_scale; /* multiplies the solar spectrum (1 = ASTM G-173) */
+    } sun;
+    struct {
+        double bottom_radius_m, top_radius_m;
+        double rayleigh_coefficient; /* beta_R(lambda) = c * lambda[um]^-4, m^-1 um^4 */
+        double rayleigh_scale_height_m;
+        double mie_extinction_per_m; /* at every wavelength (Angstrom alpha = 0) */
+        double mie_albedo;           /* single-scattering albedo */
+        double mie_scale_height_m;
+        double mie_g;
+        int mie_phase;               /* ATMO_PHASE_* of atmosphere.h */
+        double ozone_column_du;      /* Dobson units in the tent profile */
+        double ozone_bottom_m, ozone_peak_m, ozone_top_m;
+        double ground_albedo;
+    } atmosphere;
+    struct {
+        double wavelengths_nm[3];
+        int quantity;          /* ATMO_QUANTITY_*: what HDR outputs hold */
+        int view_steps;        /* ray-march steps along a view ray */
+        int transmittance_width, transmittance_height; /* transmittance LUT size (mu, r) */
+    } render;
+    struct {
+        double exposure;       /* multiplies the (white-balanced) radiance before tone mapping */
+        int tonemap;           /* ATMO_TONEMAP_* */
+        double white_point;    /* for reinhard-white */
+        int white_balance;     /* 0/1: divide by the sun's white point */
+        int transfer;          /* ATMO_TRANSFER_*: PNG encoding curve */
+    } post;
+} atmo_scene;
+
+typedef enum { ATMO_PARAM_INT, ATMO_PARAM_FLOAT, ATMO_PARAM_VEC3, ATMO_PARAM_ENUM, ATMO_PARAM_BOOL }
+    atmo_param_type;
+
+typedef struct atmo_param {
+    const char *key;      /* dotted, e.g. "sun.zenith_deg" */
+    atmo_param_type type;
+    size_t offset;        /* into atmo_scene */
+    const char *unit;     /* "deg", "m", "1/m", "" ... */
+    double min, max;      /* valid range, inclusive (each component for vec3) */
+    double def[3];        /* default (def[0] for scalars; enum: index) */
+    const char *const *names; /* ENUM: NULL-terminated value names */
+    const char *help;     /* one line */
+} atmo_param;
+
+typedef struct atmo_preset {
+    const char *name;
+    const char *summary;          /* what it shows, one line */
+    const char *const *settings;  /* NULL-terminated "key=value" applied over the defaults */
+} atmo_preset;
+
+extern const atmo_param atmo_params[];   /* terminated by key == NULL */
+extern const atmo_preset atmo_presets[]; /* terminated by name == NULL */
+extern const char *const atmo_default_preset;
+
+const atmo_param *atmo_param_find(const char *key);
+const atmo_preset *atmo_preset_find(const char *name);
+
+void atmo_scene_defaults(atmo_scene *s);
+/* Set one parameter from text ("60", "1,2,3", "panorama", "true"); `where` names the source
+ * for error messages ("--set", "scene.json"). Rejects unknown keys (suggesting the closest),
+ * wrong types, NaN/Inf and out-of-range values. */
+int atmo_scene_set(atmo_scene *s, const char *key, const char *value, const char *where,
+                   atmo_err *e);
+/* "key=value" form of atmo_scene_set. */
+int atmo_scene_assign(atmo_scene *s, const char *assignment, const char *where, atmo_err *e);
+int atmo_scene_apply_preset(atmo_scene *s, const char *name, atmo_err *e);
+int atmo_scene_load_json(atmo_scene *s, const char *path, atmo_err *e);
+/* Whole scene as nested JSON (every key), malloc'd; NULL when out of memory. */
+char *atmo_scene_to_json(const atmo_scene *s);
+int atmo_scene_save_json(const atmo_scene *s, const char *path, atmo_err *e);
+/* Checks between parameters (e.g. top radius above bottom radius). */
+int atmo_scene_validate(const atmo_scene *s, atmo_err *e);
+
+#endif
