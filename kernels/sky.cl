@@ -1,0 +1,45 @@
+/* sky.cl — the render kernel of the single-scattering sky: one tile, a batch of samples.
+ *
+ * Work item (x, y) of the launch renders pixel (tile_x + x, tile_y + y); global sizes are padded
+ * to the local size, so items outside the tile return at once. Samples sample_begin ..
+ * sample_begin + sample_count - 1 are added one by one, in order, to the pixel's running sum in
+ * `accum` (xyz; w unused). Because the sum is built in the same order whatever the batches, and
+ * the random numbers depend only on (seed, pixel, sample, dimension), the image is bitwise the
+ * same for any tile size and any split of samples into launches. A non-finite sample (which
+ * should never happen) is dropped and counted in `nonfinite`.
+ * Random dimensions: 0, 1 = sub-pixel position; 2 = offset of the march samples. */
+
+__kernel void sky_render(__global const atmo_gpu_scene *scene,
+                         __global const float4 *transmittance, __global float4 *accum,
+                         __global uint *nonfinite, int tile_x, int tile_y, int tile_w,
+                         int tile_h, uint sample_begin, uint sample_count)
+{
+    int lx = get_global_id(0), ly = get_global_id(1);
+    if (lx >= tile_w || ly >= tile_h)
+        return;
+    __global const atmo_gpu_camera *cam = &scene->camera;
+    int x = tile_x + lx, y = tile_y + ly;
+    uint pixel = (uint)(y * cam->width + x);
+    float3 up = cam->local_up.xyz;
+    float r = cam->local_up.w;
+    float3 sun_dir = scene->sun_direction.xyz;
+    float mu_s = dot(up, sun_dir);
+    float4 sum = accum[pixel];
+    for (uint k = 0; k < sample_count; k++) {
+        uint s = sample_begin + k;
+        float jx = rng_uniform(scene->seed, pixel, s, 0u);
+        float jy = rng_uniform(scene->seed, pixel, s, 1u);
+        float jt = rng_uniform(scene->seed, pixel, s, 2u);
+        float3 dir = camera_ray(cam, (float)x + jx, (float)y + jy);
+        float3 sky, sun;
+        sky_single_scattering(scene, transmittance, r, dot(up, dir), mu_s, dot(dir, sun_dir), jt,
+                              &sky, &sun);
+        float3 L = sky * scene->sky_factor.xyz + sun * scene->sun_factor.xyz;
+        if (any(isnan(L)) || any(isinf(L))) {
+            atomic_inc(nonfinite);
+            L = (float3)(0.0f);
+        }
+        sum.xyz += L;
+    }
+    accum[pixel] = sum;
+}

@@ -1,0 +1,103 @@
+/* sky_single.h — single scattering along one view ray (Nishita et al. 1993's integrand).
+ *
+ * For a camera at radius r looking along mu, with sun cosine mu_s and view-sun cosine nu,
+ *     L = int_0^d T(0, t) [sigma_R(t) p_R(nu) + sigma_M,s(t) p_M(nu)] E T_sun(t) dt
+ *       + T(0, d) (rho / pi) E T_sun(d) max(mu_s(d), 0)          if the ray hits the ground
+ * with d the distance to the ground or to the top of the atmosphere and T_sun from the
+ * transmittance LUT (zero where the planet hides the sun). The integral is cut into n equal
+ * segments; in each, the coefficients are taken at one point (at the fraction `jitter` of the
+ * segment, a random number per sample, so averaging samples removes the banding of a fixed
+ * point) and the segment is integrated exactly for constant coefficients:
+ *     L += T_acc S (1 - e^{-sigma_t dt}) / sigma_t,   T_acc *= e^{-sigma_t dt}
+ * which conserves energy however long the segment (Hillaire 2015). A camera above the
+ * atmosphere is first moved to where the ray enters it. The sun disc (radiance E / Omega_sun
+ * times the transmittance to space, Omega_sun = 2 pi (1 - cos alpha)) is returned apart so the
+ * caller can weigh it with its own luminous efficacy. */
+#ifndef ATMO_SKY_SINGLE_H
+#define ATMO_SKY_SINGLE_H
+#ifndef __OPENCL_VERSION__
+#include "compat.h"
+#include "atmosphere.h"
+#include "geometry.h"
+#include "phase.h"
+#include "atmo/gpu_types.h"
+#endif
+
+/* (1 - e^{-sigma dt}) / sigma, with its limit dt where sigma dt is tiny. */
+ATMO_FN float __sky_segment_weight(float sigma, float dt)
+{
+    float x = sigma * dt;
+    return x > 1e-4f ? -expm1f(-x) / sigma : dt * (1.0f - 0.5f * x);
+}
+
+ATMO_FN float sky_mie_phase(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float nu)
+{
+    return a->mie_phase == 1 ? phase_henyey_greenstein(nu, a->mie_g)
+                             : phase_cornette_shanks(nu, a->mie_g);
+}
+
+ATMO_FN void sky_single_scattering(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                   ATMO_GLOBAL const float4 *transmittance, float r, float mu,
+                                   float mu_s, float nu, float jitter, vec3 *sky, vec3 *sun)
+{
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    int tw = s->transmittance_width, th = s->transmittance_height;
+    vec3 E = v3_from4(a->solar_irradiance);
+    *sky = v3(0.0f, 0.0f, 0.0f);
+    *sun = v3(0.0f, 0.0f, 0.0f);
+    float sun_solid_angle = 2.0f * ATMO_PI * (1.0f - s->sun_direction.w);
+    int looks_at_sun = nu >= s->sun_direction.w;
+
+    if (r > a->top_radius) {
+        float disc = geometry_discriminant(r, mu, a->top_radius);
+        if (mu >= 0.0f || disc < 0.0f) { /* the ray misses the atmosphere */
+            if (looks_at_sun)
+                *sun = v3_scale(E, 1.0f / sun_solid_angle);
+            return;
+        }
+        float t0 = -r * mu - sqrtf(disc);
+        mu_s = (r * mu_s + t0 * nu) / a->top_radius;
+        mu = -sqrtf(disc) / a->top_radius; /* r' mu' = r mu + t0, exactly */
+        r = a->top_radius;
+    }
+
+    int hits_ground = geometry_ray_hits_ground(r, mu, a->bottom_radius);
+    float d = hits_ground ? geometry_distance_to_bottom(r, mu, a->bottom_radius)
+                          : geometry_distance_to_top(r, mu, a->top_radius);
+    float p_r = phase_rayleigh(nu);
+    float p_m = sky_mie_phase(a, nu);
+    vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
+    int n = s->view_steps;
+    float dt = d / (float)n;
+    vec3 L = v3(0.0f, 0.0f, 0.0f);
+    vec3 T = v3(1.0f, 1.0f, 1.0f);
+    for (int i = 0; i < n; i++) {
+        float t = ((float)i + jitter) * dt;
+        float r_t = geometry_radius_at(r, mu, t);
+        float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
+        float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
+        vec3 sigma_t = atmosphere_extinction(a, h);
+        vec3 scattering = v3_add(v3_scale(beta_r, expf(-h / a->rayleigh_scale_height) * p_r),
+                                 v3_scale(beta_m, expf(-h / a->mie_scale_height) * p_m));
+        vec3 source = v3_mul(v3_mul(scattering, E),
+                             atmosphere_sun_transmittance(a, transmittance, tw, th, r_t, mu_s_t));
+        vec3 w = v3(__sky_segment_weight(sigma_t.x, dt), __sky_segment_weight(sigma_t.y, dt),
+                    __sky_segment_weight(sigma_t.z, dt));
+        L = v3_add(L, v3_mul(v3_mul(T, source), w));
+        T = v3_mul(T, v3_exp(v3_scale(sigma_t, -dt)));
+    }
+    if (hits_ground) {
+        float mu_s_g = atmo_clamp_cos((r * mu_s + d * nu) / a->bottom_radius);
+        vec3 sun_t = atmosphere_sun_transmittance(a, transmittance, tw, th, a->bottom_radius,
+                                                  mu_s_g);
+        vec3 irradiance = v3_scale(v3_mul(E, sun_t), fmaxf(mu_s_g, 0.0f));
+        L = v3_add(L, v3_mul(T, v3_scale(v3_mul(v3_from4(a->ground_albedo), irradiance),
+                                         1.0f / ATMO_PI)));
+    } else if (looks_at_sun) {
+        vec3 to_space = atmosphere_transmittance_to_top(a, transmittance, tw, th, r, mu);
+        *sun = v3_scale(v3_mul(E, to_space), 1.0f / sun_solid_angle);
+    }
+    *sky = L;
+}
+
+#endif
