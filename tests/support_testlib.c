@@ -31,6 +31,13 @@ int test_check_rel(const char *file, int line, const char *what, double got, dou
     return 0;
 }
 
+double test_chi2_critical_1e4(int dof)
+{
+    double k = dof, z = 3.719;
+    double c = 1.0 - 2.0 / (9.0 * k) + z * sqrt(2.0 / (9.0 * k));
+    return k * c * c * c;
+}
+
 void test_require_opencl(void)
 {
     cl_uint platforms = 0;

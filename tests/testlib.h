@@ -32,6 +32,11 @@ int test_check_abs(const char *file, int line, const char *what, double got, dou
 int test_check_rel(const char *file, int line, const char *what, double got, double want,
                    double rel);
 
+/* Upper critical value of the chi-square distribution with `dof` degrees of freedom for a
+ * one-sided test at p = 1e-4 (standard normal quantile 3.719), by the Wilson-Hilferty cube
+ * approximation (relative error < 1e-3 for dof >= 10, far below the margin it decides). */
+double test_chi2_critical_1e4(int dof);
+
 /* Exit 77 unless an OpenCL platform with a device exists. */
 void test_require_opencl(void);
 

@@ -39,6 +39,7 @@ typedef struct atmo_cl_build_options {
     const char *defines;          /* extra options, e.g. "-DATMO_LUMINANCE" (may be NULL) */
     const char *dump_dir;         /* --dump-kernels DIR, or NULL */
     int use_cache;                /* 0 with --no-kernel-cache */
+    const char *extra_source;     /* appended after the fragments (tests' probe kernels), or NULL */
 } atmo_cl_build_options;
 
 typedef struct atmo_cl_build_info {
@@ -61,8 +62,8 @@ void atmo_cl_close(atmo_cl *cl);
 int atmo_cl_build(atmo_cl *cl, const atmo_cl_build_options *o, cl_program *program,
                   atmo_cl_build_info *info, atmo_err *e);
 
-/* The assembled source (malloc'd), as the build sees it. */
-char *atmo_cl_assemble(const char *const *fragments, int count, atmo_err *e);
+/* The assembled source (malloc'd), as the build sees it; extra (may be NULL) goes last. */
+char *atmo_cl_assemble(const char *const *fragments, int count, const char *extra, atmo_err *e);
 
 /* Cache directory (created if missing); returns 0 and fills dir, or -1. */
 int atmo_cache_dir(char *dir, size_t size);
