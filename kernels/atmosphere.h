@@ -55,7 +55,7 @@ ATMO_FN float atmosphere_unit_from_texcoord(float u, int n)
 ATMO_FN void atmosphere_transmittance_uv(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r,
                                          float mu, int width, int height, float *u, float *v)
 {
-    float H = sqrtf(atmo_sq(a->top_radius) - atmo_sq(a->bottom_radius));
+    float H = sqrtf((a->top_radius - a->bottom_radius) * (a->top_radius + a->bottom_radius));
     float rho = atmo_safe_sqrt((r - a->bottom_radius) * (r + a->bottom_radius));
     float d = geometry_distance_to_top(r, mu, a->top_radius);
     float d_min = a->top_radius - r;
@@ -69,7 +69,7 @@ ATMO_FN void atmosphere_transmittance_uv(ATMO_GLOBAL const atmo_gpu_atmosphere *
 ATMO_FN void atmosphere_transmittance_r_mu(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float u,
                                            float v, int width, int height, float *r, float *mu)
 {
-    float H = sqrtf(atmo_sq(a->top_radius) - atmo_sq(a->bottom_radius));
+    float H = sqrtf((a->top_radius - a->bottom_radius) * (a->top_radius + a->bottom_radius));
     float x_mu = atmosphere_unit_from_texcoord(u, width);
     float x_r = atmosphere_unit_from_texcoord(v, height);
     float rho = H * x_r;
