@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# setup.sh — install what atmo needs (Debian 12 packages), build it, then render or test.
+#
+#   ./setup.sh render   install, build, render the default scene to atmo.png
+#   ./setup.sh test     install, build, run the whole test suite (what CI runs)
+#   ./setup.sh build    install and build only
+#
+# Needs root for apt-get (runs it through sudo when not root). Installs only missing packages.
+set -euo pipefail
+cd "$(dirname "$0")"
+mode=${1:-render}
+case "$mode" in render|test|build) ;; *)
+    echo "usage: ./setup.sh render|test|build" >&2; exit 2 ;;
+esac
+
+packages=(cmake make gcc pkg-config
+          pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers
+          libstb-dev libcjson-dev libopenexr-dev openexr libglfw3-dev gnuplot-nox)
+missing=()
+for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+    as_root=()
+    [ "$(id -u)" -ne 0 ] && as_root=(sudo)
+    echo "setup: installing ${missing[*]}"
+    "${as_root[@]}" apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive "${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+jobs=$(nproc 2>/dev/null || echo 2)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j"$jobs"
+
+case "$mode" in
+render)
+    build/atmo render --output atmo.png --report atmo-run.json
+    echo "setup: wrote atmo.png (and the run report atmo-run.json)" ;;
+test)
+    ctest --test-dir build --output-on-failure -j"$jobs" ;;
+esac
