@@ -100,6 +100,16 @@ extern const char *const atmo_default_preset;
 
 const atmo_param *atmo_param_find(const char *key);
 const atmo_preset *atmo_preset_find(const char *name);
+/* The registry key closest to `key` by edit distance (for "did you mean" hints). */
+const char *atmo_param_closest(const char *key);
+/* "integer", "number", "3 numbers", "name", "true/false". */
+const char *atmo_param_type_name(atmo_param_type t);
+/* A parameter's value as doubles (scalars in v[0]; enum: index; bool: 0/1). */
+void atmo_param_get(const atmo_scene *s, const atmo_param *p, double v[3]);
+/* Check v (finite, in range, whole for int/enum/bool) and store it; `shown` is the value as
+ * the user wrote it and `where` its source, both for the error message. */
+int atmo_param_store(atmo_scene *s, const atmo_param *p, const double v[3], const char *shown,
+                     const char *where, atmo_err *e);
 
 void atmo_scene_defaults(atmo_scene *s);
 /* Set one parameter from text ("60", "1,2,3", "panorama", "true"); `where` names the source

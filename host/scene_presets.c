@@ -1,0 +1,90 @@
+/* scene_presets.c — the built-in scenes: each a list of "key=value" applied over the defaults.
+ *
+ * Camera convention (scene.h, presets.md): forward = (-cos p sin y, sin p, cos p cos y),
+ * right = (cos y, 0, sin y); the sun direction is (sin z sin a, cos z, sin z cos a), so a camera
+ * with yaw y faces the sun's azimuth when a = -y. The default perspective frame is 45 degrees
+ * high and 640x360, so about +-36 degrees wide.
+ *
+ * Sky presets (camera on the ground at 1.7 m, yaw 0, i.e. looking along +Z):
+ *   sky-noon       sun at the zenith, pitch 10 so the horizon sits in the lower third.
+ *   sky-afternoon  sun zenith 60, azimuth 45: 30 degrees high and 45 degrees to the right of the
+ *                  view, just outside the frame's right edge.
+ *   sky-sunset     sun zenith 88, azimuth 0 = -yaw: straight ahead, 2 degrees above the horizon,
+ *                  8 degrees below the centre of a frame pitched up by 10.
+ *   space          2000 km above the origin, pitch -50; sun zenith 70 at azimuth 120 (behind
+ *                  and to the right), so the day side fills the view and the terminator crosses
+ *                  the upper left of the disc.
+ *
+ * thesis-1 ... thesis-9 are the nine views of shared/reference/presets.md. Their "direction to
+ * sun" vectors were converted with z = acos(d_y), a = atan2(d_x, d_z) and written with six
+ * decimals of a degree; they reproduce the table's vectors to better than 5e-7 (test_scene.c).
+ * Only the sky is rendered so far: terrain, clouds and the thesis objects are not yet in atmo. */
+#include <string.h>
+#include "atmo/scene.h"
+
+const char *const atmo_default_preset = "sky-sunset";
+
+#define PRESET(name, summary, ...) {name, summary, (const char *const[]){__VA_ARGS__, NULL}}
+#define THESIS_SKY_ONLY " [sky only: terrain, clouds, objects not rendered yet]"
+
+const atmo_preset atmo_presets[] = {
+    PRESET("sky-noon", "clear sky at noon from the ground, sun at the zenith, looking at the horizon",
+           "camera.kind=perspective", "camera.position_m=0,1.7,0", "camera.pitch_deg=10",
+           "camera.yaw_deg=0", "sun.zenith_deg=0", "sun.azimuth_deg=0"),
+    PRESET("sky-afternoon", "afternoon sky, sun 30 degrees high about 45 degrees right of the view",
+           "camera.kind=perspective", "camera.position_m=0,1.7,0", "camera.pitch_deg=10",
+           "camera.yaw_deg=0", "sun.zenith_deg=60", "sun.azimuth_deg=45"),
+    PRESET("sky-sunset", "sunset looking toward the sun, 2 degrees above the horizon, low in the frame",
+           "camera.kind=perspective", "camera.position_m=0,1.7,0", "camera.pitch_deg=10",
+           "camera.yaw_deg=0", "sun.zenith_deg=88", "sun.azimuth_deg=0"),
+    PRESET("space", "the planet from 2000 km: day side, terminator at the upper left, blue limb",
+           "camera.kind=perspective", "camera.position_m=0,2e6,0", "camera.pitch_deg=-50",
+           "camera.yaw_deg=0", "camera.fov_deg=45", "sun.zenith_deg=70", "sun.azimuth_deg=120"),
+    PRESET("thesis-1", "thesis view 1: sunset over snowy mountains, light shafts, clouds" THESIS_SKY_ONLY,
+           "camera.kind=perspective", "camera.position_m=23796,2266,16636",
+           "camera.pitch_deg=-4.962", "camera.yaw_deg=-550", "camera.fov_deg=45",
+           "sun.zenith_deg=87.476967", "sun.azimuth_deg=-150.985019"),
+    PRESET("thesis-2", "thesis view 2: looking down at a small sphere and box, shadows" THESIS_SKY_ONLY,
+           "camera.kind=perspective", "camera.position_m=22831,2028,13332",
+           "camera.pitch_deg=-51.5", "camera.yaw_deg=-518", "camera.fov_deg=45",
+           "sun.zenith_deg=83.222271", "sun.azimuth_deg=171.887327"),
+    PRESET("thesis-3", "thesis view 3: low sun near the open-box site, sun in frame" THESIS_SKY_ONLY,
+           "camera.kind=perspective", "camera.position_m=26632,1337,10748",
+           "camera.pitch_deg=-5", "camera.yaw_deg=-575", "camera.fov_deg=45",
+           "sun.zenith_deg=86.098524", "sun.azimuth_deg=-134.254613"),
+    PRESET("thesis-4", "thesis view 4: the planet from 2000 km, terminator, cloud field, blue limb"
+           THESIS_SKY_ONLY,
+           "camera.kind=perspective", "camera.position_m=0,2000000,0", "camera.pitch_deg=-50",
+           "camera.yaw_deg=-601", "camera.fov_deg=45", "sun.zenith_deg=88.452425",
+           "sun.azimuth_deg=-150.984989"),
+    PRESET("thesis-5", "thesis view 5: cloud tops away from the sun, glory and fog bow" THESIS_SKY_ONLY,
+           "camera.kind=perspective", "camera.position_m=61950,42398,-83371",
+           "camera.pitch_deg=-34", "camera.yaw_deg=-549", "camera.fov_deg=45",
+           "sun.zenith_deg=35.396615", "sun.azimuth_deg=0"),
+    PRESET("thesis-6", "thesis view 6: sky with the sun and clouds, lens flare, bright cloud edges"
+           THESIS_SKY_ONLY,
+           "camera.kind=perspective", "camera.position_m=23796,2266,16636",
+           "camera.pitch_deg=15.038", "camera.yaw_deg=-519", "camera.fov_deg=45",
+           "sun.zenith_deg=62.332413", "sun.azimuth_deg=154.698581"),
+    PRESET("thesis-7", "thesis view 7: looking +Z into an open box, path traced" THESIS_SKY_ONLY,
+           "camera.kind=perspective", "camera.position_m=26631.5,1336.5,10747.5",
+           "camera.pitch_deg=0", "camera.yaw_deg=0", "camera.fov_deg=45",
+           "sun.zenith_deg=86.098524", "sun.azimuth_deg=-134.254613"),
+    PRESET("thesis-8", "thesis view 8: over clouds and terrain at moderate sun" THESIS_SKY_ONLY,
+           "camera.kind=perspective", "camera.position_m=7866,5837,-143910",
+           "camera.pitch_deg=-29", "camera.yaw_deg=-535", "camera.fov_deg=45",
+           "sun.zenith_deg=81.435892", "sun.azimuth_deg=-170.007181"),
+    PRESET("thesis-9", "thesis view 9: high-altitude sunset over clouds" THESIS_SKY_ONLY,
+           "camera.kind=perspective", "camera.position_m=18181,37415,3431",
+           "camera.pitch_deg=-16", "camera.yaw_deg=-556", "camera.fov_deg=45",
+           "sun.zenith_deg=87.476967", "sun.azimuth_deg=-150.985019"),
+    {NULL, NULL, NULL},
+};
+
+const atmo_preset *atmo_preset_find(const char *name)
+{
+    for (const atmo_preset *p = atmo_presets; p->name; p++)
+        if (strcmp(p->name, name) == 0)
+            return p;
+    return NULL;
+}
