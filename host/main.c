@@ -6,6 +6,8 @@
 
 static const atmo_command commands[] = {
     {"devices", "list OpenCL platforms and devices", cmd_devices},
+    {"params", "list every scene parameter with unit, default and range", cmd_params},
+    {"presets", "list the built-in scenes", cmd_presets},
 };
 
 static void usage(FILE *f)
