@@ -9,12 +9,14 @@
 
 static void __usage(FILE *f)
 {
-    fprintf(f, "usage: atmo params [--json]\n\n"
-               "List every scene parameter: key, unit, default, valid range and meaning.\n"
-               "Set them with --set key=value, in a JSON scene file ({\"sun\": {\"zenith_deg\": 60}}),\n"
-               "or through a preset (atmo presets).\n\n"
-               "  --json   print the list as JSON\n"
-               "  --help   this text\n");
+    fprintf(
+        f,
+        "usage: atmo params [--json]\n\n"
+        "List every scene parameter: key, unit, default, valid range and meaning.\n"
+        "Set them with --set key=value, in a JSON scene file ({\"sun\": {\"zenith_deg\": 60}}),\n"
+        "or through a preset (atmo presets).\n\n"
+        "  --json   print the list as JSON\n"
+        "  --help   this text\n");
 }
 
 /* The default as it would be written after --set. */
@@ -45,7 +47,8 @@ static void __range_text(const atmo_param *p, char *buf, size_t n)
     } else if (p->type == ATMO_PARAM_BOOL) {
         snprintf(buf, n, "true|false");
     } else {
-        snprintf(buf, n, "%.15g .. %.15g%s", p->min, p->max, p->type == ATMO_PARAM_VEC3 ? " each" : "");
+        snprintf(buf, n, "%.15g .. %.15g%s", p->min, p->max,
+                 p->type == ATMO_PARAM_VEC3 ? " each" : "");
     }
 }
 
@@ -61,11 +64,12 @@ static int __print_json(void)
         if (!row || !cJSON_AddItemToArray(list, row))
             goto cleanup;
         cJSON_AddStringToObject(row, "key", p->key);
-        cJSON_AddStringToObject(row, "type", p->type == ATMO_PARAM_INT     ? "int"
-                                             : p->type == ATMO_PARAM_FLOAT ? "float"
-                                             : p->type == ATMO_PARAM_VEC3  ? "vec3"
-                                             : p->type == ATMO_PARAM_ENUM  ? "enum"
-                                                                           : "bool");
+        cJSON_AddStringToObject(row, "type",
+                                p->type == ATMO_PARAM_INT     ? "int"
+                                : p->type == ATMO_PARAM_FLOAT ? "float"
+                                : p->type == ATMO_PARAM_VEC3  ? "vec3"
+                                : p->type == ATMO_PARAM_ENUM  ? "enum"
+                                                              : "bool");
         cJSON_AddStringToObject(row, "unit", p->unit);
         if (p->type == ATMO_PARAM_VEC3)
             cJSON_AddItemToObject(row, "default", cJSON_CreateDoubleArray(p->def, 3));
@@ -109,7 +113,8 @@ int cmd_params(int argc, char **argv)
         } else if (strcmp(argv[i], "--json") == 0) {
             json = 1;
         } else {
-            fprintf(stderr, "atmo params: unknown option '%s'; run 'atmo params --help'\n", argv[i]);
+            fprintf(stderr, "atmo params: unknown option '%s'; run 'atmo params --help'\n",
+                    argv[i]);
             return ATMO_ERR_USAGE;
         }
     }
@@ -120,7 +125,8 @@ int cmd_params(int argc, char **argv)
         char def[64], range[160];
         __default_text(p, def, sizeof def);
         __range_text(p, range, sizeof range);
-        printf("%-36s %-9s %-16s %-44s %s\n", p->key, p->unit[0] ? p->unit : "-", def, range, p->help);
+        printf("%-36s %-9s %-16s %-44s %s\n", p->key, p->unit[0] ? p->unit : "-", def, range,
+               p->help);
     }
     return ATMO_OK;
 }

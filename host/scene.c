@@ -23,8 +23,8 @@
 
 /* offsetof(atmo_scene, f), failing to compile when the field's size is not that of the row's
  * type (a row declared INT on a double field would otherwise write 4 bytes into 8). */
-#define SCENE_FIELD(f, type)                                                                 \
-    (offsetof(atmo_scene, f) +                                                               \
+#define SCENE_FIELD(f, type)                                                                       \
+    (offsetof(atmo_scene, f) +                                                                     \
      0 * sizeof(char[sizeof(((atmo_scene *)0)->f) == sizeof(type) ? 1 : -1]))
 #define ROW_INT(k, f, unit, lo, hi, d, help) \
     {k, ATMO_PARAM_INT, SCENE_FIELD(f, int), unit, lo, hi, {d, 0, 0}, NULL, help}
@@ -32,17 +32,19 @@
     {k, ATMO_PARAM_FLOAT, SCENE_FIELD(f, double), unit, lo, hi, {d, 0, 0}, NULL, help}
 #define ROW_VEC3(k, f, unit, lo, hi, x, y, z, help) \
     {k, ATMO_PARAM_VEC3, SCENE_FIELD(f, double[3]), unit, lo, hi, {x, y, z}, NULL, help}
-#define ROW_ENUM(k, f, names, d, help)                                                        \
+#define ROW_ENUM(k, f, names, d, help)                                                       \
     {k, ATMO_PARAM_ENUM, SCENE_FIELD(f, int), "", 0, sizeof names / sizeof names[0] - 2, \
      {d, 0, 0}, names, help}
-#define ROW_BOOL(k, f, d, help) {k, ATMO_PARAM_BOOL, SCENE_FIELD(f, int), "", 0, 1, {d, 0, 0}, NULL, help}
+#define ROW_BOOL(k, f, d, help) \
+    {k, ATMO_PARAM_BOOL, SCENE_FIELD(f, int), "", 0, 1, {d, 0, 0}, NULL, help}
 
 /* Enum names in the order of the ATMO_* constants of scene.h and atmosphere.h. */
 static const char *const camera_kinds[] = {"perspective", "panorama", NULL};
 static const char *const phase_names[] = {"cornette-shanks", "henyey-greenstein", NULL};
 static const char *const quantity_names[] = {"radiance", "luminance", NULL};
-static const char *const tonemap_names[] = {"none",    "exposure", "reinhard", "reinhard-white",
-                                            "aces",    "unreal3",  "uchimura", "lottes", NULL};
+static const char *const tonemap_names[] = {"none",           "exposure", "reinhard",
+                                            "reinhard-white", "aces",     "unreal3",
+                                            "uchimura",       "lottes",   NULL};
 static const char *const transfer_names[] = {"srgb", "gamma22", NULL};
 _Static_assert(ATMO_CAMERA_PANORAMA == 1 && ATMO_PHASE_HENYEY_GREENSTEIN == 1 &&
                    ATMO_QUANTITY_LUMINANCE == 1 && ATMO_TONEMAP_LOTTES == 7 &&
@@ -62,14 +64,16 @@ const atmo_param atmo_params[] = {
              "camera position in metres: Y up, origin at sea level, planet centre (0,-R,0)"),
     ROW_FLOAT("camera.pitch_deg", camera.pitch_deg, "deg", -90, 90, 0,
               "camera pitch in degrees above the horizontal (ignored by panoramas)"),
-    ROW_FLOAT("camera.yaw_deg", camera.yaw_deg, "deg", -3600, 3600, 0,
-              "camera yaw in degrees: 0 looks along +Z, forward = (-cos p sin y, sin p, cos p cos y)"),
+    ROW_FLOAT(
+        "camera.yaw_deg", camera.yaw_deg, "deg", -3600, 3600, 0,
+        "camera yaw in degrees: 0 looks along +Z, forward = (-cos p sin y, sin p, cos p cos y)"),
     ROW_FLOAT("camera.fov_deg", camera.fov_deg, "deg", 1, 179, 45,
               "vertical field of view of the perspective camera in degrees"),
     ROW_FLOAT("sun.zenith_deg", sun.zenith_deg, "deg", 0, 180, 0,
               "sun zenith angle in degrees from world +Y (90 = on the horizon)"),
-    ROW_FLOAT("sun.azimuth_deg", sun.azimuth_deg, "deg", -3600, 3600, 0,
-              "sun azimuth in degrees: direction (sin z sin a, cos z, sin z cos a); a = -yaw faces it"),
+    ROW_FLOAT(
+        "sun.azimuth_deg", sun.azimuth_deg, "deg", -3600, 3600, 0,
+        "sun azimuth in degrees: direction (sin z sin a, cos z, sin z cos a); a = -yaw faces it"),
     ROW_FLOAT("sun.angular_radius_deg", sun.angular_radius_deg, "deg", 0.01, 10, 0.26786,
               "angular radius of the sun disc in degrees"),
     ROW_FLOAT("sun.irradiance_scale", sun.irradiance_scale, "", 0, 1e6, 1,
@@ -78,10 +82,10 @@ const atmo_param atmo_params[] = {
               "planet (sea-level) radius in metres"),
     ROW_FLOAT("atmosphere.top_radius_m", atmosphere.top_radius_m, "m", 1e3, 1e8, 6420e3,
               "radius of the top of the atmosphere in metres"),
-    ROW_FLOAT("atmosphere.rayleigh_coefficient", atmosphere.rayleigh_coefficient, "1/m um^4", 0,
-              1, 1.24062e-6, "Rayleigh scattering at sea level: beta_R = c * lambda[um]^-4 in 1/m"),
-    ROW_FLOAT("atmosphere.rayleigh_scale_height_m", atmosphere.rayleigh_scale_height_m, "m", 1,
-              1e6, 8000, "Rayleigh (air) density scale height in metres"),
+    ROW_FLOAT("atmosphere.rayleigh_coefficient", atmosphere.rayleigh_coefficient, "1/m um^4", 0, 1,
+              1.24062e-6, "Rayleigh scattering at sea level: beta_R = c * lambda[um]^-4 in 1/m"),
+    ROW_FLOAT("atmosphere.rayleigh_scale_height_m", atmosphere.rayleigh_scale_height_m, "m", 1, 1e6,
+              8000, "Rayleigh (air) density scale height in metres"),
     ROW_FLOAT("atmosphere.mie_extinction_per_m", atmosphere.mie_extinction_per_m, "1/m", 0, 1,
               4.44e-6, "aerosol extinction coefficient at sea level in 1/m, every wavelength"),
     ROW_FLOAT("atmosphere.mie_albedo", atmosphere.mie_albedo, "", 0, 1, 0.9,
@@ -181,7 +185,8 @@ static size_t __edit_distance(const char *a, const char *b)
         row[0] = i;
         for (size_t j = 1; j <= lb; j++) {
             size_t up = row[j];
-            size_t best = diag + (tolower((unsigned char)a[i - 1]) != tolower((unsigned char)b[j - 1]));
+            size_t best =
+                diag + (tolower((unsigned char)a[i - 1]) != tolower((unsigned char)b[j - 1]));
             if (up + 1 < best)
                 best = up + 1;
             if (row[j - 1] + 1 < best)
@@ -217,16 +222,17 @@ const char *atmo_param_closest(const char *key)
 
 static int __unknown_key(const char *key, const char *where, atmo_err *e)
 {
-    return atmo_fail(e, ATMO_ERR_USAGE,
-                     "unknown parameter '%s' (from %s); did you mean '%s'? (atmo params lists them all)",
-                     key, where, atmo_param_closest(key));
+    return atmo_fail(
+        e, ATMO_ERR_USAGE,
+        "unknown parameter '%s' (from %s); did you mean '%s'? (atmo params lists them all)", key,
+        where, atmo_param_closest(key));
 }
 
 /* "0 .. 180 deg" */
 static void __range_text(const atmo_param *p, char *buf, size_t n)
 {
-    snprintf(buf, n, "%.15g .. %.15g%s%s%s", p->min, p->max, p->type == ATMO_PARAM_VEC3 ? " (each)" : "",
-             p->unit[0] ? " " : "", p->unit);
+    snprintf(buf, n, "%.15g .. %.15g%s%s%s", p->min, p->max,
+             p->type == ATMO_PARAM_VEC3 ? " (each)" : "", p->unit[0] ? " " : "", p->unit);
 }
 
 static void __names_text(const atmo_param *p, char *buf, size_t n)
@@ -235,18 +241,6 @@ static void __names_text(const atmo_param *p, char *buf, size_t n)
     buf[0] = '\0';
     for (const char *const *name = p->names; *name && used < n; name++)
         used += (size_t)snprintf(buf + used, n - used, "%s%s", name == p->names ? "" : ", ", *name);
-}
-
-const char *atmo_param_type_name(atmo_param_type t)
-{
-    switch (t) {
-    case ATMO_PARAM_INT: return "integer";
-    case ATMO_PARAM_FLOAT: return "number";
-    case ATMO_PARAM_VEC3: return "3 numbers";
-    case ATMO_PARAM_ENUM: return "name";
-    case ATMO_PARAM_BOOL: return "true/false";
-    }
-    return "?";
 }
 
 int atmo_param_store(atmo_scene *s, const atmo_param *p, const double v[3], const char *shown,
@@ -263,23 +257,25 @@ int atmo_param_store(atmo_scene *s, const atmo_param *p, const double v[3], cons
             char names[256];
             __names_text(p, names, sizeof names);
             if (v[i] != floor(v[i]) || v[i] < p->min || v[i] > p->max)
-                return atmo_fail(e, ATMO_ERR_USAGE, "%s = %s (from %s) is not a valid name; use one of: %s",
-                                 p->key, shown, where, names);
+                return atmo_fail(e, ATMO_ERR_USAGE,
+                                 "%s = %s (from %s) is not a valid name; use one of: %s", p->key,
+                                 shown, where, names);
             continue;
         }
         if (v[i] < p->min || v[i] > p->max) {
             __range_text(p, range, sizeof range);
             if (p->type == ATMO_PARAM_BOOL)
-                return atmo_fail(e, ATMO_ERR_USAGE, "%s = %s (from %s) is not a boolean; use true or false",
-                                 p->key, shown, where);
-            return atmo_fail(e, ATMO_ERR_USAGE, "%s = %s (from %s) is out of range; valid: %s", p->key,
-                             shown, where, range);
+                return atmo_fail(e, ATMO_ERR_USAGE,
+                                 "%s = %s (from %s) is not a boolean; use true or false", p->key,
+                                 shown, where);
+            return atmo_fail(e, ATMO_ERR_USAGE, "%s = %s (from %s) is out of range; valid: %s",
+                             p->key, shown, where, range);
         }
         if ((p->type == ATMO_PARAM_INT || p->type == ATMO_PARAM_BOOL) && v[i] != floor(v[i])) {
             __range_text(p, range, sizeof range);
             return atmo_fail(e, ATMO_ERR_USAGE,
-                             "%s = %s (from %s) must be a whole number; valid: integers in %s", p->key,
-                             shown, where, range);
+                             "%s = %s (from %s) must be a whole number; valid: integers in %s",
+                             p->key, shown, where, range);
         }
     }
     if (p->type == ATMO_PARAM_FLOAT || p->type == ATMO_PARAM_VEC3)
@@ -347,7 +343,8 @@ static int __parse_value(const atmo_param *p, const char *value, double v[3])
         v[0] = -1; /* reported by atmo_param_store with the list of names */
         return 1;
     case ATMO_PARAM_BOOL:
-        if (!strcmp(value, "true") || !strcmp(value, "1") || !strcmp(value, "yes") || !strcmp(value, "on"))
+        if (!strcmp(value, "true") || !strcmp(value, "1") || !strcmp(value, "yes") ||
+            !strcmp(value, "on"))
             v[0] = 1;
         else if (!strcmp(value, "false") || !strcmp(value, "0") || !strcmp(value, "no") ||
                  !strcmp(value, "off"))
@@ -371,7 +368,7 @@ int atmo_scene_set(atmo_scene *s, const char *key, const char *value, const char
         __range_text(p, range, sizeof range);
         return atmo_fail(e, ATMO_ERR_USAGE, "%s = '%s' (from %s) is not %s; valid: %s%s", p->key,
                          value, where,
-                         p->type == ATMO_PARAM_VEC3 ? "three numbers x,y,z"
+                         p->type == ATMO_PARAM_VEC3  ? "three numbers x,y,z"
                          : p->type == ATMO_PARAM_INT ? "an integer"
                                                      : "a number",
                          range, p->type == ATMO_PARAM_VEC3 ? ", e.g. 0,1.7,0" : "");
@@ -385,8 +382,8 @@ int atmo_scene_assign(atmo_scene *s, const char *assignment, const char *where, 
     char key[128];
     if (!eq || eq == assignment)
         return atmo_fail(e, ATMO_ERR_USAGE,
-                         "'%s' (from %s) is not key=value; write e.g. sun.zenith_deg=60", assignment,
-                         where);
+                         "'%s' (from %s) is not key=value; write e.g. sun.zenith_deg=60",
+                         assignment, where);
     size_t n = (size_t)(eq - assignment);
     if (n >= sizeof key)
         return __unknown_key(assignment, where, e);

@@ -42,13 +42,15 @@ static char *__read_file(const char *path, atmo_err *e)
         if (used < cap)
             break;
         if (cap >= SCENE_FILE_MAX) {
-            atmo_fail(e, ATMO_ERR_USAGE, "scene file '%s' is larger than 16 MiB; is it a scene?", path);
+            atmo_fail(e, ATMO_ERR_USAGE, "scene file '%s' is larger than 16 MiB; is it a scene?",
+                      path);
             goto fail;
         }
         cap *= 2;
     }
     if (ferror(f)) {
-        atmo_fail(e, ATMO_ERR_USAGE, "scene file '%s' could not be read: %s", path, strerror(errno));
+        atmo_fail(e, ATMO_ERR_USAGE, "scene file '%s' could not be read: %s", path,
+                  strerror(errno));
         goto fail;
     }
     text[used] = '\0';
@@ -108,8 +110,9 @@ static int __store_json(atmo_scene *s, const atmo_param *p, const cJSON *item, c
     }
     if (expected) {
         char *text = cJSON_PrintUnformatted(item);
-        int rc = atmo_fail(e, ATMO_ERR_USAGE, "%s = %.60s (from %s) has the wrong type: expected %s",
-                           p->key, text ? text : "?", path, expected);
+        int rc =
+            atmo_fail(e, ATMO_ERR_USAGE, "%s = %.60s (from %s) has the wrong type: expected %s",
+                      p->key, text ? text : "?", path, expected);
         cJSON_free(text);
         return rc;
     }
@@ -129,8 +132,8 @@ static int __load_object(atmo_scene *s, const cJSON *obj, const char *prefix, co
     {
         char key[256];
         if ((size_t)snprintf(key, sizeof key, "%s%s", prefix, item->string) >= sizeof key)
-            return atmo_fail(e, ATMO_ERR_USAGE, "key '%.60s...' in %s is too long to be a parameter",
-                             key, path);
+            return atmo_fail(e, ATMO_ERR_USAGE,
+                             "key '%.60s...' in %s is too long to be a parameter", key, path);
         const atmo_param *p = atmo_param_find(key);
         if (p) {
             size_t index = (size_t)(p - atmo_params);
@@ -189,9 +192,9 @@ int atmo_scene_load_json(atmo_scene *s, const char *path, atmo_err *e)
         goto cleanup;
     }
     if (!cJSON_IsObject(root)) {
-        rc = atmo_fail(e, ATMO_ERR_USAGE,
-                       "%s: a scene file must be a JSON object such as {\"sun\": {\"zenith_deg\": 60}}",
-                       path);
+        rc = atmo_fail(
+            e, ATMO_ERR_USAGE,
+            "%s: a scene file must be a JSON object such as {\"sun\": {\"zenith_deg\": 60}}", path);
         goto cleanup;
     }
     seen = calloc(__param_count(), 1);

@@ -20,42 +20,81 @@
 #define PI 3.14159265358979323846
 
 /* Every default of the specification, in --set form. */
-static const char *const spec_defaults[] = {
-    "image.width=640", "image.height=360", "image.samples=16", "image.seed=0",
-    "camera.kind=perspective", "camera.position_m=0,1.7,0", "camera.pitch_deg=0",
-    "camera.yaw_deg=0", "camera.fov_deg=45", "sun.zenith_deg=0", "sun.azimuth_deg=0",
-    "sun.angular_radius_deg=0.26786", "sun.irradiance_scale=1",
-    "atmosphere.bottom_radius_m=6360e3", "atmosphere.top_radius_m=6420e3",
-    "atmosphere.rayleigh_coefficient=1.24062e-6", "atmosphere.rayleigh_scale_height_m=8000",
-    "atmosphere.mie_extinction_per_m=4.44e-6", "atmosphere.mie_albedo=0.9",
-    "atmosphere.mie_scale_height_m=1200", "atmosphere.mie_g=0.8",
-    "atmosphere.mie_phase=cornette-shanks", "atmosphere.ozone_column_du=300",
-    "atmosphere.ozone_bottom_m=10000", "atmosphere.ozone_peak_m=25000",
-    "atmosphere.ozone_top_m=40000", "atmosphere.ground_albedo=0.1",
-    "render.wavelengths_nm=680,550,440", "render.quantity=radiance", "render.view_steps=32",
-    "render.transmittance_width=256", "render.transmittance_height=64", "post.exposure=10",
-    "post.tonemap=exposure", "post.white_point=4", "post.white_balance=true",
-    "post.transfer=srgb", NULL};
+static const char *const spec_defaults[] = {"image.width=640",
+                                            "image.height=360",
+                                            "image.samples=16",
+                                            "image.seed=0",
+                                            "camera.kind=perspective",
+                                            "camera.position_m=0,1.7,0",
+                                            "camera.pitch_deg=0",
+                                            "camera.yaw_deg=0",
+                                            "camera.fov_deg=45",
+                                            "sun.zenith_deg=0",
+                                            "sun.azimuth_deg=0",
+                                            "sun.angular_radius_deg=0.26786",
+                                            "sun.irradiance_scale=1",
+                                            "atmosphere.bottom_radius_m=6360e3",
+                                            "atmosphere.top_radius_m=6420e3",
+                                            "atmosphere.rayleigh_coefficient=1.24062e-6",
+                                            "atmosphere.rayleigh_scale_height_m=8000",
+                                            "atmosphere.mie_extinction_per_m=4.44e-6",
+                                            "atmosphere.mie_albedo=0.9",
+                                            "atmosphere.mie_scale_height_m=1200",
+                                            "atmosphere.mie_g=0.8",
+                                            "atmosphere.mie_phase=cornette-shanks",
+                                            "atmosphere.ozone_column_du=300",
+                                            "atmosphere.ozone_bottom_m=10000",
+                                            "atmosphere.ozone_peak_m=25000",
+                                            "atmosphere.ozone_top_m=40000",
+                                            "atmosphere.ground_albedo=0.1",
+                                            "render.wavelengths_nm=680,550,440",
+                                            "render.quantity=radiance",
+                                            "render.view_steps=32",
+                                            "render.transmittance_width=256",
+                                            "render.transmittance_height=64",
+                                            "post.exposure=10",
+                                            "post.tonemap=exposure",
+                                            "post.white_point=4",
+                                            "post.white_balance=true",
+                                            "post.transfer=srgb",
+                                            NULL};
 
 /* Ranges of the specification: key, min, max (enums and bools are checked by name). */
 static const struct {
     const char *key;
     double min, max;
 } spec_ranges[] = {
-    {"image.width", 1, 16384}, {"image.height", 1, 16384}, {"image.samples", 1, 1e6},
-    {"image.seed", 0, 2147483647}, {"camera.position_m", -1e9, 1e9}, {"camera.pitch_deg", -90, 90},
-    {"camera.yaw_deg", -3600, 3600}, {"camera.fov_deg", 1, 179}, {"sun.zenith_deg", 0, 180},
-    {"sun.azimuth_deg", -3600, 3600}, {"sun.angular_radius_deg", 0.01, 10},
-    {"sun.irradiance_scale", 0, 1e6}, {"atmosphere.bottom_radius_m", 1e3, 1e8},
-    {"atmosphere.top_radius_m", 1e3, 1e8}, {"atmosphere.rayleigh_coefficient", 0, 1},
-    {"atmosphere.rayleigh_scale_height_m", 1, 1e6}, {"atmosphere.mie_extinction_per_m", 0, 1},
-    {"atmosphere.mie_albedo", 0, 1}, {"atmosphere.mie_scale_height_m", 1, 1e6},
-    {"atmosphere.mie_g", -0.999, 0.999}, {"atmosphere.ozone_column_du", 0, 1000},
-    {"atmosphere.ozone_bottom_m", 0, 1e6}, {"atmosphere.ozone_peak_m", 0, 1e6},
-    {"atmosphere.ozone_top_m", 0, 1e6}, {"atmosphere.ground_albedo", 0, 1},
-    {"render.wavelengths_nm", 360, 830}, {"render.view_steps", 1, 4096},
-    {"render.transmittance_width", 4, 4096}, {"render.transmittance_height", 4, 4096},
-    {"post.exposure", 0, 1e9}, {"post.white_point", 1e-6, 1e9},
+    {"image.width", 1, 16384},
+    {"image.height", 1, 16384},
+    {"image.samples", 1, 1e6},
+    {"image.seed", 0, 2147483647},
+    {"camera.position_m", -1e9, 1e9},
+    {"camera.pitch_deg", -90, 90},
+    {"camera.yaw_deg", -3600, 3600},
+    {"camera.fov_deg", 1, 179},
+    {"sun.zenith_deg", 0, 180},
+    {"sun.azimuth_deg", -3600, 3600},
+    {"sun.angular_radius_deg", 0.01, 10},
+    {"sun.irradiance_scale", 0, 1e6},
+    {"atmosphere.bottom_radius_m", 1e3, 1e8},
+    {"atmosphere.top_radius_m", 1e3, 1e8},
+    {"atmosphere.rayleigh_coefficient", 0, 1},
+    {"atmosphere.rayleigh_scale_height_m", 1, 1e6},
+    {"atmosphere.mie_extinction_per_m", 0, 1},
+    {"atmosphere.mie_albedo", 0, 1},
+    {"atmosphere.mie_scale_height_m", 1, 1e6},
+    {"atmosphere.mie_g", -0.999, 0.999},
+    {"atmosphere.ozone_column_du", 0, 1000},
+    {"atmosphere.ozone_bottom_m", 0, 1e6},
+    {"atmosphere.ozone_peak_m", 0, 1e6},
+    {"atmosphere.ozone_top_m", 0, 1e6},
+    {"atmosphere.ground_albedo", 0, 1},
+    {"render.wavelengths_nm", 360, 830},
+    {"render.view_steps", 1, 4096},
+    {"render.transmittance_width", 4, 4096},
+    {"render.transmittance_height", 4, 4096},
+    {"post.exposure", 0, 1e9},
+    {"post.white_point", 1e-6, 1e9},
 };
 
 static char tmpdir[64];
@@ -148,20 +187,22 @@ static void test_registry(void)
         atmo_param_get(&a, p, v);
         int comps = p->type == ATMO_PARAM_VEC3 ? 3 : 1;
         for (int c = 0; c < comps; c++) {
-            CHECK(v[c] == p->def[c]);            /* defaults equal the registry */
+            CHECK(v[c] == p->def[c]); /* defaults equal the registry */
             CHECK(p->def[c] >= p->min && p->def[c] <= p->max);
         }
         CHECK(p->help && strlen(p->help) > 10 && !strchr(p->help, '\n'));
         CHECK(p->unit != NULL);
         CHECK(atmo_param_find(p->key) == p); /* unique keys */
         /* no two rows share bytes of the struct */
-        size_t size_i = p->type == ATMO_PARAM_VEC3 ? 3 * sizeof(double)
-                        : p->type == ATMO_PARAM_FLOAT ? sizeof(double) : sizeof(int);
+        size_t size_i = p->type == ATMO_PARAM_VEC3    ? 3 * sizeof(double)
+                        : p->type == ATMO_PARAM_FLOAT ? sizeof(double)
+                                                      : sizeof(int);
         CHECK(p->offset + size_i <= sizeof(atmo_scene));
         for (size_t j = 0; j < i; j++) {
             const atmo_param *q = &atmo_params[j];
-            size_t size_j = q->type == ATMO_PARAM_VEC3 ? 3 * sizeof(double)
-                            : q->type == ATMO_PARAM_FLOAT ? sizeof(double) : sizeof(int);
+            size_t size_j = q->type == ATMO_PARAM_VEC3    ? 3 * sizeof(double)
+                            : q->type == ATMO_PARAM_FLOAT ? sizeof(double)
+                                                          : sizeof(int);
             CHECK(p->offset >= q->offset + size_j || q->offset >= p->offset + size_i);
         }
     }
@@ -179,9 +220,12 @@ static void test_set(void)
     atmo_scene s;
     atmo_err e;
     atmo_scene_defaults(&s);
-    CHECK(atmo_scene_set(&s, "image.width", "1024", "--set", &e) == ATMO_OK && s.image.width == 1024);
-    CHECK(atmo_scene_set(&s, "image.samples", "1e3", "--set", &e) == ATMO_OK && s.image.samples == 1000);
-    CHECK(atmo_scene_assign(&s, "sun.zenith_deg=60", "--set", &e) == ATMO_OK && s.sun.zenith_deg == 60);
+    CHECK(atmo_scene_set(&s, "image.width", "1024", "--set", &e) == ATMO_OK &&
+          s.image.width == 1024);
+    CHECK(atmo_scene_set(&s, "image.samples", "1e3", "--set", &e) == ATMO_OK &&
+          s.image.samples == 1000);
+    CHECK(atmo_scene_assign(&s, "sun.zenith_deg=60", "--set", &e) == ATMO_OK &&
+          s.sun.zenith_deg == 60);
     CHECK(atmo_scene_assign(&s, "atmosphere.mie_extinction_per_m=1e-6", "--set", &e) == ATMO_OK &&
           s.atmosphere.mie_extinction_per_m == 1e-6);
     CHECK(atmo_scene_assign(&s, "atmosphere.mie_g=-0.25", "--set", &e) == ATMO_OK &&
@@ -213,7 +257,7 @@ static void test_set_rejections(void)
     check_set_rejected("sun.zenith_deg", "sun.zenith_deg", "key=value");
     check_set_rejected("sun.zenith_deg=", "sun.zenith_deg", "0 .. 180 deg");
     check_set_rejected("sun.zenith_deg=abc", "sun.zenith_deg", "'abc'");
-    check_set_rejected("sun.zenith_deg=60deg", "sun.zenith_deg", "60deg");  /* trailing garbage */
+    check_set_rejected("sun.zenith_deg=60deg", "sun.zenith_deg", "60deg"); /* trailing garbage */
     check_set_rejected("sun.zenith_deg=6 0", "sun.zenith_deg", "6 0");
     check_set_rejected("sun.zenith_deg=nan", "sun.zenith_deg", "finite");
     check_set_rejected("sun.zenith_deg=inf", "sun.zenith_deg", "finite");
@@ -247,7 +291,8 @@ static void test_validate(void)
 
     atmo_scene_defaults(&s);
     s.atmosphere.ozone_peak_m = 45000;
-    CHECK(atmo_scene_validate(&s, &e) == ATMO_ERR_USAGE && strstr(e.msg, "atmosphere.ozone_peak_m"));
+    CHECK(atmo_scene_validate(&s, &e) == ATMO_ERR_USAGE &&
+          strstr(e.msg, "atmosphere.ozone_peak_m"));
     atmo_scene_defaults(&s);
     s.atmosphere.ozone_bottom_m = s.atmosphere.ozone_peak_m = s.atmosphere.ozone_top_m = 20000;
     CHECK(atmo_scene_validate(&s, &e) == ATMO_ERR_USAGE && strstr(e.msg, "atmosphere.ozone_top_m"));
@@ -374,8 +419,10 @@ static void test_json(void)
     check_json_rejected("{\"sun\": {\"zenith_deg\": 60}} x", "line 1", NULL);
     check_json_rejected("", "line 1", NULL);
     check_json_rejected("[1, 2]", "JSON object", NULL);
-    check_json_rejected("{\"sun\": {\"zenit\": 60}}", "'sun.zenit'", "did you mean 'sun.zenith_deg'?");
-    check_json_rejected("{\"sunn\": {\"zenith_deg\": 60}}", "'sunn.zenith_deg'", "'sun.zenith_deg'");
+    check_json_rejected("{\"sun\": {\"zenit\": 60}}", "'sun.zenit'",
+                        "did you mean 'sun.zenith_deg'?");
+    check_json_rejected("{\"sunn\": {\"zenith_deg\": 60}}", "'sunn.zenith_deg'",
+                        "'sun.zenith_deg'");
     check_json_rejected("{\"sun\": 60}", "'sun'", "did you mean");
     check_json_rejected("{\"sun\": {\"zenith_deg\": \"60\"}}", "sun.zenith_deg", "a number");
     check_json_rejected("{\"sun\": {\"zenith_deg\": null}}", "sun.zenith_deg", "a number");
@@ -383,11 +430,15 @@ static void test_json(void)
     check_json_rejected("{\"sun\": {\"zenith_deg\": 200}}", "sun.zenith_deg = 200", "0 .. 180 deg");
     check_json_rejected("{\"image\": {\"width\": 10.5}}", "image.width", "whole");
     check_json_rejected("{\"camera\": {\"position_m\": [1, 2]}}", "camera.position_m", "3 numbers");
-    check_json_rejected("{\"camera\": {\"position_m\": \"0,1,0\"}}", "camera.position_m", "3 numbers");
-    check_json_rejected("{\"camera\": {\"position_m\": [1, true, 3]}}", "camera.position_m", "3 numbers");
+    check_json_rejected("{\"camera\": {\"position_m\": \"0,1,0\"}}", "camera.position_m",
+                        "3 numbers");
+    check_json_rejected("{\"camera\": {\"position_m\": [1, true, 3]}}", "camera.position_m",
+                        "3 numbers");
     check_json_rejected("{\"camera\": {\"kind\": 1}}", "camera.kind", "name string");
-    check_json_rejected("{\"camera\": {\"kind\": \"fisheye\"}}", "camera.kind", "perspective, panorama");
-    check_json_rejected("{\"post\": {\"white_balance\": 1}}", "post.white_balance", "true or false");
+    check_json_rejected("{\"camera\": {\"kind\": \"fisheye\"}}", "camera.kind",
+                        "perspective, panorama");
+    check_json_rejected("{\"post\": {\"white_balance\": 1}}", "post.white_balance",
+                        "true or false");
     check_json_rejected("{\"sun\": {\"zenith_deg\": 1}, \"sun.zenith_deg\": 2}", "sun.zenith_deg",
                         "twice");
 
@@ -482,7 +533,8 @@ static void test_presets(void)
         double y = s.camera.yaw_deg * PI / 180, right[3] = {cos(y), 0, sin(y)};
         double fd = f[0] * d[0] + f[1] * d[1] + f[2] * d[2];
         double sx = (right[0] * d[0] + right[2] * d[2]) / fd;
-        double up_y = cos(s.camera.pitch_deg * PI / 180); /* up = (sin p sin y, cos p, -sin p cos y) */
+        double up_y =
+            cos(s.camera.pitch_deg * PI / 180); /* up = (sin p sin y, cos p, -sin p cos y) */
         double up[3] = {sin(s.camera.pitch_deg * PI / 180) * sin(y), up_y,
                         -sin(s.camera.pitch_deg * PI / 180) * cos(y)};
         double sy = (up[0] * d[0] + up[1] * d[1] + up[2] * d[2]) / fd;

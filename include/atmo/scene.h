@@ -102,8 +102,6 @@ const atmo_param *atmo_param_find(const char *key);
 const atmo_preset *atmo_preset_find(const char *name);
 /* The registry key closest to `key` by edit distance (for "did you mean" hints). */
 const char *atmo_param_closest(const char *key);
-/* "integer", "number", "3 numbers", "name", "true/false". */
-const char *atmo_param_type_name(atmo_param_type t);
 /* A parameter's value as doubles (scalars in v[0]; enum: index; bool: 0/1). */
 void atmo_param_get(const atmo_scene *s, const atmo_param *p, double v[3]);
 /* Check v (finite, in range, whole for int/enum/bool) and store it; `shown` is the value as
