@@ -1,0 +1,134 @@
+/* plan.c — scene -> device structs and kernel list (atmo/plan.h). */
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+#include "atmo/colour.h"
+#include "atmo/plan.h"
+
+/* The layout the kernels see: OpenCL C aligns float4 to 16 bytes, as compat.h does on the host. */
+_Static_assert(sizeof(float4) == 16, "float4 must be 16 bytes");
+_Static_assert(sizeof(atmo_gpu_atmosphere) == 144, "atmo_gpu_atmosphere layout");
+_Static_assert(offsetof(atmo_gpu_atmosphere, bottom_radius) == 96, "atmo_gpu_atmosphere layout");
+_Static_assert(offsetof(atmo_gpu_atmosphere, sun_angular_radius) == 132, "atmo_gpu_atmosphere");
+_Static_assert(sizeof(atmo_gpu_camera) == 80, "atmo_gpu_camera layout");
+_Static_assert(offsetof(atmo_gpu_camera, kind) == 64, "atmo_gpu_camera layout");
+_Static_assert(offsetof(atmo_gpu_scene, camera) == 144, "atmo_gpu_scene layout");
+_Static_assert(offsetof(atmo_gpu_scene, sun_direction) == 224, "atmo_gpu_scene layout");
+_Static_assert(offsetof(atmo_gpu_scene, view_steps) == 272, "atmo_gpu_scene layout");
+_Static_assert(sizeof(atmo_gpu_scene) == 288, "atmo_gpu_scene layout");
+
+#define DEG (M_PI / 180.0)
+
+void atmo_sun_direction(double zenith_deg, double azimuth_deg, double out[3])
+{
+    double z = zenith_deg * DEG, a = azimuth_deg * DEG;
+    out[0] = sin(z) * sin(a);
+    out[1] = cos(z);
+    out[2] = sin(z) * cos(a);
+}
+
+void atmo_camera_basis(double pitch_deg, double yaw_deg, double forward[3], double right[3],
+                       double up[3])
+{
+    double x = pitch_deg * DEG, y = yaw_deg * DEG;
+    forward[0] = -cos(x) * sin(y), forward[1] = sin(x), forward[2] = cos(x) * cos(y);
+    right[0] = cos(y), right[1] = 0.0, right[2] = sin(y);
+    up[0] = sin(x) * sin(y), up[1] = cos(x), up[2] = -sin(x) * cos(y);
+}
+
+static float4 __f4(const double v[3], double w)
+{
+    float4 r = {(float)v[0], (float)v[1], (float)v[2], (float)w};
+    return r;
+}
+
+static void __fill_atmosphere(const atmo_atmosphere *a, atmo_gpu_atmosphere *g)
+{
+    memset(g, 0, sizeof *g);
+    g->rayleigh_scattering = __f4(a->rayleigh_scattering_per_m, 0.0);
+    g->mie_scattering = __f4(a->mie_scattering_per_m, 0.0);
+    g->mie_extinction = __f4(a->mie_extinction_per_m, 0.0);
+    g->ozone_absorption = __f4(a->ozone_absorption_per_m, 0.0);
+    g->solar_irradiance = __f4(a->solar_irradiance, 0.0);
+    g->ground_albedo = __f4(a->ground_albedo, 0.0);
+    g->bottom_radius = (float)a->bottom_radius_m;
+    g->top_radius = (float)a->top_radius_m;
+    g->rayleigh_scale_height = (float)a->rayleigh_scale_height_m;
+    g->mie_scale_height = (float)a->mie_scale_height_m;
+    g->mie_g = (float)a->mie_g;
+    g->mie_phase = a->mie_phase;
+    g->ozone_bottom = (float)a->ozone_bottom_m;
+    g->ozone_peak = (float)a->ozone_peak_m;
+    g->ozone_top = (float)a->ozone_top_m;
+    g->sun_angular_radius = (float)a->sun_angular_radius_rad;
+}
+
+static void __fill_camera(const atmo_scene *s, const atmo_atmosphere *a, atmo_gpu_camera *c)
+{
+    double forward[3], right[3], up[3];
+    memset(c, 0, sizeof *c);
+    if (s->camera.kind == ATMO_CAMERA_PANORAMA) {
+        /* panoramas are level: horizontal forward and right, world up */
+        atmo_camera_basis(0.0, s->camera.yaw_deg, forward, right, up);
+        c->kind = ATMO_GPU_CAMERA_PANORAMA;
+    } else {
+        atmo_camera_basis(s->camera.pitch_deg, s->camera.yaw_deg, forward, right, up);
+        c->kind = ATMO_GPU_CAMERA_PERSPECTIVE;
+    }
+    c->forward = __f4(forward, 0.0);
+    c->right = __f4(right, 0.0);
+    c->up = __f4(up, 0.0);
+    /* planet centre at (0, -R, 0): the camera's offset from it, in double */
+    double p[3] = {s->camera.position_m[0], s->camera.position_m[1] + a->bottom_radius_m,
+                   s->camera.position_m[2]};
+    double r = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    double n[3] = {p[0] / r, p[1] / r, p[2] / r};
+    c->local_up = __f4(n, r);
+    c->width = s->image.width;
+    c->height = s->image.height;
+    c->tan_half_fov = (float)tan(0.5 * s->camera.fov_deg * DEG);
+}
+
+int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e)
+{
+    int rc;
+    memset(p, 0, sizeof *p);
+    if ((rc = atmo_scene_validate(s, e)) || (rc = atmo_atmosphere_from_scene(s, &p->atmosphere, e)))
+        return rc;
+    atmo_gpu_scene *g = &p->gpu;
+    __fill_atmosphere(&p->atmosphere, &g->atmosphere);
+    __fill_camera(s, &p->atmosphere, &g->camera);
+    double sun[3];
+    atmo_sun_direction(s->sun.zenith_deg, s->sun.azimuth_deg, sun);
+    g->sun_direction = __f4(sun, cos(p->atmosphere.sun_angular_radius_rad));
+    double one[3] = {1.0, 1.0, 1.0}, k_sky[3], k_sun[3];
+    if (s->render.quantity == ATMO_QUANTITY_LUMINANCE) {
+        atmo_luminance_factors(s->render.wavelengths_nm, -3.0, k_sky);
+        atmo_luminance_factors(s->render.wavelengths_nm, 0.0, k_sun);
+        g->sky_factor = __f4(k_sky, 0.0);
+        g->sun_factor = __f4(k_sun, 0.0);
+    } else {
+        g->sky_factor = __f4(one, 0.0);
+        g->sun_factor = __f4(one, 0.0);
+    }
+    g->view_steps = s->render.view_steps;
+    g->transmittance_width = s->render.transmittance_width;
+    g->transmittance_height = s->render.transmittance_height;
+    g->seed = (uint)s->image.seed;
+
+    static const char *const sky_fragments[] = {
+        "kernels/compat.h",   "include/atmo/gpu_types.h", "kernels/rng.h",
+        "kernels/geometry.h", "kernels/phase.h",          "kernels/atmosphere.h",
+        "kernels/camera.h",   "kernels/sky_single.h",     "kernels/transmittance.cl",
+        "kernels/sky.cl",
+    };
+    p->fragment_count = (int)(sizeof sky_fragments / sizeof sky_fragments[0]);
+    for (int i = 0; i < p->fragment_count; i++)
+        p->fragments[i] = sky_fragments[i];
+    p->render_kernel = "sky_render";
+    p->width = s->image.width;
+    p->height = s->image.height;
+    p->samples = s->image.samples;
+    return ATMO_OK;
+}

@@ -1,0 +1,36 @@
+/* plan.h — from a validated scene to what the device needs.
+ *
+ * The plan decides which kernels exist (only those the scene needs are assembled), the sizes of
+ * the LUTs, and fills the float structs of gpu_types.h from the scene's double-precision values:
+ * the atmosphere at the render wavelengths, the camera basis and its distance to the planet
+ * centre (computed in double, so planet-scale coordinates never reach a kernel), the sun
+ * direction, and the factors that turn radiance into the output quantity. */
+#ifndef ATMO_PLAN_H
+#define ATMO_PLAN_H
+#include "atmo/atmosphere.h"
+#include "atmo/gpu_types.h"
+#include "atmo/scene.h"
+#include "atmo/status.h"
+
+#define ATMO_PLAN_MAX_FRAGMENTS 24
+
+typedef struct atmo_plan {
+    atmo_gpu_scene gpu;
+    atmo_atmosphere atmosphere;
+    const char *fragments[ATMO_PLAN_MAX_FRAGMENTS];
+    int fragment_count;
+    char defines[256];
+    const char *render_kernel;     /* name of the per-tile kernel */
+    int width, height, samples;
+} atmo_plan;
+
+int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e);
+
+/* Unit vector towards the sun for zenith and azimuth in degrees (scene.h's convention). */
+void atmo_sun_direction(double zenith_deg, double azimuth_deg, double out[3]);
+
+/* Camera basis of the thesis' Euler angles (presets.md): forward, right, up. */
+void atmo_camera_basis(double pitch_deg, double yaw_deg, double forward[3], double right[3],
+                       double up[3]);
+
+#endif

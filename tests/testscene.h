@@ -1,0 +1,17 @@
+/* testscene.h — scene, plan and LUT helpers for kernel tests (exit 1 with the message on any
+ * error, since a broken preset or plan is a test failure). */
+#ifndef ATMO_TESTSCENE_H
+#define ATMO_TESTSCENE_H
+#include "atmo/plan.h"
+#include "atmo/scene.h"
+#include "testcl.h"
+
+void test_scene_preset(atmo_scene *s, const char *preset);
+void test_scene_set(atmo_scene *s, const char *assignment);
+void test_plan(const atmo_scene *s, atmo_plan *p);
+/* The plan's program plus a probe kernel. */
+cl_program test_plan_program(atmo_cl *cl, const atmo_plan *p, const char *extra);
+/* Run the transmittance_lut kernel; returns the LUT buffer. */
+cl_mem test_transmittance_lut(atmo_cl *cl, cl_program prog, cl_mem scene, const atmo_plan *p);
+
+#endif
