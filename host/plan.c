@@ -118,15 +118,20 @@ int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     g->seed = (uint)s->image.seed;
 
     static const char *const sky_fragments[] = {
-        "kernels/compat.h",   "include/atmo/gpu_types.h", "kernels/rng.h",
-        "kernels/geometry.h", "kernels/phase.h",          "kernels/atmosphere.h",
-        "kernels/camera.h",   "kernels/sky_single.h",     "kernels/transmittance.cl",
-        "kernels/sky.cl",
+        "kernels/compat.h",    "include/atmo/gpu_types.h", "kernels/rng.h",
+        "kernels/geometry.h",  "kernels/phase.h",          "kernels/atmosphere.h",
+        "kernels/camera.h",    "kernels/sky_method.h",     "kernels/sky_single.h",
+        "kernels/method_single.h", "kernels/transmittance.cl", "kernels/sky.cl",
     };
+    p->method = "single";
     p->fragment_count = (int)(sizeof sky_fragments / sizeof sky_fragments[0]);
     for (int i = 0; i < p->fragment_count; i++)
         p->fragments[i] = sky_fragments[i];
-    p->render_kernel = "sky_render";
+    p->lut_bytes[0] = sizeof(float4) * (size_t)g->transmittance_width *
+                      (size_t)g->transmittance_height;
+    atmo_plan_pass transmittance = {"transmittance_lut", g->transmittance_width,
+                                    g->transmittance_height, 1, 0};
+    p->passes[p->pass_count++] = transmittance;
     p->width = s->image.width;
     p->height = s->image.height;
     p->samples = s->image.samples;

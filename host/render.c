@@ -82,8 +82,8 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
     cl_int err;
     atmo_cl cl;
     cl_program program = NULL;
-    cl_kernel k_lut = NULL, k_render = NULL;
-    cl_mem b_scene = NULL, b_lut = NULL, b_accum = NULL, b_nonfinite = NULL;
+    cl_kernel k_render = NULL;
+    cl_mem b_scene = NULL, b_accum = NULL, b_nonfinite = NULL, b_luts[ATMO_PLAN_LUTS] = {NULL};
     float *accum = NULL;
     int *tile_samples = NULL;
     const atmo_gpu_scene *g = &plan->gpu;
@@ -110,18 +110,15 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
     res->kernel_cache_hit = bi.cache_hit;
     res->seconds_build = bi.seconds;
 
-    k_lut = clCreateKernel(program, "transmittance_lut", &err);
-    CL_CHECK(err, "clCreateKernel(transmittance_lut)");
-    k_render = clCreateKernel(program, plan->render_kernel, &err);
-    CL_CHECK(err, "clCreateKernel(render)");
+    k_render = clCreateKernel(program, "sky_render", &err);
+    CL_CHECK(err, "clCreateKernel(sky_render)");
 
-    size_t lut_texels = (size_t)g->transmittance_width * (size_t)g->transmittance_height;
     size_t pixels = (size_t)W * (size_t)H;
     b_scene = clCreateBuffer(cl.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof *g,
                              (void *)g, &err);
     CL_CHECK(err, "clCreateBuffer(scene)");
-    b_lut = clCreateBuffer(cl.context, CL_MEM_READ_WRITE, lut_texels * 4 * sizeof(float), NULL, &err);
-    CL_CHECK(err, "clCreateBuffer(transmittance LUT)");
+    if ((rc = atmo_precompute(&cl, program, plan, b_scene, b_luts, &res->seconds_precompute, e)))
+        goto cleanup;
     b_accum = clCreateBuffer(cl.context, CL_MEM_READ_WRITE, pixels * 4 * sizeof(float), NULL, &err);
     CL_CHECK(err, "clCreateBuffer(accumulation image)");
     cl_uint zero = 0;
@@ -133,18 +130,6 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
                                  pixels * sizeof zero4, 0, NULL, NULL),
              "clEnqueueFillBuffer(accumulation image)");
 
-    /* precompute: the transmittance LUT */
-    double t1 = __now();
-    CL_CHECK(clSetKernelArg(k_lut, 0, sizeof b_scene, &b_scene), "clSetKernelArg");
-    CL_CHECK(clSetKernelArg(k_lut, 1, sizeof b_lut, &b_lut), "clSetKernelArg");
-    size_t lut_local[2] = {ATMO_LOCAL_SIZE, ATMO_LOCAL_SIZE};
-    size_t lut_global[2] = {__round_up(g->transmittance_width, ATMO_LOCAL_SIZE),
-                            __round_up(g->transmittance_height, ATMO_LOCAL_SIZE)};
-    CL_CHECK(clEnqueueNDRangeKernel(cl.queue, k_lut, 2, NULL, lut_global, lut_local, 0, NULL, NULL),
-             "clEnqueueNDRangeKernel(transmittance_lut)");
-    CL_CHECK(clFinish(cl.queue), "clFinish(transmittance_lut)");
-    res->seconds_precompute = __now() - t1;
-
     /* render: passes over the tiles, each launch a batch of samples of one tile */
     int tiles_x = (W + ts - 1) / ts, tiles_y = (H + ts - 1) / ts, tiles = tiles_x * tiles_y;
     tile_samples = calloc((size_t)tiles, sizeof *tile_samples);
@@ -153,9 +138,10 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
         goto cleanup;
     }
     CL_CHECK(clSetKernelArg(k_render, 0, sizeof b_scene, &b_scene), "clSetKernelArg");
-    CL_CHECK(clSetKernelArg(k_render, 1, sizeof b_lut, &b_lut), "clSetKernelArg");
-    CL_CHECK(clSetKernelArg(k_render, 2, sizeof b_accum, &b_accum), "clSetKernelArg");
-    CL_CHECK(clSetKernelArg(k_render, 3, sizeof b_nonfinite, &b_nonfinite), "clSetKernelArg");
+    for (int i = 0; i < ATMO_PLAN_LUTS; i++)
+        CL_CHECK(clSetKernelArg(k_render, 1 + i, sizeof b_luts[i], &b_luts[i]), "clSetKernelArg");
+    CL_CHECK(clSetKernelArg(k_render, 5, sizeof b_accum, &b_accum), "clSetKernelArg");
+    CL_CHECK(clSetKernelArg(k_render, 6, sizeof b_nonfinite, &b_nonfinite), "clSetKernelArg");
 
     progress prog = {settings->progress, __now(), 0.0};
     double t2 = __now();
@@ -172,12 +158,12 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
             int tw = W - tx < ts ? W - tx : ts, th = H - ty < ts ? H - ty : ts;
             cl_uint begin = (cl_uint)tile_samples[t];
             cl_uint count = (cl_uint)(batch < remaining ? batch : remaining);
-            CL_CHECK(clSetKernelArg(k_render, 4, sizeof(int), &tx), "clSetKernelArg");
-            CL_CHECK(clSetKernelArg(k_render, 5, sizeof(int), &ty), "clSetKernelArg");
-            CL_CHECK(clSetKernelArg(k_render, 6, sizeof(int), &tw), "clSetKernelArg");
-            CL_CHECK(clSetKernelArg(k_render, 7, sizeof(int), &th), "clSetKernelArg");
-            CL_CHECK(clSetKernelArg(k_render, 8, sizeof(cl_uint), &begin), "clSetKernelArg");
-            CL_CHECK(clSetKernelArg(k_render, 9, sizeof(cl_uint), &count), "clSetKernelArg");
+            CL_CHECK(clSetKernelArg(k_render, 7, sizeof(int), &tx), "clSetKernelArg");
+            CL_CHECK(clSetKernelArg(k_render, 8, sizeof(int), &ty), "clSetKernelArg");
+            CL_CHECK(clSetKernelArg(k_render, 9, sizeof(int), &tw), "clSetKernelArg");
+            CL_CHECK(clSetKernelArg(k_render, 10, sizeof(int), &th), "clSetKernelArg");
+            CL_CHECK(clSetKernelArg(k_render, 11, sizeof(cl_uint), &begin), "clSetKernelArg");
+            CL_CHECK(clSetKernelArg(k_render, 12, sizeof(cl_uint), &count), "clSetKernelArg");
             size_t local[2] = {ATMO_LOCAL_SIZE, ATMO_LOCAL_SIZE};
             size_t global[2] = {__round_up(tw, ATMO_LOCAL_SIZE), __round_up(th, ATMO_LOCAL_SIZE)};
             double tl = __now();
@@ -242,14 +228,13 @@ cleanup:
         clReleaseMemObject(b_nonfinite);
     if (b_accum)
         clReleaseMemObject(b_accum);
-    if (b_lut)
-        clReleaseMemObject(b_lut);
+    for (int i = ATMO_PLAN_LUTS - 1; i >= 0; i--)
+        if (b_luts[i])
+            clReleaseMemObject(b_luts[i]);
     if (b_scene)
         clReleaseMemObject(b_scene);
     if (k_render)
         clReleaseKernel(k_render);
-    if (k_lut)
-        clReleaseKernel(k_lut);
     if (program)
         clReleaseProgram(program);
     atmo_cl_close(&cl);

@@ -1,18 +1,20 @@
-/* sky.cl — the render kernel of the single-scattering sky: one tile, a batch of samples.
+/* sky.cl — the kernels that render with whichever method the plan assembled (sky_method.h).
  *
- * Work item (x, y) of the launch renders pixel (tile_x + x, tile_y + y); global sizes are padded
- * to the local size, so items outside the tile return at once. Samples sample_begin ..
- * sample_begin + sample_count - 1 are added one by one, in order, to the pixel's running sum in
- * `accum` (xyz; w unused). Because the sum is built in the same order whatever the batches, and
- * the random numbers depend only on (seed, pixel, sample, dimension), the image is bitwise the
- * same for any tile size and any split of samples into launches. A non-finite sample (which
- * should never happen) is dropped and counted in `nonfinite`.
- * Random dimensions: 0, 1 = sub-pixel position; 2 = offset of the march samples. */
+ * sky_render: one tile, a batch of samples. Work item (x, y) renders pixel (tile_x + x,
+ * tile_y + y); global sizes are padded to the local size, so items outside the tile return at
+ * once. Samples sample_begin .. sample_begin + sample_count - 1 are added one by one, in order,
+ * to the pixel's running sum in `accum` (xyz; w unused). Because the sum is built in the same
+ * order whatever the batches, and the random numbers depend only on (seed, pixel, sample,
+ * dimension), the image is bitwise the same for any tile size and any split of samples into
+ * launches. A non-finite sample (which should never happen) is dropped and counted in
+ * `nonfinite`. Random dimensions 0 and 1 place the sample in the pixel.
+ *
+ * sky_probe: the mean of `samples` samples of sky_radiance for a list of rays given as
+ * (r, mu, mu_s, nu), for `atmo radiance` and the tests; ray i uses pixel index i. */
 
-__kernel void sky_render(__global const atmo_gpu_scene *scene,
-                         __global const float4 *transmittance, __global float4 *accum,
-                         __global uint *nonfinite, int tile_x, int tile_y, int tile_w,
-                         int tile_h, uint sample_begin, uint sample_count)
+__kernel void sky_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
+                         __global float4 *accum, __global uint *nonfinite, int tile_x, int tile_y,
+                         int tile_w, int tile_h, uint sample_begin, uint sample_count)
 {
     int lx = get_global_id(0), ly = get_global_id(1);
     if (lx >= tile_w || ly >= tile_h)
@@ -29,11 +31,10 @@ __kernel void sky_render(__global const atmo_gpu_scene *scene,
         uint s = sample_begin + k;
         float jx = rng_uniform(scene->seed, pixel, s, 0u);
         float jy = rng_uniform(scene->seed, pixel, s, 1u);
-        float jt = rng_uniform(scene->seed, pixel, s, 2u);
         float3 dir = camera_ray(cam, (float)x + jx, (float)y + jy);
         float3 sky, sun;
-        sky_single_scattering(scene, transmittance, r, dot(up, dir), mu_s, dot(dir, sun_dir), jt,
-                              &sky, &sun);
+        sky_radiance(scene, ATMO_LUT_ARGS, r, dot(up, dir), mu_s, dot(dir, sun_dir), pixel, s,
+                     &sky, &sun);
         float3 L = sky * scene->sky_factor.xyz + sun * scene->sun_factor.xyz;
         if (any(isnan(L)) || any(isinf(L))) {
             atomic_inc(nonfinite);
@@ -42,4 +43,20 @@ __kernel void sky_render(__global const atmo_gpu_scene *scene,
         sum.xyz += L;
     }
     accum[pixel] = sum;
+}
+
+__kernel void sky_probe(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
+                        __global const float4 *rays, __global float4 *out, uint n, uint samples)
+{
+    uint i = get_global_id(0);
+    if (i >= n)
+        return;
+    float4 q = rays[i];
+    float3 sum = (float3)(0.0f);
+    for (uint s = 0; s < samples; s++) {
+        float3 sky, sun;
+        sky_radiance(scene, ATMO_LUT_ARGS, q.x, q.y, q.z, q.w, i, s, &sky, &sun);
+        sum += sky;
+    }
+    out[i] = (float4)(sum / (float)samples, 0.0f);
 }

@@ -1,6 +1,7 @@
 /* Test helpers that need a whole scene: see testscene.h. */
 #include <stdio.h>
 #include <stdlib.h>
+#include "atmo/render.h"
 #include "testscene.h"
 
 void test_scene_preset(atmo_scene *s, const char *preset)
@@ -36,22 +37,20 @@ cl_program test_plan_program(atmo_cl *cl, const atmo_plan *p, const char *extra)
     return test_cl_build(cl, p->fragments, p->fragment_count, extra);
 }
 
-cl_mem test_transmittance_lut(atmo_cl *cl, cl_program prog, cl_mem scene, const atmo_plan *p)
+void test_precompute(atmo_cl *cl, cl_program prog, cl_mem scene, const atmo_plan *p,
+                     cl_mem luts[ATMO_PLAN_LUTS])
 {
-    cl_int err;
-    int w = p->gpu.transmittance_width, h = p->gpu.transmittance_height;
-    cl_mem lut = test_cl_buffer(cl, sizeof(float) * 4 * (size_t)w * (size_t)h, NULL);
-    cl_kernel k = clCreateKernel(prog, "transmittance_lut", &err);
-    clSetKernelArg(k, 0, sizeof scene, &scene);
-    clSetKernelArg(k, 1, sizeof lut, &lut);
-    size_t local[2] = {8, 8}, global[2] = {(size_t)(w + 7) / 8 * 8, (size_t)(h + 7) / 8 * 8};
-    err = clEnqueueNDRangeKernel(cl->queue, k, 2, NULL, global, local, 0, NULL, NULL);
-    if (err == CL_SUCCESS)
-        err = clFinish(cl->queue);
-    if (err != CL_SUCCESS) {
-        fprintf(stderr, "transmittance_lut: %s\n", atmo_cl_error_string(err));
+    atmo_err e;
+    double seconds;
+    if (atmo_precompute(cl, prog, p, scene, luts, &seconds, &e)) {
+        fprintf(stderr, "precompute: %s\n", e.msg);
         exit(1);
     }
-    clReleaseKernel(k);
-    return lut;
+}
+
+void test_release_luts(cl_mem luts[ATMO_PLAN_LUTS])
+{
+    for (int i = 0; i < ATMO_PLAN_LUTS; i++)
+        if (luts[i])
+            clReleaseMemObject(luts[i]);
 }

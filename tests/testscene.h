@@ -11,7 +11,9 @@ void test_scene_set(atmo_scene *s, const char *assignment);
 void test_plan(const atmo_scene *s, atmo_plan *p);
 /* The plan's program plus a probe kernel. */
 cl_program test_plan_program(atmo_cl *cl, const atmo_plan *p, const char *extra);
-/* Run the transmittance_lut kernel; returns the LUT buffer. */
-cl_mem test_transmittance_lut(atmo_cl *cl, cl_program prog, cl_mem scene, const atmo_plan *p);
+/* The plan's precompute passes into luts[] (allocated here; release with test_release_luts). */
+void test_precompute(atmo_cl *cl, cl_program prog, cl_mem scene, const atmo_plan *p,
+                     cl_mem luts[ATMO_PLAN_LUTS]);
+void test_release_luts(cl_mem luts[ATMO_PLAN_LUTS]);
 
 #endif

@@ -13,14 +13,26 @@
 #include "atmo/status.h"
 
 #define ATMO_PLAN_MAX_FRAGMENTS 24
+#define ATMO_PLAN_MAX_PASSES 64
+#define ATMO_PLAN_LUTS 4 /* LUT buffers every sky kernel gets (kernels/sky_method.h) */
+
+/* One precompute launch: kernel(scene, lut0..lut3, arg) over width x height x depth items. */
+typedef struct atmo_plan_pass {
+    const char *kernel;
+    int width, height, depth;
+    int arg;
+} atmo_plan_pass;
 
 typedef struct atmo_plan {
     atmo_gpu_scene gpu;
     atmo_atmosphere atmosphere;
+    const char *method;            /* the atmosphere method's name, for reports */
     const char *fragments[ATMO_PLAN_MAX_FRAGMENTS];
     int fragment_count;
     char defines[256];
-    const char *render_kernel;     /* name of the per-tile kernel */
+    size_t lut_bytes[ATMO_PLAN_LUTS]; /* 0: unused (a dummy is bound) */
+    atmo_plan_pass passes[ATMO_PLAN_MAX_PASSES];
+    int pass_count;
     int width, height, samples;
 } atmo_plan;
 

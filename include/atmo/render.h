@@ -42,6 +42,12 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
                 atmo_render_result *result, atmo_err *e);
 void atmo_render_result_free(atmo_render_result *r);
 
+/* Allocate the plan's LUT buffers (a 16-byte dummy for each unused one) and run its precompute
+ * passes in order, waiting for the last. On failure, luts[] holds what was allocated: the
+ * caller releases the non-NULL ones either way. */
+int atmo_precompute(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_mem scene,
+                    cl_mem luts[ATMO_PLAN_LUTS], double *seconds, atmo_err *e);
+
 /* Ask a running render to stop after the current launch (async-signal-safe). */
 void atmo_render_interrupt(void);
 /* Clear the request (before a new render). */
