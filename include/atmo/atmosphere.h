@@ -1,7 +1,7 @@
 /* atmosphere.h — the physical atmosphere model, in double precision on the host.
  *
  * One struct describes the planet's atmosphere at the three render wavelengths; the scene
- * fills it (host/scene_model.c), the host references use it directly, and it is converted to
+ * fills it (host/atmosphere_model.c), the host references use it directly, and it is converted to
  * the float struct that kernels read (atmo_gpu_atmosphere in gpu_types.h).
  *
  * Model (Bruneton 2017, defaults in shared/reference/atmosphere.md):
@@ -34,5 +34,13 @@ typedef struct atmo_atmosphere {
     double solar_irradiance[3]; /* W m^-2 nm^-1 at the top of the atmosphere */
     double sun_angular_radius_rad;
 } atmo_atmosphere;
+
+struct atmo_scene;
+struct atmo_err;
+/* The model at the scene's render wavelengths (host/atmosphere_model.c): Rayleigh
+ * c·lambda[um]^-4, Mie scattering = extinction × albedo, ozone peak absorption = O3 cross-section
+ * × peak density of the column, solar irradiance × irradiance_scale, angles in radians. */
+int atmo_atmosphere_from_scene(const struct atmo_scene *s, atmo_atmosphere *a,
+                               struct atmo_err *e);
 
 #endif
