@@ -45,8 +45,8 @@ double atmo_ref_distance_to_top(double r, double mu, double top)
 {
     double disc = fmax(__ref_discriminant(r, mu, top), 0.0);
     double c = (top - r) * (top + r); /* product of the roots is -c */
-    if (c <= 0.0)
-        return mu >= 0.0 ? 0.0 : -2.0 * r * mu; /* on or above the sphere */
+    if (c <= 0.0) /* on or above the sphere: the far root, where the ray leaves it */
+        return mu < 0.0 && __ref_discriminant(r, mu, top) >= 0.0 ? -r * mu + sqrt(disc) : 0.0;
     /* the positive root, in the form that does not cancel for either sign of mu */
     return mu > 0.0 ? c / (r * mu + sqrt(disc)) : -r * mu + sqrt(disc);
 }

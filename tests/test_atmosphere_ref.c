@@ -118,6 +118,10 @@ static void test_geometry(void)
     /* 1 m above the ground looking down: 1 m, resolved at planet scale */
     CHECK_REL(atmo_ref_distance_to_bottom(R_BOT + 1.0, -1.0, R_BOT), 1.0, 1e-9);
     CHECK_REL(atmo_ref_distance_to_top(R_TOP - 1.0, 1.0, R_TOP), 1.0, 1e-9);
+    /* from space: the far side of the sphere, or 0 when the ray misses it */
+    CHECK_REL(atmo_ref_distance_to_top(2.0 * R_TOP, -1.0, R_TOP), 3.0 * R_TOP, 1e-12);
+    CHECK(atmo_ref_distance_to_top(2.0 * R_TOP, 0.0, R_TOP) == 0.0);
+    CHECK_REL(atmo_ref_distance_to_top(R_TOP, -0.5, R_TOP), R_TOP, 1e-12);
 }
 
 /* Vertical optical depth from altitude h to the top of an exponential layer. */

@@ -20,8 +20,8 @@
 #define ATMO_REF_PI 3.14159265358979323846
 
 /* ---- geometry (radii and distances in metres) ---- */
-/* Distance from radius r along mu to the sphere of radius `top` (r <= top); 0 at or above it
- * looking outwards. */
+/* Distance from radius r along mu to where the ray leaves the sphere of radius `top` (from
+ * above it: its far side; 0 when the ray never is inside). */
 double atmo_ref_distance_to_top(double r, double mu, double top);
 /* Distance to the sphere of radius `bottom` along mu; valid where the ray hits it. */
 double atmo_ref_distance_to_bottom(double r, double mu, double bottom);
