@@ -114,7 +114,7 @@ const atmo_param atmo_params[] = {
             "ray-march steps along each view ray"),
     ROW_INT("render.transmittance_width", render.transmittance_width, "", 4, 4096, 256,
             "transmittance LUT size along the view-zenith cosine"),
-    ROW_INT("render.transmittance_height", render.transmittance_height, "", 4, 4096, 64,
+    ROW_INT("render.transmittance_height", render.transmittance_height, "", 4, 4096, 256,
             "transmittance LUT size along the altitude"),
     ROW_FLOAT("post.exposure", post.exposure, "", 0, 1e9, 10,
               "exposure factor on the (white-balanced) radiance before tone mapping"),

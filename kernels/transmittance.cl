@@ -1,7 +1,7 @@
 /* transmittance.cl — fills the transmittance LUT (atmosphere.h has its parametrisation).
  *
  * Each texel (i, j) is placed at its centre u = (i + 0.5)/W, v = (j + 0.5)/H, mapped back to
- * (r, mu), and holds exp(-tau) with tau the optical depth to the top of the atmosphere by the
+ * (r, mu), and holds the optical depth tau to the top of the atmosphere by the
  * midpoint rule with TRANSMITTANCE_STEPS segments (error ~ 1/n^2; tests/test_transmittance.c
  * measures the LUT against the published table and the double-precision quadrature). */
 #define TRANSMITTANCE_STEPS 500
@@ -17,5 +17,5 @@ __kernel void transmittance_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_O
     atmosphere_transmittance_r_mu(&scene->atmosphere, ((float)i + 0.5f) / (float)w,
                                   ((float)j + 0.5f) / (float)h, w, h, &r, &mu);
     vec3 tau = atmosphere_optical_depth_to_top(&scene->atmosphere, r, mu, TRANSMITTANCE_STEPS);
-    lut_transmittance[j * w + i] = (float4)(exp(-tau), 1.0f);
+    lut_transmittance[j * w + i] = (float4)(tau, 0.0f);
 }
