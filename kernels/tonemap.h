@@ -33,7 +33,9 @@
  *                   maps to midOut and hdrMax maps to 1; a = 1.6, d = 0.977, midIn = 0.18,
  *                   midOut = 0.267. hdrMax is the post white point (post.white_point, the same
  *                   "exposed value that becomes white" as for reinhard-white); the thesis tied it
- *                   to its exposure E instead.
+ *                   to its exposure E instead. The curve needs hdrMax^a midOut > midIn^a, i.e. a white
+ *                   point above 0.41; below that it is not monotonic (and may be NaN, which
+ *                   tonemap_apply maps to 0).
  *
  * Transfer curves (display value from linear value v in [0, 1]):
  *   sRGB            12.92 v for v <= 0.0031308, else 1.055 v^(1/2.4) - 0.055  (IEC 61966-2-1)
@@ -139,7 +141,8 @@ ATMO_FN float tonemap_apply(int op, float x, float white_point)
     case ATMO_TONEMAP_LOTTES: y = tonemap_lottes(x, white_point); break;
     default: y = x; break;
     }
-    return clamp(y, 0.0f, 1.0f);
+    /* Written so that a NaN (Lottes with an unusable white point) also becomes 0. */
+    return y > 0.0f ? fminf(y, 1.0f) : 0.0f;
 }
 
 ATMO_FN float transfer_srgb_encode(float v)

@@ -72,6 +72,11 @@ static void test_closed_forms(void)
     CHECK_ABS(tonemap_apply(ATMO_TONEMAP_ACES, 50.0f, 4.0f), 1.0, 0.0);
     CHECK_ABS(tonemap_apply(ATMO_TONEMAP_LOTTES, 16.0f, 4.0f), 1.0, 0.0);
     CHECK_ABS(tonemap_apply(ATMO_TONEMAP_REINHARD_WHITE, 4.0f, 4.0f), 1.0, tol);
+    /* Lottes with an unusable white point (below 0.41) still yields a value in [0, 1]. */
+    for (double x = 1e-3; x < 1e3; x *= 1.5) {
+        float y = tonemap_apply(ATMO_TONEMAP_LOTTES, (float)x, 0.1f);
+        CHECK(y >= 0.0f && y <= 1.0f);
+    }
     for (int i = 0; i < 8; i++) {
         CHECK_ABS(tonemap_apply(all_ops[i], -1.0f, 4.0f), 0.0, 0.0);
         CHECK_ABS(tonemap_apply(all_ops[i], NAN, 4.0f), 0.0, 0.0);
