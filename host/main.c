@@ -5,9 +5,11 @@
 #include "commands.h"
 
 static const atmo_command commands[] = {
+    {"render", "render a scene to images (PNG, HDR, EXR, PFM)", cmd_render},
     {"devices", "list OpenCL platforms and devices", cmd_devices},
     {"params", "list every scene parameter with unit, default and range", cmd_params},
     {"presets", "list the built-in scenes", cmd_presets},
+    {"bench", "measure error against time of the rendering methods", cmd_bench},
 };
 
 static void usage(FILE *f)
