@@ -9,6 +9,7 @@ static const atmo_command commands[] = {
     {"devices", "list OpenCL platforms and devices", cmd_devices},
     {"params", "list every scene parameter with unit, default and range", cmd_params},
     {"presets", "list the built-in scenes", cmd_presets},
+    {"mie", "Lorenz-Mie optics of a droplet or a droplet size distribution", cmd_mie},
     {"bench", "measure error against time of the rendering methods", cmd_bench},
 };
 

@@ -1,0 +1,51 @@
+#!/bin/bash
+# test_mie_cli.sh — `atmo mie` end to end: JSON for a case-10-like input, table file, bad input.
+# labels: cli
+#
+# Oracle: MIEV0 case 10 (m = 1.33 - 1e-5 i, x = 100; ../shared/reference/mie.md): r = 10 um at
+# lambda = 200 pi nm gives x = 100 to rounding. Q_ext, Q_sca, g within 1e-6 relative plus half a
+# unit of the printed digit, S1/S2 at 0 and 180 deg within 1e-6 |S| (as test_mie_solver); the
+# JSON must carry the sign convention. Bad input: one line on stderr and exit status 2.
+set -u
+atmo=$1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail=0
+
+"$atmo" mie --radius-um 10 --wavelength-nm 628.3185307179586 --index 1.33+1e-5i \
+    --angles-deg 0,90,180 --json >"$tmp/out.json" || { echo "atmo mie failed"; fail=1; }
+python3 - "$tmp/out.json" <<'PY' || fail=1
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert "MIEV0" in d["convention"], d["convention"]
+r = d["results"][0]
+def near(got, want, half_ulp):
+    tol = max(1e-6 * abs(want), half_ulp)
+    assert abs(got - want) <= tol, (got, want, tol)
+near(r["Qext"], 2.101321, 5e-7)
+near(r["Qsca"], 2.096594, 5e-7)
+near(r["g"], 0.868959, 5e-7)
+assert r["angles_deg"] == [0, 90, 180] and len(r["P"]) == 3
+for got, want in ((r["S1"][0], (5253.302, -124.3188)), (r["S2"][2], (56.59205, -46.50974))):
+    err = abs(complex(*got) - complex(*want))
+    assert err <= 1e-6 * abs(complex(*want)), (got, want)
+print("case 10 via the CLI: ok")
+PY
+
+"$atmo" mie --dsd stratus --wavelength-nm 550 --wavelength-nm 440 --table "$tmp/t.csv" \
+    >"$tmp/out.txt" || { echo "table run failed"; fail=1; }
+head -1 "$tmp/t.csv" | grep -q '^theta_deg,P_550nm,P_440nm$' || { echo "bad table header"; fail=1; }
+[ "$(tail -1 "$tmp/t.csv" | cut -d, -f1)" = "180.000000" ] || { echo "table must end at 180"; fail=1; }
+ls "$tmp" | grep -q tmp && { echo "temporary file left behind"; fail=1; }
+
+for args in "--dsd nope --wavelength-nm 550" "--radius-um 10" "--radius-um -1 --wavelength-nm 550" \
+            "--radius-um 10 --wavelength-nm 550 --index 1.33-0.1i" \
+            "--radius-um 10 --wavelength-nm 550 --angles-deg 0,200" \
+            "--radius-um 10 --dsd fog --wavelength-nm 550" "--radius-um 10 --wavelength-nm 550 --bogus 1"; do
+    "$atmo" mie $args >"$tmp/o" 2>"$tmp/e"
+    rc=$?
+    if [ $rc -ne 2 ] || [ "$(wc -l <"$tmp/e")" -ne 1 ]; then
+        echo "atmo mie $args: exit $rc, stderr:"; cat "$tmp/e"; fail=1
+    fi
+done
+exit $fail
