@@ -16,7 +16,9 @@ _Static_assert(offsetof(atmo_gpu_camera, kind) == 64, "atmo_gpu_camera layout");
 _Static_assert(offsetof(atmo_gpu_scene, camera) == 144, "atmo_gpu_scene layout");
 _Static_assert(offsetof(atmo_gpu_scene, sun_direction) == 224, "atmo_gpu_scene layout");
 _Static_assert(offsetof(atmo_gpu_scene, view_steps) == 272, "atmo_gpu_scene layout");
-_Static_assert(sizeof(atmo_gpu_scene) == 288, "atmo_gpu_scene layout");
+_Static_assert(offsetof(atmo_gpu_scene, lut_dims) == 288, "atmo_gpu_scene layout");
+_Static_assert(offsetof(atmo_gpu_scene, method_float) == 352, "atmo_gpu_scene layout");
+_Static_assert(sizeof(atmo_gpu_scene) == 368, "atmo_gpu_scene layout");
 
 #define DEG (M_PI / 180.0)
 
@@ -90,6 +92,52 @@ static void __fill_camera(const atmo_scene *s, const atmo_atmosphere *a, atmo_gp
     c->tan_half_fov = (float)tan(0.5 * s->camera.fov_deg * DEG);
 }
 
+/* Method "single": single scattering only (kernels/method_single.h); no LUTs of its own. */
+static int __plan_single(const atmo_scene *s, atmo_plan *p, atmo_err *e)
+{
+    static const char *const fragments[] = {"kernels/sky_single.h", "kernels/method_single.h"};
+    return atmo_plan_add_fragments(p, fragments, 2, e);
+}
+
+/* Methods in ATMO_METHOD_* order; NULL: not implemented yet. */
+const atmo_plan_method atmo_plan_methods[] = {
+    {"single", __plan_single},
+    {"march", NULL},
+    {"fast", NULL},
+    {"lut", NULL},
+    {"reference", NULL},
+};
+
+const char *atmo_plan_available_methods(void)
+{
+    static char list[128];
+    list[0] = 0;
+    for (size_t i = 0; i < sizeof atmo_plan_methods / sizeof atmo_plan_methods[0]; i++)
+        if (atmo_plan_methods[i].plan)
+            snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", list[0] ? ", " : "",
+                     atmo_plan_methods[i].name);
+    return list;
+}
+
+int atmo_plan_add_fragments(atmo_plan *p, const char *const *names, int count, atmo_err *e)
+{
+    if (p->fragment_count + count + 2 > ATMO_PLAN_MAX_FRAGMENTS)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "too many kernel fragments (a build bug)");
+    for (int i = 0; i < count; i++)
+        p->fragments[p->fragment_count++] = names[i];
+    return ATMO_OK;
+}
+
+int atmo_plan_add_pass(atmo_plan *p, const char *kernel, int width, int height, int depth, int arg,
+                       atmo_err *e)
+{
+    if (p->pass_count == ATMO_PLAN_MAX_PASSES)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "too many precompute passes (a build bug)");
+    atmo_plan_pass pass = {kernel, width, height, depth, arg};
+    p->passes[p->pass_count++] = pass;
+    return ATMO_OK;
+}
+
 int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 {
     int rc;
@@ -117,21 +165,29 @@ int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     g->transmittance_height = s->render.transmittance_height;
     g->seed = (uint)s->image.seed;
 
-    static const char *const sky_fragments[] = {
-        "kernels/compat.h",    "include/atmo/gpu_types.h", "kernels/rng.h",
-        "kernels/geometry.h",  "kernels/phase.h",          "kernels/atmosphere.h",
-        "kernels/camera.h",    "kernels/sky_method.h",     "kernels/sky_single.h",
-        "kernels/method_single.h", "kernels/transmittance.cl", "kernels/sky.cl",
+    /* common fragments, then the method's, then the kernels that use them */
+    static const char *const common[] = {
+        "kernels/compat.h",   "include/atmo/gpu_types.h", "kernels/rng.h",
+        "kernels/geometry.h", "kernels/phase.h",          "kernels/atmosphere.h",
+        "kernels/camera.h",   "kernels/sky_method.h",
     };
-    p->method = "single";
-    p->fragment_count = (int)(sizeof sky_fragments / sizeof sky_fragments[0]);
-    for (int i = 0; i < p->fragment_count; i++)
-        p->fragments[i] = sky_fragments[i];
+    for (size_t i = 0; i < sizeof common / sizeof common[0]; i++)
+        p->fragments[p->fragment_count++] = common[i];
     p->lut_bytes[0] = sizeof(float4) * (size_t)g->transmittance_width *
                       (size_t)g->transmittance_height;
     atmo_plan_pass transmittance = {"transmittance_lut", g->transmittance_width,
                                     g->transmittance_height, 1, 0};
     p->passes[p->pass_count++] = transmittance;
+    const atmo_plan_method *m = &atmo_plan_methods[s->atmosphere.method];
+    p->method = m->name;
+    if (!m->plan)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "atmosphere.method=%s is not implemented yet (available: %s)", m->name,
+                         atmo_plan_available_methods());
+    if ((rc = m->plan(s, p, e)))
+        return rc;
+    p->fragments[p->fragment_count++] = "kernels/transmittance.cl";
+    p->fragments[p->fragment_count++] = "kernels/sky.cl";
     p->width = s->image.width;
     p->height = s->image.height;
     p->samples = s->image.samples;

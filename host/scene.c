@@ -41,6 +41,7 @@
 /* Enum names in the order of the ATMO_* constants of scene.h and atmosphere.h. */
 static const char *const camera_kinds[] = {"perspective", "panorama", NULL};
 static const char *const phase_names[] = {"cornette-shanks", "henyey-greenstein", NULL};
+static const char *const method_names[] = {"single", "march", "fast", "lut", "reference", NULL};
 static const char *const quantity_names[] = {"radiance", "luminance", NULL};
 static const char *const tonemap_names[] = {"none",           "exposure", "reinhard",
                                             "reinhard-white", "aces",     "unreal3",
@@ -96,6 +97,8 @@ const atmo_param atmo_params[] = {
               "aerosol phase asymmetry parameter g (0 = isotropic, > 0 forward)"),
     ROW_ENUM("atmosphere.mie_phase", atmosphere.mie_phase, phase_names, ATMO_PHASE_CORNETTE_SHANKS,
              "aerosol phase function"),
+    ROW_ENUM("atmosphere.method", atmosphere.method, method_names, ATMO_METHOD_SINGLE,
+             "how light transport in the atmosphere is computed (see README: Methods)"),
     ROW_FLOAT("atmosphere.ozone_column_du", atmosphere.ozone_column_du, "DU", 0, 1000, 300,
               "total ozone column in Dobson units (0 = no ozone absorption)"),
     ROW_FLOAT("atmosphere.ozone_bottom_m", atmosphere.ozone_bottom_m, "m", 0, 1e6, 10000,

@@ -14,7 +14,8 @@
     X(atmo_gpu_atmosphere, mie_phase) X(atmo_gpu_atmosphere, sun_angular_radius)                   \
     X(atmo_gpu_camera, local_up) X(atmo_gpu_camera, kind) X(atmo_gpu_camera, tan_half_fov)         \
     X(atmo_gpu_scene, camera) X(atmo_gpu_scene, sun_direction) X(atmo_gpu_scene, sun_factor)       \
-    X(atmo_gpu_scene, view_steps) X(atmo_gpu_scene, seed)
+    X(atmo_gpu_scene, view_steps) X(atmo_gpu_scene, seed)                        \
+    X(atmo_gpu_scene, lut_dims) X(atmo_gpu_scene, method_int) X(atmo_gpu_scene, method_float)
 
 #define HOST_OFFSET(type, field) (uint)offsetof(type, field),
 #define DEVICE_OFFSET(type, field) "out[n++] = (uint)__builtin_offsetof(" #type ", " #field ");\n"

@@ -49,6 +49,9 @@ typedef struct atmo_gpu_scene {
     int view_steps;        /* ray-march segments along a view ray */
     int transmittance_width, transmittance_height; /* LUT size: mu (x), r (y) */
     uint seed;
+    int lut_dims[3][4];    /* sizes of the method's LUTs a, b, c (the method says which axes) */
+    int method_int[4];     /* integer knobs of the method (its fragment documents them) */
+    float method_float[4]; /* float knobs of the method */
 } atmo_gpu_scene;
 
 #endif

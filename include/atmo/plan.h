@@ -38,6 +38,20 @@ typedef struct atmo_plan {
 
 int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 
+/* A method's part of the plan: it appends its kernel fragments (the headers that define
+ * sky_radiance and the .cl files of its precompute kernels), sets lut_bytes[1..3], the
+ * gpu.lut_dims / method_int / method_float it uses, and appends its precompute passes (after the
+ * transmittance LUT's, which every method gets first). */
+typedef struct atmo_plan_method {
+    const char *name;
+    int (*plan)(const atmo_scene *s, atmo_plan *p, atmo_err *e);
+} atmo_plan_method;
+extern const atmo_plan_method atmo_plan_methods[]; /* in ATMO_METHOD_* order */
+const char *atmo_plan_available_methods(void);
+int atmo_plan_add_fragments(atmo_plan *p, const char *const *names, int count, atmo_err *e);
+int atmo_plan_add_pass(atmo_plan *p, const char *kernel, int width, int height, int depth, int arg,
+                       atmo_err *e);
+
 /* Unit vector towards the sun for zenith and azimuth in degrees (scene.h's convention). */
 void atmo_sun_direction(double zenith_deg, double azimuth_deg, double out[3]);
 

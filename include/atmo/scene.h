@@ -26,6 +26,14 @@ enum {
     ATMO_TONEMAP_LOTTES,
 };
 enum { ATMO_TRANSFER_SRGB = 0, ATMO_TRANSFER_GAMMA22 = 1 };
+/* Atmosphere methods (issue 4): the order is that of the registry's names. */
+enum {
+    ATMO_METHOD_SINGLE = 0, /* single scattering only, ray marched */
+    ATMO_METHOD_MARCH,      /* ray-marched single scattering + a multiple-scattering term */
+    ATMO_METHOD_FAST,       /* per-frame LUTs (Hillaire 2020 style) */
+    ATMO_METHOD_LUT,        /* precomputed 4-D scattering LUTs (Bruneton 2017 style) */
+    ATMO_METHOD_REFERENCE,  /* Monte Carlo volumetric path tracer, all orders: the oracle */
+};
 
 typedef struct atmo_scene {
     struct {
@@ -55,6 +63,7 @@ typedef struct atmo_scene {
         double mie_scale_height_m;
         double mie_g;
         int mie_phase;               /* ATMO_PHASE_* of atmosphere.h */
+        int method;                  /* ATMO_METHOD_* */
         double ozone_column_du;      /* Dobson units in the tent profile */
         double ozone_bottom_m, ozone_peak_m, ozone_top_m;
         double ground_albedo;
