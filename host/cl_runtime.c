@@ -1,5 +1,6 @@
 /* cl_runtime.c — platform and device enumeration, device choice, context and queue
  * (atmo/cl_runtime.h). */
+#include <cjson/cJSON.h>
 #include <ctype.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -130,27 +131,37 @@ int atmo_cl_list_devices(int json, atmo_err *e)
     int rc = __cl_enumerate(list, &n, e);
     if (rc)
         return rc;
-    if (json)
-        printf("{\"devices\": [");
+    cJSON *root = json ? cJSON_CreateObject() : NULL;
+    cJSON *array = json ? cJSON_AddArrayToObject(root, "devices") : NULL;
     for (int i = 0; i < n; i++) {
         atmo_cl c;
         __cl_describe(&c, list[i].platform, list[i].device);
-        if (json)
-            printf("%s\n  {\"index\": %d, \"platform\": \"%s\", \"name\": \"%s\", \"type\": \"%s\", "
-                   "\"compute_units\": %u, \"global_memory_bytes\": %llu, \"fp64\": %s, "
-                   "\"driver_version\": \"%s\", \"device_version\": \"%s\"}",
-                   i ? "," : "", i, c.platform_name, c.device_name, __cl_type_name(c.type),
-                   c.compute_units, (unsigned long long)c.global_memory,
-                   c.has_fp64 ? "true" : "false", c.driver_version, c.device_version);
-        else
+        if (json) {
+            cJSON *d = cJSON_CreateObject();
+            cJSON_AddNumberToObject(d, "index", i);
+            cJSON_AddStringToObject(d, "platform", c.platform_name);
+            cJSON_AddStringToObject(d, "name", c.device_name);
+            cJSON_AddStringToObject(d, "type", __cl_type_name(c.type));
+            cJSON_AddNumberToObject(d, "compute_units", c.compute_units);
+            cJSON_AddNumberToObject(d, "global_memory_bytes", (double)c.global_memory);
+            cJSON_AddBoolToObject(d, "fp64", c.has_fp64);
+            cJSON_AddStringToObject(d, "driver_version", c.driver_version);
+            cJSON_AddStringToObject(d, "device_version", c.device_version);
+            cJSON_AddItemToArray(array, d);
+        } else
             printf("%d: %s / %s\n   type %s, %u compute units, %.1f GiB global memory, fp64 %s, "
                    "driver %s, %s\n",
                    i, c.platform_name, c.device_name, __cl_type_name(c.type), c.compute_units,
                    (double)c.global_memory / (1024.0 * 1024.0 * 1024.0),
                    c.has_fp64 ? "yes" : "no", c.driver_version, c.device_version);
     }
-    if (json)
-        printf("\n]}\n");
+    if (json) {
+        char *text = cJSON_Print(root);
+        if (text)
+            printf("%s\n", text);
+        free(text);
+        cJSON_Delete(root);
+    }
     return ATMO_OK;
 }
 
