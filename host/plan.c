@@ -5,6 +5,7 @@
 #include <string.h>
 #include "atmo/colour.h"
 #include "atmo/plan.h"
+#include "atmo/plan_reference.h"
 
 /* The layout the kernels see: OpenCL C aligns float4 to 16 bytes, as compat.h does on the host. */
 _Static_assert(sizeof(float4) == 16, "float4 must be 16 bytes");
@@ -105,7 +106,7 @@ const atmo_plan_method atmo_plan_methods[] = {
     {"march", NULL},
     {"fast", NULL},
     {"lut", NULL},
-    {"reference", NULL},
+    {"reference", atmo_plan_reference},
 };
 
 const char *atmo_plan_available_methods(void)

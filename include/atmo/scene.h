@@ -64,6 +64,8 @@ typedef struct atmo_scene {
         double mie_g;
         int mie_phase;               /* ATMO_PHASE_* of atmosphere.h */
         int method;                  /* ATMO_METHOD_* */
+        int reference_min_order;     /* method reference: lowest scattering order counted */
+        int reference_max_order;     /* method reference: highest order counted (0 = all) */
         double ozone_column_du;      /* Dobson units in the tent profile */
         double ozone_bottom_m, ozone_peak_m, ozone_top_m;
         double ground_albedo;

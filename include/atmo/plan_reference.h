@@ -1,0 +1,11 @@
+/* plan_reference.h — the plan of atmosphere method "reference" (kernels/method_reference.h):
+ * the Monte Carlo path tracer that is the oracle of the other methods. */
+#ifndef ATMO_PLAN_REFERENCE_H
+#define ATMO_PLAN_REFERENCE_H
+#include "atmo/plan.h"
+
+/* Appends the method's fragment and sets method_int[0] = reference.min_order and
+ * method_int[1] = reference.max_order (0 = all orders). No LUTs or passes of its own. */
+int atmo_plan_reference(const atmo_scene *s, atmo_plan *p, atmo_err *e);
+
+#endif
