@@ -1,0 +1,27 @@
+/* plan_march.c — method "march": the Psi_ms LUT (buffer a) and the per-pixel march
+ * (atmo/plan_march.h). The LUT is small (32 x 32) and cheap, so it is rebuilt per frame rather
+ * than cached. */
+#include "atmo/plan_march.h"
+
+int atmo_plan_ms_lut(const atmo_scene *s, atmo_plan *p, atmo_err *e)
+{
+    static const char *const fragments[] = {"kernels/sky_single.h", "kernels/ms_lut.h",
+                                            "kernels/ms_lut.cl"};
+    int rc = atmo_plan_add_fragments(p, fragments, 3, e);
+    if (rc)
+        return rc;
+    p->gpu.lut_dims[0][0] = ATMO_MS_LUT_WIDTH;
+    p->gpu.lut_dims[0][1] = ATMO_MS_LUT_HEIGHT;
+    p->gpu.method_int[0] = ATMO_MS_DIRECTIONS_MU;
+    p->gpu.method_int[1] = ATMO_MS_DIRECTIONS_PHI;
+    p->gpu.method_int[2] = ATMO_MS_STEPS;
+    p->lut_bytes[1] = sizeof(float4) * ATMO_MS_LUT_WIDTH * ATMO_MS_LUT_HEIGHT;
+    return atmo_plan_add_pass(p, "ms_lut", ATMO_MS_LUT_WIDTH, ATMO_MS_LUT_HEIGHT, 1, 0, e);
+}
+
+int atmo_plan_march(const atmo_scene *s, atmo_plan *p, atmo_err *e)
+{
+    static const char *const fragments[] = {"kernels/method_march.h"};
+    int rc = atmo_plan_ms_lut(s, p, e);
+    return rc ? rc : atmo_plan_add_fragments(p, fragments, 1, e);
+}

@@ -1,0 +1,18 @@
+/* plan_march.h — plan of the atmosphere method "march" (kernels/method_march.h) and of the
+ * multiple-scattering transfer LUT it shares with "fast" (kernels/ms_lut.h). */
+#ifndef ATMO_PLAN_MARCH_H
+#define ATMO_PLAN_MARCH_H
+#include "atmo/plan.h"
+
+/* Psi_ms LUT size (mu_s x altitude) and its quadrature (ms_lut.cl's method_int[0..2]). */
+#define ATMO_MS_LUT_WIDTH 32
+#define ATMO_MS_LUT_HEIGHT 32
+#define ATMO_MS_DIRECTIONS_MU 16
+#define ATMO_MS_DIRECTIONS_PHI 8
+#define ATMO_MS_STEPS 20
+
+/* The Psi_ms LUT in buffer a: its fragments, size, knobs and pass. */
+int atmo_plan_ms_lut(const atmo_scene *s, atmo_plan *p, atmo_err *e);
+int atmo_plan_march(const atmo_scene *s, atmo_plan *p, atmo_err *e);
+
+#endif

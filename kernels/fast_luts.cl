@@ -1,0 +1,20 @@
+/* fast_luts.cl — the per-frame LUTs of method "fast" (method_fast.h): the sky-view LUT around
+ * the camera, into buffer b. Needs the transmittance and Psi_ms LUTs (passes before it). */
+
+__kernel void sky_view_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PARAMS, int arg)
+{
+    int i = get_global_id(0), j = get_global_id(1);
+    int w = scene->lut_dims[1][0], h = scene->lut_dims[1][1];
+    if (i >= w || j >= h)
+        return;
+    float mu, cos_phi;
+    fast_sky_view_ray(scene, i, j, w, h, &mu, &cos_phi);
+    float mu_s = fast_camera_mu_s(scene);
+    float nu = atmo_clamp_cos(mu * mu_s + atmo_safe_sqrt((1.0f - mu * mu) * (1.0f - mu_s * mu_s)) *
+                                              cos_phi);
+    float3 sky, sun;
+    march_integrate(scene, lut_transmittance, lut_a, scene->lut_dims[0][0], scene->lut_dims[0][1],
+                    scene->camera.local_up.w, mu, mu_s, nu, scene->method_int[3], 0.5f, &sky,
+                    &sun);
+    lut_b[j * w + i] = (float4)(sky, 0.0f);
+}

@@ -1,0 +1,27 @@
+/* method_march.h — atmosphere method "march": per-pixel ray march of single scattering plus
+ * the multiple-scattering term sigma_s Psi_ms (ms_lut.h, after Hillaire 2020 sec. 5.5), with a
+ * sun-visibility hook per sample for light shafts.
+ *
+ * LUTs: a = Psi_ms, s->lut_dims[0][0..1] = its size (mu_s x altitude), filled by ms_lut.cl.
+ * Knobs: s->view_steps segments per view ray; one random offset of the segment samples per
+ * sample (dimension ATMO_RNG_METHOD_DIM), as method "single" does, so both draw the same
+ * offsets and agree exactly where Psi is zero. */
+#ifndef ATMO_METHOD_MARCH_H
+#define ATMO_METHOD_MARCH_H
+#ifndef __OPENCL_VERSION__
+#include "compat.h"
+#include "rng.h"
+#include "sky_method.h"
+#include "ms_lut.h"
+#endif
+
+ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float r,
+                          float mu, float mu_s, float nu, uint pixel, uint sample, vec3 *sky,
+                          vec3 *sun)
+{
+    float jitter = rng_uniform(s->seed, pixel, sample, ATMO_RNG_METHOD_DIM);
+    march_integrate(s, lut_transmittance, lut_a, s->lut_dims[0][0], s->lut_dims[0][1], r, mu,
+                    mu_s, nu, s->view_steps, jitter, sky, sun);
+}
+
+#endif

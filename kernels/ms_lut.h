@@ -1,0 +1,221 @@
+/* ms_lut.h — the multiple-scattering transfer LUT Psi_ms(h, mu_s) and the view-ray march that
+ * uses it (methods "march" and "fast").
+ *
+ * Idea (Hillaire 2020, "A Scalable and Production Ready Sky and Atmosphere Rendering Technique",
+ * EGSR, sec. 5.5): light that has scattered at least once arrives at a point x from every
+ * direction with a radiance that changes slowly with x; treat it as if it were the same from
+ * all directions and as if every later order were scattered isotropically. Then the radiance
+ * scattered at x by orders >= 2 is sigma_s(x) Psi_ms(x), and Psi depends only on the altitude h
+ * of x and the sun cosine mu_s there. With p_u = 1/(4 pi) and the sphere of directions w:
+ *
+ *   L_1'(x, w) = int_0^d T(x, y) sum_k sigma_k(y) p_k(w . s) E T_sun(y) dt
+ *              + T(x, g) (rho / pi) E T_sun(g) max(mu_s(g), 0)          if the ray hits ground g
+ *   L_2(x)     = int_4pi L_1'(x, w) p_u dw       (first-order light arriving at x, averaged)
+ *   f_ms(x)    = int_4pi p_u int_0^d T(x, y) sigma_s(y) dt dw
+ *                (the fraction of isotropic light scattered at x that scatters once more
+ *                 before it leaves the atmosphere: Hillaire's eq. 7)
+ *   Psi_ms(x)  = L_2 (1 + f_ms + f_ms^2 + ...) = L_2 / (1 - f_ms)                 (eq. 9-10)
+ *
+ * with sum_k over Rayleigh and Mie, p_k their phase functions and s the sun direction.
+ * Where Hillaire uses the isotropic p_u for the first scattering too, L_1' here uses the true
+ * phase functions: it costs nothing (the sun direction is known for each w) and removes the part
+ * of his error that comes from spreading the strongly forward Mie scattering (and the
+ * 1 + cos^2 shape of Rayleigh's) evenly over the sphere. What stays approximate is the angular
+ * shape of orders >= 2 at x.
+ *
+ * Quadrature: w on a product grid of n_mu equal-area bands in cos(zenith) times n_phi azimuths
+ * over [0, pi] (the light field is symmetric about the vertical plane through the sun), each
+ * direction marched with n_steps segments integrated exactly for constant coefficients, as
+ * sky_single.h does. LUT: x_mu = (1 + mu_s) / 2 along the width, x_h = h / (top - bottom)
+ * along the height, texel centres at x = 0 and 1 (atmosphere_texcoord_from_unit); xyz = Psi
+ * (W m^-2 sr^-1 nm^-1, with the solar irradiance E folded in), w = f_ms of the middle channel.
+ *
+ * March (march_integrate): single scattering as in sky_single.h (same segments, same per-sample
+ * offset, same sun-disc and ground terms), with, at each sample,
+ *     J = [sigma_R p_R(nu) + sigma_M p_M(nu)] E T_sun V + (sigma_R + sigma_M) Psi_ms(h, mu_s)
+ * where V = march_sun_visibility(...) is the shadow hook (terrain and clouds will plug into it;
+ * 1 for now). With Psi = 0 the sum is the single-scattering sum term for term. Light reflected
+ * by the ground from the sky (not the sun) is left out, as in Hillaire's sky view. */
+#ifndef ATMO_MS_LUT_H
+#define ATMO_MS_LUT_H
+#ifndef __OPENCL_VERSION__
+#include "compat.h"
+#include "atmosphere.h"
+#include "geometry.h"
+#include "phase.h"
+#include "sky_single.h"
+#include "atmo/gpu_types.h"
+#endif
+
+/* (r, mu_s) -> (u, v) of the Psi LUT of size width x height. */
+ATMO_FN void ms_lut_uv(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r, float mu_s, int width,
+                       int height, float *u, float *v)
+{
+    float x_h = clamp((r - a->bottom_radius) / (a->top_radius - a->bottom_radius), 0.0f, 1.0f);
+    *u = atmosphere_texcoord_from_unit(clamp(0.5f + 0.5f * mu_s, 0.0f, 1.0f), width);
+    *v = atmosphere_texcoord_from_unit(x_h, height);
+}
+
+/* Texel (i, j) -> (r, mu_s), the inverse at texel centres. */
+ATMO_FN void ms_lut_r_mu_s(ATMO_GLOBAL const atmo_gpu_atmosphere *a, int i, int j, int width,
+                           int height, float *r, float *mu_s)
+{
+    float x_mu = (float)i / (float)(width - 1), x_h = (float)j / (float)(height - 1);
+    *mu_s = atmo_clamp_cos(2.0f * x_mu - 1.0f);
+    /* a hair above the ground so rays along the horizontal do not graze it */
+    *r = a->bottom_radius + fmaxf(x_h * (a->top_radius - a->bottom_radius), 1.0f);
+}
+
+ATMO_FN vec3 ms_lut_lookup(ATMO_GLOBAL const atmo_gpu_atmosphere *a, ATMO_GLOBAL const float4 *lut,
+                           int width, int height, float r, float mu_s)
+{
+    float u, v;
+    ms_lut_uv(a, r, mu_s, width, height, &u, &v);
+    return atmosphere_lut_bilinear(lut, width, height, u, v);
+}
+
+/* One texel: Psi_ms (xyz) and f_ms of channel y (w) at radius r and sun cosine mu_s. */
+ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
+                            ATMO_GLOBAL const float4 *transmittance, float r, float mu_s,
+                            int n_mu, int n_phi, int n_steps)
+{
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    int tw = s->transmittance_width, th = s->transmittance_height;
+    vec3 E = v3_from4(a->solar_irradiance);
+    vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
+    vec3 albedo = v3_from4(a->ground_albedo);
+    float sin_s = atmo_safe_sqrt(1.0f - mu_s * mu_s);
+    vec3 L2 = v3(0.0f, 0.0f, 0.0f), f = v3(0.0f, 0.0f, 0.0f);
+    for (int k = 0; k < n_mu; k++) {
+        float mu = -1.0f + 2.0f * ((float)k + 0.5f) / (float)n_mu;
+        float sin_v = atmo_safe_sqrt(1.0f - mu * mu);
+        int hits_ground = geometry_ray_hits_ground(r, mu, a->bottom_radius);
+        float d = hits_ground ? geometry_distance_to_bottom(r, mu, a->bottom_radius)
+                              : geometry_distance_to_top(r, mu, a->top_radius);
+        float dt = d / (float)n_steps;
+        for (int l = 0; l < n_phi; l++) {
+            float phi = ATMO_PI * ((float)l + 0.5f) / (float)n_phi;
+            float nu = atmo_clamp_cos(mu * mu_s + sin_v * sin_s * cosf(phi));
+            float p_r = phase_rayleigh(nu), p_m = sky_mie_phase(a, nu);
+            vec3 T = v3(1.0f, 1.0f, 1.0f);
+            for (int i = 0; i < n_steps; i++) {
+                float t = ((float)i + 0.5f) * dt;
+                float r_t = geometry_radius_at(r, mu, t);
+                float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
+                float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
+                float rho_r = expf(-h / a->rayleigh_scale_height);
+                float rho_m = expf(-h / a->mie_scale_height);
+                vec3 sigma_t = atmosphere_extinction(a, h);
+                vec3 sigma_s = v3_add(v3_scale(beta_r, rho_r), v3_scale(beta_m, rho_m));
+                vec3 scattering = v3_add(v3_scale(beta_r, rho_r * p_r),
+                                         v3_scale(beta_m, rho_m * p_m));
+                vec3 sun_t = atmosphere_sun_transmittance(a, transmittance, tw, th, r_t, mu_s_t);
+                vec3 w = v3(__sky_segment_weight(sigma_t.x, dt),
+                            __sky_segment_weight(sigma_t.y, dt),
+                            __sky_segment_weight(sigma_t.z, dt));
+                vec3 Tw = v3_mul(T, w);
+                L2 = v3_add(L2, v3_mul(Tw, v3_mul(v3_mul(scattering, E), sun_t)));
+                f = v3_add(f, v3_mul(Tw, sigma_s));
+                T = v3_mul(T, v3_exp(v3_scale(sigma_t, -dt)));
+            }
+            if (hits_ground) {
+                float mu_s_g = atmo_clamp_cos((r * mu_s + d * nu) / a->bottom_radius);
+                vec3 sun_g = atmosphere_sun_transmittance(a, transmittance, tw, th,
+                                                          a->bottom_radius, mu_s_g);
+                vec3 radiance = v3_scale(v3_mul(v3_mul(albedo, E), sun_g),
+                                         fmaxf(mu_s_g, 0.0f) / ATMO_PI);
+                L2 = v3_add(L2, v3_mul(T, radiance));
+            }
+        }
+    }
+    float norm = 1.0f / (float)(n_mu * n_phi);
+    L2 = v3_scale(L2, norm);
+    f = v3_scale(f, norm);
+    vec3 psi = v3(L2.x / (1.0f - f.x), L2.y / (1.0f - f.y), L2.z / (1.0f - f.z));
+    float4 out;
+    out.x = psi.x;
+    out.y = psi.y;
+    out.z = psi.z;
+    out.w = f.y;
+    return out;
+}
+
+/* The shadow hook: visibility of the sun (0..1) from the sample at distance t along the view
+ * ray, at radius r_t with sun cosine mu_s_t. The planet's own shadow is already in T_sun. */
+ATMO_FN float march_sun_visibility(ATMO_GLOBAL const atmo_gpu_scene *s, float r_t, float mu_s_t,
+                                   float t)
+{
+    return 1.0f;
+}
+
+/* Sky radiance along (r, mu) with sun cosine mu_s and view-sun cosine nu: single scattering
+ * plus sigma_s Psi_ms from the LUT `ms` (ms_w x ms_h), n segments with sample offset `jitter`. */
+ATMO_FN void march_integrate(ATMO_GLOBAL const atmo_gpu_scene *s,
+                             ATMO_GLOBAL const float4 *transmittance, ATMO_GLOBAL const float4 *ms,
+                             int ms_w, int ms_h, float r, float mu, float mu_s, float nu, int n,
+                             float jitter, vec3 *sky, vec3 *sun)
+{
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    int tw = s->transmittance_width, th = s->transmittance_height;
+    vec3 E = v3_from4(a->solar_irradiance);
+    *sky = v3(0.0f, 0.0f, 0.0f);
+    *sun = v3(0.0f, 0.0f, 0.0f);
+    float sun_solid_angle = 2.0f * ATMO_PI * (1.0f - s->sun_direction.w);
+    int looks_at_sun = nu >= s->sun_direction.w;
+
+    if (r > a->top_radius) {
+        float disc = geometry_discriminant(r, mu, a->top_radius);
+        if (mu >= 0.0f || disc < 0.0f) { /* the ray misses the atmosphere */
+            if (looks_at_sun)
+                *sun = v3_scale(E, 1.0f / sun_solid_angle);
+            return;
+        }
+        float t0 = -r * mu - sqrtf(disc);
+        mu_s = (r * mu_s + t0 * nu) / a->top_radius;
+        mu = -sqrtf(disc) / a->top_radius;
+        r = a->top_radius;
+    }
+
+    int hits_ground = geometry_ray_hits_ground(r, mu, a->bottom_radius);
+    float d = hits_ground ? geometry_distance_to_bottom(r, mu, a->bottom_radius)
+                          : geometry_distance_to_top(r, mu, a->top_radius);
+    float p_r = phase_rayleigh(nu);
+    float p_m = sky_mie_phase(a, nu);
+    vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
+    float dt = d / (float)n;
+    vec3 L = v3(0.0f, 0.0f, 0.0f);
+    vec3 T = v3(1.0f, 1.0f, 1.0f);
+    for (int i = 0; i < n; i++) {
+        float t = ((float)i + jitter) * dt;
+        float r_t = geometry_radius_at(r, mu, t);
+        float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
+        float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
+        float rho_r = expf(-h / a->rayleigh_scale_height);
+        float rho_m = expf(-h / a->mie_scale_height);
+        vec3 sigma_t = atmosphere_extinction(a, h);
+        vec3 scattering = v3_add(v3_scale(beta_r, rho_r * p_r), v3_scale(beta_m, rho_m * p_m));
+        vec3 sun_t = v3_scale(atmosphere_sun_transmittance(a, transmittance, tw, th, r_t, mu_s_t),
+                              march_sun_visibility(s, r_t, mu_s_t, t));
+        vec3 source = v3_mul(v3_mul(scattering, E), sun_t);
+        vec3 sigma_s = v3_add(v3_scale(beta_r, rho_r), v3_scale(beta_m, rho_m));
+        source = v3_add(source, v3_mul(sigma_s, ms_lut_lookup(a, ms, ms_w, ms_h, r_t, mu_s_t)));
+        vec3 w = v3(__sky_segment_weight(sigma_t.x, dt), __sky_segment_weight(sigma_t.y, dt),
+                    __sky_segment_weight(sigma_t.z, dt));
+        L = v3_add(L, v3_mul(v3_mul(T, source), w));
+        T = v3_mul(T, v3_exp(v3_scale(sigma_t, -dt)));
+    }
+    if (hits_ground) {
+        float mu_s_g = atmo_clamp_cos((r * mu_s + d * nu) / a->bottom_radius);
+        vec3 sun_t = atmosphere_sun_transmittance(a, transmittance, tw, th, a->bottom_radius,
+                                                  mu_s_g);
+        vec3 irradiance = v3_scale(v3_mul(E, sun_t), fmaxf(mu_s_g, 0.0f));
+        L = v3_add(L, v3_mul(T, v3_scale(v3_mul(v3_from4(a->ground_albedo), irradiance),
+                                         1.0f / ATMO_PI)));
+    } else if (looks_at_sun) {
+        vec3 to_space = atmosphere_transmittance_to_top(a, transmittance, tw, th, r, mu);
+        *sun = v3_scale(v3_mul(E, to_space), 1.0f / sun_solid_angle);
+    }
+    *sky = L;
+}
+
+#endif
