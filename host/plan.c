@@ -5,6 +5,8 @@
 #include <string.h>
 #include "atmo/colour.h"
 #include "atmo/plan.h"
+#include "atmo/plan_fast.h"
+#include "atmo/plan_march.h"
 #include "atmo/plan_reference.h"
 
 /* The layout the kernels see: OpenCL C aligns float4 to 16 bytes, as compat.h does on the host. */
@@ -103,8 +105,8 @@ static int __plan_single(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 /* Methods in ATMO_METHOD_* order; NULL: not implemented yet. */
 const atmo_plan_method atmo_plan_methods[] = {
     {"single", __plan_single},
-    {"march", NULL},
-    {"fast", NULL},
+    {"march", atmo_plan_march},
+    {"fast", atmo_plan_fast},
     {"lut", NULL},
     {"reference", atmo_plan_reference},
 };
