@@ -3,8 +3,8 @@
  * A suite renders one view with several settings and a reference of much higher quality, and
  * writes DIR/SUITE.csv (method, settings, seconds, error, device) and DIR/SUITE.svg, a log-log
  * chart of error against time drawn by gnuplot (when installed; otherwise the CSV alone, and it
- * says so). Seconds are the precompute plus render time of the stage that the knob changes,
- * with kernels already built (each setting is rendered once to warm up, then timed).
+ * says so). Seconds are precompute plus render time; kernel builds are timed apart by the
+ * renderer and left out (the reference render builds and caches the program first).
  *
  * Suites:
  *   sky   the single-scattering sky (panorama 256 x 128, sun zenith 80 deg, 4 samples per pixel)
@@ -172,9 +172,6 @@ static int __bench_sky(const char *dir, const char *device, int quick, atmo_err 
                 snprintf(row->settings, sizeof row->settings, "%dx%d", luts[i][0], luts[i][1]);
             }
             atmo_render_result r;
-            if ((rc = __bench_render(&s, device, &r, e))) /* warm-up: builds the kernels */
-                break;
-            atmo_render_result_free(&r);
             if ((rc = __bench_render(&s, device, &r, e)))
                 break;
             row->seconds = r.seconds_precompute + r.seconds_render;
