@@ -11,6 +11,7 @@ static const atmo_command commands[] = {
     {"presets", "list the built-in scenes", cmd_presets},
     {"mie", "Lorenz-Mie optics of a droplet or a droplet size distribution", cmd_mie},
     {"bench", "measure error against time of the rendering methods", cmd_bench},
+    {"radiance", "print sky radiance and luminance for view directions", cmd_radiance},
 };
 
 static void usage(FILE *f)
