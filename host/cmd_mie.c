@@ -1,7 +1,8 @@
 /* cmd_mie.c — `atmo mie`: Lorenz–Mie optics of one droplet or a droplet size distribution.
  *
  *   atmo mie (--radius-um R | --dsd NAME|SPEC) --wavelength-nm L [--wavelength-nm L ...]
- *            [--index N+Ki] [--angles-deg LIST] [--table out.csv] [--json]
+ *            [--index N+Ki] [--angles-deg LIST] [--table out.csv] [--chart out.svg] [--json]
+ *            [--no-cache]
  *
  * Prints Q_ext, Q_sca, Q_back, g, albedo, and for a distribution sigma_ext per liquid water
  * content (m^2/g), r_eff and v_eff. Without --index the index of water comes from data/
@@ -10,7 +11,10 @@
  * theta_deg, then one P column per wavelength. --json prints {"convention": ..., "results": [...]}
  * with P (and S1, S2 for one radius) at --angles-deg (default: the table grid).
  * Sign convention: the index is n + ik with k >= 0 absorbing; S1, S2 are in MIEV0's convention
- * (m = n - ik), the complex conjugates of Bohren & Huffman's. --chart is not implemented yet. */
+ * (m = n - ik), the complex conjugates of Bohren & Huffman's. --chart draws log P against theta
+ * per wavelength with the corona, fog bow and glory ranges shaded (gnuplot, host/mie_plot.c;
+ * checked for before any work). Tables on the grid come from the on-disk cache when built before
+ * with the same parameters (host/mie_cache.c; --no-cache rebuilds and does not store). */
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
@@ -30,7 +34,8 @@ static void __mie_usage(FILE *f)
 {
     fprintf(f,
             "usage: atmo mie (--radius-um R | --dsd NAME|SPEC) --wavelength-nm L [--wavelength-nm L ...]\n"
-            "                [--index N+Ki] [--angles-deg LIST] [--table out.csv] [--json]\n\n"
+            "                [--index N+Ki] [--angles-deg LIST] [--table out.csv] [--chart out.svg]\n"
+            "                [--json] [--no-cache]\n\n"
             "Lorenz-Mie optics of one water droplet or a droplet size distribution.\n"
             "  --dsd        preset (cumulus stratus fog corona thesis-disperse thesis-uniform) or\n"
             "               mono:R | gamma:REFF,VEFF | lognormal:RG,SIGMA_G | modgamma:ALPHA,B,GAMMA\n"
@@ -39,6 +44,8 @@ static void __mie_usage(FILE *f)
             "               water (n Daimon & Masumura 2007, k Segelstein 1981)\n"
             "  --angles-deg comma-separated scattering angles for P (and S1, S2); default: table grid\n"
             "  --table      write theta_deg and P per wavelength as CSV\n"
+            "  --chart      draw log P against theta per wavelength as SVG (needs gnuplot)\n"
+            "  --no-cache   build the phase tables even if cached (and do not store them)\n"
             "  --json       one JSON object; " MIE_CLI_CONVENTION "\n");
 }
 
@@ -115,11 +122,11 @@ static cJSON *__mie_complex_array(const double complex *v, int n)
 int cmd_mie(int argc, char **argv)
 {
     atmo_err e = {{0}};
-    int rc = ATMO_OK, json = 0, nl = 0, have_index = 0, have_dsd = 0, n_ang = 0;
+    int rc = ATMO_OK, json = 0, nl = 0, have_index = 0, have_dsd = 0, n_ang = 0, use_cache = 1;
     double lambda[MIE_CLI_MAX_WAVELENGTHS], idx_n = 0.0, idx_k = 0.0;
     double *angles = NULL, *grid = NULL, *mu = NULL, *P = NULL, *tableP = NULL;
     double complex *s1 = NULL, *s2 = NULL;
-    const char *table_path = NULL;
+    const char *table_path = NULL, *chart_path = NULL, *dsd_text = NULL;
     mie_dsd dsd = {0};
     cJSON *root = NULL;
     FILE *tf = NULL;
@@ -133,16 +140,21 @@ int cmd_mie(int argc, char **argv)
         } else if (strcmp(a, "--json") == 0) {
             json = 1;
             continue;
+        } else if (strcmp(a, "--no-cache") == 0) {
+            use_cache = 0;
+            continue;
         } else if (!v) {
             rc = atmo_fail(&e, ATMO_ERR_USAGE, "'%s' needs a value or is unknown; see atmo mie --help", a);
         } else if (strcmp(a, "--radius-um") == 0) {
             char *end;
             dsd = (mie_dsd){.kind = MIE_DSD_MONO, .radius_um = strtod(v, &end)};
+            dsd_text = v;
             rc = *end ? atmo_fail(&e, ATMO_ERR_USAGE, "--radius-um '%s' is not a number", v)
                       : mie_dsd_validate(&dsd, &e);
             have_dsd++;
         } else if (strcmp(a, "--dsd") == 0) {
             rc = mie_dsd_parse(v, &dsd, &e);
+            dsd_text = v;
             have_dsd++;
         } else if (strcmp(a, "--wavelength-nm") == 0) {
             char *end;
@@ -160,6 +172,8 @@ int cmd_mie(int argc, char **argv)
             rc = __mie_parse_angles(v, &angles, &n_ang, &e);
         } else if (strcmp(a, "--table") == 0) {
             table_path = v;
+        } else if (strcmp(a, "--chart") == 0) {
+            chart_path = v;
         } else {
             rc = atmo_fail(&e, ATMO_ERR_USAGE, "unknown option '%s'; see atmo mie --help", a);
         }
@@ -170,6 +184,11 @@ int cmd_mie(int argc, char **argv)
     if (have_dsd != 1 || nl == 0) {
         rc = atmo_fail(&e, ATMO_ERR_USAGE, "give exactly one of --radius-um or --dsd, and at least "
                        "one --wavelength-nm; see atmo mie --help");
+        goto done;
+    }
+    if (chart_path && !mie_gnuplot_available()) {
+        rc = atmo_fail(&e, ATMO_ERR_RUNTIME, "--chart needs gnuplot, which is not on PATH; install "
+                       "gnuplot-nox (setup.sh does) or leave out --chart");
         goto done;
     }
 
@@ -195,8 +214,9 @@ int cmd_mie(int argc, char **argv)
     P = malloc(sizeof *P * (size_t)n_out);
     s1 = malloc(sizeof *s1 * (size_t)n_out);
     s2 = malloc(sizeof *s2 * (size_t)n_out);
-    tableP = table_path ? malloc(sizeof *tableP * (size_t)n_grid * (size_t)nl) : NULL;
-    if (!mu || !P || !s1 || !s2 || (table_path && !tableP)) {
+    int need_grid = table_path || chart_path;
+    tableP = need_grid ? malloc(sizeof *tableP * (size_t)n_grid * (size_t)nl) : NULL;
+    if (!mu || !P || !s1 || !s2 || (need_grid && !tableP)) {
         rc = atmo_fail(&e, ATMO_ERR_RUNTIME, "out of memory for %d angles", n_out);
         goto done;
     }
@@ -210,19 +230,25 @@ int cmd_mie(int argc, char **argv)
         if (!have_index && (rc = mie_water_index(lambda[w], &n, &k, &e)))
             goto done;
         mie_bulk b;
-        if ((rc = mie_dsd_integrate(&dsd, lambda[w], n, k, 0.0, n_out, mu, P, &b, &e)))
-            goto done;
-        if (table_path) {
-            if (angles) {
-                mie_table t;
-                if ((rc = mie_table_build(&dsd, lambda[w], n, k, &opt, &t, &e)))
-                    goto done;
-                memcpy(tableP + (size_t)w * n_grid, t.P, sizeof *t.P * (size_t)n_grid);
+        if (need_grid || !angles) { /* the table (cached) gives P on the grid and the bulk */
+            mie_table t;
+            if ((rc = mie_table_get(&dsd, lambda[w], n, k, &opt, use_cache, &t, NULL, &e)))
+                goto done;
+            if (t.n != n_grid) {
                 mie_table_free(&t);
-            } else {
-                memcpy(tableP + (size_t)w * n_grid, P, sizeof *P * (size_t)n_grid);
+                rc = atmo_fail(&e, ATMO_ERR_RUNTIME, "internal: table grid of %d angles, expected "
+                               "%d", t.n, n_grid);
+                goto done;
             }
+            b = t.bulk;
+            if (need_grid)
+                memcpy(tableP + (size_t)w * n_grid, t.P, sizeof *t.P * (size_t)n_grid);
+            if (!angles)
+                memcpy(P, t.P, sizeof *t.P * (size_t)n_grid);
+            mie_table_free(&t);
         }
+        if (angles && (rc = mie_dsd_integrate(&dsd, lambda[w], n, k, 0.0, n_out, mu, P, &b, &e)))
+            goto done;
         mie_efficiencies q = {0};
         if (dsd.kind == MIE_DSD_MONO &&
             (rc = mie_sphere(2.0 * MIE_CLI_PI * dsd.radius_um / (lambda[w] * 1e-3), n, k,
@@ -286,6 +312,14 @@ int cmd_mie(int argc, char **argv)
         }
         rc = atmo_atomic_commit(tf, tmp, table_path, &e);
         tf = NULL;
+        if (rc)
+            goto done;
+    }
+    if (chart_path) {
+        char title[512];
+        snprintf(title, sizeof title, "Mie phase function, %s %s", dsd.kind == MIE_DSD_MONO ?
+                 "radius (um)" : "drops", dsd_text);
+        rc = mie_chart_svg(chart_path, title, grid, n_grid, tableP, lambda, nl, &e);
     }
 done:
     if (tf)

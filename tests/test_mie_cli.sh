@@ -1,16 +1,22 @@
 #!/bin/bash
-# test_mie_cli.sh — `atmo mie` end to end: JSON for a case-10-like input, table file, bad input.
+# test_mie_cli.sh — `atmo mie` end to end: JSON for a case-10-like input, table file, table
+# cache, chart, `atmo bench mie --quick`, bad input.
 # labels: cli
 #
 # Oracle: MIEV0 case 10 (m = 1.33 - 1e-5 i, x = 100; ../shared/reference/mie.md): r = 10 um at
 # lambda = 200 pi nm gives x = 100 to rounding. Q_ext, Q_sca, g within 1e-6 relative plus half a
 # unit of the printed digit, S1/S2 at 0 and 180 deg within 1e-6 |S| (as test_mie_solver); the
 # JSON must carry the sign convention. Bad input: one line on stderr and exit status 2.
+# Cache: a second run with the same parameters loads the table and must write a byte-identical
+# CSV (the oracle is the first, computed, run); --no-cache must agree too. Chart: an SVG with one
+# path per wavelength exists; without gnuplot on PATH, exit 1 with one line naming gnuplot and no
+# file. Bench: the CSVs have one row per phase option and per table setting, all numbers finite.
 set -u
 atmo=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail=0
+export ATMO_CACHE_DIR="$tmp/cache"
 
 "$atmo" mie --radius-um 10 --wavelength-nm 628.3185307179586 --index 1.33+1e-5i \
     --angles-deg 0,90,180 --json >"$tmp/out.json" || { echo "atmo mie failed"; fail=1; }
@@ -37,6 +43,29 @@ PY
 head -1 "$tmp/t.csv" | grep -q '^theta_deg,P_550nm,P_440nm$' || { echo "bad table header"; fail=1; }
 [ "$(tail -1 "$tmp/t.csv" | cut -d, -f1)" = "180.000000" ] || { echo "table must end at 180"; fail=1; }
 ls "$tmp" | grep -q tmp && { echo "temporary file left behind"; fail=1; }
+
+# second run: from the cache, same bytes; --no-cache: same bytes again
+"$atmo" mie --dsd stratus --wavelength-nm 550 --wavelength-nm 440 --table "$tmp/t2.csv" \
+    >"$tmp/out2.txt" || { echo "cached table run failed"; fail=1; }
+cmp -s "$tmp/t.csv" "$tmp/t2.csv" || { echo "table from the cache differs"; fail=1; }
+cmp -s "$tmp/out.txt" "$tmp/out2.txt" || { echo "bulk output from the cache differs"; fail=1; }
+[ "$(ls "$tmp/cache" | grep -c '^mie-table-.*\.bin$')" = 2 ] || { echo "expected 2 cached tables"; fail=1; }
+"$atmo" mie --dsd stratus --wavelength-nm 550 --wavelength-nm 440 --table "$tmp/t3.csv" --no-cache \
+    >/dev/null && cmp -s "$tmp/t.csv" "$tmp/t3.csv" || { echo "--no-cache table differs"; fail=1; }
+
+# chart
+if command -v gnuplot >/dev/null; then
+    "$atmo" mie --dsd stratus --wavelength-nm 550 --wavelength-nm 440 --chart "$tmp/c.svg" >/dev/null \
+        || { echo "chart run failed"; fail=1; }
+    grep -q '</svg>' "$tmp/c.svg" && grep -q 'glory' "$tmp/c.svg" && grep -q '440 nm' "$tmp/c.svg" \
+        || { echo "chart incomplete"; fail=1; }
+    ls "$tmp" | grep -q 'tmp\|\.gp' && { echo "chart left a temporary file"; fail=1; }
+fi
+PATH=/nonexistent "$atmo" mie --dsd stratus --wavelength-nm 550 --chart "$tmp/n.svg" >"$tmp/o" 2>"$tmp/e"
+rc=$?
+if [ $rc -ne 1 ] || [ "$(wc -l <"$tmp/e")" -ne 1 ] || ! grep -q gnuplot "$tmp/e" || [ -e "$tmp/n.svg" ]; then
+    echo "missing gnuplot: exit $rc, stderr:"; cat "$tmp/e"; fail=1
+fi
 
 for args in "--dsd nope --wavelength-nm 550" "--radius-um 10" "--radius-um -1 --wavelength-nm 550" \
             "--radius-um 10 --wavelength-nm 550 --index 1.33-0.1i" \

@@ -151,4 +151,27 @@ double mie_table_legendre(const mie_table *t, int l);
 /* Linear interpolation of P at theta (degrees). */
 double mie_table_eval(const mie_table *t, double theta_deg);
 
+/* ---- table cache (host/mie_cache.c) ---------------------------------------------------------- */
+
+/* mie_table_build through the on-disk cache (atmo_cache_dir()): loads a table built earlier with
+ * exactly these parameters, else builds and stores it. use_cache 0 only builds. *hit (may be
+ * NULL) is 1 when the table came from the cache. */
+int mie_table_get(const mie_dsd *d, double wavelength_nm, double n, double k,
+                  const mie_table_options *opt, int use_cache, mie_table *t, int *hit, atmo_err *e);
+/* The cache file for these parameters; -1 when there is no cache directory. */
+int mie_table_cache_path(const mie_dsd *d, double wavelength_nm, double n, double k,
+                         const mie_table_options *opt, char *path, size_t size);
+
+/* ---- charts (host/mie_plot.c) ---------------------------------------------------------------- */
+
+/* 1 when a gnuplot executable is on PATH. */
+int mie_gnuplot_available(void);
+/* Run a gnuplot script (plot commands; data inline as datablocks) into svg, written atomically;
+ * the terminal and output are set here. ATMO_ERR_RUNTIME when gnuplot is missing or fails. */
+int mie_gnuplot_svg(const char *svg, int width, int height, const char *script, atmo_err *e);
+/* log P against theta, one line per wavelength (P: n_wavelengths rows of n values), with the
+ * corona, fog bow and glory ranges shaded. */
+int mie_chart_svg(const char *svg, const char *title, const double *theta_deg, int n,
+                  const double *P, const double *wavelength_nm, int n_wavelengths, atmo_err *e);
+
 #endif
