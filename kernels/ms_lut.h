@@ -23,10 +23,13 @@
  * 1 + cos^2 shape of Rayleigh's) evenly over the sphere. What stays approximate is the angular
  * shape of orders >= 2 at x.
  *
- * Quadrature: w on a product grid of n_mu equal-area bands in cos(zenith) times n_phi azimuths
- * over [0, pi] (the light field is symmetric about the vertical plane through the sun), each
- * direction marched with n_steps segments integrated exactly for constant coefficients, as
- * sky_single.h does. LUT: x_mu = (1 + mu_s) / 2 along the width, x_h = h / (top - bottom)
+ * Quadrature: w on n_mu bands in cos(zenith) times n_phi azimuths over [0, pi] (the light
+ * field is symmetric about the vertical plane through the sun); half the bands lie above the
+ * horizon cosine mu_h = -sqrt(r^2 - R^2) / r and half below, so no band straddles the step
+ * between sky and ground, each half crowding toward the horizon as the square of its index (a grid in the sun's frame, tried to resolve the aerosol peak,
+ * cut that step diagonally and was 10 % off a finer grid at the ground). Each direction
+ * is marched with n_steps segments growing as (i/n)^2 from x, each integrated exactly for
+ * constant coefficients as in sky_single.h. LUT: x_mu = (1 + mu_s) / 2 along the width, x_h = h / (top - bottom)
  * along the height, texel centres at x = 0 and 1 (atmosphere_texcoord_from_unit); xyz = Psi
  * (W m^-2 sr^-1 nm^-1, with the solar irradiance E folded in), w = f_ms of the middle channel.
  *
@@ -86,20 +89,35 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
     vec3 albedo = v3_from4(a->ground_albedo);
     float sin_s = atmo_safe_sqrt(1.0f - mu_s * mu_s);
     vec3 L2 = v3(0.0f, 0.0f, 0.0f), f = v3(0.0f, 0.0f, 0.0f);
+    /* half the bands above the horizon cosine mu_h, half below, so no band straddles the step
+     * between sky and ground */
+    float mu_h = -atmo_safe_sqrt((r - a->bottom_radius) * (r + a->bottom_radius)) / r;
+    int n_half = n_mu / 2;
+    float weights = 0.0f;
     for (int k = 0; k < n_mu; k++) {
-        float mu = -1.0f + 2.0f * ((float)k + 0.5f) / (float)n_mu;
+        int up = k >= n_half;
+        /* bands crowd toward the horizon as v^2, where the sky is brightest and changes
+         * fastest: mu = mu_h +- span v^2, weight span 2 v dv (the band's share of the sphere) */
+        float span = up ? 1.0f - mu_h : mu_h + 1.0f;
+        float v = ((float)(up ? k - n_half : k) + 0.5f) / (float)n_half;
+        float mu = atmo_clamp_cos(up ? mu_h + span * v * v : mu_h - span * v * v);
+        float u = span * v;
         float sin_v = atmo_safe_sqrt(1.0f - mu * mu);
-        int hits_ground = geometry_ray_hits_ground(r, mu, a->bottom_radius);
+        int hits_ground = !up;
         float d = hits_ground ? geometry_distance_to_bottom(r, mu, a->bottom_radius)
                               : geometry_distance_to_top(r, mu, a->top_radius);
-        float dt = d / (float)n_steps;
         for (int l = 0; l < n_phi; l++) {
             float phi = ATMO_PI * ((float)l + 0.5f) / (float)n_phi;
             float nu = atmo_clamp_cos(mu * mu_s + sin_v * sin_s * cosf(phi));
+            vec3 L1 = v3(0.0f, 0.0f, 0.0f), f1 = v3(0.0f, 0.0f, 0.0f);
             float p_r = phase_rayleigh(nu), p_m = sky_mie_phase(a, nu);
             vec3 T = v3(1.0f, 1.0f, 1.0f);
             for (int i = 0; i < n_steps; i++) {
-                float t = ((float)i + 0.5f) * dt;
+                /* segments grow as (i/n)^2: short near x, where the density changes
+                 * fastest along rays that start low (most of the light) */
+                float t0 = d * atmo_sq((float)i / (float)n_steps);
+                float t1 = d * atmo_sq((float)(i + 1) / (float)n_steps);
+                float dt = t1 - t0, t = d * atmo_sq(((float)i + 0.5f) / (float)n_steps);
                 float r_t = geometry_radius_at(r, mu, t);
                 float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
                 float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
@@ -114,8 +132,8 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
                             __sky_segment_weight(sigma_t.y, dt),
                             __sky_segment_weight(sigma_t.z, dt));
                 vec3 Tw = v3_mul(T, w);
-                L2 = v3_add(L2, v3_mul(Tw, v3_mul(v3_mul(scattering, E), sun_t)));
-                f = v3_add(f, v3_mul(Tw, sigma_s));
+                L1 = v3_add(L1, v3_mul(Tw, v3_mul(v3_mul(scattering, E), sun_t)));
+                f1 = v3_add(f1, v3_mul(Tw, sigma_s));
                 T = v3_mul(T, v3_exp(v3_scale(sigma_t, -dt)));
             }
             if (hits_ground) {
@@ -124,13 +142,16 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
                                                           a->bottom_radius, mu_s_g);
                 vec3 radiance = v3_scale(v3_mul(v3_mul(albedo, E), sun_g),
                                          fmaxf(mu_s_g, 0.0f) / ATMO_PI);
-                L2 = v3_add(L2, v3_mul(T, radiance));
+                L1 = v3_add(L1, v3_mul(T, radiance));
             }
+            L2 = v3_add(L2, v3_scale(L1, u));
+            f = v3_add(f, v3_scale(f1, u));
+            weights += u;
         }
     }
-    float norm = 1.0f / (float)(n_mu * n_phi);
-    L2 = v3_scale(L2, norm);
-    f = v3_scale(f, norm);
+    /* normalised by the sum of the weights (2 up to rounding) */
+    L2 = v3_scale(L2, 1.0f / weights);
+    f = v3_scale(f, 1.0f / weights);
     vec3 psi = v3(L2.x / (1.0f - f.x), L2.y / (1.0f - f.y), L2.z / (1.0f - f.z));
     float4 out;
     out.x = psi.x;
