@@ -18,6 +18,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include "atmo/bench.h"
 #include "atmo/fileio.h"
 #include "atmo/plan.h"
 #include "atmo/render.h"
@@ -32,7 +33,8 @@ static const char bench_usage[] =
     "--quick runs fewer settings (for tests).\n"
     "\n"
     "suites:\n"
-    "  sky   single-scattering sky: view-ray steps and transmittance LUT size\n";
+    "  sky   single-scattering sky: view-ray steps and transmittance LUT size\n"
+    "  mie   cloud phase options against the tabulated Mie phase; phase table build time\n";
 
 typedef struct bench_row {
     char method[32];
@@ -225,11 +227,11 @@ int cmd_bench(int argc, char **argv)
         }
     }
     if (!suite) {
-        fprintf(stderr, "atmo bench: name a suite (sky); atmo bench --help\n");
+        fprintf(stderr, "atmo bench: name a suite (sky, mie); atmo bench --help\n");
         return ATMO_ERR_USAGE;
     }
-    if (strcmp(suite, "sky") != 0) {
-        fprintf(stderr, "atmo bench: unknown suite '%s' (suites: sky)\n", suite);
+    if (strcmp(suite, "sky") != 0 && strcmp(suite, "mie") != 0) {
+        fprintf(stderr, "atmo bench: unknown suite '%s' (suites: sky, mie)\n", suite);
         return ATMO_ERR_USAGE;
     }
     if (mkdir(dir, 0755) != 0 && errno != EEXIST) {
@@ -238,7 +240,7 @@ int cmd_bench(int argc, char **argv)
         return ATMO_ERR_USAGE;
     }
     atmo_err e;
-    int rc = __bench_sky(dir, device, quick, &e);
+    int rc = strcmp(suite, "mie") == 0 ? bench_mie(dir, quick, &e) : __bench_sky(dir, device, quick, &e);
     if (rc)
         fprintf(stderr, "atmo bench: %s\n", e.msg);
     return rc;

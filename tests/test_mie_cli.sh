@@ -67,6 +67,22 @@ if [ $rc -ne 1 ] || [ "$(wc -l <"$tmp/e")" -ne 1 ] || ! grep -q gnuplot "$tmp/e"
     echo "missing gnuplot: exit $rc, stderr:"; cat "$tmp/e"; fail=1
 fi
 
+# atmo bench mie --quick: 7 phase options and 2 table builds, finite numbers
+"$atmo" bench mie --quick --output "$tmp/bench" >/dev/null 2>"$tmp/bench.err" || { echo "bench mie failed"; cat "$tmp/bench.err"; fail=1; }
+python3 - "$tmp/bench" <<'PY' || fail=1
+import csv, math, sys
+rows = list(csv.DictReader(open(sys.argv[1] + "/mie.csv")))
+want = ["hg", "two-term-hg", "cornette-shanks", "draine", "jendersie-deon", "mie-table", "mie-table-1deg"]
+assert [r["method"] for r in rows] == want, [r["method"] for r in rows]
+for r in rows:
+    for c in ("err_0_10", "err_10_90", "err_130_150", "err_170_180", "err_all", "eval_ns", "sample_ns"):
+        assert math.isfinite(float(r[c])) and float(r[c]) >= 0, (r["method"], c, r[c])
+assert float(rows[5]["err_all"]) < 1e-3 < float(rows[0]["err_all"])  # the table is the reference
+t = list(csv.DictReader(open(sys.argv[1] + "/mie_table.csv")))
+assert len(t) == 2 and all(float(r["seconds"]) > 0 for r in t), t
+PY
+if command -v gnuplot >/dev/null; then grep -q '</svg>' "$tmp/bench/mie.svg" || { echo "no bench chart"; fail=1; }; fi
+
 for args in "--dsd nope --wavelength-nm 550" "--radius-um 10" "--radius-um -1 --wavelength-nm 550" \
             "--radius-um 10 --wavelength-nm 550 --index 1.33-0.1i" \
             "--radius-um 10 --wavelength-nm 550 --angles-deg 0,200" \
