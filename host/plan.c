@@ -6,6 +6,7 @@
 #include "atmo/colour.h"
 #include "atmo/plan.h"
 #include "atmo/plan_fast.h"
+#include "atmo/plan_lut.h"
 #include "atmo/plan_march.h"
 #include "atmo/plan_reference.h"
 
@@ -107,7 +108,7 @@ const atmo_plan_method atmo_plan_methods[] = {
     {"single", __plan_single},
     {"march", atmo_plan_march},
     {"fast", atmo_plan_fast},
-    {"lut", NULL},
+    {"lut", atmo_plan_lut},
     {"reference", atmo_plan_reference},
 };
 

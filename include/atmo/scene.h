@@ -64,6 +64,10 @@ typedef struct atmo_scene {
         double mie_g;
         int mie_phase;               /* ATMO_PHASE_* of atmosphere.h */
         int method;                  /* ATMO_METHOD_* */
+        int lut_orders;              /* method lut: scattering orders precomputed */
+        int lut_r_size, lut_mu_size, lut_mu_s_size, lut_nu_size; /* method lut: 4-D LUT size */
+        int lut_steps;               /* method lut: integration steps along a texel's ray */
+        int lut_sphere_samples;      /* method lut: zenith rings of the direction grid */
         int reference_min_order;     /* method reference: lowest scattering order counted */
         int reference_max_order;     /* method reference: highest order counted (0 = all) */
         double ozone_column_du;      /* Dobson units in the tent profile */
