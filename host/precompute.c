@@ -1,6 +1,6 @@
 /* precompute.c — run the plan's precompute passes (atmo/render.h).
  *
- * Every precompute kernel takes (scene, lut0, lut1, lut2, lut3, int arg) (kernels/sky_method.h),
+ * Host tables (plan->uploads) are copied first, then every precompute kernel runs; each takes (scene, lut0, lut1, lut2, lut3, int arg) (kernels/sky_method.h),
  * so one loop runs any method's passes: LUT sizes and the list of launches come from the plan.
  * 2-D passes use 8 x 8 work-groups and 3-D passes 4 x 4 x 4; global sizes are padded to them and
  * the kernels bounds-check. */
@@ -26,6 +26,13 @@ int atmo_precompute(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_m
         luts[i] = clCreateBuffer(cl->context, CL_MEM_READ_WRITE, bytes, NULL, &err);
         if (err != CL_SUCCESS)
             return atmo_cl_fail(e, "clCreateBuffer(LUT)", err);
+    }
+    for (int u = 0; u < plan->upload_count; u++) {
+        const atmo_plan_upload *up = &plan->uploads[u];
+        err = clEnqueueWriteBuffer(cl->queue, luts[up->lut], CL_FALSE, up->offset, up->bytes,
+                                   up->data, 0, NULL, NULL);
+        if (err != CL_SUCCESS)
+            return atmo_cl_fail(e, "clEnqueueWriteBuffer(table)", err);
     }
     for (int p = 0; p < plan->pass_count; p++) {
         const atmo_plan_pass *pass = &plan->passes[p];

@@ -23,6 +23,18 @@ typedef struct atmo_plan_pass {
     int arg;
 } atmo_plan_pass;
 
+/* Host data copied into a LUT buffer before the passes run (e.g. a phase table computed on
+ * the host), at a byte offset: features that need tables place them after the method's data in
+ * buffer 0, behind the transmittance LUT, and find them there by an offset in the scene. */
+typedef struct atmo_plan_upload {
+    int lut;            /* buffer index 0..ATMO_PLAN_LUTS-1 */
+    size_t offset;      /* bytes */
+    size_t bytes;
+    const void *data;   /* owned by the plan's creator; must outlive the render */
+} atmo_plan_upload;
+
+#define ATMO_PLAN_MAX_UPLOADS 4
+
 typedef struct atmo_plan {
     atmo_gpu_scene gpu;
     atmo_atmosphere atmosphere;
@@ -33,6 +45,8 @@ typedef struct atmo_plan {
     size_t lut_bytes[ATMO_PLAN_LUTS]; /* 0: unused (a dummy is bound) */
     atmo_plan_pass passes[ATMO_PLAN_MAX_PASSES];
     int pass_count;
+    atmo_plan_upload uploads[ATMO_PLAN_MAX_UPLOADS];
+    int upload_count;
     int width, height, samples;
 } atmo_plan;
 
