@@ -1,7 +1,8 @@
 /* precompute.c — run the plan's precompute passes (atmo/render.h).
  *
- * Host tables (plan->uploads) are copied first, then every precompute kernel runs; each takes (scene, lut0, lut1, lut2, lut3, int arg) (kernels/sky_method.h),
- * so one loop runs any method's passes: LUT sizes and the list of launches come from the plan.
+ * Host tables (plan->uploads) are copied first; then the passes run. Every precompute kernel
+ * takes (scene, lut0, lut1, lut2, lut3, int arg) (kernels/sky_method.h), so one loop runs any
+ * method's passes: LUT sizes and the list of launches come from the plan.
  * 2-D passes use 8 x 8 work-groups and 3-D passes 4 x 4 x 4; global sizes are padded to them and
  * the kernels bounds-check. */
 #include <time.h>
