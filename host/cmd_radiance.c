@@ -31,12 +31,12 @@
 #include "atmo/cl_runtime.h"
 #include "atmo/colour.h"
 #include "atmo/plan.h"
+#include "atmo/probe.h"
 #include "atmo/render.h"
 #include "atmo/scene.h"
 #include "commands.h"
 
 #define RADIANCE_MAX_VIEWS 1024
-#define RADIANCE_BATCHES 64
 #define RADIANCE_QUAD 16
 #define DEG (M_PI / 180.0)
 
@@ -95,88 +95,6 @@ static void __direction(double zenith_deg, double azimuth_deg, double out[3])
     atmo_sun_direction(zenith_deg, azimuth_deg, out); /* the same convention for views */
 }
 
-/* Mean of sky_probe over `samples` samples for each ray, as RADIANCE_BATCHES batches; se may
- * be NULL. */
-static int __probe(atmo_cl *cl, cl_program prog, cl_mem scene, cl_mem luts[ATMO_PLAN_LUTS],
-                   const float4 *rays, int n, int samples, double (*mean)[3], double (*se)[3],
-                   atmo_err *e)
-{
-    int rc = ATMO_OK, per = (samples + RADIANCE_BATCHES - 1) / RADIANCE_BATCHES;
-    size_t items = (size_t)n * RADIANCE_BATCHES;
-    float4 *all = malloc(sizeof(float4) * items), *out = malloc(sizeof(float4) * items);
-    cl_mem b_rays = NULL, b_out = NULL;
-    cl_kernel k = NULL;
-    cl_int err;
-    if (!all || !out) {
-        rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for %d rays", n);
-        goto cleanup;
-    }
-    for (size_t i = 0; i < items; i++)
-        all[i] = rays[i / RADIANCE_BATCHES];
-    b_rays = clCreateBuffer(cl->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                            sizeof(float4) * items, all, &err);
-    if (err != CL_SUCCESS) {
-        rc = atmo_cl_fail(e, "clCreateBuffer(rays)", err);
-        goto cleanup;
-    }
-    b_out = clCreateBuffer(cl->context, CL_MEM_WRITE_ONLY, sizeof(float4) * items, NULL, &err);
-    if (err != CL_SUCCESS) {
-        rc = atmo_cl_fail(e, "clCreateBuffer(radiance)", err);
-        goto cleanup;
-    }
-    k = clCreateKernel(prog, "sky_probe", &err);
-    if (err != CL_SUCCESS) {
-        rc = atmo_cl_fail(e, "clCreateKernel(sky_probe)", err);
-        goto cleanup;
-    }
-    cl_uint count = (cl_uint)items, n_samples = (cl_uint)per;
-    err = clSetKernelArg(k, 0, sizeof scene, &scene);
-    for (int i = 0; i < ATMO_PLAN_LUTS && err == CL_SUCCESS; i++)
-        err = clSetKernelArg(k, 1 + i, sizeof luts[i], &luts[i]);
-    if (err == CL_SUCCESS)
-        err = clSetKernelArg(k, 5, sizeof b_rays, &b_rays);
-    if (err == CL_SUCCESS)
-        err = clSetKernelArg(k, 6, sizeof b_out, &b_out);
-    if (err == CL_SUCCESS)
-        err = clSetKernelArg(k, 7, sizeof count, &count);
-    if (err == CL_SUCCESS)
-        err = clSetKernelArg(k, 8, sizeof n_samples, &n_samples);
-    size_t local = 64, global = (items + local - 1) / local * local;
-    if (err == CL_SUCCESS)
-        err = clEnqueueNDRangeKernel(cl->queue, k, 1, NULL, &global, &local, 0, NULL, NULL);
-    if (err == CL_SUCCESS)
-        err = clEnqueueReadBuffer(cl->queue, b_out, CL_TRUE, 0, sizeof(float4) * items, out, 0,
-                                  NULL, NULL);
-    if (err != CL_SUCCESS) {
-        rc = atmo_cl_fail(e, "sky_probe", err);
-        goto cleanup;
-    }
-    for (int i = 0; i < n; i++)
-        for (int c = 0; c < 3; c++) {
-            double s = 0.0, s2 = 0.0;
-            for (int b = 0; b < RADIANCE_BATCHES; b++) {
-                const float4 *o = &out[(size_t)i * RADIANCE_BATCHES + (size_t)b];
-                double x = c == 0 ? o->x : c == 1 ? o->y : o->z;
-                s += x, s2 += x * x;
-            }
-            double m = s / RADIANCE_BATCHES;
-            mean[i][c] = m;
-            if (se)
-                se[i][c] = sqrt(fmax(s2 / RADIANCE_BATCHES - m * m, 0.0) /
-                                (RADIANCE_BATCHES - 1));
-        }
-cleanup:
-    if (k)
-        clReleaseKernel(k);
-    if (b_out)
-        clReleaseMemObject(b_out);
-    if (b_rays)
-        clReleaseMemObject(b_rays);
-    free(out);
-    free(all);
-    return rc;
-}
-
 /* Gauss-Legendre nodes and weights on [0, 1] (Newton on P_n from the Chebyshev guess). */
 static void __gauss_legendre01(int n, double *x, double *w)
 {
@@ -209,14 +127,12 @@ int cmd_radiance(int argc, char **argv)
     atmo_err e = {{0}};
     atmo_scene scene;
     atmo_plan plan;
-    atmo_cl cl;
-    int cl_open = 0, rc = ATMO_OK, json = 0, irradiance = 0, samples = 0, n_views = 0;
+    atmo_probe probe = {0};
+    int rc = ATMO_OK, json = 0, irradiance = 0, samples = 0, n_views = 0;
     int have_altitude = 0, have_sun = 0;
     double altitude = 0.0, sun_zenith = 0.0, sun_azimuth = 0.0;
     const char *scene_file = NULL, *device = NULL;
     static radiance_view views[RADIANCE_MAX_VIEWS];
-    cl_program prog = NULL;
-    cl_mem b_scene = NULL, luts[ATMO_PLAN_LUTS] = {NULL, NULL, NULL, NULL};
     float4 *rays = NULL;
     double(*mean)[3] = NULL;
 
@@ -306,7 +222,7 @@ int cmd_radiance(int argc, char **argv)
     int is_reference = scene.atmosphere.method == ATMO_METHOD_REFERENCE;
     if (samples == 0)
         samples = is_reference ? 65536 : 64;
-    samples = (samples + RADIANCE_BATCHES - 1) / RADIANCE_BATCHES * RADIANCE_BATCHES;
+    samples = (samples + ATMO_PROBE_BATCHES - 1) / ATMO_PROBE_BATCHES * ATMO_PROBE_BATCHES;
 
     /* rays: the views, then the sky-irradiance quadrature directions */
     const atmo_atmosphere *atm = &plan.atmosphere;
@@ -341,28 +257,13 @@ int cmd_radiance(int argc, char **argv)
             rays[n_views + i * RADIANCE_QUAD + j] = q;
         }
 
-    if ((rc = atmo_cl_open(&cl, device, &e)))
+    if ((rc = atmo_probe_open(&probe, &plan, device, &e)))
         goto cleanup_se;
-    cl_open = 1;
-    atmo_cl_build_options bo = {plan.fragments, plan.fragment_count, plan.defines, NULL, 1, NULL};
-    atmo_cl_build_info bi;
-    if ((rc = atmo_cl_build(&cl, &bo, &prog, &bi, &e)))
-        goto cleanup_se;
-    cl_int err;
-    b_scene = clCreateBuffer(cl.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof plan.gpu,
-                             &plan.gpu, &err);
-    if (err != CL_SUCCESS) {
-        rc = atmo_cl_fail(&e, "clCreateBuffer(scene)", err);
-        goto cleanup_se;
-    }
-    double seconds;
-    if ((rc = atmo_precompute(&cl, prog, &plan, b_scene, luts, &seconds, &e)))
-        goto cleanup_se;
-    if (n_views && (rc = __probe(&cl, prog, b_scene, luts, rays, n_views, samples, mean, se, &e)))
+    if (n_views && (rc = atmo_probe_rays(&probe, rays, n_views, samples, mean, se, &e)))
         goto cleanup_se;
     int quad_samples = samples / 64 > 0 ? samples / 64 : 1;
-    if (n_quad && (rc = __probe(&cl, prog, b_scene, luts, rays + n_views, n_quad, quad_samples,
-                                mean + n_views, NULL, &e)))
+    if (n_quad && (rc = atmo_probe_rays(&probe, rays + n_views, n_quad, quad_samples,
+                                        mean + n_views, NULL, &e)))
         goto cleanup_se;
 
     double k[3], direct[3] = {0, 0, 0}, sky[3] = {0, 0, 0};
@@ -389,7 +290,7 @@ int cmd_radiance(int argc, char **argv)
         cJSON_AddNumberToObject(root, "sun_azimuth_deg", sun_azimuth);
         cJSON_AddNumberToObject(root, "samples", samples);
         cJSON_AddNumberToObject(root, "seed", scene.image.seed);
-        cJSON_AddStringToObject(root, "device", cl.device_name);
+        cJSON_AddStringToObject(root, "device", probe.cl.device_name);
         cJSON *arr = cJSON_AddArrayToObject(root, "views");
         for (int i = 0; i < n_views; i++) {
             cJSON *o = cJSON_CreateObject();
@@ -434,15 +335,7 @@ int cmd_radiance(int argc, char **argv)
 cleanup_se:
     free(se);
 cleanup:
-    for (int i = ATMO_PLAN_LUTS - 1; i >= 0; i--)
-        if (luts[i])
-            clReleaseMemObject(luts[i]);
-    if (b_scene)
-        clReleaseMemObject(b_scene);
-    if (prog)
-        clReleaseProgram(prog);
-    if (cl_open)
-        atmo_cl_close(&cl);
+    atmo_probe_close(&probe);
     free(mean);
     free(rays);
     if (rc)
