@@ -5,6 +5,7 @@
 #include <string.h>
 #include "atmo/colour.h"
 #include "atmo/plan.h"
+#include "atmo/plan_cloud.h"
 #include "atmo/plan_fast.h"
 #include "atmo/plan_lut.h"
 #include "atmo/plan_march.h"
@@ -22,7 +23,9 @@ _Static_assert(offsetof(atmo_gpu_scene, sun_direction) == 224, "atmo_gpu_scene l
 _Static_assert(offsetof(atmo_gpu_scene, view_steps) == 272, "atmo_gpu_scene layout");
 _Static_assert(offsetof(atmo_gpu_scene, lut_dims) == 288, "atmo_gpu_scene layout");
 _Static_assert(offsetof(atmo_gpu_scene, method_float) == 352, "atmo_gpu_scene layout");
-_Static_assert(sizeof(atmo_gpu_scene) == 368, "atmo_gpu_scene layout");
+_Static_assert(offsetof(atmo_gpu_scene, cloud_extinction) == 368, "atmo_gpu_scene layout");
+_Static_assert(offsetof(atmo_gpu_scene, cloud_phase) == 432, "atmo_gpu_scene layout");
+_Static_assert(sizeof(atmo_gpu_scene) == 448, "atmo_gpu_scene layout");
 
 #define DEG (M_PI / 180.0)
 
@@ -188,7 +191,7 @@ int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "atmosphere.method=%s is not implemented yet (available: %s)", m->name,
                          atmo_plan_available_methods());
-    if ((rc = m->plan(s, p, e)))
+    if ((rc = m->plan(s, p, e)) || (rc = atmo_plan_cloud(s, p, e)))
         return rc;
     p->fragments[p->fragment_count++] = "kernels/transmittance.cl";
     p->fragments[p->fragment_count++] = "kernels/sky.cl";

@@ -47,6 +47,10 @@ static const char *const tonemap_names[] = {"none",           "exposure", "reinh
                                             "reinhard-white", "aces",     "unreal3",
                                             "uchimura",       "lottes",   NULL};
 static const char *const transfer_names[] = {"srgb", "gamma22", NULL};
+/* the size-distribution presets of mie_dsd_preset (host/mie_dsd.c), in its order */
+static const char *const cloud_dsd_names[] = {"cumulus", "stratus", "fog", "corona",
+                                              "thesis-disperse", "thesis-uniform", NULL};
+static const char *const cloud_phase_names[] = {"mie", "hg", "jendersie-deon", NULL};
 _Static_assert(ATMO_CAMERA_PANORAMA == 1 && ATMO_PHASE_HENYEY_GREENSTEIN == 1 &&
                    ATMO_QUANTITY_LUMINANCE == 1 && ATMO_TONEMAP_LOTTES == 7 &&
                    ATMO_TRANSFER_GAMMA22 == 1,
@@ -99,6 +103,30 @@ const atmo_param atmo_params[] = {
              "aerosol phase function"),
     ROW_ENUM("atmosphere.method", atmosphere.method, method_names, ATMO_METHOD_SINGLE,
              "how light transport in the atmosphere is computed (see README: Methods)"),
+    ROW_BOOL("cloud.enabled", cloud.enabled, 0,
+             "a homogeneous cloud/fog shell (methods single and march; kernels/cloud_shell.h)"),
+    ROW_FLOAT("cloud.bottom_m", cloud.bottom_m, "m", 0, 1e5, 1000,
+              "altitude of the cloud shell's base above sea level"),
+    ROW_FLOAT("cloud.top_m", cloud.top_m, "m", 0, 1e5, 2000,
+              "altitude of the cloud shell's top above sea level (above cloud.bottom_m)"),
+    ROW_ENUM("cloud.dsd", cloud.dsd, cloud_dsd_names, 0,
+             "droplet size distribution (presets of atmo mie --dsd)"),
+    ROW_FLOAT("cloud.lwc_g_m3", cloud.lwc_g_m3, "g/m^3", 1e-6, 10, 0.3,
+              "liquid water content; extinction = sigma_ext/LWC of the distribution x this"),
+    ROW_ENUM("cloud.phase", cloud.phase, cloud_phase_names, 0,
+             "cloud phase function: Mie table, Henyey-Greenstein with the table's g, or "
+             "Jendersie-d'Eon for the distribution's effective diameter"),
+    ROW_BOOL("cloud.sun_disc", cloud.sun_disc, 1,
+             "convolve the Mie table with the sun's disc (smooths ripples a point sun shows)"),
+    ROW_BOOL("observer.enabled", observer.enabled, 0,
+             "an observer sphere that casts a shadow on the cloud (Brocken spectre)"),
+    ROW_FLOAT("observer.distance_m", observer.distance_m, "m", 0, 1e4, 5,
+              "observer's centre: horizontal distance ahead of the camera toward the antisolar "
+              "point (it stays in the vertical plane through the sun)"),
+    ROW_FLOAT("observer.height_m", observer.height_m, "m", -1e4, 1e4, -1,
+              "observer's centre: height relative to the camera"),
+    ROW_FLOAT("observer.radius_m", observer.radius_m, "m", 0.01, 1e3, 1,
+              "observer sphere's radius"),
     ROW_INT("lut.orders", atmosphere.lut_orders, "", 1, 15, 8,
             "lut method: scattering orders precomputed (1 = single scattering only)"),
     ROW_INT("lut.r_size", atmosphere.lut_r_size, "", 2, 1024, 32,

@@ -20,8 +20,13 @@ ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
                           vec3 *sun)
 {
     float jitter = rng_uniform(s->seed, pixel, sample, ATMO_RNG_METHOD_DIM);
+#ifdef ATMO_CLOUD /* a cloud shell or observer (cloud_shell.h) */
+    cloud_integrate(s, lut_transmittance, lut_a, s->lut_dims[0][0], s->lut_dims[0][1], 1, r, mu,
+                    mu_s, nu, s->view_steps, jitter, sky, sun);
+#else
     march_integrate(s, lut_transmittance, lut_a, s->lut_dims[0][0], s->lut_dims[0][1], r, mu,
                     mu_s, nu, s->view_steps, jitter, sky, sun);
+#endif
 }
 
 #endif

@@ -16,7 +16,12 @@ ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
                           vec3 *sun)
 {
     float jitter = rng_uniform(s->seed, pixel, sample, ATMO_RNG_METHOD_DIM);
+#ifdef ATMO_CLOUD /* a cloud shell or observer (cloud_shell.h) */
+    cloud_integrate(s, lut_transmittance, lut_a, 0, 0, 0, r, mu, mu_s, nu, s->view_steps, jitter,
+                    sky, sun);
+#else
     sky_single_scattering(s, lut_transmittance, r, mu, mu_s, nu, jitter, sky, sun);
+#endif
 }
 
 #endif

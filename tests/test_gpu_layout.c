@@ -15,7 +15,9 @@
     X(atmo_gpu_camera, local_up) X(atmo_gpu_camera, kind) X(atmo_gpu_camera, tan_half_fov)         \
     X(atmo_gpu_scene, camera) X(atmo_gpu_scene, sun_direction) X(atmo_gpu_scene, sun_factor)       \
     X(atmo_gpu_scene, view_steps) X(atmo_gpu_scene, seed)                        \
-    X(atmo_gpu_scene, lut_dims) X(atmo_gpu_scene, method_int) X(atmo_gpu_scene, method_float)
+    X(atmo_gpu_scene, lut_dims) X(atmo_gpu_scene, method_int) X(atmo_gpu_scene, method_float)  \
+    X(atmo_gpu_scene, cloud_extinction) X(atmo_gpu_scene, observer)                               \
+    X(atmo_gpu_scene, cloud_phase) X(atmo_gpu_scene, cloud_steps)
 
 #define HOST_OFFSET(type, field) (uint)offsetof(type, field),
 #define DEVICE_OFFSET(type, field) "out[n++] = (uint)__builtin_offsetof(" #type ", " #field ");\n"

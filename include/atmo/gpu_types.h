@@ -52,6 +52,15 @@ typedef struct atmo_gpu_scene {
     int lut_dims[3][4];    /* sizes of the method's LUTs a, b, c (the method says which axes) */
     int method_int[4];     /* integer knobs of the method (its fragment documents them) */
     float method_float[4]; /* float knobs of the method */
+    /* cloud shell and observer (kernels/cloud_shell.h): zero unless the plan defines ATMO_CLOUD */
+    float4 cloud_extinction; /* xyz: sigma_ext (1/m); w: altitude of the shell's base (m) */
+    float4 cloud_albedo;     /* xyz: single-scattering albedo; w: altitude of its top (m) */
+    float4 cloud_g;          /* xyz: asymmetry g of the table; w: Jendersie-d'Eon diameter (um) */
+    float4 observer;         /* xyz: centre in the camera's sun frame (m); w: radius (0: none) */
+    int cloud_phase;         /* ATMO_CLOUD_PHASE_* of scene.h */
+    int cloud_table_offset;  /* float4 index of the phase table's first row in LUT buffer 0 */
+    int cloud_table_size;    /* rows of the phase table (theta ascending) */
+    int cloud_steps;         /* steps in optical depth per cloud segment of a view ray */
 } atmo_gpu_scene;
 
 #endif

@@ -87,7 +87,22 @@ typedef struct atmo_scene {
         int white_balance;     /* 0/1: divide by the sun's white point */
         int transfer;          /* ATMO_TRANSFER_*: PNG encoding curve */
     } post;
+    struct {                   /* homogeneous cloud/fog shell (kernels/cloud_shell.h) */
+        int enabled;
+        double bottom_m, top_m; /* altitudes of the shell above sea level */
+        int dsd;               /* index into mie_dsd_preset_names */
+        double lwc_g_m3;       /* liquid water content */
+        int phase;             /* ATMO_CLOUD_PHASE_* */
+        int sun_disc;          /* 0/1: Mie table convolved with the sun's disc */
+    } cloud;
+    struct {                   /* a sphere in the camera's sun plane (Brocken spectre) */
+        int enabled;
+        double distance_m;     /* horizontally ahead of the camera, toward the antisolar point */
+        double height_m;       /* of its centre relative to the camera */
+        double radius_m;
+    } observer;
 } atmo_scene;
+enum { ATMO_CLOUD_PHASE_MIE = 0, ATMO_CLOUD_PHASE_HG, ATMO_CLOUD_PHASE_JENDERSIE_DEON };
 
 typedef enum { ATMO_PARAM_INT, ATMO_PARAM_FLOAT, ATMO_PARAM_VEC3, ATMO_PARAM_ENUM, ATMO_PARAM_BOOL }
     atmo_param_type;
