@@ -86,6 +86,29 @@ const atmo_preset atmo_presets[] = {
            "camera.kind=perspective", "camera.position_m=18181,37415,3431", "camera.pitch_deg=-16",
            "camera.yaw_deg=-556", "camera.fov_deg=45", "sun.zenith_deg=87.476967",
            "sun.azimuth_deg=-150.985019"),
+    PRESET("glory",
+           "above a cloud deck of thesis-disperse drops, looking down at the antisolar point: "
+           "glory rings and the fog bow (thesis view 5's sun)",
+           "camera.kind=perspective", "camera.position_m=0,3000,0", "camera.pitch_deg=-53.85",
+           "camera.yaw_deg=180", "camera.fov_deg=90", "sun.zenith_deg=36.15",
+           "sun.azimuth_deg=0", "atmosphere.method=march", "cloud.enabled=true",
+           "cloud.bottom_m=1000", "cloud.top_m=2000", "cloud.dsd=thesis-disperse",
+           "cloud.lwc_g_m3=0.3", "post.exposure=4"),
+    PRESET("corona", "the sun 30 degrees high through a thin cloud of narrow-sized drops: corona "
+                     "rings around it",
+           "camera.kind=perspective", "camera.position_m=0,1.7,0", "camera.pitch_deg=30",
+           "camera.yaw_deg=0", "camera.fov_deg=20", "sun.zenith_deg=60", "sun.azimuth_deg=0",
+           "atmosphere.method=march", "cloud.enabled=true", "cloud.bottom_m=5000",
+           "cloud.top_m=5200", "cloud.dsd=corona", "cloud.lwc_g_m3=0.01", "post.exposure=0.5"),
+    PRESET("brocken",
+           "Brocken spectre: the photographer's shadow on a fog bank 15 m below, at the "
+           "antisolar point, ringed by the glory of stratus drops",
+           "camera.kind=perspective", "camera.position_m=0,1015,0", "camera.pitch_deg=-25",
+           "camera.yaw_deg=180", "camera.fov_deg=20", "sun.zenith_deg=65", "sun.azimuth_deg=0",
+           "atmosphere.method=march", "cloud.enabled=true", "cloud.bottom_m=500",
+           "cloud.top_m=1000", "cloud.dsd=stratus", "cloud.lwc_g_m3=0.1", "observer.enabled=true",
+           "observer.distance_m=0.3", "observer.height_m=-0.6", "observer.radius_m=1",
+           "post.exposure=4"),
     {NULL, NULL, NULL},
 };
 

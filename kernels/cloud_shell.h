@@ -40,7 +40,8 @@
  * image in the vertical plane through the sun, which contains the sphere, so the direction
  * (vx, mu, +vz) with vx = (nu - mu mu_s) / sin_s is as good as its mirror. The sphere blocks
  * the sun at every sample it shadows and ends a view ray it meets, showing a Lambertian
- * surface of albedo CLOUD_OBSERVER_ALBEDO lit by the sun only (a dark silhouette).
+ * surface of albedo CLOUD_OBSERVER_ALBEDO lit by the sun only (a dark silhouette). A sphere
+ * around the camera is the photographer: it casts the shadow but is not seen.
  *
  * Units: metres, 1/m, radians; radiance in W m^-2 sr^-1 nm^-1 like sky_single.h. */
 #ifndef ATMO_CLOUD_SHELL_H
@@ -146,16 +147,17 @@ ATMO_FN int cloud_observer_blocks(float4 o, vec3 p, vec3 d)
     return c <= 0.0f || (b < 0.0f && b * b - c >= 0.0f);
 }
 
-/* Distance along d from the camera (origin) to the observer sphere, or -1. */
+/* Distance along d from the camera (origin) to the observer sphere, or -1; also -1 when the
+ * camera is inside it (the observer is the photographer: it shadows but is not seen). */
 ATMO_FN float cloud_observer_hit(float4 o, vec3 d)
 {
     float t0, t1;
     if (o.w <= 0.0f)
         return -1.0f;
     vec3 oc = v3_scale(v3(o.x, o.y, o.z), -1.0f);
-    if (!cloud_sphere_roots(v3_dot(oc, d), v3_dot(oc, oc) - o.w * o.w, &t0, &t1) || t1 <= 0.0f)
+    if (!cloud_sphere_roots(v3_dot(oc, d), v3_dot(oc, oc) - o.w * o.w, &t0, &t1) || t0 <= 0.0f)
         return -1.0f;
-    return fmaxf(t0, 0.0f);
+    return t0;
 }
 
 /* (1 - e^{-x}) / sigma with x = sigma dt for any sign of sigma (a decaying or growing source). */
