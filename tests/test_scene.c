@@ -509,7 +509,7 @@ static void test_presets(void)
         CHECK(p->summary && strlen(p->summary) > 10 && !strchr(p->summary, '\n'));
         CHECK(atmo_preset_find(p->name) == p);
     }
-    CHECK(count == 13);
+    CHECK(count == 16);
 
     /* thesis presets against presets.md: position, rotation and direction to the sun */
     static const struct {
