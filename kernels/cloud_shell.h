@@ -19,9 +19,9 @@
  * cloud segment is integrated with `cloud_steps` steps equal in optical depth, up to
  * CLOUD_TAU_CUT (beyond it the view transmittance is below 1e-5), so a cloud of optical
  * thickness 10-1000 is resolved where it is seen. Within a step the sun's path length in the
- * shell is taken as linear in t, l_sun(t0 + s) = l_0 + k s, so the step integrates exactly
- *     int_0^dt e^{-sigma_v s} S_0 e^{-a sigma k s} ds = S_0 (1 - e^{-(sigma_v + a sigma k) dt})
- *                                                             / (sigma_v + a sigma k)
+ * shell is taken as linear in t, from l_0 to l_1, so with x(s) = a sigma l(s) + sigma_v s the
+ * step integrates exactly
+ *     int_0^dt S_0 e^{-x(s)} ds = S_0 dt (e^{-x(0)} - e^{-x(dt)}) / (x(dt) - x(0))
  * (exact for a plane-parallel slab, where the single-scattering radiance has the closed form
  * omega p(theta) E mu_s / (mu_s + mu_v) (1 - e^{-tau (1/mu_s + 1/mu_v)}) used by the tests).
  *
@@ -173,6 +173,21 @@ ATMO_FN vec3 __cloud_weight3(vec3 sigma, float dt)
               __cloud_weight(sigma.z, dt));
 }
 
+/* int_0^dt e^{-x(s)} ds for an exponent linear from x0 to x1 (both >= 0):
+ * dt (e^{-x0} - e^{-x1}) / (x1 - x0). Written with the end values so it stays finite when the
+ * exponent falls steeply (the sun's path shortening fast along a ray going up). */
+ATMO_FN float __cloud_exp_mean(float x0, float x1, float dt)
+{
+    float d = x1 - x0;
+    return fabsf(d) > 1e-4f ? dt * (expf(-x0) - expf(-x1)) / d : dt * expf(-x0) * (1.0f - 0.5f * d);
+}
+
+ATMO_FN vec3 __cloud_exp_mean3(vec3 x0, vec3 x1, float dt)
+{
+    return v3(__cloud_exp_mean(x0.x, x1.x, dt), __cloud_exp_mean(x0.y, x1.y, dt),
+              __cloud_exp_mean(x0.z, x1.z, dt));
+}
+
 /* A view ray: the camera's radius, the ray's cosines and its direction and the sun's in the
  * camera's sun frame. */
 typedef struct cloud_ray {
@@ -255,7 +270,6 @@ ATMO_FN void __cloud_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL co
     for (int j = 0; j < n; j++) {
         float ta = t0 + (float)j * dt;
         vec3 sun1 = cloud_sun_transmittance(s, lut0, ray, ta + dt, &chord1);
-        float k = (chord1 - chord0) / dt; /* d l_sun / dt over the step */
         /* the observer's shadow is sharp: test it at a jittered point of the step */
         vec3 sun_t = cloud_observer_blocks(s->observer, v3_scale(ray.dir, ta + jitter * dt),
                                            ray.sun_dir)
@@ -268,10 +282,10 @@ ATMO_FN void __cloud_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL co
                                  phase_henyey_greenstein(ray.nu, s->cloud_g.y * sc),
                                  phase_henyey_greenstein(ray.nu, s->cloud_g.z * sc));
             vec3 sig_sun = v3_scale(sigma, sa);
-            vec3 source = v3_scale(v3_mul(v3_mul(v3_mul(k_src, p), sun_t),
-                                          v3_exp(v3_scale(sig_sun, -chord0))),
-                                   sb);
-            vec3 w = __cloud_weight3(v3_add(sigma_v, v3_scale(sig_sun, k)), dt);
+            vec3 source = v3_scale(v3_mul(v3_mul(k_src, p), sun_t), sb);
+            vec3 x0 = v3_scale(sig_sun, chord0);
+            vec3 w = __cloud_exp_mean3(x0, v3_add(v3_scale(sig_sun, chord1), v3_scale(sigma_v, dt)),
+                                       dt);
             *L = v3_add(*L, v3_mul(v3_mul(*T, source), w));
             sa *= CLOUD_OCTAVE_A;
             sb *= CLOUD_OCTAVE_B;
