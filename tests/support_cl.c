@@ -16,9 +16,15 @@ void test_cl_open(atmo_cl *cl)
 
 cl_program test_cl_build(atmo_cl *cl, const char *const *fragments, int count, const char *extra)
 {
+    return test_cl_build_defines(cl, fragments, count, "", extra);
+}
+
+cl_program test_cl_build_defines(atmo_cl *cl, const char *const *fragments, int count,
+                                 const char *defines, const char *extra)
+{
     atmo_err e;
     cl_program p;
-    atmo_cl_build_options o = {fragments, count, "", NULL, 1, extra};
+    atmo_cl_build_options o = {fragments, count, defines, NULL, 1, extra};
     atmo_cl_build_info info;
     if (atmo_cl_build(cl, &o, &p, &info, &e)) {
         fprintf(stderr, "kernel build failed: %s\n", e.msg);

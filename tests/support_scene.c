@@ -34,7 +34,7 @@ void test_plan(const atmo_scene *s, atmo_plan *p)
 
 cl_program test_plan_program(atmo_cl *cl, const atmo_plan *p, const char *extra)
 {
-    return test_cl_build(cl, p->fragments, p->fragment_count, extra);
+    return test_cl_build_defines(cl, p->fragments, p->fragment_count, p->defines, extra);
 }
 
 void test_precompute(atmo_cl *cl, cl_program prog, cl_mem scene, const atmo_plan *p,

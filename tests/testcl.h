@@ -8,6 +8,9 @@
 void test_cl_open(atmo_cl *cl);
 /* Build fragments + extra; exits 1 with the error on failure. */
 cl_program test_cl_build(atmo_cl *cl, const char *const *fragments, int count, const char *extra);
+/* The same with build options (-D flags). */
+cl_program test_cl_build_defines(atmo_cl *cl, const char *const *fragments, int count,
+                                 const char *defines, const char *extra);
 /* A read-write buffer initialised from host memory (may be NULL for uninitialised). */
 cl_mem test_cl_buffer(atmo_cl *cl, size_t bytes, const void *init);
 /* Run a 1-D kernel over n items (global size padded to 64; the kernel bounds-checks) and wait. */

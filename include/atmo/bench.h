@@ -1,7 +1,33 @@
 /* bench.h — benchmark suites run by `atmo bench` (host/cmd_bench.c dispatches). */
 #ifndef ATMO_BENCH_H
 #define ATMO_BENCH_H
+#include "atmo/render.h"
+#include "atmo/scene.h"
 #include "atmo/status.h"
+
+typedef struct bench_row {
+    char method[32];
+    char settings[64];
+    double seconds;
+    double error;
+} bench_row;
+
+/* Plan and render a scene on the device (default settings). */
+int bench_render(const atmo_scene *s, const char *device, atmo_render_result *r, atmo_err *e);
+/* RMS over pixels and channels of (a - ref) / ref. */
+double bench_rms_relative(const atmo_render_result *a, const atmo_render_result *ref);
+/* DIR/SUITE.csv: method,settings,seconds,error,device. */
+int bench_write_csv(const char *path, const bench_row *rows, int n, const char *device,
+                    atmo_err *e);
+/* Log-log chart of error against seconds, one series per method, via gnuplot. */
+int bench_chart(const char *csv, const char *svg, const char *title, const char *ylabel,
+                const bench_row *rows, int n, atmo_err *e);
+
+/* `atmo bench sky` (host/bench_sky.c). */
+int bench_sky(const char *dir, const char *device, int quick, atmo_err *e);
+/* `atmo bench atmosphere` (host/bench_atmosphere.c). */
+int bench_atmosphere(const char *dir, const char *device, const char *reference, int quick,
+                     atmo_err *e);
 
 /* `atmo bench mie`: phase options against the tabulated Mie phase, and table build times
  * (host/bench_mie.c). Writes DIR/mie.csv, DIR/mie_table.csv and DIR/mie.svg. */
