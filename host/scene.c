@@ -127,7 +127,7 @@ const atmo_param atmo_params[] = {
               "observer's centre: height relative to the camera"),
     ROW_FLOAT("observer.radius_m", observer.radius_m, "m", 0.01, 1e3, 1,
               "observer sphere's radius"),
-    ROW_INT("lut.orders", atmosphere.lut_orders, "", 1, 15, 8,
+    ROW_INT("lut.orders", atmosphere.lut_orders, "", 1, 15, 7,
             "lut method: scattering orders precomputed (1 = single scattering only)"),
     ROW_INT("lut.r_size", atmosphere.lut_r_size, "", 2, 1024, 32,
             "lut method: texels of the scattering LUT along the altitude"),

@@ -18,8 +18,9 @@
  *     (defaults 8, 32, 128, 32; mu even: half ground rays, half sky rays)
  *   lut.steps -> method_int[0]: segments per texel ray (default 64)
  *   lut.sphere_samples -> method_int[1]: zenith rings of the sphere grid (even, default 16)
- *   lut.orders -> method_int[2]: scattering orders (default 8; in blue with the sun on the
- *     horizon order 8 adds at most 0.06 % and order 9 0.02 %, tests/test_lut_method.c). */
+ *   lut.orders -> method_int[2]: scattering orders (default 7: in blue with the sun on the
+ *     horizon, where orders fall slowest, order 8 would add at most 0.06 %,
+ *     tests/test_lut_method.c). */
 #ifndef ATMO_METHOD_LUT_H
 #define ATMO_METHOD_LUT_H
 #ifndef __OPENCL_VERSION__
