@@ -52,6 +52,7 @@ static const char render_usage[] =
     "  --launch-budget-ms MS  time per kernel launch to aim for (default 100)\n"
     "  --dump-kernels DIR     write the assembled OpenCL source to DIR\n"
     "  --no-kernel-cache      always compile the kernels (cache: ATMO_CACHE_DIR or ~/.cache/atmo)\n"
+    "  --no-lut-cache         always precompute LUTs (LUTs that take over 0.5 s are cached)\n"
     "  --quiet                no progress output\n"
     "\n"
     "Ctrl-C during the render writes the samples finished so far and says so.\n";
@@ -108,6 +109,7 @@ static int __write_report(const char *path, const atmo_scene *s, const atmo_rend
     cJSON_AddNumberToObject(ren, "tile_size", rs->tile_size);
     cJSON_AddNumberToObject(ren, "launch_budget_ms", rs->launch_budget_ms);
     cJSON_AddBoolToObject(ren, "kernel_cache_hit", r->kernel_cache_hit);
+    cJSON_AddBoolToObject(ren, "lut_cache_hit", r->lut_cache_hit);
     cJSON_AddStringToObject(ren, "quantity", s->render.quantity == ATMO_QUANTITY_LUMINANCE
                                                  ? "luminance (cd m^-2)"
                                                  : "spectral radiance (W m^-2 sr^-1 nm^-1)");
@@ -158,7 +160,7 @@ int cmd_render(int argc, char **argv)
     const char *outputs[RENDER_MAX_OUTPUTS];
     char *sets[RENDER_MAX_SETS];
     char set_buffers[RENDER_MAX_SETS][64];
-    int n_out = 0, n_set = 0, quiet = 0, rc = ATMO_OK;
+    int n_out = 0, n_set = 0, quiet = 0, lut_cache = 1, rc = ATMO_OK;
     atmo_render_settings_default(&rs);
 
     for (int i = 1; i < argc; i++) {
@@ -175,6 +177,10 @@ int cmd_render(int argc, char **argv)
         }
         if (strcmp(a, "--no-kernel-cache") == 0) {
             rs.use_kernel_cache = 0;
+            continue;
+        }
+        if (strcmp(a, "--no-lut-cache") == 0) {
+            lut_cache = 0;
             continue;
         }
         static const char *const with_value[] = {
@@ -289,6 +295,7 @@ int cmd_render(int argc, char **argv)
     atmo_plan plan;
     if ((rc = atmo_plan_make(&scene, &plan, &e)))
         goto usage_error;
+    plan.cache_luts = lut_cache;
     rs.progress = quiet ? 0 : (isatty(STDERR_FILENO) ? 2 : 1);
 
     atmo_render_clear_interrupt();

@@ -22,7 +22,10 @@ int atmo_probe_open(atmo_probe *p, const atmo_plan *plan, const char *device, at
                               sizeof plan->gpu, (void *)&plan->gpu, &err);
     if (err != CL_SUCCESS)
         return atmo_cl_fail(e, "clCreateBuffer(scene)", err);
-    return atmo_precompute(&p->cl, p->program, plan, p->scene, p->luts, &p->seconds_precompute, e);
+    atmo_precompute_info info;
+    rc = atmo_precompute(&p->cl, p->program, plan, p->scene, p->luts, &info, e);
+    p->seconds_precompute = info.seconds;
+    return rc;
 }
 
 int atmo_probe_rays(atmo_probe *p, const float4 *rays, int n, int samples, double (*mean)[3],

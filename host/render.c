@@ -117,8 +117,11 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
     b_scene = clCreateBuffer(cl.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof *g,
                              (void *)g, &err);
     CL_CHECK(err, "clCreateBuffer(scene)");
-    if ((rc = atmo_precompute(&cl, program, plan, b_scene, b_luts, &res->seconds_precompute, e)))
+    atmo_precompute_info pi;
+    if ((rc = atmo_precompute(&cl, program, plan, b_scene, b_luts, &pi, e)))
         goto cleanup;
+    res->seconds_precompute = pi.seconds;
+    res->lut_cache_hit = pi.cache_hit;
     b_accum = clCreateBuffer(cl.context, CL_MEM_READ_WRITE, pixels * 4 * sizeof(float), NULL, &err);
     CL_CHECK(err, "clCreateBuffer(accumulation image)");
     cl_uint zero = 0;

@@ -41,8 +41,8 @@ void test_precompute(atmo_cl *cl, cl_program prog, cl_mem scene, const atmo_plan
                      cl_mem luts[ATMO_PLAN_LUTS])
 {
     atmo_err e;
-    double seconds;
-    if (atmo_precompute(cl, prog, p, scene, luts, &seconds, &e)) {
+    atmo_precompute_info info;
+    if (atmo_precompute(cl, prog, p, scene, luts, &info, &e)) {
         fprintf(stderr, "precompute: %s\n", e.msg);
         exit(1);
     }

@@ -47,6 +47,7 @@ typedef struct atmo_plan {
     int pass_count;
     atmo_plan_upload uploads[ATMO_PLAN_MAX_UPLOADS];
     int upload_count;
+    int cache_luts;                /* disk cache of LUTs: 0 off, 1 those that took > 0.5 s, 2 all */
     int width, height, samples;
 } atmo_plan;
 

@@ -33,6 +33,7 @@ typedef struct atmo_render_result {
     unsigned nonfinite;        /* dropped non-finite samples (should be 0) */
     int launches;
     int kernel_cache_hit;
+    int lut_cache_hit;
     double seconds_device, seconds_build, seconds_precompute, seconds_render;
     char device_name[256], platform_name[256], driver_version[128];
 } atmo_render_result;
@@ -45,8 +46,12 @@ void atmo_render_result_free(atmo_render_result *r);
 /* Allocate the plan's LUT buffers (a 16-byte dummy for each unused one) and run its precompute
  * passes in order, waiting for the last. On failure, luts[] holds what was allocated: the
  * caller releases the non-NULL ones either way. */
+typedef struct atmo_precompute_info {
+    double seconds;
+    int cache_hit; /* the LUTs came from the disk cache (plan->cache_luts) */
+} atmo_precompute_info;
 int atmo_precompute(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_mem scene,
-                    cl_mem luts[ATMO_PLAN_LUTS], double *seconds, atmo_err *e);
+                    cl_mem luts[ATMO_PLAN_LUTS], atmo_precompute_info *info, atmo_err *e);
 
 /* Ask a running render to stop after the current launch (async-signal-safe). */
 void atmo_render_interrupt(void);
