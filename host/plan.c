@@ -108,11 +108,11 @@ static int __plan_single(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 
 /* Methods in ATMO_METHOD_* order; NULL: not implemented yet. */
 const atmo_plan_method atmo_plan_methods[] = {
-    {"single", __plan_single},
-    {"march", atmo_plan_march},
-    {"fast", atmo_plan_fast},
-    {"lut", atmo_plan_lut},
-    {"reference", atmo_plan_reference},
+    {"single", __plan_single, 0},
+    {"march", atmo_plan_march, 0},
+    {"fast", atmo_plan_fast, 1}, /* the sky-view LUT is made for one camera and one sun */
+    {"lut", atmo_plan_lut, 0},
+    {"reference", atmo_plan_reference, 0},
 };
 
 const char *atmo_plan_available_methods(void)

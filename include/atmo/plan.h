@@ -60,6 +60,8 @@ int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 typedef struct atmo_plan_method {
     const char *name;
     int (*plan)(const atmo_scene *s, atmo_plan *p, atmo_err *e);
+    int luts_follow_view; /* 1 if its LUTs hold one camera and sun (probes of other rays are
+                             then only valid for that sun); 0 if they serve any ray */
 } atmo_plan_method;
 extern const atmo_plan_method atmo_plan_methods[]; /* in ATMO_METHOD_* order */
 const char *atmo_plan_available_methods(void);
