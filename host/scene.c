@@ -139,7 +139,7 @@ const atmo_param atmo_params[] = {
             "lut method: texels along the view-sun angle"),
     ROW_INT("lut.steps", atmosphere.lut_steps, "", 4, 4096, 64,
             "lut method: integration steps along the ray of each texel"),
-    ROW_INT("lut.sphere_samples", atmosphere.lut_sphere_samples, "", 4, 256, 16,
+    ROW_INT("lut.sphere_samples", atmosphere.lut_sphere_samples, "", 4, 256, 32,
             "lut method: zenith rings of the direction grid for multiple scattering"),
     ROW_INT("reference.min_order", atmosphere.reference_min_order, "", 1, 1000, 1,
             "reference method: count scattering orders from this one (1 = single scattering)"),
