@@ -5,11 +5,13 @@
 #include "atmo/plan.h"
 
 /* Psi_ms LUT size (mu_s x altitude) and its quadrature (ms_lut.cl's method_int[0..2]). */
-#define ATMO_MS_LUT_WIDTH 32
+#define ATMO_MS_LUT_WIDTH 64
 #define ATMO_MS_LUT_HEIGHT 32
 #define ATMO_MS_DIRECTIONS_MU 16
 #define ATMO_MS_DIRECTIONS_PHI 8
 #define ATMO_MS_STEPS 20
+/* share of the order-2 anisotropy given to orders >= 3 (ms_lut.h) */
+#define ATMO_MS_HIGHER_ANISOTROPY 1.0f
 
 /* The Psi_ms LUT in buffer a: its fragments, size, knobs and pass. */
 int atmo_plan_ms_lut(const atmo_scene *s, atmo_plan *p, atmo_err *e);
