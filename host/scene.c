@@ -157,6 +157,9 @@ const atmo_param atmo_params[] = {
               "Lambertian albedo of the ground"),
     ROW_VEC3("render.wavelengths_nm", render.wavelengths_nm, "nm", 360, 830, 680, 550, 440,
              "the three render wavelengths in nm (R, G, B channels)"),
+    ROW_INT("render.spectral_bands", render.spectral_bands, "", 0, 470, 0,
+            "0: render at the three wavelengths; N >= 15: spectral mode, N bands over 360-830 nm "
+            "combined through the CIE 1931 CMFs into luminance-based linear sRGB (cd/m^2)"),
     ROW_ENUM("render.quantity", render.quantity, quantity_names, ATMO_QUANTITY_RADIANCE,
              "what HDR outputs hold: spectral radiance (W/m^2/sr/nm) or luminance (cd/m^2)"),
     ROW_INT("render.view_steps", render.view_steps, "", 1, 4096, 32,

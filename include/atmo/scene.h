@@ -76,6 +76,7 @@ typedef struct atmo_scene {
     } atmosphere;
     struct {
         double wavelengths_nm[3];
+        int spectral_bands;    /* 0: off; else spectral mode with this many bands (spectral_render.h) */
         int quantity;          /* ATMO_QUANTITY_*: what HDR outputs hold */
         int view_steps;        /* ray-march steps along a view ray */
         int transmittance_width, transmittance_height; /* transmittance LUT size (mu, r) */
