@@ -19,6 +19,7 @@
 #include "atmo/plan.h"
 #include "atmo/render.h"
 #include "atmo/scene.h"
+#include "atmo/spectral_render.h"
 #include "commands.h"
 
 #define RENDER_MAX_OUTPUTS 8
@@ -32,7 +33,9 @@ static const char render_usage[] =
     "  .hdr  Radiance RGBE, linear     .exr  OpenEXR 32-bit float, linear\n"
     "  .pfm  portable float map, linear\n"
     "Linear outputs hold spectral radiance (W m^-2 sr^-1 nm^-1) at render.wavelengths_nm, or\n"
-    "luminance (cd/m^2) with --set render.quantity=luminance.\n"
+    "luminance (cd/m^2) with --set render.quantity=luminance. With --set render.spectral_bands=N\n"
+    "(N >= 15) the scene is rendered at N wavelengths over 360-830 nm, three at a time, and\n"
+    "combined through the CIE 1931 colour matching functions into linear sRGB (cd/m^2).\n"
     "\n"
     "scene:\n"
     "  --preset NAME          a built-in scene (atmo presets; default %s)\n"
@@ -110,9 +113,14 @@ static int __write_report(const char *path, const atmo_scene *s, const atmo_rend
     cJSON_AddNumberToObject(ren, "launch_budget_ms", rs->launch_budget_ms);
     cJSON_AddBoolToObject(ren, "kernel_cache_hit", r->kernel_cache_hit);
     cJSON_AddBoolToObject(ren, "lut_cache_hit", r->lut_cache_hit);
-    cJSON_AddStringToObject(ren, "quantity", s->render.quantity == ATMO_QUANTITY_LUMINANCE
-                                                 ? "luminance (cd m^-2)"
-                                                 : "spectral radiance (W m^-2 sr^-1 nm^-1)");
+    cJSON_AddStringToObject(ren, "mode", s->render.spectral_bands ? "spectral" : "3-wavelength");
+    cJSON_AddNumberToObject(ren, "spectral_bands", s->render.spectral_bands);
+    cJSON_AddStringToObject(ren, "quantity",
+                            s->render.spectral_bands ? "luminance, linear sRGB from the spectral "
+                                                       "bands through the CIE 1931 CMFs (cd m^-2)"
+                            : s->render.quantity == ATMO_QUANTITY_LUMINANCE
+                                ? "luminance (cd m^-2)"
+                                : "spectral radiance (W m^-2 sr^-1 nm^-1)");
     cJSON *t = cJSON_AddObjectToObject(root, "seconds");
     cJSON_AddNumberToObject(t, "device_init", r->seconds_device);
     cJSON_AddNumberToObject(t, "kernel_build", r->seconds_build);
@@ -268,7 +276,8 @@ int cmd_render(int argc, char **argv)
         rc = atmo_scene_apply_preset(&scene, preset ? preset : atmo_default_preset, &e);
     for (int i = 0; i < n_set && !rc; i++)
         rc = atmo_scene_assign(&scene, sets[i], "--set", &e);
-    if (rc || (rc = atmo_scene_validate(&scene, &e)))
+    if (rc || (rc = atmo_scene_validate(&scene, &e)) ||
+        (rc = atmo_spectral_check_bands(scene.render.spectral_bands, &e)))
         goto usage_error;
 
     /* outputs: formats and directories, before any work */
@@ -292,8 +301,10 @@ int cmd_render(int argc, char **argv)
     if (n_out == 0)
         return ATMO_OK;
 
+    /* spectral mode plans each triplet of bands itself */
+    int spectral = scene.render.spectral_bands > 0;
     atmo_plan plan;
-    if ((rc = atmo_plan_make(&scene, &plan, &e)))
+    if (!spectral && (rc = atmo_plan_make(&scene, &plan, &e)))
         goto usage_error;
     plan.cache_luts = lut_cache;
     rs.progress = quiet ? 0 : (isatty(STDERR_FILENO) ? 2 : 1);
@@ -302,7 +313,8 @@ int cmd_render(int argc, char **argv)
     struct sigaction sa = {0}, old;
     sa.sa_handler = __on_sigint;
     sigaction(SIGINT, &sa, &old);
-    rc = atmo_render(&plan, &rs, &res, &e);
+    rc = spectral ? atmo_spectral_render(&scene, lut_cache, &rs, &res, &e)
+                  : atmo_render(&plan, &rs, &res, &e);
     sigaction(SIGINT, &old, NULL);
     if (rc)
         goto runtime_error;
@@ -321,11 +333,16 @@ int cmd_render(int argc, char **argv)
     atmo_solar_white_point(wp);
     for (int c = 0; c < 3; c++)
         post.white_balance_rgb[c] = (float)wp[c];
-    int lum = scene.render.quantity == ATMO_QUANTITY_LUMINANCE;
-    atmo_image_meta meta = {lum ? "luminance" : "spectral radiance",
+    int lum = spectral || scene.render.quantity == ATMO_QUANTITY_LUMINANCE;
+    char spectral_quantity[96];
+    snprintf(spectral_quantity, sizeof spectral_quantity,
+             "luminance (linear sRGB from %d spectral bands, 360-830 nm; no channel wavelengths)",
+             scene.render.spectral_bands);
+    atmo_image_meta meta = {spectral ? spectral_quantity : lum ? "luminance" : "spectral radiance",
                             lum ? "cd m^-2" : "W m^-2 sr^-1 nm^-1",
-                            {scene.render.wavelengths_nm[0], scene.render.wavelengths_nm[1],
-                             scene.render.wavelengths_nm[2]},
+                            {spectral ? 0.0 : scene.render.wavelengths_nm[0],
+                             spectral ? 0.0 : scene.render.wavelengths_nm[1],
+                             spectral ? 0.0 : scene.render.wavelengths_nm[2]},
                             res.samples_min, res.interrupted, "atmo " ATMO_VERSION};
     atmo_image img = {res.width, res.height, res.rgb};
     for (int i = 0; i < n_out; i++)
@@ -335,9 +352,10 @@ int cmd_render(int argc, char **argv)
     if (report && (rc = __write_report(report, &scene, &res, &rs, outputs, n_out, seconds_write, &e)))
         goto runtime_error;
     if (!quiet)
-        fprintf(stderr, "atmo render: wrote %d image%s (%dx%d, %d samples/pixel) in %.2fs render "
+        fprintf(stderr, "atmo render: wrote %d image%s (%dx%d, %d samples/pixel%s) in %.2fs render "
                         "+ %.2fs build%s on %s\n",
                 n_out, n_out > 1 ? "s" : "", res.width, res.height, res.samples_min,
+                spectral ? ", spectral mode" : "",
                 res.seconds_render, res.seconds_build, res.kernel_cache_hit ? " (cached)" : "",
                 res.device_name);
     atmo_render_result_free(&res);
