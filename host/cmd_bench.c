@@ -22,7 +22,9 @@ static const char bench_usage[] =
     "  sky         single-scattering sky: view-ray steps and transmittance LUT size\n"
     "  atmosphere  every atmosphere method and its knobs against the Monte Carlo reference table\n"
     "              (tests/data/reference_sky.csv; --reference FILE to use another)\n"
-    "  mie         cloud phase options against the tabulated Mie phase; phase table build time\n";
+    "  mie         cloud phase options against the tabulated Mie phase; phase table build time\n"
+    "  colour      colour difference (CIE76) of the 3-wavelength mode from the spectral mode\n"
+    "              with 15, 30 and 48 bands, by sun zenith; and their time\n";
 
 int cmd_bench(int argc, char **argv)
 {
@@ -49,12 +51,13 @@ int cmd_bench(int argc, char **argv)
         }
     }
     if (!suite) {
-        fprintf(stderr, "atmo bench: name a suite (sky, atmosphere, mie); atmo bench --help\n");
+        fprintf(stderr, "atmo bench: name a suite (sky, atmosphere, mie, colour); atmo bench --help\n");
         return ATMO_ERR_USAGE;
     }
     if (strcmp(suite, "sky") != 0 && strcmp(suite, "mie") != 0 &&
-        strcmp(suite, "atmosphere") != 0) {
-        fprintf(stderr, "atmo bench: unknown suite '%s' (suites: sky, atmosphere, mie)\n", suite);
+        strcmp(suite, "atmosphere") != 0 && strcmp(suite, "colour") != 0) {
+        fprintf(stderr, "atmo bench: unknown suite '%s' (suites: sky, atmosphere, mie, colour)\n",
+                suite);
         return ATMO_ERR_USAGE;
     }
     if (mkdir(dir, 0755) != 0 && errno != EEXIST) {
@@ -65,6 +68,7 @@ int cmd_bench(int argc, char **argv)
     atmo_err e;
     int rc = strcmp(suite, "mie") == 0   ? bench_mie(dir, quick, &e)
              : strcmp(suite, "sky") == 0 ? bench_sky(dir, device, quick, &e)
+             : strcmp(suite, "colour") == 0 ? bench_colour(dir, device, quick, &e)
                                          : bench_atmosphere(dir, device, reference, quick, &e);
     if (rc)
         fprintf(stderr, "atmo bench: %s\n", e.msg);

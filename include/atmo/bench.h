@@ -29,6 +29,10 @@ int bench_sky(const char *dir, const char *device, int quick, atmo_err *e);
 int bench_atmosphere(const char *dir, const char *device, const char *reference, int quick,
                      atmo_err *e);
 
+/* `atmo bench colour`: 3-wavelength against spectral colour (host/bench_colour.c). Writes
+ * DIR/colour.csv and DIR/colour.svg. */
+int bench_colour(const char *dir, const char *device, int quick, atmo_err *e);
+
 /* `atmo bench mie`: phase options against the tabulated Mie phase, and table build times
  * (host/bench_mie.c). Writes DIR/mie.csv, DIR/mie_table.csv and DIR/mie.svg. */
 int bench_mie(const char *dir, int quick, atmo_err *e);
