@@ -22,7 +22,8 @@
  *         Distances rather than angles put texels where the radiance changes, near the horizon.
  *   mu_s: d = distance from the ground to the top along mu_s, a = (d - d_min)/(d_max - d_min)
  *         with d_min = R_top - R, d_max = H; x = max(1 - a/A, 0) / (1 + a) with
- *         A = -2 mu_s_min R / (d_max - d_min) (Bruneton 2017, GetScatteringTextureUvwzFromRMuMuSNu).
+ *         A = -2 mu_s_min R / (d_max - d_min) (Bruneton 2017, the mu_s part of its
+ *         GetScatteringTextureUvwzFromRMuMuSNu).
  *         mu_s_min = -0.5 (sun zenith 120 deg), beyond twilight: a camera anywhere in the
  *         atmosphere sees no sunlit air once the sun is lower than about 114 deg, so the clamped
  *         edge texel is already dark. x = 1 is the sun at the zenith.

@@ -6,12 +6,12 @@
  * 1. Parametrisation (kernels/lut_scattering.h, on the host): the inverse maps are exact
  *    inverses. Texel centres: value_at(i) maps back to position i within 5e-3 texel (r rounds
  *    to 0.25 m at 6.4e6 m, and next to the ground, where dp/dr = (n - 1) r / (H rho) is
- *    steepest, that is 2e-3 texel of a 32-texel axis), and within 5e-2 texel for
- *    mu, whose float rounding (6e-8 relative) the slope dd/dmu ~ r^2 / sqrt(discriminant)
- *    amplifies next to the horizon at the lowest radii (as in test_lut_param); random values round-trip
+ *    steepest, that is 2e-3 texel of a 32-texel axis), and within 5e-2 texel for mu, whose
+ *    float rounding (6e-8 relative) the slope dd/dmu ~ r^2 / sqrt(discriminant) amplifies next
+ *    to the horizon at the lowest radii (as in test_lut_param). Random values round-trip
  *    (value -> position -> value) to 1e-6 relative in r (float epsilon 6e-8 amplified by the
- *    square root near the ground) and to 1e-3 texel in the mu and mu_s positions. The horizon is the last texel of each half; sun zenith 110 deg lies
- *    inside the mu_s axis.
+ *    square root near the ground) and to 1e-3 texel in the mu and mu_s positions. The horizon
+ *    is the last texel of each half; sun zenith 110 deg lies inside the mu_s axis.
  * 2. Order 1 against the host double reference (atmo_ref_single_scattering + the directly lit
  *    ground, accurate to 1e-9): within 1 % (the task's target) at texel centres and at points
  *    between texels, for sun zenith <= 80 deg. Rays whose sun visibility changes along them (the
@@ -83,17 +83,18 @@ static void test_parametrisation(const atmo_gpu_atmosphere *a, const int dims[4]
         }
     }
     for (int k = 0; k < n_mu_s; k++)
-        worst_centre = fmax(worst_centre,
-                            fabs(lut_mu_s_position(a, lut_mu_s_at(a, (float)k, n_mu_s), n_mu_s) - k));
+        worst_centre = fmax(
+            worst_centre, fabs(lut_mu_s_position(a, lut_mu_s_at(a, (float)k, n_mu_s), n_mu_s) - k));
     for (int l = 0; l < n_nu; l++)
-        worst_centre = fmax(worst_centre, fabs(lut_nu_position(lut_nu_at((float)l, n_nu, 0.0f, 0.0f),
-                                                               n_nu) - l));
+        worst_centre = fmax(
+            worst_centre, fabs(lut_nu_position(lut_nu_at((float)l, n_nu, 0.0f, 0.0f), n_nu) - l));
     CHECK(worst_centre < 5e-3);
     CHECK(worst_mu < 5e-2);
 
     unsigned seed = 12345u;
     for (int t = 0; t < 20000; t++) {
-        float r = (float)(a->bottom_radius + 1.0 + frand(&seed) * (a->top_radius - a->bottom_radius - 2.0));
+        float r = (float)(a->bottom_radius + 1.0 +
+                          frand(&seed) * (a->top_radius - a->bottom_radius - 2.0));
         float mu = (float)(2.0 * frand(&seed) - 1.0), mu_s = (float)(-0.4 + 1.4 * frand(&seed));
         int ground = geometry_ray_hits_ground(r, mu, a->bottom_radius), g2;
         float p_r = lut_r_position(a, r, n_r);
@@ -104,8 +105,8 @@ static void test_parametrisation(const atmo_gpu_atmosphere *a, const int dims[4]
         CHECK(g2 == ground);
         worst_trip = fmax(worst_trip, fabs(lut_mu_position(a, r, mu2, ground, n_mu) - p_mu));
         float p_mu_s = lut_mu_s_position(a, mu_s, n_mu_s);
-        worst_trip = fmax(worst_trip,
-                          fabs(lut_mu_s_position(a, lut_mu_s_at(a, p_mu_s, n_mu_s), n_mu_s) - p_mu_s));
+        float mu_s2 = lut_mu_s_at(a, p_mu_s, n_mu_s);
+        worst_trip = fmax(worst_trip, fabs(lut_mu_s_position(a, mu_s2, n_mu_s) - p_mu_s));
     }
     CHECK(worst_trip < 1e-3);
     /* the horizon is the outer texel of each half, from the ground and from 30 km */
