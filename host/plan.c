@@ -187,6 +187,7 @@ int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     p->passes[p->pass_count++] = transmittance;
     const atmo_plan_method *m = &atmo_plan_methods[s->atmosphere.method];
     p->method = m->name;
+    p->luts_follow_view = m->luts_follow_view;
     if (!m->plan)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "atmosphere.method=%s is not implemented yet (available: %s)", m->name,

@@ -8,8 +8,9 @@
  *
  * Disk cache (plan->cache_luts): LUTs that took more than ATMO_LUT_CACHE_MIN_SECONDS to compute
  * are stored in the cache directory under a 64-bit FNV-1a hash of everything they can depend on
- * (the kernel sources and -D flags, the device struct of the scene byte for byte, the LUT sizes,
- * the passes and the uploaded tables), and loaded instead of recomputed next time. Cheap LUTs
+ * (the kernel sources and -D flags, the device struct of the scene byte for byte — without the
+ * camera, sun and output factors for methods whose LUTs serve any ray —, the LUT sizes, the
+ * passes and the uploaded tables), and loaded instead of recomputed next time. Cheap LUTs
  * are not stored: writing them would cost more than it saves. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -51,7 +52,17 @@ static unsigned long long __lut_key(const atmo_plan *plan)
             h = __fnv(h, f->text, f->size);
     }
     h = __fnv(h, plan->defines, strlen(plan->defines));
-    h = __fnv(h, &plan->gpu, sizeof plan->gpu);
+    /* LUTs that serve any ray do not depend on the camera, the sun or the output factors: leave
+     * them out of the key, so that every view of one atmosphere shares the LUTs */
+    atmo_gpu_scene g = plan->gpu;
+    if (!plan->luts_follow_view) {
+        memset(&g.camera, 0, sizeof g.camera);
+        memset(&g.sun_direction, 0, sizeof g.sun_direction);
+        memset(&g.sky_factor, 0, sizeof g.sky_factor);
+        memset(&g.sun_factor, 0, sizeof g.sun_factor);
+        g.seed = 0;
+    }
+    h = __fnv(h, &g, sizeof g);
     h = __fnv(h, plan->lut_bytes, sizeof plan->lut_bytes);
     for (int p = 0; p < plan->pass_count; p++) {
         const atmo_plan_pass *pass = &plan->passes[p];

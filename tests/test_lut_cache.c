@@ -4,7 +4,8 @@
  * Oracle: recomputation. A plan whose LUTs are cached (cache_luts = 2: store whatever the
  * precompute time) is precomputed twice: the second run must be a cache hit and give LUT
  * buffers bitwise equal to the first; a change of any scene value the LUTs depend on (here the
- * Rayleigh coefficient) must miss. ctest gives the test its own cache directory. */
+ * Rayleigh coefficient) must miss, and a change of camera and sun must hit for a method whose
+ * LUTs serve any ray. ctest gives the test its own cache directory. */
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/render.h"
@@ -59,6 +60,17 @@ int main(void)
     other.cache_luts = 2;
     CHECK(precompute(&cl, prog, &other, &c) == 0);
     CHECK(memcmp(a, c, plan.lut_bytes[0]) != 0);
+
+    /* a view-independent method's LUTs serve another camera and sun */
+    test_scene_set(&scene, "atmosphere.rayleigh_coefficient=1.24062e-6");
+    test_scene_set(&scene, "sun.zenith_deg=70");
+    test_scene_set(&scene, "camera.yaw_deg=33");
+    atmo_plan moved;
+    test_plan(&scene, &moved);
+    moved.cache_luts = 2;
+    float *m;
+    CHECK(!moved.luts_follow_view && precompute(&cl, prog, &moved, &m) == 1);
+    free(m);
 
     plan.cache_luts = 0; /* off: never a hit */
     float *d;

@@ -48,6 +48,7 @@ typedef struct atmo_plan {
     atmo_plan_upload uploads[ATMO_PLAN_MAX_UPLOADS];
     int upload_count;
     int cache_luts;                /* disk cache of LUTs: 0 off, 1 those that took > 0.5 s, 2 all */
+    int luts_follow_view;          /* the method's LUTs hold one camera and sun (method table) */
     int width, height, samples;
 } atmo_plan;
 
