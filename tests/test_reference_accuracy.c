@@ -10,18 +10,18 @@
  *
  * Tolerance per view and channel: |L / L_ref - 1| <= bound + 3 sigma / L_ref, with sigma^2 the
  * sum of the table's and the method's squared standard errors (the method's from the spread of
- * its 64 probe batches: its march offsets are random). The bound is:
- *  - the issue 4 target where the method meets it: lut 2 % (day) and 5 % (sun at the horizon);
- *  - for march and fast, which do not meet the 3 % day target in blue near the horizon, the
- *    worst error measured with the current Psi_ms model (kernels/ms_lut.h, which lists the
- *    numbers before and after each change), rounded up to 0.5 %: a guard against regressions,
- *    not a claim of accuracy. The run prints, per method, whether the issue target is met.
- * Measured (PoCL, 4096 samples for march, 64 for fast's LUT path), worst |error| in
- * red/green/blue:
- *   march: day 2.2/2.6/5.6 %, sun at the horizon 1.9/3.0/12.0 %
- *   fast:  day 2.9/2.6/6.1 %, sun at the horizon 1.8/3.2/12.4 %
- *   lut:   day 2.1/2.1/1.4 %, sun at the horizon 4.0/2.0/5.0 % (run with ATMO_TEST_SLOW=1: its
- *          precompute takes minutes of CPU, too long for the default suite)
+ * its 64 probe batches: its march offsets are random). The bound is the issue 4 target (day:
+ * sun zenith <= 80 deg; sun at the horizon: 90 deg): march and fast 3 % / 5 %, lut 2 % / 5 %;
+ * march gets tighter per-channel bounds from its measured errors (rounded up to 0.5 %).
+ * Measured (loaded PoCL, 4096 samples for march; fast's LUT path is deterministic), worst
+ * |error| in red/green/blue, day / sun at the horizon:
+ *   march: 2.1/1.9/2.9 %  /  1.8/1.5/4.1 %
+ *   fast:  2.8/2.2/3.3 %  /  1.5/1.8/4.7 %  (3.3 %: sun zenith 80 deg, 85 deg view across the
+ *          sun; within the 3 % target only through the table's 3 sigma, 0.36 %)
+ *   lut:   2.1/2.1/1.4 %  /  4.0/2.0/5.0 %  (run with ATMO_TEST_SLOW=1: its precompute takes
+ *          minutes of CPU, too long for the default suite)
+ * (before the Psi_ms changes listed in kernels/ms_lut.h, march and fast were 6-7 % off in blue
+ * near the horizon and 7.6 % at the zenith with the sun at the horizon.)
  * The fast method's sky-view LUT belongs to the camera's sun, so it gets one plan per sun
  * zenith; march and lut take the sun from each ray and share one plan. */
 #include <math.h>
@@ -49,8 +49,8 @@ typedef struct method_case {
 } method_case;
 
 static const method_case cases[] = {
-    {"march", {0.03, 0.05}, {{0.025, 0.03, 0.06}, {0.025, 0.035, 0.13}}, 0, 4096, 0},
-    {"fast", {0.03, 0.05}, {{0.03, 0.03, 0.065}, {0.025, 0.035, 0.13}}, 1, 4096, 0},
+    {"march", {0.03, 0.05}, {{0.025, 0.025, 0.03}, {0.025, 0.02, 0.045}}, 0, 4096, 0},
+    {"fast", {0.03, 0.05}, {{0.03, 0.03, 0.03}, {0.05, 0.05, 0.05}}, 1, 64, 0},
     {"lut", {0.02, 0.05}, {{0.02, 0.02, 0.02}, {0.05, 0.05, 0.05}}, 0, 64, 1},
 };
 
@@ -180,9 +180,10 @@ int main(void)
         for (int period = 0; period < 2; period++) {
             double w = fmax(worst_period[period][0],
                             fmax(worst_period[period][1], worst_period[period][2]));
-            printf("%-6s %s: worst %.2f %%, issue target %.0f %%: %s\n", m->method,
+            printf("%-6s %s: worst %.2f %%, issue target %.0f %%%s\n", m->method,
                    period ? "sun at the horizon" : "day (sun zenith <= 80)", 100 * w,
-                   100 * m->target[period], w <= m->target[period] ? "met" : "NOT met");
+                   100 * m->target[period],
+                   w <= m->target[period] ? "" : " (exceeded; asserted with 3 sigma added)");
         }
     }
     return test_finish();
