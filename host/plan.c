@@ -140,7 +140,7 @@ int atmo_plan_add_pass(atmo_plan *p, const char *kernel, int width, int height, 
 {
     if (p->pass_count == ATMO_PLAN_MAX_PASSES)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "too many precompute passes (a build bug)");
-    atmo_plan_pass pass = {kernel, width, height, depth, arg};
+    atmo_plan_pass pass = {kernel, width, height, depth, arg, 0};
     p->passes[p->pass_count++] = pass;
     return ATMO_OK;
 }
@@ -183,11 +183,10 @@ int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     p->lut_bytes[0] = sizeof(float4) * (size_t)g->transmittance_width *
                       (size_t)g->transmittance_height;
     atmo_plan_pass transmittance = {"transmittance_lut", g->transmittance_width,
-                                    g->transmittance_height, 1, 0};
+                                    g->transmittance_height, 1, 0, 0};
     p->passes[p->pass_count++] = transmittance;
     const atmo_plan_method *m = &atmo_plan_methods[s->atmosphere.method];
     p->method = m->name;
-    p->luts_follow_view = m->luts_follow_view;
     if (!m->plan)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "atmosphere.method=%s is not implemented yet (available: %s)", m->name,

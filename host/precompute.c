@@ -8,10 +8,12 @@
  *
  * Disk cache (plan->cache_luts): LUTs that took more than ATMO_LUT_CACHE_MIN_SECONDS to compute
  * are stored in the cache directory under a 64-bit FNV-1a hash of everything they can depend on
- * (the kernel sources and -D flags, the device struct of the scene byte for byte — without the
- * camera, sun and output factors for methods whose LUTs serve any ray —, the LUT sizes, the
- * passes and the uploaded tables), and loaded instead of recomputed next time. Cheap LUTs
- * are not stored: writing them would cost more than it saves. */
+ * (the kernel sources and -D flags, the device struct of the scene byte for byte without the
+ * camera, the sun and the output factors, the LUT sizes, the passes and the uploaded tables),
+ * and loaded instead of recomputed next time, so every view of one atmosphere shares them.
+ * Buffers that hold one camera and sun (plan->lut_follows_view, e.g. a sky-view LUT) are never
+ * stored; the passes that write them (follows_view) run after a load too. Cheap LUTs are not
+ * stored: writing them would cost more than it saves. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -52,20 +54,19 @@ static unsigned long long __lut_key(const atmo_plan *plan)
             h = __fnv(h, f->text, f->size);
     }
     h = __fnv(h, plan->defines, strlen(plan->defines));
-    /* LUTs that serve any ray do not depend on the camera, the sun or the output factors: leave
-     * them out of the key, so that every view of one atmosphere shares the LUTs */
+    /* cached LUTs serve any ray: the camera, the sun and the output factors stay out of the key */
     atmo_gpu_scene g = plan->gpu;
-    if (!plan->luts_follow_view) {
-        memset(&g.camera, 0, sizeof g.camera);
-        memset(&g.sun_direction, 0, sizeof g.sun_direction);
-        memset(&g.sky_factor, 0, sizeof g.sky_factor);
-        memset(&g.sun_factor, 0, sizeof g.sun_factor);
-        g.seed = 0;
-    }
+    memset(&g.camera, 0, sizeof g.camera);
+    memset(&g.sun_direction, 0, sizeof g.sun_direction);
+    memset(&g.sky_factor, 0, sizeof g.sky_factor);
+    memset(&g.sun_factor, 0, sizeof g.sun_factor);
+    g.seed = 0;
     h = __fnv(h, &g, sizeof g);
     h = __fnv(h, plan->lut_bytes, sizeof plan->lut_bytes);
     for (int p = 0; p < plan->pass_count; p++) {
         const atmo_plan_pass *pass = &plan->passes[p];
+        if (pass->follows_view)
+            continue;
         h = __fnv(h, pass->kernel, strlen(pass->kernel));
         int dims[4] = {pass->width, pass->height, pass->depth, pass->arg};
         h = __fnv(h, dims, sizeof dims);
@@ -98,7 +99,7 @@ static int __lut_load(atmo_cl *cl, const atmo_plan *plan, const char *path,
                  ? 0
                  : -1;
     for (int i = 0; i < ATMO_PLAN_LUTS && rc == 0; i++) {
-        if (!bytes[i])
+        if (!bytes[i] || plan->lut_follows_view[i])
             continue;
         void *data = malloc(bytes[i]);
         rc = data && fread(data, bytes[i], 1, f) == 1 &&
@@ -123,7 +124,7 @@ static void __lut_store(atmo_cl *cl, const atmo_plan *plan, const char *path,
     int ok = fwrite(ATMO_LUT_CACHE_MAGIC, sizeof ATMO_LUT_CACHE_MAGIC, 1, f) == 1 &&
              fwrite(plan->lut_bytes, sizeof plan->lut_bytes, 1, f) == 1;
     for (int i = 0; i < ATMO_PLAN_LUTS && ok; i++) {
-        if (!plan->lut_bytes[i])
+        if (!plan->lut_bytes[i] || plan->lut_follows_view[i])
             continue;
         void *data = malloc(plan->lut_bytes[i]);
         ok = data &&
@@ -153,12 +154,8 @@ int atmo_precompute(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_m
             return atmo_cl_fail(e, "clCreateBuffer(LUT)", err);
     }
     __lut_path(plan, path, sizeof path, &cacheable);
-    if (cacheable && __lut_load(cl, plan, path, luts) == 0) {
-        info->cache_hit = 1;
-        info->seconds = __now() - t0;
-        return ATMO_OK;
-    }
-    for (int u = 0; u < plan->upload_count; u++) {
+    info->cache_hit = cacheable && __lut_load(cl, plan, path, luts) == 0;
+    for (int u = 0; u < plan->upload_count && !info->cache_hit; u++) {
         const atmo_plan_upload *up = &plan->uploads[u];
         err = clEnqueueWriteBuffer(cl->queue, luts[up->lut], CL_FALSE, up->offset, up->bytes,
                                    up->data, 0, NULL, NULL);
@@ -167,6 +164,10 @@ int atmo_precompute(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_m
     }
     for (int p = 0; p < plan->pass_count; p++) {
         const atmo_plan_pass *pass = &plan->passes[p];
+        if (info->cache_hit && !pass->follows_view)
+            continue;
+        if (info->cache_hit && !pass->follows_view)
+            continue;
         cl_kernel k = clCreateKernel(program, pass->kernel, &err);
         if (err != CL_SUCCESS)
             return atmo_cl_fail(e, "clCreateKernel(precompute)", err);
@@ -190,7 +191,8 @@ int atmo_precompute(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_m
     if (err != CL_SUCCESS)
         return atmo_cl_fail(e, "clFinish(precompute)", err);
     info->seconds = __now() - t0;
-    if (cacheable && (info->seconds > ATMO_LUT_CACHE_MIN_SECONDS || plan->cache_luts == 2))
+    if (cacheable && !info->cache_hit &&
+        (info->seconds > ATMO_LUT_CACHE_MIN_SECONDS || plan->cache_luts == 2))
         __lut_store(cl, plan, path, luts);
     return ATMO_OK;
 }

@@ -21,6 +21,7 @@ typedef struct atmo_plan_pass {
     const char *kernel;
     int width, height, depth;
     int arg;
+    int follows_view; /* writes a LUT that holds one camera and sun: runs even on a cache hit */
 } atmo_plan_pass;
 
 /* Host data copied into a LUT buffer before the passes run (e.g. a phase table computed on
@@ -48,7 +49,7 @@ typedef struct atmo_plan {
     atmo_plan_upload uploads[ATMO_PLAN_MAX_UPLOADS];
     int upload_count;
     int cache_luts;                /* disk cache of LUTs: 0 off, 1 those that took > 0.5 s, 2 all */
-    int luts_follow_view;          /* the method's LUTs hold one camera and sun (method table) */
+    int lut_follows_view[ATMO_PLAN_LUTS]; /* buffer holds one camera and sun: never cached */
     int width, height, samples;
 } atmo_plan;
 
