@@ -101,7 +101,7 @@ const atmo_param atmo_params[] = {
               "aerosol phase asymmetry parameter g (0 = isotropic, > 0 forward)"),
     ROW_ENUM("atmosphere.mie_phase", atmosphere.mie_phase, phase_names, ATMO_PHASE_CORNETTE_SHANKS,
              "aerosol phase function"),
-    ROW_ENUM("atmosphere.method", atmosphere.method, method_names, ATMO_METHOD_SINGLE,
+    ROW_ENUM("atmosphere.method", atmosphere.method, method_names, ATMO_METHOD_FAST,
              "how light transport in the atmosphere is computed (see README: Methods)"),
     ROW_BOOL("cloud.enabled", cloud.enabled, 0,
              "a homogeneous cloud/fog shell (methods single and march; kernels/cloud_shell.h)"),
