@@ -45,8 +45,8 @@ static const bench_config bench_configs[] = {
     {"lut", "2 orders", {"lut.orders=2"}, 64, 1, 0},
     {"lut", "4 orders", {"lut.orders=4"}, 64, 1, 0},
     {"lut", "8 orders", {"lut.orders=8"}, 64, 1, 0},
-    {"reference", "64 spp", {NULL}, 64, 64, 0},
-    {"reference", "1024 spp", {NULL}, 1024, 1024, 0},
+    {"reference", "16 spp", {NULL}, 64, 16, 0},
+    {"reference", "128 spp", {NULL}, 128, 128, 0},
 };
 
 /* Rows with sun zenith <= 80 deg of the reference CSV (comment lines start with '#'). */

@@ -124,6 +124,33 @@ ATMO_FN vec3 atmosphere_sun_transmittance(ATMO_GLOBAL const atmo_gpu_atmosphere 
     return atmosphere_transmittance_to_top(a, lut, width, height, r, mu_s);
 }
 
+/* A camera above the atmosphere sees it from where its ray enters: moves (r, mu, mu_s) there
+ * and returns 1, or returns 0 if the ray misses the atmosphere (nothing changed). With t0 the
+ * distance to the entry, r' = top, r' mu' = r mu + t0 = -sqrt(discriminant) exactly, and
+ * mu_s' = (r mu_s + t0 nu) / top. Rays from inside are left as they are. */
+ATMO_FN int atmosphere_enter(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float *r, float *mu,
+                             float *mu_s, float nu)
+{
+    if (*r <= a->top_radius)
+        return 1;
+    float disc = geometry_discriminant(*r, *mu, a->top_radius);
+    if (*mu >= 0.0f || disc < 0.0f)
+        return 0;
+    float t0 = -*r * *mu - sqrtf(disc);
+    *mu_s = atmo_clamp_cos((*r * *mu_s + t0 * nu) / a->top_radius);
+    *mu = -sqrtf(disc) / a->top_radius;
+    *r = a->top_radius;
+    return 1;
+}
+
+/* Radiance of the sun disc outside the atmosphere: E over its solid angle 2 pi (1 - cos alpha)
+ * (cos_alpha = the scene's sun_direction.w). */
+ATMO_FN vec3 atmosphere_sun_disc_radiance(ATMO_GLOBAL const atmo_gpu_atmosphere *a,
+                                          float cos_alpha)
+{
+    return v3_scale(v3_from4(a->solar_irradiance), 1.0f / (2.0f * ATMO_PI * (1.0f - cos_alpha)));
+}
+
 /* Optical depth from radius r to the top along mu by the midpoint rule with n segments
  * (used to fill the LUT; the integrand is smooth, so the error falls as 1/n^2). */
 ATMO_FN vec3 atmosphere_optical_depth_to_top(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r,

@@ -311,7 +311,7 @@ ATMO_FN void cloud_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL co
     int tw = s->transmittance_width, th = s->transmittance_height;
     vec3 E = v3_from4(a->solar_irradiance);
     float R = a->bottom_radius, h_cam = r - R;
-    float sun_solid_angle = 2.0f * ATMO_PI * (1.0f - s->sun_direction.w);
+    vec3 sun_disc = atmosphere_sun_disc_radiance(a, s->sun_direction.w);
     int looks_at_sun = nu >= s->sun_direction.w;
     *sky = v3(0.0f, 0.0f, 0.0f);
     *sun = v3(0.0f, 0.0f, 0.0f);
@@ -326,7 +326,7 @@ ATMO_FN void cloud_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL co
     if (!cloud_sphere_roots(r * mu, (h_cam - top_h) * (r + a->top_radius), &ta0, &ta1) ||
         ta1 <= 0.0f) {
         if (looks_at_sun)
-            *sun = v3_scale(E, 1.0f / sun_solid_angle);
+            *sun = sun_disc;
         return;
     }
     t_start = fmaxf(ta0, 0.0f);
@@ -405,7 +405,7 @@ ATMO_FN void cloud_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL co
         for (int k = 0; k < nc; k++)
             cloud_t = v3_mul(cloud_t, v3_exp(v3_scale(v3_from4(s->cloud_extinction),
                                                       -(c_hi[k] - c_lo[k]))));
-        *sun = v3_scale(v3_mul(v3_mul(E, to_space), cloud_t), 1.0f / sun_solid_angle);
+        *sun = v3_mul(v3_mul(sun_disc, to_space), cloud_t);
     }
     *sky = L;
 }

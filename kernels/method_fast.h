@@ -112,8 +112,7 @@ ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
         vec3 to_space = atmosphere_transmittance_to_top(a, lut_transmittance,
                                                         s->transmittance_width,
                                                         s->transmittance_height, r, mu);
-        float sun_solid_angle = 2.0f * ATMO_PI * (1.0f - s->sun_direction.w);
-        *sun = v3_scale(v3_mul(v3_from4(a->solar_irradiance), to_space), 1.0f / sun_solid_angle);
+        *sun = v3_mul(atmosphere_sun_disc_radiance(a, s->sun_direction.w), to_space);
     }
 }
 

@@ -56,17 +56,10 @@ ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
     nu = atmo_clamp_cos(nu);
     r = fmaxf(r, a->bottom_radius);
 
-    if (r > a->top_radius) {
-        float disc = geometry_discriminant(r, mu, a->top_radius);
-        if (mu >= 0.0f || disc < 0.0f) { /* the ray misses the atmosphere */
-            if (looks_at_sun)
-                *sun = v3_scale(E, 1.0f / (2.0f * ATMO_PI * (1.0f - s->sun_direction.w)));
-            return;
-        }
-        float t0 = -r * mu - sqrtf(disc);
-        mu_s = atmo_clamp_cos((r * mu_s + t0 * nu) / a->top_radius);
-        mu = -sqrtf(disc) / a->top_radius; /* r' mu' = r mu + t0, exactly */
-        r = a->top_radius;
+    if (!atmosphere_enter(a, &r, &mu, &mu_s, nu)) { /* the ray misses the atmosphere */
+        if (looks_at_sun)
+            *sun = atmosphere_sun_disc_radiance(a, s->sun_direction.w);
+        return;
     }
 
     int ground = geometry_ray_hits_ground(r, mu, a->bottom_radius);
@@ -91,8 +84,7 @@ ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
                              v3_scale(v3_add(direct, indirect), 1.0f / ATMO_PI)));
     } else if (looks_at_sun) {
         vec3 to_space = atmosphere_transmittance_to_top(a, lut_transmittance, tw, th, r, mu);
-        *sun = v3_scale(v3_mul(E, to_space),
-                        1.0f / (2.0f * ATMO_PI * (1.0f - s->sun_direction.w)));
+        *sun = v3_mul(atmosphere_sun_disc_radiance(a, s->sun_direction.w), to_space);
     }
     *sky = L;
 }

@@ -141,7 +141,6 @@ ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     int min_order = s->method_int[0], max_order = s->method_int[1];
     reference_rng g = {s->seed, pixel, sample, ATMO_RNG_METHOD_DIM};
-    vec3 E = v3_from4(a->solar_irradiance);
     vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
     vec3 albedo = v3_from4(a->ground_albedo);
     vec3 one = v3(1.0f, 1.0f, 1.0f);
@@ -150,18 +149,10 @@ ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
     int looks_at_sun = nu >= s->sun_direction.w;
     (void)lut_transmittance, (void)lut_a, (void)lut_b, (void)lut_c; /* nothing precomputed */
 
-    float sun_radiance_scale = 1.0f / (2.0f * ATMO_PI * (1.0f - s->sun_direction.w));
-    if (r > a->top_radius) {
-        float disc = geometry_discriminant(r, mu, a->top_radius);
-        if (mu >= 0.0f || disc < 0.0f) { /* the ray misses the atmosphere */
-            if (looks_at_sun)
-                *sun = v3_scale(E, sun_radiance_scale);
-            return;
-        }
-        float t0 = -r * mu - sqrtf(disc);
-        mu_s = atmo_clamp_cos((r * mu_s + t0 * nu) / a->top_radius);
-        mu = -sqrtf(disc) / a->top_radius; /* r' mu' = r mu + t0, exactly */
-        r = a->top_radius;
+    if (!atmosphere_enter(a, &r, &mu, &mu_s, nu)) { /* the ray misses the atmosphere */
+        if (looks_at_sun)
+            *sun = atmosphere_sun_disc_radiance(a, s->sun_direction.w);
+        return;
     }
     float sin_v = atmo_safe_sqrt(1.0f - mu * mu);
     vec3 dir = v3(sin_v, mu, 0.0f);
@@ -227,7 +218,7 @@ ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
                                  v3_scale(sun_light, fmaxf(mu_s_g, 0.0f) / ATMO_PI)));
         }
         if (order == 0 && !ground && looks_at_sun)
-            *sun = v3_scale(v3_mul(W, E), sun_radiance_scale);
+            *sun = v3_mul(W, atmosphere_sun_disc_radiance(a, s->sun_direction.w));
         if (!more || (!collided && !ground))
             break;
         /* the next vertex: a scattering in the air or a reflection on the ground */

@@ -45,20 +45,12 @@ ATMO_FN void sky_single_scattering(ATMO_GLOBAL const atmo_gpu_scene *s,
     vec3 E = v3_from4(a->solar_irradiance);
     *sky = v3(0.0f, 0.0f, 0.0f);
     *sun = v3(0.0f, 0.0f, 0.0f);
-    float sun_solid_angle = 2.0f * ATMO_PI * (1.0f - s->sun_direction.w);
     int looks_at_sun = nu >= s->sun_direction.w;
 
-    if (r > a->top_radius) {
-        float disc = geometry_discriminant(r, mu, a->top_radius);
-        if (mu >= 0.0f || disc < 0.0f) { /* the ray misses the atmosphere */
-            if (looks_at_sun)
-                *sun = v3_scale(E, 1.0f / sun_solid_angle);
-            return;
-        }
-        float t0 = -r * mu - sqrtf(disc);
-        mu_s = (r * mu_s + t0 * nu) / a->top_radius;
-        mu = -sqrtf(disc) / a->top_radius; /* r' mu' = r mu + t0, exactly */
-        r = a->top_radius;
+    if (!atmosphere_enter(a, &r, &mu, &mu_s, nu)) { /* the ray misses the atmosphere */
+        if (looks_at_sun)
+            *sun = atmosphere_sun_disc_radiance(a, s->sun_direction.w);
+        return;
     }
 
     int hits_ground = geometry_ray_hits_ground(r, mu, a->bottom_radius);
@@ -95,7 +87,7 @@ ATMO_FN void sky_single_scattering(ATMO_GLOBAL const atmo_gpu_scene *s,
                                          1.0f / ATMO_PI)));
     } else if (looks_at_sun) {
         vec3 to_space = atmosphere_transmittance_to_top(a, transmittance, tw, th, r, mu);
-        *sun = v3_scale(v3_mul(E, to_space), 1.0f / sun_solid_angle);
+        *sun = v3_mul(atmosphere_sun_disc_radiance(a, s->sun_direction.w), to_space);
     }
     *sky = L;
 }
