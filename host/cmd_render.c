@@ -276,8 +276,7 @@ int cmd_render(int argc, char **argv)
         rc = atmo_scene_apply_preset(&scene, preset ? preset : atmo_default_preset, &e);
     for (int i = 0; i < n_set && !rc; i++)
         rc = atmo_scene_assign(&scene, sets[i], "--set", &e);
-    if (rc || (rc = atmo_scene_validate(&scene, &e)) ||
-        (rc = atmo_spectral_check_bands(scene.render.spectral_bands, &e)))
+    if (rc || (rc = atmo_scene_validate(&scene, &e)))
         goto usage_error;
 
     /* outputs: formats and directories, before any work */

@@ -20,6 +20,7 @@
 #include <string.h>
 #include "atmo/atmosphere.h"
 #include "atmo/scene.h"
+#include "atmo/spectral_render.h"
 
 /* offsetof(atmo_scene, f), failing to compile when the field's size is not that of the row's
  * type (a row declared INT on a double field would otherwise write 4 bytes into 8). */
@@ -482,6 +483,9 @@ int atmo_scene_validate(const atmo_scene *s, atmo_err *e)
         if (rc)
             return rc;
     }
+    int rc = atmo_spectral_check_bands(s->render.spectral_bands, e);
+    if (rc)
+        return rc;
     double bottom = s->atmosphere.bottom_radius_m, top = s->atmosphere.top_radius_m;
     double oz_bottom = s->atmosphere.ozone_bottom_m, oz_peak = s->atmosphere.ozone_peak_m,
            oz_top = s->atmosphere.ozone_top_m;

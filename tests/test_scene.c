@@ -318,6 +318,12 @@ static void test_validate(void)
     atmo_scene_defaults(&s);
     s.atmosphere.ozone_bottom_m = s.atmosphere.ozone_peak_m = s.atmosphere.ozone_top_m = 20000;
     CHECK(atmo_scene_validate(&s, &e) == ATMO_ERR_USAGE && strstr(e.msg, "atmosphere.ozone_top_m"));
+    atmo_scene_defaults(&s); /* spectral mode: 0 or at least 15 bands */
+    s.render.spectral_bands = 5;
+    CHECK(atmo_scene_validate(&s, &e) == ATMO_ERR_USAGE &&
+          strstr(e.msg, "render.spectral_bands"));
+    s.render.spectral_bands = 15;
+    CHECK(atmo_scene_validate(&s, &e) == ATMO_OK);
     atmo_scene_defaults(&s); /* a one-sided tent (peak at the bottom) is allowed */
     s.atmosphere.ozone_peak_m = s.atmosphere.ozone_bottom_m;
     CHECK(atmo_scene_validate(&s, &e) == ATMO_OK);
