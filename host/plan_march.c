@@ -1,6 +1,8 @@
 /* plan_march.c — method "march": the Psi_ms LUT (buffer a) and the per-pixel march
  * (atmo/plan_march.h). The LUT is small (6 planes of 64 x 32, two passes) and cheap, so it
  * is rebuilt per frame rather than cached. */
+#include <stdio.h>
+#include <string.h>
 #include "atmo/plan_march.h"
 
 int atmo_plan_ms_lut(const atmo_scene *s, atmo_plan *p, atmo_err *e)
@@ -10,6 +12,9 @@ int atmo_plan_ms_lut(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     int rc = atmo_plan_add_fragments(p, fragments, 3, e);
     if (rc)
         return rc;
+    /* sky_single.h's integrator compiles the multiple-scattering terms in */
+    size_t used = strlen(p->defines);
+    snprintf(p->defines + used, sizeof p->defines - used, "%s-DATMO_MS_LUT", used ? " " : "");
     p->gpu.lut_dims[0][0] = ATMO_MS_LUT_WIDTH;
     p->gpu.lut_dims[0][1] = ATMO_MS_LUT_HEIGHT;
     p->gpu.method_int[0] = ATMO_MS_DIRECTIONS_MU;

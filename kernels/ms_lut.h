@@ -77,8 +77,14 @@
 #include "atmosphere.h"
 #include "geometry.h"
 #include "phase.h"
+#ifndef ATMO_MS_LUT
+#define ATMO_MS_LUT /* the host build of this header: sky_single.h gets the terms too */
+#endif
 #include "sky_single.h"
 #include "atmo/gpu_types.h"
+#endif
+#ifndef ATMO_SKY_INTEGRATE_HAS_MS
+#error "sky_single.h was compiled without ATMO_MS_LUT: build method march with -DATMO_MS_LUT"
 #endif
 
 /* mu_s -> x in [0, 1]: x = (1 + sign(mu_s) sqrt|mu_s|) / 2, so texels crowd toward the
@@ -319,78 +325,14 @@ ATMO_FN vec3 ms_lut_gather(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL cons
     return v3_scale(sum, 1.0f / weights);
 }
 
-/* The shadow hook: visibility of the sun (0..1) from the sample at distance t along the view
- * ray, at radius r_t with sun cosine mu_s_t. The planet's own shadow is already in T_sun. */
-ATMO_FN float march_sun_visibility(ATMO_GLOBAL const atmo_gpu_scene *s, float r_t, float mu_s_t,
-                                   float t)
-{
-    return 1.0f;
-}
-
-/* Sky radiance along (r, mu) with sun cosine mu_s and view-sun cosine nu: single scattering
- * plus sigma_s Psi_ms from the LUT `ms` (ms_w x ms_h), n segments with sample offset `jitter`. */
+/* Single scattering plus sigma_s Psi_ms from the LUT `ms` (ms_w x ms_h): sky_single.h's
+ * integrator with the multiple-scattering terms, n segments with sample offset `jitter`. */
 ATMO_FN void march_integrate(ATMO_GLOBAL const atmo_gpu_scene *s,
                              ATMO_GLOBAL const float4 *transmittance, ATMO_GLOBAL const float4 *ms,
                              int ms_w, int ms_h, float r, float mu, float mu_s, float nu, int n,
                              float jitter, vec3 *sky, vec3 *sun)
 {
-    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    int tw = s->transmittance_width, th = s->transmittance_height;
-    vec3 E = v3_from4(a->solar_irradiance);
-    *sky = v3(0.0f, 0.0f, 0.0f);
-    *sun = v3(0.0f, 0.0f, 0.0f);
-    int looks_at_sun = nu >= s->sun_direction.w;
-
-    if (!atmosphere_enter(a, &r, &mu, &mu_s, nu)) { /* the ray misses the atmosphere */
-        if (looks_at_sun)
-            *sun = atmosphere_sun_disc_radiance(a, s->sun_direction.w);
-        return;
-    }
-
-    int hits_ground = geometry_ray_hits_ground(r, mu, a->bottom_radius);
-    float d = hits_ground ? geometry_distance_to_bottom(r, mu, a->bottom_radius)
-                          : geometry_distance_to_top(r, mu, a->top_radius);
-    float p_r = phase_rayleigh(nu);
-    float p_m = sky_mie_phase(a, nu);
-    vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
-    float dt = d / (float)n;
-    vec3 L = v3(0.0f, 0.0f, 0.0f);
-    vec3 T = v3(1.0f, 1.0f, 1.0f);
-    for (int i = 0; i < n; i++) {
-        float t = ((float)i + jitter) * dt;
-        float r_t = geometry_radius_at(r, mu, t);
-        float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
-        float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
-        float rho_r = expf(-h / a->rayleigh_scale_height);
-        float rho_m = expf(-h / a->mie_scale_height);
-        vec3 sigma_t = atmosphere_extinction(a, h);
-        vec3 scattering = v3_add(v3_scale(beta_r, rho_r * p_r), v3_scale(beta_m, rho_m * p_m));
-        vec3 sun_t = v3_scale(atmosphere_sun_transmittance(a, transmittance, tw, th, r_t, mu_s_t),
-                              march_sun_visibility(s, r_t, mu_s_t, t));
-        vec3 source = v3_mul(v3_mul(scattering, E), sun_t);
-        float mu_t = (r * mu + t) / r_t;
-        source = v3_add(source, ms_lut_source(a, ms, ms_w, ms_h, r_t, mu_t, mu_s_t, nu,
-                                              v3_scale(beta_r, rho_r), v3_scale(beta_m, rho_m)));
-        vec3 w = v3(__sky_segment_weight(sigma_t.x, dt), __sky_segment_weight(sigma_t.y, dt),
-                    __sky_segment_weight(sigma_t.z, dt));
-        L = v3_add(L, v3_mul(v3_mul(T, source), w));
-        T = v3_mul(T, v3_exp(v3_scale(sigma_t, -dt)));
-    }
-    if (hits_ground) {
-        float mu_s_g = atmo_clamp_cos((r * mu_s + d * nu) / a->bottom_radius);
-        vec3 sun_t = atmosphere_sun_transmittance(a, transmittance, tw, th, a->bottom_radius,
-                                                  mu_s_g);
-        vec3 irradiance = v3_scale(v3_mul(E, sun_t), fmaxf(mu_s_g, 0.0f));
-        /* plus the sky's (plane 5) */
-        irradiance = v3_add(irradiance, ms_lut_lookup(a, ms + 5 * ms_w * ms_h, ms_w, ms_h,
-                                                      a->bottom_radius, mu_s_g));
-        L = v3_add(L, v3_mul(T, v3_scale(v3_mul(v3_from4(a->ground_albedo), irradiance),
-                                         1.0f / ATMO_PI)));
-    } else if (looks_at_sun) {
-        vec3 to_space = atmosphere_transmittance_to_top(a, transmittance, tw, th, r, mu);
-        *sun = v3_mul(atmosphere_sun_disc_radiance(a, s->sun_direction.w), to_space);
-    }
-    *sky = L;
+    sky_integrate(s, transmittance, ms, ms_w, ms_h, 1, r, mu, mu_s, nu, n, jitter, sky, sun);
 }
 
 #endif

@@ -12,7 +12,9 @@
  * which conserves energy however long the segment (Hillaire 2015). A camera above the
  * atmosphere is first moved to where the ray enters it. The sun disc (radiance E / Omega_sun
  * times the transmittance to space, Omega_sun = 2 pi (1 - cos alpha)) is returned apart so the
- * caller can weigh it with its own luminous efficacy. */
+ * caller can weigh it with its own luminous efficacy. Method march (ms_lut.h) adds its
+ * multiple-scattering terms to the same integrator (sky_integrate with use_ms), so the two
+ * methods agree term for term where Psi is zero. */
 #ifndef ATMO_SKY_SINGLE_H
 #define ATMO_SKY_SINGLE_H
 #ifndef __OPENCL_VERSION__
@@ -36,9 +38,32 @@ ATMO_FN float sky_mie_phase(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float nu)
                              : phase_cornette_shanks(nu, a->mie_g);
 }
 
-ATMO_FN void sky_single_scattering(ATMO_GLOBAL const atmo_gpu_scene *s,
-                                   ATMO_GLOBAL const float4 *transmittance, float r, float mu,
-                                   float mu_s, float nu, float jitter, vec3 *sky, vec3 *sun)
+#ifdef ATMO_MS_LUT
+/* method march: the multiple-scattering terms, defined in kernels/ms_lut.h (after this file) */
+ATMO_FN vec3 ms_lut_lookup(ATMO_GLOBAL const atmo_gpu_atmosphere *a, ATMO_GLOBAL const float4 *lut,
+                           int width, int height, float r, float mu_s);
+ATMO_FN vec3 ms_lut_source(ATMO_GLOBAL const atmo_gpu_atmosphere *a,
+                           ATMO_GLOBAL const float4 *lut, int width, int height, float r, float mu,
+                           float mu_s, float nu, vec3 sigma_r, vec3 sigma_m);
+#define ATMO_SKY_INTEGRATE_HAS_MS
+#endif
+
+/* The shadow hook: visibility of the sun (0..1) from the sample at distance t along the view
+ * ray, at radius r_t with sun cosine mu_s_t. The planet's own shadow is already in T_sun. */
+ATMO_FN float march_sun_visibility(ATMO_GLOBAL const atmo_gpu_scene *s, float r_t, float mu_s_t,
+                                   float t)
+{
+    return 1.0f;
+}
+
+/* The integral above along (r, mu) with sun cosine mu_s and view-sun cosine nu, n segments
+ * with sample offset `jitter`; with use_ms (method march, compiled with -DATMO_MS_LUT) each
+ * sample adds the multiple-scattering source of ms_lut.h from the LUT `ms` (ms_w x ms_h) and
+ * the ground is lit by the sky too. */
+ATMO_FN void sky_integrate(ATMO_GLOBAL const atmo_gpu_scene *s,
+                           ATMO_GLOBAL const float4 *transmittance, ATMO_GLOBAL const float4 *ms,
+                           int ms_w, int ms_h, int use_ms, float r, float mu, float mu_s, float nu,
+                           int n, float jitter, vec3 *sky, vec3 *sun)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     int tw = s->transmittance_width, th = s->transmittance_height;
@@ -59,7 +84,6 @@ ATMO_FN void sky_single_scattering(ATMO_GLOBAL const atmo_gpu_scene *s,
     float p_r = phase_rayleigh(nu);
     float p_m = sky_mie_phase(a, nu);
     vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
-    int n = s->view_steps;
     float dt = d / (float)n;
     vec3 L = v3(0.0f, 0.0f, 0.0f);
     vec3 T = v3(1.0f, 1.0f, 1.0f);
@@ -68,11 +92,19 @@ ATMO_FN void sky_single_scattering(ATMO_GLOBAL const atmo_gpu_scene *s,
         float r_t = geometry_radius_at(r, mu, t);
         float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
         float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
+        float rho_r = expf(-h / a->rayleigh_scale_height);
+        float rho_m = expf(-h / a->mie_scale_height);
         vec3 sigma_t = atmosphere_extinction(a, h);
-        vec3 scattering = v3_add(v3_scale(beta_r, expf(-h / a->rayleigh_scale_height) * p_r),
-                                 v3_scale(beta_m, expf(-h / a->mie_scale_height) * p_m));
-        vec3 source = v3_mul(v3_mul(scattering, E),
-                             atmosphere_sun_transmittance(a, transmittance, tw, th, r_t, mu_s_t));
+        vec3 scattering = v3_add(v3_scale(beta_r, rho_r * p_r), v3_scale(beta_m, rho_m * p_m));
+        vec3 sun_t = v3_scale(atmosphere_sun_transmittance(a, transmittance, tw, th, r_t, mu_s_t),
+                              march_sun_visibility(s, r_t, mu_s_t, t));
+        vec3 source = v3_mul(v3_mul(scattering, E), sun_t);
+#ifdef ATMO_MS_LUT
+        if (use_ms)
+            source = v3_add(source, ms_lut_source(a, ms, ms_w, ms_h, r_t, (r * mu + t) / r_t,
+                                                  mu_s_t, nu, v3_scale(beta_r, rho_r),
+                                                  v3_scale(beta_m, rho_m)));
+#endif
         vec3 w = v3(__sky_segment_weight(sigma_t.x, dt), __sky_segment_weight(sigma_t.y, dt),
                     __sky_segment_weight(sigma_t.z, dt));
         L = v3_add(L, v3_mul(v3_mul(T, source), w));
@@ -83,6 +115,11 @@ ATMO_FN void sky_single_scattering(ATMO_GLOBAL const atmo_gpu_scene *s,
         vec3 sun_t = atmosphere_sun_transmittance(a, transmittance, tw, th, a->bottom_radius,
                                                   mu_s_g);
         vec3 irradiance = v3_scale(v3_mul(E, sun_t), fmaxf(mu_s_g, 0.0f));
+#ifdef ATMO_MS_LUT
+        if (use_ms) /* plus the sky's (plane 5 of the LUT) */
+            irradiance = v3_add(irradiance, ms_lut_lookup(a, ms + 5 * ms_w * ms_h, ms_w, ms_h,
+                                                          a->bottom_radius, mu_s_g));
+#endif
         L = v3_add(L, v3_mul(T, v3_scale(v3_mul(v3_from4(a->ground_albedo), irradiance),
                                          1.0f / ATMO_PI)));
     } else if (looks_at_sun) {
@@ -90,6 +127,16 @@ ATMO_FN void sky_single_scattering(ATMO_GLOBAL const atmo_gpu_scene *s,
         *sun = v3_mul(atmosphere_sun_disc_radiance(a, s->sun_direction.w), to_space);
     }
     *sky = L;
+}
+
+
+/* Single scattering alone (method single), with s->view_steps segments. */
+ATMO_FN void sky_single_scattering(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                   ATMO_GLOBAL const float4 *transmittance, float r, float mu,
+                                   float mu_s, float nu, float jitter, vec3 *sky, vec3 *sun)
+{
+    sky_integrate(s, transmittance, transmittance, 0, 0, 0, r, mu, mu_s, nu, s->view_steps,
+                  jitter, sky, sun);
 }
 
 #endif

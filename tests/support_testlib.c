@@ -47,6 +47,21 @@ void test_require_opencl(void)
     }
 }
 
+void test_fresh_cache_dir(void)
+{
+    /* a new run-XXXXXX inside the test's own cache directory (set by ctest), else here */
+    const char *base = getenv("ATMO_CACHE_DIR");
+    static char path[4096];
+    snprintf(path, sizeof path, "%s/run-XXXXXX", base && *base ? base : ".");
+    char parent[4096];
+    snprintf(parent, sizeof parent, "mkdir -p '%s'", base && *base ? base : ".");
+    if (system(parent) != 0 || !mkdtemp(path)) {
+        perror("test_fresh_cache_dir");
+        exit(1);
+    }
+    setenv("ATMO_CACHE_DIR", path, 1);
+}
+
 int test_finish(void)
 {
     printf("%d passed, %d failed\n", test_checks - test_failures, test_failures);

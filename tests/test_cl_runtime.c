@@ -20,6 +20,7 @@ static const char bad[] = "__kernel void broken(__global float *x) { x[0] = unde
 
 int main(void)
 {
+    test_fresh_cache_dir(); /* hits and misses below assume an empty cache */
     test_require_opencl();
     atmo_cl cl, by_name, by_index;
     atmo_err e;

@@ -43,6 +43,7 @@ static int precompute(atmo_cl *cl, cl_program prog, const atmo_plan *plan, float
 
 int main(void)
 {
+    test_fresh_cache_dir(); /* hits and misses below assume an empty cache */
     atmo_scene scene;
     atmo_plan plan;
     test_scene_preset(&scene, "sky-noon");

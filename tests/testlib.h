@@ -40,6 +40,10 @@ double test_chi2_critical_1e4(int dof);
 /* Exit 77 unless an OpenCL platform with a device exists. */
 void test_require_opencl(void);
 
+/* Point ATMO_CACHE_DIR at a new empty directory inside the test's cache directory, so a test
+ * that counts cache hits does not depend on earlier runs. */
+void test_fresh_cache_dir(void);
+
 /* Print a summary line ("N passed, M failed") and return the exit code. */
 int test_finish(void);
 
