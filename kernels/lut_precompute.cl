@@ -64,18 +64,28 @@ float __lut_ray_length(__global const atmo_gpu_atmosphere *a, float r, float mu,
                   : geometry_distance_to_top(r, mu, a->top_radius);
 }
 
+/* This work item's texel of a 4-D table: its index and its (r, mu, mu_s, nu, ground); 0 for
+ * the padding items past the table's end. */
+int __lut_this_texel(__global const atmo_gpu_atmosphere *a, __global const int *dims, int *idx,
+                     float *r, float *mu, float *mu_s, float *nu, int *ground)
+{
+    int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
+    if (x >= dims[0] * dims[1] || y >= dims[2] || z >= dims[3])
+        return 0;
+    *idx = (z * dims[2] + y) * dims[0] * dims[1] + x;
+    lut_scattering_texel(a, dims, x, y, z, r, mu, mu_s, nu, ground);
+    return 1;
+}
+
 __kernel void lut_single(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, int arg)
 {
     __global const atmo_gpu_atmosphere *a = &s->atmosphere;
     __global const int *dims = s->lut_dims[0];
-    int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
-    int n_mu_s = dims[1];
-    if (x >= dims[0] * n_mu_s || y >= dims[2] || z >= dims[3])
-        return;
-    int N = LUT_TEXELS(dims), idx = (z * dims[2] + y) * dims[0] * n_mu_s + x;
+    int x = get_global_id(0), z = get_global_id(2), n_mu_s = dims[1], idx, ground;
     float r, mu, mu_s, nu;
-    int ground;
-    lut_scattering_texel(a, dims, x, y, z, &r, &mu, &mu_s, &nu, &ground);
+    if (!__lut_this_texel(a, dims, &idx, &r, &mu, &mu_s, &nu, &ground))
+        return;
+    int N = LUT_TEXELS(dims);
     int n = s->method_int[LUT_INT_STEPS];
     float dt = __lut_ray_length(a, r, mu, ground) / (float)n;
     float3 beta_r = a->rayleigh_scattering.xyz, beta_m = a->mie_scattering.xyz;
@@ -102,7 +112,7 @@ __kernel void lut_single(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, 
     lut_a[idx] = (float4)(E * beta_r * S_r, 0.0f);
     lut_a[N + idx] = (float4)(0.0f); /* multiple scattering: orders >= 2 add to it */
     lut_b[idx] = (float4)(E * beta_m * S_m, 0.0f);
-    if (y == 0 && x < n_mu_s) /* once per (r, mu_s): clear the total indirect irradiance */
+    if (get_global_id(1) == 0 && x < n_mu_s) /* once per (r, mu_s): clear the total indirect irradiance */
         lut_b[N + z * n_mu_s + x] = (float4)(0.0f);
 }
 
@@ -168,14 +178,11 @@ __kernel void lut_density(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS,
     __global const atmo_gpu_atmosphere *a = &s->atmosphere;
     __global const int *dims = s->lut_dims[0];
     int rings = s->method_int[LUT_INT_RINGS], G = rings * rings;
-    int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
-    int n_mu_s = dims[1];
-    if (x >= dims[0] * n_mu_s || y >= dims[2] || z >= dims[3])
-        return;
-    int N = LUT_TEXELS(dims), idx = (z * dims[2] + y) * dims[0] * n_mu_s + x;
+    int x = get_global_id(0), z = get_global_id(2), n_mu_s = dims[1], idx, ground;
     float r, mu, mu_s, nu;
-    int ground;
-    lut_scattering_texel(a, dims, x, y, z, &r, &mu, &mu_s, &nu, &ground);
+    if (!__lut_this_texel(a, dims, &idx, &r, &mu, &mu_s, &nu, &ground))
+        return;
+    int N = LUT_TEXELS(dims);
     /* the view direction in the grid's frame (sun in the x-z plane) */
     float sin_v = atmo_safe_sqrt(1.0f - mu * mu), sin_s = atmo_safe_sqrt(1.0f - mu_s * mu_s);
     float vx = sin_s > 1e-6f ? clamp((nu - mu * mu_s) / sin_s, -sin_v, sin_v) : sin_v;
@@ -201,14 +208,11 @@ __kernel void lut_multiple(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS
 {
     __global const atmo_gpu_atmosphere *a = &s->atmosphere;
     __global const int *dims = s->lut_dims[0];
-    int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
-    int n_mu_s = dims[1];
-    if (x >= dims[0] * n_mu_s || y >= dims[2] || z >= dims[3])
-        return;
-    int N = LUT_TEXELS(dims), idx = (z * dims[2] + y) * dims[0] * n_mu_s + x;
+    int idx, ground;
     float r, mu, mu_s, nu;
-    int ground;
-    lut_scattering_texel(a, dims, x, y, z, &r, &mu, &mu_s, &nu, &ground);
+    if (!__lut_this_texel(a, dims, &idx, &r, &mu, &mu_s, &nu, &ground))
+        return;
+    int N = LUT_TEXELS(dims);
     int n = s->method_int[LUT_INT_STEPS];
     float dt = __lut_ray_length(a, r, mu, ground) / (float)n;
     float3 T = (float3)(1.0f), L = (float3)(0.0f);

@@ -160,6 +160,20 @@ ATMO_FN vec3 ms_lut_source(ATMO_GLOBAL const atmo_gpu_atmosphere *a,
     return v3_add(j_r, v3_mul(sigma_m, psi));
 }
 
+/* Band k of n_mu direction bands for the sphere integrals at a point whose horizon cosine is
+ * mu_h: half the bands above mu_h, half below, so no band straddles the step between sky and
+ * ground, crowding toward the horizon as v^2 where the sky is brightest and changes fastest:
+ * mu = mu_h +- span v^2. Returns mu; *u = span v is the band's weight (its share of the sphere
+ * is span 2 v dv). */
+ATMO_FN float __ms_band(int k, int n_mu, float mu_h, float *u)
+{
+    int n_half = n_mu / 2, up = k >= n_half;
+    float span = up ? 1.0f - mu_h : mu_h + 1.0f;
+    float v = ((float)(up ? k - n_half : k) + 0.5f) / (float)n_half;
+    *u = span * v;
+    return atmo_clamp_cos(up ? mu_h + span * v * v : mu_h - span * v * v);
+}
+
 /* One texel at radius r and sun cosine mu_s: returns Psi_ms (xyz) and f_ms of channel y (w);
  * dev[0..2] = the Rayleigh anisotropy D_uu, D_ss, D_us (xyz per channel; see the file's
  * comment), scaled by `gain(f) = 1 + higher * f / (1 - f)`; dev[3] = L_2 (xyz) and f (w);
@@ -177,19 +191,11 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
     vec3 L2 = v3(0.0f, 0.0f, 0.0f), f = v3(0.0f, 0.0f, 0.0f);
     vec3 m_uu = v3(0.0f, 0.0f, 0.0f), m_ss = v3(0.0f, 0.0f, 0.0f), m_us = v3(0.0f, 0.0f, 0.0f);
     vec3 e_sky = v3(0.0f, 0.0f, 0.0f);
-    /* half the bands above the horizon cosine mu_h, half below, so no band straddles the step
-     * between sky and ground */
     float mu_h = -atmo_safe_sqrt((r - a->bottom_radius) * (r + a->bottom_radius)) / r;
-    int n_half = n_mu / 2;
     float weights = 0.0f;
     for (int k = 0; k < n_mu; k++) {
-        int up = k >= n_half;
-        /* bands crowd toward the horizon as v^2, where the sky is brightest and changes
-         * fastest: mu = mu_h +- span v^2, weight span 2 v dv (the band's share of the sphere) */
-        float span = up ? 1.0f - mu_h : mu_h + 1.0f;
-        float v = ((float)(up ? k - n_half : k) + 0.5f) / (float)n_half;
-        float mu = atmo_clamp_cos(up ? mu_h + span * v * v : mu_h - span * v * v);
-        float u = span * v;
+        float u, mu = __ms_band(k, n_mu, mu_h, &u);
+        int up = k >= n_mu / 2;
         float sin_v = atmo_safe_sqrt(1.0f - mu * mu);
         int hits_ground = !up;
         float d = hits_ground ? geometry_distance_to_bottom(r, mu, a->bottom_radius)
@@ -280,15 +286,11 @@ ATMO_FN vec3 ms_lut_gather(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL cons
     vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
     float sin_s = atmo_safe_sqrt(1.0f - mu_s * mu_s);
     float mu_h = -atmo_safe_sqrt((r - a->bottom_radius) * (r + a->bottom_radius)) / r;
-    int n_half = n_mu / 2;
     vec3 sum = v3(0.0f, 0.0f, 0.0f);
     float weights = 0.0f;
     for (int k = 0; k < n_mu; k++) {
-        int up = k >= n_half;
-        float span = up ? 1.0f - mu_h : mu_h + 1.0f;
-        float v = ((float)(up ? k - n_half : k) + 0.5f) / (float)n_half;
-        float mu = atmo_clamp_cos(up ? mu_h + span * v * v : mu_h - span * v * v);
-        float u = span * v;
+        float u, mu = __ms_band(k, n_mu, mu_h, &u);
+        int up = k >= n_mu / 2;
         float sin_v = atmo_safe_sqrt(1.0f - mu * mu);
         float d = up ? geometry_distance_to_top(r, mu, a->top_radius)
                      : geometry_distance_to_bottom(r, mu, a->bottom_radius);
