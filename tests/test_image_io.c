@@ -10,7 +10,7 @@
  *     every channel is off by at most half a unit <= 2^-8 times the decoded largest channel of
  *     its pixel; that bound (no slack: encoding and decoding are exact in float) is the
  *     tolerance. Negative values must come back as 0.
- *   - EXR: OpenEXR's own C Core API decoder must return the float values bit-exactly (ZIP is
+ *   - EXR: OpenEXR's own C Core API decoder must return the float values bit-exactly (PIZ is
  *     lossless) and the string attributes as written; `exrheader`, when installed, must accept
  *     the file.
  *   - PNG: stb_image's stbi_load must return exactly floor(255 d + 1/2) of atmo_post_pixel's
@@ -255,7 +255,7 @@ static void test_exr(void)
         CHECK(system(cmd) == 0);
         unsigned char *txt;
         read_all(in_dir("exrheader.txt"), &txt);
-        CHECK(txt && strstr((char *)txt, "zip") && strstr((char *)txt, "32-bit floating-point"));
+        CHECK(txt && strstr((char *)txt, "piz") && strstr((char *)txt, "32-bit floating-point"));
         CHECK(txt && strstr((char *)txt, "renderStatus") && strstr((char *)txt, "partial"));
         free(txt);
     }
