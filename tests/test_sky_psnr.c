@@ -33,8 +33,8 @@
  * luminance (an RMS of ~0.4 of an 8-bit level, from values that round to neighbouring levels);
  * linear 61-77 dB radiance, 61-82 dB luminance, the worst (ground, sun 65 deg) close to its
  * noise-alone 62.6 dB; host reference 4 s for the 8192 rays. Method lut's order 1 computes
- * the same model but is not scored here (its precompute at the default sizes takes ~10 s;
- * test_lut_method compares it with the same oracle ray by ray). */
+ * the same model but is not scored here (it needs its 4-D precompute; test_lut_method compares
+ * it with the same oracle ray by ray). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
