@@ -174,7 +174,7 @@ static void make_plan(const char *method, double altitude_m, double sun_zenith, 
         test_scene_set(&s, "lut.steps=16");
     }
     test_plan(&s, p);
-    p->cache_luts = 2;
+    p->cache_luts = 2; /* one Psi_ms LUT for all plans of march and fast (keyed, in the cache) */
 }
 
 /* The deterministic methods (common random numbers: every ray of a scan gets the same march
@@ -313,7 +313,6 @@ int main(void)
 {
     atmo_cl cl;
     test_cl_open(&cl);
-    test_fresh_cache_dir(); /* LUTs made once here, loaded by the later plans of a method */
     atmo_scene sp;
     atmo_plan p;
     test_scene_preset(&sp, "space");

@@ -161,7 +161,7 @@ static void make_plan(const char *method, double altitude_m, double sun_zenith, 
         test_scene_set(&s, "lut.steps=16");
     }
     test_plan(&s, p);
-    p->cache_luts = 2; /* march and fast: one Psi_ms LUT for all their plans */
+    p->cache_luts = 2; /* one Psi_ms LUT for all plans of march and fast (keyed, in the cache) */
 }
 
 /* Space rays of both cameras for entry sun cosines mu_s_e[is]; *n rays. */
@@ -416,7 +416,6 @@ int main(void)
 {
     atmo_cl cl;
     test_cl_open(&cl);
-    test_fresh_cache_dir(); /* LUTs made once here and loaded by the later plans of a method */
     atmo_scene s;
     atmo_plan p;
     test_scene_preset(&s, "space");
