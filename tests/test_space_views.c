@@ -39,9 +39,10 @@
  *    march with the LUT's 64 segments, 64 common offsets):
  *      texels: LUT lookup - interpolated march values. The texels hold a 64-segment midpoint
  *        march, the march values the mean over 64 random offsets of the same segments; both
- *        are quadratures of one integral whose midpoint error is ~(d/64)^2 / 24 of its second
- *        derivative, < 0.5 % on these rays; asserted within 1 % + 3 standard errors of the
- *        interpolated march, relative to max(L, 1 % of the largest L of the sun's rays).
+ *        are quadratures of one integral and differ by the midpoint rule's error, second
+ *        order in the segment length; asserted within 1 % (test_fast's bound for ground rays)
+ *        + 3 standard errors of the interpolated march, relative to max(L, 1 % of the largest
+ *        L of the sun's rays).
  *      interpolation: interpolated march values - the march from space. This is the LUT's
  *        resolution, a property of the method, reported and not asserted: from the top of the
  *        atmosphere the rays that graze the ground limb or pass through the air above it (view
