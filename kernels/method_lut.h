@@ -136,17 +136,22 @@ ATMO_FN vec3 lut_ms_ground_irradiance(ATMO_GLOBAL const atmo_gpu_scene *s,
  * >= 2 (LUT_DENSITY_SUM) -- the integral that lut_multiple (lut_precompute.cl) evaluates over
  * whole texel rays, here stopped at d -- with s->view_steps segments and one random offset per
  * sample (dimension ATMO_RNG_METHOD_DIM), as methods single and march do.
- * Why not Bruneton's two-lookup difference S(x, v) - T(x, y) S(y, v), y at distance d: it
- * subtracts two radiances of whole rays, so the lookups' interpolation error (a few tenths of a
- * percent) is multiplied by S(x) / L_segment, the ratio of the whole ray's radiance to the
- * segment's. Measured against the Monte Carlo reference (lut.r_size 16, mu_size 64, camera at
- * the ground): within 1.5 % for 10 and 100 km, but +22 % to +54 % in red for 1 km views 5
- * degrees above the horizon (where a whole ray is a hundred times brighter than 1 km of it),
- * and a step of 0.4 % across the horizon (1 km camera, d = 50 km: the two halves of the mu
- * axis interpolate differently; the radiance of a segment that ends in the air is continuous
- * there). The march has neither error: it reads the density, a local quantity that is
- * continuous across the horizon, never a difference (tests/test_aerial.c probes both). It
- * costs view_steps lookups of the density table instead of six table lookups. */
+ * Why not Bruneton's two-lookup difference S(x, v) - T(x, y) S(y, v), y at distance d (both
+ * lookups on the camera ray's side of the horizon): it subtracts the radiances of two whole
+ * rays, so the lookups' interpolation error (a few tenths of a percent) is multiplied by
+ * S(x) / L_segment, which near the horizon is about a hundred for 1 km. Measured against the
+ * Monte Carlo table tests/data/reference_segments.csv: within 3.4 % for 10 and 100 km, but up
+ * to 54 % off at 1 km with reduced tables (r 16, mu 64; tests/test_aerial.c) and 7 % with the
+ * default ones (1 km, 5 degrees above the horizon toward a sun 10 degrees high); and a band at
+ * the horizon, where a segment that ends in the air is continuous but the two halves of the mu
+ * axis interpolate differently: steps 45 times their neighbours (0.4 % of the radiance from
+ * 1 km up with d = 50 km). Interpolating across a narrow band of mu around the horizon
+ * (Bruneton 2008) would address the band only: those 1 km rays lie 5 degrees above it. The
+ * march has neither error: it reads the density, a local quantity continuous across the
+ * horizon, never a difference; measured within 2.2 % of the table for sun zenith <= 80 deg
+ * (reduced tables; 2.1 % with the default ones), no step at the horizon larger than 1.03 times
+ * its neighbours. It costs view_steps lookups of the density table and of the transmittance
+ * LUT instead of six table lookups. */
 ATMO_FN void sky_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float r, float mu,
                          float mu_s, float nu, float d, uint pixel, uint sample, vec3 *inscatter,
                          vec3 *transmittance)
