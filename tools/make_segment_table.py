@@ -47,7 +47,8 @@ def run(atmo, altitude, sun, distance, vs, samples, seed):
 def merge(acc, view, samples):
     """Runs weighted by samples: mean = sum n m / sum n, se^2 = sum n^2 se^2 / (sum n)^2."""
     if acc is None:
-        acc = {"n": 0, "sum": {k: [0.0] * 3 for k, _ in KEYS}, "var": {k: [0.0] * 3 for k, _ in KEYS}}
+        acc = {"n": 0, "sum": {k: [0.0] * 3 for k, _ in KEYS},
+               "var": {k: [0.0] * 3 for k, _ in KEYS}}
     acc["n"] += samples
     for key, se_key in KEYS:
         for c in range(3):
@@ -100,7 +101,8 @@ def main():
                 for v in views(altitude):
                     L, L_se = result(acc[v], "radiance")
                     T, T_se = result(acc[v], "transmittance")
-                    rows.append((altitude, sun, v[0], v[1], distance, acc[v]["n"], L, L_se, T, T_se))
+                    rows.append((altitude, sun, v[0], v[1], distance, acc[v]["n"], L, L_se, T,
+                                 T_se))
     worst = max(s / m for r in rows for m, s in zip(r[6], r[7]))
     lines = [
         "# Aerial perspective of the default atmosphere: radiance in-scattered toward the camera",
