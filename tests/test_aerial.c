@@ -10,10 +10,10 @@
  *    rounding (1e-6 relative), and fast's segment (march's integrator with fast's Psi_ms LUT) with
  *    march's sky radiance. Cameras from the ground to 1e7 m, views up, grazing and down.
  * 2. Transmittance against exp(-atmo_ref_optical_depth_to) (double adaptive quadrature, 1e-11):
- *    the marching methods (single, march, fast; lut below its table's rays) multiply
- *    e^{-sigma(t_i) dt} at one random point per segment, an unbiased estimate of the optical depth
- *    whose mean over samples converges on T (Jensen's bias, Var(tau_hat) / 2, is below 1e-5 for
- *    32 segments); allowed: 4 SE + float error. The float error: altitudes along a ray are
+ *    the marching methods (single, march, fast, and lut where d ends in the air) multiply
+ *    e^{-sigma(t_i) dt} at one random point per segment, an unbiased estimate of the optical
+ *    depth whose mean over samples converges on T (Jensen's bias, Var(tau_hat) / 2, is of order
+ *    1e-5 for 32 segments); allowed: 4 SE + float error. The float error: altitudes along a ray are
  *    rounded to about 0.5 m at 6.4e6 m, so the aerosol density e^{-h/1200 m} is off by up to
  *    4e-4 relative, and tau (hence T relatively) by 4e-4 tau; plus 32 rounded products, 1e-5:
  *    |dT| <= 4 SE + (4e-4 tau + 1e-5) T. Reference (ratio tracking, unbiased): |dT| <= 4 SE +
