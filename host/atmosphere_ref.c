@@ -402,11 +402,14 @@ static double __ref_enter(const atmo_atmosphere *a, double *r, double *mu, doubl
     return t1 - t0;
 }
 
-void atmo_ref_single_scattering_parts(const atmo_atmosphere *a, double r, double mu, double mu_s,
-                                      double nu, double out_rayleigh[3], double out_mie[3])
+/* Single scattering along the ray up to distance t_max from the camera (INFINITY: all of it). */
+static void __ref_single_parts(const atmo_atmosphere *a, double r, double mu, double mu_s,
+                               double nu, double t_max, double out_rayleigh[3], double out_mie[3])
 {
-    double L[6] = {0, 0, 0, 0, 0, 0};
-    double d = __ref_enter(a, &r, &mu, &mu_s, nu);
+    double L[6] = {0, 0, 0, 0, 0, 0}, t0, t1;
+    if (!__ref_ray_span(a, fmax(r, a->bottom_radius_m), mu, &t0, &t1))
+        t0 = 0.0;
+    double d = fmin(__ref_enter(a, &r, &mu, &mu_s, nu), t_max - t0);
     if (d > 0.0) {
         /* shadow-cylinder crossings: roots of q(t) = A t^2 + 2 B t + C */
         double A = 1.0 - nu * nu, B = r * (mu - mu_s * nu);
@@ -434,6 +437,21 @@ void atmo_ref_single_scattering_parts(const atmo_atmosphere *a, double r, double
         if (out_mie)
             out_mie[c] = L[3 + c] * p_m;
     }
+}
+
+void atmo_ref_single_scattering_parts(const atmo_atmosphere *a, double r, double mu, double mu_s,
+                                      double nu, double out_rayleigh[3], double out_mie[3])
+{
+    __ref_single_parts(a, r, mu, mu_s, nu, INFINITY, out_rayleigh, out_mie);
+}
+
+void atmo_ref_single_scattering_to(const atmo_atmosphere *a, double r, double mu, double mu_s,
+                                   double nu, double d, double out_L[3])
+{
+    double rayleigh[3], mie[3];
+    __ref_single_parts(a, r, mu, mu_s, nu, d, rayleigh, mie);
+    for (int c = 0; c < 3; c++)
+        out_L[c] = rayleigh[c] + mie[c];
 }
 
 void atmo_ref_single_scattering(const atmo_atmosphere *a, double r, double mu, double mu_s,

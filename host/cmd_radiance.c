@@ -12,6 +12,13 @@
  * Samples are rounded up to a multiple of 64: each view runs as K = 64 independent batches
  * (distinct RNG pixel indices), and the spread of the batch means gives the standard error.
  *
+ * --distance-m D (aerial perspective): each view ray ends at a black surface D metres from the
+ * camera, and the method's sky_segment (kernels/sky_method.h) gives the radiance that the air
+ * over [0, D] scatters toward the camera (all orders the method models) and the transmittance
+ * T(0, D) (kernel sky_probe_segment). A view that reaches the ground before D sees the lit
+ * ground (the surface lies behind it), one that leaves the atmosphere before D the whole sky:
+ * both are then the view's sky radiance. --irradiance is unaffected (the sky above the camera).
+ *
  * Luminance: Y = BT.709 luminance of k_c L_c with k from atmo_luminance_factors(lambda, -3)
  * (Bruneton's radiance-to-luminance constants for the sky), in cd/m^2.
  * --irradiance adds, on a horizontal surface at the camera (W m^-2 nm^-1):
@@ -43,7 +50,8 @@
 static const char radiance_usage[] =
     "usage: atmo radiance --altitude-m H --sun-zenith-deg S [--sun-azimuth-deg A]\n"
     "                     --view Z,A [--view Z,A ...] [--method M] [--scene F] [--set K=V ...]\n"
-    "                     [--irradiance] [--json] [--samples N] [--seed N] [--device D]\n"
+    "                     [--distance-m D] [--irradiance] [--json] [--samples N] [--seed N]\n"
+    "                     [--device D]\n"
     "\n"
     "Prints, for each view (zenith Z and azimuth A in degrees, azimuth measured like the sun's),\n"
     "the spectral radiance of the sky at each render wavelength (W m^-2 sr^-1 nm^-1, sun disc\n"
@@ -52,6 +60,11 @@ static const char radiance_usage[] =
     "  --sun-zenith-deg S, --sun-azimuth-deg A   the sun (degrees; azimuth default 0)\n"
     "  --method M         atmosphere method (single, march, fast, lut, reference)\n"
     "  --scene F          JSON scene file (default: the default preset); --set K=V overrides\n"
+    "  --distance-m D     aerial perspective: each view ends at a black surface D metres away\n"
+    "                     (D > 0); prints the radiance in-scattered over [0, D] and the\n"
+    "                     transmittance to the surface. A view that meets the ground or leaves\n"
+    "                     the atmosphere before D gives its whole sky radiance (lit ground\n"
+    "                     included) and the transmittance to the ground or to space\n"
     "  --irradiance       add direct and sky irradiance on a horizontal surface (W m^-2 nm^-1)\n"
     "  --json             one JSON object instead of text\n"
     "  --samples N        samples per view (default 65536 for reference, 64 otherwise)\n"
@@ -61,6 +74,7 @@ static const char radiance_usage[] =
 typedef struct radiance_view {
     double zenith_deg, azimuth_deg;
     double L[3], se[3];
+    double T[3], T_se[3]; /* with --distance-m */
 } radiance_view;
 
 /* Parses a finite number that fills the whole string. */
@@ -129,8 +143,8 @@ int cmd_radiance(int argc, char **argv)
     atmo_plan plan;
     atmo_probe probe = {0};
     int rc = ATMO_OK, json = 0, irradiance = 0, samples = 0, n_views = 0;
-    int have_altitude = 0, have_sun = 0;
-    double altitude = 0.0, sun_zenith = 0.0, sun_azimuth = 0.0;
+    int have_altitude = 0, have_sun = 0, have_distance = 0;
+    double altitude = 0.0, sun_zenith = 0.0, sun_azimuth = 0.0, distance = 0.0;
     const char *scene_file = NULL, *device = NULL;
     static radiance_view views[RADIANCE_MAX_VIEWS];
     float4 *rays = NULL;
@@ -159,7 +173,7 @@ int cmd_radiance(int argc, char **argv)
         }
         static const char *const with_value[] = {
             "--altitude-m", "--sun-zenith-deg", "--sun-azimuth-deg", "--view", "--method",
-            "--scene", "--set", "--samples", "--seed", "--device", NULL};
+            "--scene", "--set", "--samples", "--seed", "--device", "--distance-m", NULL};
         int known = 0;
         for (int k = 0; with_value[k]; k++)
             known |= strcmp(a, with_value[k]) == 0;
@@ -180,6 +194,11 @@ int cmd_radiance(int argc, char **argv)
         } else if (strcmp(a, "--sun-zenith-deg") == 0) {
             rc = __number(a, v, 0.0, 180.0, &sun_zenith, &e);
             have_sun = 1;
+        } else if (strcmp(a, "--distance-m") == 0) {
+            if ((rc = __number(a, v, 0.0, 1e12, &distance, &e)) == ATMO_OK && distance <= 0.0)
+                rc = atmo_fail(&e, ATMO_ERR_USAGE, "--distance-m needs a distance > 0 m, got '%s'",
+                               v);
+            have_distance = 1;
         } else if (strcmp(a, "--sun-azimuth-deg") == 0) {
             rc = __number(a, v, -360.0, 360.0, &sun_azimuth, &e);
         } else if (strcmp(a, "--view") == 0) {
@@ -232,10 +251,16 @@ int cmd_radiance(int argc, char **argv)
     int n_quad = irradiance ? RADIANCE_QUAD * RADIANCE_QUAD : 0;
     int n_rays = n_views + n_quad;
     rays = malloc(sizeof(float4) * (size_t)(n_rays ? n_rays : 1));
+    float *distances = malloc(sizeof(float) * (size_t)(n_views ? n_views : 1));
     mean = malloc(sizeof *mean * (size_t)(n_rays ? n_rays : 1));
     double(*se)[3] = malloc(sizeof *se * (size_t)(n_views ? n_views : 1));
+    double(*t_mean)[3] = malloc(sizeof *t_mean * (size_t)(n_views ? n_views : 1));
+    double(*t_se)[3] = malloc(sizeof *t_se * (size_t)(n_views ? n_views : 1));
     double gx[RADIANCE_QUAD], gw[RADIANCE_QUAD];
-    if (!rays || !mean || !se) {
+    if (!rays || !mean || !se || !distances || !t_mean || !t_se) {
+        free(t_se);
+        free(t_mean);
+        free(distances);
         free(se);
         rc = atmo_fail(&e, ATMO_ERR_RUNTIME, "out of memory");
         goto cleanup;
@@ -246,6 +271,7 @@ int cmd_radiance(int argc, char **argv)
         float4 q = {(float)r, (float)d[1], (float)mu_s,
                     (float)(d[0] * sun[0] + d[1] * sun[1] + d[2] * sun[2])};
         rays[i] = q;
+        distances[i] = (float)distance;
     }
     __gauss_legendre01(RADIANCE_QUAD, gx, gw);
     for (int i = 0; i < RADIANCE_QUAD && irradiance; i++)
@@ -259,7 +285,12 @@ int cmd_radiance(int argc, char **argv)
 
     if ((rc = atmo_probe_open(&probe, &plan, device, &e)))
         goto cleanup_se;
-    if (n_views && (rc = atmo_probe_rays(&probe, rays, n_views, samples, mean, se, &e)))
+    if (n_views && !have_distance &&
+        (rc = atmo_probe_rays(&probe, rays, n_views, samples, mean, se, &e)))
+        goto cleanup_se;
+    if (n_views && have_distance &&
+        (rc = atmo_probe_segments(&probe, rays, distances, n_views, samples, mean, se, t_mean,
+                                  t_se, &e)))
         goto cleanup_se;
     int quad_samples = samples / 64 > 0 ? samples / 64 : 1;
     if (n_quad && (rc = atmo_probe_rays(&probe, rays + n_views, n_quad, quad_samples,
@@ -278,7 +309,9 @@ int cmd_radiance(int argc, char **argv)
     }
     for (int i = 0; i < n_views; i++)
         for (int c = 0; c < 3; c++)
-            views[i].L[c] = mean[i][c], views[i].se[c] = se[i][c];
+            views[i].L[c] = mean[i][c], views[i].se[c] = se[i][c],
+            views[i].T[c] = have_distance ? t_mean[i][c] : 0.0,
+            views[i].T_se[c] = have_distance ? t_se[i][c] : 0.0;
 
     const double *wl = scene.render.wavelengths_nm;
     if (json) {
@@ -288,6 +321,8 @@ int cmd_radiance(int argc, char **argv)
         cJSON_AddNumberToObject(root, "altitude_m", altitude);
         cJSON_AddNumberToObject(root, "sun_zenith_deg", sun_zenith);
         cJSON_AddNumberToObject(root, "sun_azimuth_deg", sun_azimuth);
+        if (have_distance)
+            cJSON_AddNumberToObject(root, "distance_m", distance);
         cJSON_AddNumberToObject(root, "samples", samples);
         cJSON_AddNumberToObject(root, "seed", scene.image.seed);
         cJSON_AddStringToObject(root, "device", probe.cl.device_name);
@@ -299,6 +334,10 @@ int cmd_radiance(int argc, char **argv)
             __json_vec(o, "radiance", views[i].L);
             __json_vec(o, "radiance_standard_error", views[i].se);
             cJSON_AddNumberToObject(o, "luminance_cd_m2", atmo_luminance_from_radiance(k, views[i].L));
+            if (have_distance) {
+                __json_vec(o, "transmittance", views[i].T);
+                __json_vec(o, "transmittance_standard_error", views[i].T_se);
+            }
             cJSON_AddItemToArray(arr, o);
         }
         if (irradiance) {
@@ -317,15 +356,25 @@ int cmd_radiance(int argc, char **argv)
     } else {
         printf("method %s, altitude %g m, sun zenith %g deg azimuth %g deg, %d samples per view\n",
                plan.method, altitude, sun_zenith, sun_azimuth, samples);
-        printf("%10s %11s  radiance at %g, %g, %g nm (W m^-2 sr^-1 nm^-1)    luminance (cd/m^2)\n",
+        if (have_distance)
+            printf("aerial perspective: radiance in-scattered over the first %g m of each view, "
+                   "transmittance to there\n", distance);
+        printf("%10s %11s  radiance at %g, %g, %g nm (W m^-2 sr^-1 nm^-1)    luminance (cd/m^2)",
                "zenith_deg", "azimuth_deg", wl[0], wl[1], wl[2]);
+        printf("%s\n", have_distance ? "  transmittance" : "");
         for (int i = 0; i < n_views; i++) {
-            printf("%10.3f %11.3f  %.6e %.6e %.6e  %.6e\n", views[i].zenith_deg,
+            printf("%10.3f %11.3f  %.6e %.6e %.6e  %.6e", views[i].zenith_deg,
                    views[i].azimuth_deg, views[i].L[0], views[i].L[1], views[i].L[2],
                    atmo_luminance_from_radiance(k, views[i].L));
+            if (have_distance)
+                printf("  %.6f %.6f %.6f", views[i].T[0], views[i].T[1], views[i].T[2]);
+            printf("\n");
             if (is_reference)
                 printf("%23s  +- %.1e %.1e %.1e (standard error)\n", "", views[i].se[0],
                        views[i].se[1], views[i].se[2]);
+            if (is_reference && have_distance)
+                printf("%23s  transmittance +- %.1e %.1e %.1e (standard error)\n", "",
+                       views[i].T_se[0], views[i].T_se[1], views[i].T_se[2]);
         }
         if (irradiance)
             printf("irradiance on a horizontal surface (W m^-2 nm^-1): direct %.6e %.6e %.6e, "
@@ -333,6 +382,9 @@ int cmd_radiance(int argc, char **argv)
                    direct[0], direct[1], direct[2], sky[0], sky[1], sky[2]);
     }
 cleanup_se:
+    free(t_se);
+    free(t_mean);
+    free(distances);
     free(se);
 cleanup:
     atmo_probe_close(&probe);

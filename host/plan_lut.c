@@ -1,5 +1,7 @@
 /* plan_lut.c — atmosphere method "lut" (atmo/plan_lut.h): buffer sizes, knobs and passes; the
  * layout of the buffers is in kernels/lut_scattering.h, the passes in kernels/lut_precompute.cl. */
+#include <stdio.h>
+#include <string.h>
 #include "atmo/plan_lut.h"
 #include "lut_scattering.h"
 
@@ -22,6 +24,8 @@ int atmo_plan_lut(const atmo_scene *s, atmo_plan *p, atmo_err *e)
                          orders, (ATMO_PLAN_MAX_PASSES - p->pass_count - 2) / 4 + 1);
     if ((rc = atmo_plan_add_fragments(p, fragments, 4, e)))
         return rc;
+    size_t used = strlen(p->defines); /* sky_single.h's march takes the density of orders >= 2 */
+    snprintf(p->defines + used, sizeof p->defines - used, "%s-DATMO_LUT_J", used ? " " : "");
     int *dims = p->gpu.lut_dims[0];
     dims[0] = n_nu, dims[1] = n_mu_s, dims[2] = n_mu, dims[3] = n_r;
     p->gpu.method_int[LUT_INT_STEPS] = s->atmosphere.lut_steps;
@@ -30,7 +34,7 @@ int atmo_plan_lut(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     size_t N = (size_t)LUT_TEXELS(dims), I = (size_t)LUT_IRRADIANCE_TEXELS(dims);
     size_t G = (size_t)rings * (size_t)rings;
     p->lut_bytes[1] = sizeof(float4) * 2 * N;
-    p->lut_bytes[2] = sizeof(float4) * (N + I);
+    p->lut_bytes[2] = sizeof(float4) * (2 * N + I);
     p->lut_bytes[3] = sizeof(float4) * (2 * N + I * G + I + G);
 
     int w = n_nu * n_mu_s;

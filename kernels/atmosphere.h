@@ -149,6 +149,17 @@ ATMO_FN int atmosphere_enter(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float *r,
     return 1;
 }
 
+/* Distance from radius r along mu to where the ray enters the atmosphere: 0 from inside, the
+ * t0 of atmosphere_enter from above (meaningful where that returns 1). A segment [0, d] of a
+ * ray from above keeps d - t0 of its length once atmosphere_enter has moved its start. */
+ATMO_FN float atmosphere_entry_distance(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r,
+                                        float mu)
+{
+    if (r <= a->top_radius)
+        return 0.0f;
+    return fmaxf(-r * mu - atmo_safe_sqrt(geometry_discriminant(r, mu, a->top_radius)), 0.0f);
+}
+
 /* Radiance of the sun disc outside the atmosphere: E over its solid angle 2 pi (1 - cos alpha)
  * (cos_alpha = the scene's sun_direction.w). */
 ATMO_FN vec3 atmosphere_sun_disc_radiance(ATMO_GLOBAL const atmo_gpu_atmosphere *a,

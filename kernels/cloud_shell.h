@@ -300,12 +300,13 @@ ATMO_FN void __cloud_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL co
 }
 
 /* Sky radiance along (r, mu, mu_s, nu) through the atmosphere, the cloud shell and past the
- * observer; ms (ms_w x ms_h) is the Psi_ms LUT of method march, used when use_ms (and when
- * ms_lut.h is compiled in). The same outputs as sky_single_scattering. */
+ * observer, up to a black surface at distance t_max (INFINITY: none), as sky_integrate
+ * (sky_single.h) with the same outputs; ms (ms_w x ms_h) is the Psi_ms LUT of method march,
+ * used when use_ms (and when ms_lut.h is compiled in). */
 ATMO_FN void cloud_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *lut0,
                              ATMO_GLOBAL const float4 *ms, int ms_w, int ms_h, int use_ms, float r,
-                             float mu, float mu_s, float nu, int n, float jitter, vec3 *sky,
-                             vec3 *sun)
+                             float mu, float mu_s, float nu, float t_max, int n, float jitter,
+                             vec3 *sky, vec3 *sun, vec3 *view_t)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     int tw = s->transmittance_width, th = s->transmittance_height;
@@ -315,6 +316,7 @@ ATMO_FN void cloud_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL co
     int looks_at_sun = nu >= s->sun_direction.w;
     *sky = v3(0.0f, 0.0f, 0.0f);
     *sun = v3(0.0f, 0.0f, 0.0f);
+    *view_t = v3(1.0f, 1.0f, 1.0f);
 
     cloud_ray ray;
     ray.r = r, ray.mu = mu, ray.mu_s = mu_s, ray.nu = nu;
@@ -340,6 +342,11 @@ ATMO_FN void cloud_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL co
     int hits_observer = t_obs >= 0.0f && t_obs < t_end;
     if (hits_observer)
         t_end = t_obs, hits_ground = 0;
+    int blocked = t_max < t_end; /* by the black surface at t_max */
+    if (blocked)
+        t_end = t_max, hits_ground = hits_observer = 0;
+    if (t_end <= t_start)
+        return;
 
     /* the cloud segments: inside the top sphere and outside the base sphere */
     float base = s->cloud_extinction.w, top = s->cloud_albedo.w;
@@ -396,7 +403,7 @@ ATMO_FN void cloud_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL co
         vec3 irradiance = v3_scale(v3_mul(E, sun_t), fmaxf(mu_s_g, 0.0f));
         L = v3_add(L, v3_mul(T, v3_scale(v3_mul(v3_from4(a->ground_albedo), irradiance),
                                          1.0f / ATMO_PI)));
-    } else if (looks_at_sun) {
+    } else if (looks_at_sun && !blocked) {
         /* the sun through the atmosphere and the cloud: T_atm from where the ray enters it */
         float r0 = geometry_radius_at(r, mu, t_start);
         float mu0 = atmo_clamp_cos((r * mu + t_start) / r0);
@@ -408,6 +415,7 @@ ATMO_FN void cloud_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL co
         *sun = v3_mul(v3_mul(sun_disc, to_space), cloud_t);
     }
     *sky = L;
+    *view_t = T;
 }
 
 #endif

@@ -24,7 +24,8 @@
  *                   summed into the total indirect irradiance);
  *   lut_density:    J_n(r, mu, mu_s, nu) = int_{4 pi} [beta_R e^{-h/H_R} p_R(omega.omega_i)
  *                   + beta_M,s e^{-h/H_M} p_M(omega.omega_i)] L_k(omega_i) d omega_i
- *                   (radiance per metre), from the grid, each grid direction with its mirror;
+ *                   (radiance per metre), from the grid, each grid direction with its mirror,
+ *                   also summed into the density table of orders >= 2 (aerial perspective);
  *   lut_multiple:   L_n = int_0^d T(0,t) J_n(r_t, mu_t, mu_s_t, nu) dt with the same exponential
  *                   segments (J interpolated in the 4-D density table), written to the delta
  *                   table and summed into the multiple-scattering table.
@@ -112,6 +113,7 @@ __kernel void lut_single(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, 
     lut_a[idx] = (float4)(E * beta_r * S_r, 0.0f);
     lut_a[N + idx] = (float4)(0.0f); /* multiple scattering: orders >= 2 add to it */
     lut_b[idx] = (float4)(E * beta_m * S_m, 0.0f);
+    lut_b[LUT_DENSITY_SUM(dims) + idx] = (float4)(0.0f); /* orders >= 2 add to it */
     if (get_global_id(1) == 0 && x < n_mu_s) /* once per (r, mu_s): clear the total indirect irradiance */
         lut_b[N + z * n_mu_s + x] = (float4)(0.0f);
 }
@@ -202,6 +204,7 @@ __kernel void lut_density(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS,
         J += grid[g].xyz * ((beta_r * p_r + beta_m * p_m) * dir.w);
     }
     lut_c[N + idx] = (float4)(J, 0.0f);
+    lut_b[LUT_DENSITY_SUM(dims) + idx] += (float4)(J, 0.0f);
 }
 
 __kernel void lut_multiple(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, int order)

@@ -57,6 +57,8 @@
  * N = LUT_TEXELS (one 4-D table), I = n_r n_mu_s (one irradiance table), G = rings^2 (grid):
  *   a: [0, N) single Rayleigh S_R      [N, 2N) orders 2..N summed (phase included)
  *   b: [0, N) single Mie S_M           [N, N + I) indirect ground irradiance, orders 1..N-1
+ *      [N + I, 2N + I) the density J of orders 2..N summed (radiance per metre, phase
+ *      included), for aerial perspective (method_lut.h's sky_segment)
  *   c: [0, N) delta scattering (order n)  [N, 2N) density J_n  [2N, 2N + I G) sphere grid
  *      [2N + I G, 2N + I G + I) delta irradiance (order n - 1)
  *      [2N + I G + I, 2N + I G + I + G) the grid's directions (xyz) and solid angles (w), so
@@ -67,6 +69,7 @@
 #define LUT_IRRADIANCE_TEXELS(dims) ((dims)[1] * (dims)[3])
 #define LUT_DELTA_IRRADIANCE(dims, G) (2 * LUT_TEXELS(dims) + LUT_IRRADIANCE_TEXELS(dims) * (G))
 #define LUT_DIRECTIONS(dims, G) (LUT_DELTA_IRRADIANCE(dims, G) + LUT_IRRADIANCE_TEXELS(dims))
+#define LUT_DENSITY_SUM(dims) (LUT_TEXELS(dims) + LUT_IRRADIANCE_TEXELS(dims))
 #define LUT_INT_STEPS 0
 #define LUT_INT_RINGS 1
 #define LUT_INT_ORDERS 2
@@ -243,21 +246,40 @@ ATMO_FN vec3 lut_irradiance_lookup(ATMO_GLOBAL const atmo_gpu_atmosphere *a,
 
 /* ---- helpers shared by the precompute kernels and sky_radiance ---- */
 
-/* Transmittance from r along a ground-hitting mu to the ground at distance d: the optical depth
- * of the reversed, upward rays, tau(R, -mu_g) - tau(r, -mu), both from the transmittance LUT
- * (which stores tau, so the difference is taken before the exponential). */
+/* Optical depth from r along mu to the top of the atmosphere, from the transmittance LUT. */
+ATMO_FN vec3 __lut_tau_to_top(ATMO_GLOBAL const atmo_gpu_scene *s,
+                              ATMO_GLOBAL const float4 *transmittance, float r, float mu)
+{
+    int w = s->transmittance_width, h = s->transmittance_height;
+    float u, v;
+    atmosphere_transmittance_uv(&s->atmosphere, r, mu, w, h, &u, &v);
+    return atmosphere_lut_bilinear(transmittance, w, h, u, v);
+}
+
+/* Transmittance from r along mu to the point at distance d, radius r_d, view cosine mu_d there
+ * (Bruneton 2017, GetTransmittance): the difference of two optical depths to the top, taken
+ * before the exponential (the LUT stores tau) and kept >= 0: tau(r, mu) - tau(r_d, mu_d) for
+ * a ray that does not hit the ground, and for one that does, the same for the reversed, upward
+ * ray, tau(r_d, -mu_d) - tau(r, -mu). */
+ATMO_FN vec3 lut_transmittance_between(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                       ATMO_GLOBAL const float4 *transmittance, float r, float mu,
+                                       float r_d, float mu_d, int ground)
+{
+    vec3 tau = ground ? v3_sub(__lut_tau_to_top(s, transmittance, r_d, -mu_d),
+                               __lut_tau_to_top(s, transmittance, r, -mu))
+                      : v3_sub(__lut_tau_to_top(s, transmittance, r, mu),
+                               __lut_tau_to_top(s, transmittance, r_d, mu_d));
+    return v3_exp(v3(-fmaxf(tau.x, 0.0f), -fmaxf(tau.y, 0.0f), -fmaxf(tau.z, 0.0f)));
+}
+
+/* Transmittance from r along a ground-hitting mu to the ground at distance d. */
 ATMO_FN vec3 lut_transmittance_to_ground(ATMO_GLOBAL const atmo_gpu_scene *s,
                                          ATMO_GLOBAL const float4 *transmittance, float r,
                                          float mu, float d)
 {
-    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    int w = s->transmittance_width, h = s->transmittance_height;
-    float mu_g = atmo_clamp_cos((r * mu + d) / a->bottom_radius), u, v;
-    atmosphere_transmittance_uv(a, a->bottom_radius, -mu_g, w, h, &u, &v);
-    vec3 tau_g = atmosphere_lut_bilinear(transmittance, w, h, u, v);
-    atmosphere_transmittance_uv(a, r, -mu, w, h, &u, &v);
-    vec3 tau_r = atmosphere_lut_bilinear(transmittance, w, h, u, v);
-    return v3_exp(v3_scale(v3_sub(tau_g, tau_r), -1.0f));
+    float R = s->atmosphere.bottom_radius;
+    return lut_transmittance_between(s, transmittance, r, mu, R,
+                                     atmo_clamp_cos((r * mu + d) / R), 1);
 }
 
 /* Direction k (k = ring * n + azimuth) of the sphere grid with n rings, in the local frame (z up,

@@ -116,4 +116,17 @@ ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
     }
 }
 
+/* The segment [0, d]: march's integrator with this method's Psi_ms LUT, the very march the
+ * sky-view LUT tabulates, ended at d. (Hillaire's aerial-perspective volume, froxels in a
+ * camera's frustum, would tabulate the same for a perspective view of surfaces; none is built
+ * yet.) */
+ATMO_FN void sky_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float r, float mu,
+                         float mu_s, float nu, float d, uint pixel, uint sample, vec3 *inscatter,
+                         vec3 *transmittance)
+{
+    float jitter = rng_uniform(s->seed, pixel, sample, ATMO_RNG_METHOD_DIM);
+    march_segment(s, lut_transmittance, lut_a, s->lut_dims[0][0], s->lut_dims[0][1], r, mu, mu_s,
+                  nu, d, s->view_steps, jitter, inscatter, transmittance);
+}
+
 #endif

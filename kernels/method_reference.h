@@ -35,6 +35,13 @@
  * single scattering plus the directly lit ground. Knobs (plan_reference.c):
  *   method_int[0] = reference.min_order (>= 1), method_int[1] = reference.max_order (0 = all);
  * only light of orders min..max is counted.
+ * Aerial perspective (sky_segment): the camera ray ends at a black surface at distance d, later
+ * segments of the path do not; the weight W at its end estimates T(0, d). On that cut segment
+ * the majorant is raised to at least REFERENCE_SEGMENT_POINTS / d (ratio and spectral tracking
+ * stay unbiased for any majorant >= sigma_t): with sigma_bar d ~ 0.04 on a 1 km segment most
+ * paths would see no tentative point there: over tests/test_aerial.c's 1 km rays the relative
+ * standard error of 65536 samples was 1.7-8.9 % (median 4 %), with 4 points 0.2-6 % (median
+ * 1.5 %), for about 1.5 times the time (10 s -> 16 s for its 108 rays, all distances).
  * Random numbers: rng_uniform(seed, pixel, sample, d), d counting up from ATMO_RNG_METHOD_DIM.
  * Units: radiance W m^-2 sr^-1 nm^-1, lengths m, coefficients 1/m. */
 #ifndef ATMO_METHOD_REFERENCE_H
@@ -50,6 +57,7 @@
 #endif
 
 #define REFERENCE_ROULETTE_ORDER 4
+#define REFERENCE_SEGMENT_POINTS 4.0f
 
 typedef struct reference_rng {
     uint seed, pixel, sample, dim;
@@ -134,9 +142,12 @@ ATMO_FN vec3 __reference_rotate(vec3 n, float c, float phi)
                                v3_add(v3_scale(b1, s * cosf(phi)), v3_scale(b2, s * sinf(phi)))));
 }
 
-ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float r,
-                          float mu, float mu_s, float nu, uint pixel, uint sample, vec3 *sky,
-                          vec3 *sun)
+/* One path from the camera along (r, mu, mu_s, nu); the camera ray ends at a black surface at
+ * distance t_max (INFINITY: none), later segments of the path do not. view_t gets the ratio-
+ * tracking weight at the camera ray's end, an unbiased estimate of T(0, min(t_max, end)). */
+ATMO_FN void __reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, float r, float mu, float mu_s,
+                               float nu, float t_max, uint pixel, uint sample, vec3 *sky,
+                               vec3 *sun, vec3 *view_t)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     int min_order = s->method_int[0], max_order = s->method_int[1];
@@ -146,14 +157,17 @@ ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
     vec3 one = v3(1.0f, 1.0f, 1.0f);
     *sky = v3(0.0f, 0.0f, 0.0f);
     *sun = v3(0.0f, 0.0f, 0.0f);
+    *view_t = one;
     int looks_at_sun = nu >= s->sun_direction.w;
-    (void)lut_transmittance, (void)lut_a, (void)lut_b, (void)lut_c; /* nothing precomputed */
 
+    t_max -= atmosphere_entry_distance(a, r, mu);
     if (!atmosphere_enter(a, &r, &mu, &mu_s, nu)) { /* the ray misses the atmosphere */
         if (looks_at_sun)
             *sun = atmosphere_sun_disc_radiance(a, s->sun_direction.w);
         return;
     }
+    if (t_max <= 0.0f) /* the surface lies before the atmosphere */
+        return;
     float sin_v = atmo_safe_sqrt(1.0f - mu * mu);
     vec3 dir = v3(sin_v, mu, 0.0f);
     float s_x = sin_v > 1e-6f ? (nu - mu * mu_s) / sin_v : atmo_safe_sqrt(1.0f - mu_s * mu_s);
@@ -172,7 +186,12 @@ ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
         int ground = geometry_ray_hits_ground(r0, mu0, a->bottom_radius);
         float d = ground ? geometry_distance_to_bottom(r0, mu0, a->bottom_radius)
                          : geometry_distance_to_top(r0, mu0, a->top_radius);
+        int blocked = order == 0 && t_max < d; /* by the black surface */
+        if (blocked)
+            d = t_max, ground = 0;
         float sigma_bar = __reference_majorant(a, __reference_min_altitude(a, r0, mu0, d));
+        if (blocked) /* at least REFERENCE_SEGMENT_POINTS tentative points on a short segment */
+            sigma_bar = fmaxf(sigma_bar, REFERENCE_SEGMENT_POINTS / d);
         int count = order + 1 >= min_order; /* light reaching the camera through this segment's
                                                next-event estimates has order + 1 events */
         int more = max_order == 0 || order + 1 < max_order;
@@ -217,7 +236,9 @@ ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
             L = v3_add(L, v3_mul(v3_mul(W, albedo),
                                  v3_scale(sun_light, fmaxf(mu_s_g, 0.0f) / ATMO_PI)));
         }
-        if (order == 0 && !ground && looks_at_sun)
+        if (order == 0)
+            *view_t = W;
+        if (order == 0 && !ground && !blocked && looks_at_sun)
             *sun = v3_mul(W, atmosphere_sun_disc_radiance(a, s->sun_direction.w));
         if (!more || (!collided && !ground))
             break;
@@ -248,6 +269,26 @@ ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
         }
     }
     *sky = L;
+}
+
+ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float r,
+                          float mu, float mu_s, float nu, uint pixel, uint sample, vec3 *sky,
+                          vec3 *sun)
+{
+    vec3 view_t;
+    (void)lut_transmittance, (void)lut_a, (void)lut_b, (void)lut_c; /* nothing precomputed */
+    __reference_trace(s, r, mu, mu_s, nu, INFINITY, pixel, sample, sky, sun, &view_t);
+}
+
+/* The segment [0, d]: the camera ray stops at a black (absorbing) surface at d; the light that
+ * scattered before d arrives with all its orders, whatever paths it took beyond d. */
+ATMO_FN void sky_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float r, float mu,
+                         float mu_s, float nu, float d, uint pixel, uint sample, vec3 *inscatter,
+                         vec3 *transmittance)
+{
+    vec3 sun;
+    (void)lut_transmittance, (void)lut_a, (void)lut_b, (void)lut_c; /* nothing precomputed */
+    __reference_trace(s, r, mu, mu_s, nu, d, pixel, sample, inscatter, &sun, transmittance);
 }
 
 #endif

@@ -17,10 +17,27 @@ ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
 {
     float jitter = rng_uniform(s->seed, pixel, sample, ATMO_RNG_METHOD_DIM);
 #ifdef ATMO_CLOUD /* a cloud shell or observer (cloud_shell.h) */
-    cloud_integrate(s, lut_transmittance, lut_a, 0, 0, 0, r, mu, mu_s, nu, s->view_steps, jitter,
-                    sky, sun);
+    vec3 view_t;
+    cloud_integrate(s, lut_transmittance, lut_a, 0, 0, 0, r, mu, mu_s, nu, INFINITY,
+                    s->view_steps, jitter, sky, sun, &view_t);
 #else
     sky_single_scattering(s, lut_transmittance, r, mu, mu_s, nu, jitter, sky, sun);
+#endif
+}
+
+/* The segment [0, d]: the same march, ended at d (sky_single.h, cloud_shell.h). */
+ATMO_FN void sky_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float r, float mu,
+                         float mu_s, float nu, float d, uint pixel, uint sample, vec3 *inscatter,
+                         vec3 *transmittance)
+{
+    float jitter = rng_uniform(s->seed, pixel, sample, ATMO_RNG_METHOD_DIM);
+#ifdef ATMO_CLOUD
+    vec3 sun;
+    cloud_integrate(s, lut_transmittance, lut_a, 0, 0, 0, r, mu, mu_s, nu, d, s->view_steps,
+                    jitter, inscatter, &sun, transmittance);
+#else
+    sky_single_segment(s, lut_transmittance, r, mu, mu_s, nu, d, jitter, inscatter,
+                       transmittance);
 #endif
 }
 

@@ -334,7 +334,21 @@ ATMO_FN void march_integrate(ATMO_GLOBAL const atmo_gpu_scene *s,
                              int ms_w, int ms_h, float r, float mu, float mu_s, float nu, int n,
                              float jitter, vec3 *sky, vec3 *sun)
 {
-    sky_integrate(s, transmittance, ms, ms_w, ms_h, 1, r, mu, mu_s, nu, n, jitter, sky, sun);
+    vec3 view_t;
+    sky_integrate(s, transmittance, ms, ms_w, ms_h, 1, r, mu, mu_s, nu, INFINITY, n, jitter, sky,
+                  sun, &view_t);
+}
+
+/* The same over the segment [0, d] of the ray (sky_method.h's sky_segment): in-scattered light
+ * of all orders and T(0, d). */
+ATMO_FN void march_segment(ATMO_GLOBAL const atmo_gpu_scene *s,
+                           ATMO_GLOBAL const float4 *transmittance, ATMO_GLOBAL const float4 *ms,
+                           int ms_w, int ms_h, float r, float mu, float mu_s, float nu, float d,
+                           int n, float jitter, vec3 *inscatter, vec3 *view_t)
+{
+    vec3 sun;
+    sky_integrate(s, transmittance, ms, ms_w, ms_h, 1, r, mu, mu_s, nu, d, n, jitter, inscatter,
+                  &sun, view_t);
 }
 
 #endif

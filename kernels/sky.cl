@@ -10,7 +10,9 @@
  * `nonfinite`. Random dimensions 0 and 1 place the sample in the pixel.
  *
  * sky_probe: the mean of `samples` samples of sky_radiance for a list of rays given as
- * (r, mu, mu_s, nu), for `atmo radiance` and the tests; ray i uses pixel index i. */
+ * (r, mu, mu_s, nu), for `atmo radiance` and the tests; ray i uses pixel index i.
+ * sky_probe_segment: the same for sky_segment, ray i ending at distance[i] (m): the mean
+ * in-scattered radiance in inscatter[i] and the mean transmittance in transmittance[i]. */
 
 __kernel void sky_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
                          __global float4 *accum, __global uint *nonfinite, int tile_x, int tile_y,
@@ -59,4 +61,24 @@ __kernel void sky_probe(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
         sum += sky;
     }
     out[i] = (float4)(sum / (float)samples, 0.0f);
+}
+
+__kernel void sky_probe_segment(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
+                                __global const float4 *rays, __global const float *distance,
+                                __global float4 *inscatter, __global float4 *transmittance,
+                                uint n, uint samples)
+{
+    uint i = get_global_id(0);
+    if (i >= n)
+        return;
+    float4 q = rays[i];
+    float3 sum_l = (float3)(0.0f), sum_t = (float3)(0.0f);
+    for (uint s = 0; s < samples; s++) {
+        float3 l, t;
+        sky_segment(scene, ATMO_LUT_ARGS, q.x, q.y, q.z, q.w, distance[i], i, s, &l, &t);
+        sum_l += l;
+        sum_t += t;
+    }
+    inscatter[i] = (float4)(sum_l / (float)samples, 0.0f);
+    transmittance[i] = (float4)(sum_t / (float)samples, 0.0f);
 }

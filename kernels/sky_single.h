@@ -14,7 +14,12 @@
  * times the transmittance to space, Omega_sun = 2 pi (1 - cos alpha)) is returned apart so the
  * caller can weigh it with its own luminous efficacy. Method march (ms_lut.h) adds its
  * multiple-scattering terms to the same integrator (sky_integrate with use_ms), so the two
- * methods agree term for term where Psi is zero. */
+ * methods agree term for term where Psi is zero.
+ *
+ * Segments (aerial perspective, sky_method.h's sky_segment): with t_max finite the ray ends at
+ * a black surface at distance t_max from the camera: d = min(t_max, distance to the ground or
+ * the top), the n segments cover [0, d], and the ground term and the sun disc are left out
+ * when the surface comes first. The transmittance T(0, d) of the same sum is returned too. */
 #ifndef ATMO_SKY_SINGLE_H
 #define ATMO_SKY_SINGLE_H
 #ifndef __OPENCL_VERSION__
@@ -48,6 +53,16 @@ ATMO_FN vec3 ms_lut_source(ATMO_GLOBAL const atmo_gpu_atmosphere *a,
 #define ATMO_SKY_INTEGRATE_HAS_MS
 #endif
 
+#ifdef ATMO_LUT_J
+/* method lut: the density J of orders >= 2 toward the ray (the table at lut_b + N + I, with
+ * `ground` the ray's side of the horizon) and the sky's irradiance on the ground, from its
+ * tables; defined in kernels/method_lut.h (after this file) */
+ATMO_FN vec3 lut_ms_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *lut_b,
+                           float r, float mu, float mu_s, float nu, int ground);
+ATMO_FN vec3 lut_ms_ground_irradiance(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                      ATMO_GLOBAL const float4 *lut_b, float mu_s);
+#endif
+
 /* The shadow hook: visibility of the sun (0..1) from the sample at distance t along the view
  * ray, at radius r_t with sun cosine mu_s_t. The planet's own shadow is already in T_sun. */
 ATMO_FN float march_sun_visibility(ATMO_GLOBAL const atmo_gpu_scene *s, float r_t, float mu_s_t,
@@ -56,31 +71,40 @@ ATMO_FN float march_sun_visibility(ATMO_GLOBAL const atmo_gpu_scene *s, float r_
     return 1.0f;
 }
 
-/* The integral above along (r, mu) with sun cosine mu_s and view-sun cosine nu, n segments
- * with sample offset `jitter`; with use_ms (method march, compiled with -DATMO_MS_LUT) each
- * sample adds the multiple-scattering source of ms_lut.h from the LUT `ms` (ms_w x ms_h) and
- * the ground is lit by the sky too. */
+/* The integral above along (r, mu) with sun cosine mu_s and view-sun cosine nu up to distance
+ * t_max (INFINITY for the whole ray), n segments with sample offset `jitter`; view_t gets
+ * T(0, d). With use_ms each sample adds a multiple-scattering source and the ground is lit by
+ * the sky too: method march's (-DATMO_MS_LUT: ms_lut.h, from the LUT `ms` of ms_w x ms_h) or
+ * method lut's (-DATMO_LUT_J: its tables, `ms` = its buffer b). */
 ATMO_FN void sky_integrate(ATMO_GLOBAL const atmo_gpu_scene *s,
                            ATMO_GLOBAL const float4 *transmittance, ATMO_GLOBAL const float4 *ms,
                            int ms_w, int ms_h, int use_ms, float r, float mu, float mu_s, float nu,
-                           int n, float jitter, vec3 *sky, vec3 *sun)
+                           float t_max, int n, float jitter, vec3 *sky, vec3 *sun, vec3 *view_t)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     int tw = s->transmittance_width, th = s->transmittance_height;
     vec3 E = v3_from4(a->solar_irradiance);
     *sky = v3(0.0f, 0.0f, 0.0f);
     *sun = v3(0.0f, 0.0f, 0.0f);
+    *view_t = v3(1.0f, 1.0f, 1.0f);
     int looks_at_sun = nu >= s->sun_direction.w;
 
+    t_max -= atmosphere_entry_distance(a, r, mu);
     if (!atmosphere_enter(a, &r, &mu, &mu_s, nu)) { /* the ray misses the atmosphere */
         if (looks_at_sun)
             *sun = atmosphere_sun_disc_radiance(a, s->sun_direction.w);
         return;
     }
+    if (t_max <= 0.0f) /* the surface lies before the atmosphere */
+        return;
 
-    int hits_ground = geometry_ray_hits_ground(r, mu, a->bottom_radius);
-    float d = hits_ground ? geometry_distance_to_bottom(r, mu, a->bottom_radius)
-                          : geometry_distance_to_top(r, mu, a->top_radius);
+    int ground = geometry_ray_hits_ground(r, mu, a->bottom_radius);
+    float d = ground ? geometry_distance_to_bottom(r, mu, a->bottom_radius)
+                     : geometry_distance_to_top(r, mu, a->top_radius);
+    int blocked = t_max < d; /* by the black surface at t_max */
+    int hits_ground = ground && !blocked;
+    if (blocked)
+        d = t_max;
     float p_r = phase_rayleigh(nu);
     float p_m = sky_mie_phase(a, nu);
     vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
@@ -105,6 +129,11 @@ ATMO_FN void sky_integrate(ATMO_GLOBAL const atmo_gpu_scene *s,
                                                   mu_s_t, nu, v3_scale(beta_r, rho_r),
                                                   v3_scale(beta_m, rho_m)));
 #endif
+#ifdef ATMO_LUT_J
+        if (use_ms)
+            source = v3_add(source, lut_ms_source(s, ms, r_t, (r * mu + t) / r_t, mu_s_t, nu,
+                                                  ground));
+#endif
         vec3 w = v3(__sky_segment_weight(sigma_t.x, dt), __sky_segment_weight(sigma_t.y, dt),
                     __sky_segment_weight(sigma_t.z, dt));
         L = v3_add(L, v3_mul(v3_mul(T, source), w));
@@ -120,13 +149,18 @@ ATMO_FN void sky_integrate(ATMO_GLOBAL const atmo_gpu_scene *s,
             irradiance = v3_add(irradiance, ms_lut_lookup(a, ms + 5 * ms_w * ms_h, ms_w, ms_h,
                                                           a->bottom_radius, mu_s_g));
 #endif
+#ifdef ATMO_LUT_J
+        if (use_ms)
+            irradiance = v3_add(irradiance, lut_ms_ground_irradiance(s, ms, mu_s_g));
+#endif
         L = v3_add(L, v3_mul(T, v3_scale(v3_mul(v3_from4(a->ground_albedo), irradiance),
                                          1.0f / ATMO_PI)));
-    } else if (looks_at_sun) {
+    } else if (looks_at_sun && !blocked) {
         vec3 to_space = atmosphere_transmittance_to_top(a, transmittance, tw, th, r, mu);
         *sun = v3_mul(atmosphere_sun_disc_radiance(a, s->sun_direction.w), to_space);
     }
     *sky = L;
+    *view_t = T;
 }
 
 
@@ -135,8 +169,20 @@ ATMO_FN void sky_single_scattering(ATMO_GLOBAL const atmo_gpu_scene *s,
                                    ATMO_GLOBAL const float4 *transmittance, float r, float mu,
                                    float mu_s, float nu, float jitter, vec3 *sky, vec3 *sun)
 {
-    sky_integrate(s, transmittance, transmittance, 0, 0, 0, r, mu, mu_s, nu, s->view_steps,
-                  jitter, sky, sun);
+    vec3 view_t;
+    sky_integrate(s, transmittance, transmittance, 0, 0, 0, r, mu, mu_s, nu, INFINITY,
+                  s->view_steps, jitter, sky, sun, &view_t);
+}
+
+/* The same over the segment [0, d] of the ray: in-scattered light and T(0, d). */
+ATMO_FN void sky_single_segment(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                ATMO_GLOBAL const float4 *transmittance, float r, float mu,
+                                float mu_s, float nu, float d, float jitter, vec3 *inscatter,
+                                vec3 *view_t)
+{
+    vec3 sun;
+    sky_integrate(s, transmittance, transmittance, 0, 0, 0, r, mu, mu_s, nu, d, s->view_steps,
+                  jitter, inscatter, &sun, view_t);
 }
 
 #endif

@@ -58,9 +58,9 @@ static void slab_tests(void)
                 double phi = 2.0; /* azimuth between view and sun, radians */
                 double nu = -mu_v * mu_s + sqrt(1 - mu_v * mu_v) * sqrt(1 - mu_s * mu_s) * cos(phi);
                 float r = 6360e3f + 1300.0f;
-                vec3 sky, sun;
-                cloud_integrate(&s, lut, lut, 0, 0, 0, r, (float)-mu_v, (float)mu_s, (float)nu, 8,
-                                0.5f, &sky, &sun);
+                vec3 sky, sun, view_t;
+                cloud_integrate(&s, lut, lut, 0, 0, 0, r, (float)-mu_v, (float)mu_s, (float)nu,
+                                INFINITY, 8, 0.5f, &sky, &sun, &view_t);
                 double want[3], got[3] = {sky.x, sky.y, sky.z}, g[3] = {0.5, 0.8, -0.3};
                 for (int k = 0; k < 3; k++) {
                     double p = (1 - g[k] * g[k]) /

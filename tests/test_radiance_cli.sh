@@ -11,6 +11,10 @@
 # (3) The stored reference table tests/data/reference_sky.csv (tools/make_reference_table.py)
 # still describes the reference method: three of its rows re-run live with 65536 samples must
 # agree within |z| < 4, z using the live and the stored standard errors combined.
+# (4) Aerial perspective (--distance-m): a segment longer than every ray is the sky radiance,
+# the same numbers with the same seed; in-scattering only adds light along a ray and T only
+# falls, so for d = 1 km < 10 km < the whole ray the radiance rises and the transmittance falls
+# (test_aerial checks the values against the double and Monte Carlo references).
 # Shape: one text line per view; the JSON parses and has the keys of the issue; the reference
 # method reports standard errors. Bad input: exit status 2 and one line on stderr.
 set -u
@@ -90,6 +94,35 @@ print("table row sun %g view %g,%g reproduced live" % (sun, z, a))
 PY
 done
 
+views="--view 0,0 --view 85,180 --view 100,90"
+for d in 1000 10000 1e9; do
+    "$atmo" radiance --altitude-m 1000 --sun-zenith-deg 30 $views --method single --seed 3 \
+        --distance-m $d --json >"$tmp/seg_$d.json" || { echo "segment run failed"; fail=1; }
+done
+"$atmo" radiance --altitude-m 1000 --sun-zenith-deg 30 $views --method single --seed 3 \
+    --json >"$tmp/seg_sky.json" || { echo "sky run failed"; fail=1; }
+python3 - "$tmp" <<'PY' || fail=1
+import json, sys
+runs = [json.load(open("%s/seg_%s.json" % (sys.argv[1], d))) for d in ("1000", "10000", "1e9")]
+sky = json.load(open(sys.argv[1] + "/seg_sky.json"))
+assert [r["distance_m"] for r in runs] == [1000, 10000, 1e9] and "distance_m" not in sky
+for i, v in enumerate(sky["views"]):
+    seg = [r["views"][i] for r in runs]
+    assert all(len(s["transmittance"]) == 3 and len(s["transmittance_standard_error"]) == 3
+               for s in seg)
+    assert seg[2]["radiance"] == v["radiance"], (seg[2]["radiance"], v["radiance"])
+    for c in range(3):
+        L = [s["radiance"][c] for s in seg]
+        T = [s["transmittance"][c] for s in seg]
+        assert 0 < L[0] < L[1] <= L[2], (v["zenith_deg"], c, L)
+        assert 1 >= T[0] > T[1] >= T[2] >= 0, (v["zenith_deg"], c, T)
+print("segments: 1 km < 10 km < the whole ray; d = 1e9 m reproduces the sky radiance")
+PY
+"$atmo" radiance --altitude-m 0 --sun-zenith-deg 30 --view 0,0 --view 85,180 --method single \
+    --distance-m 5000 >"$tmp/seg.txt" || { echo "segment text run failed"; fail=1; }
+[ "$(grep -cE '^ +[0-9.]+ +[0-9.-]+ +([0-9.e+-]+ +){3}[0-9.e+-]+( +[0-9.]+){3}$' "$tmp/seg.txt")" = 2 ] ||
+    { echo "expected one text line per view with three transmittances:"; cat "$tmp/seg.txt"; fail=1; }
+
 bad() { # expect exit 2 and exactly one line on stderr
     "$atmo" radiance "$@" >/dev/null 2>"$tmp/err"
     local rc=$?
@@ -108,6 +141,10 @@ bad --altitude-m 0 --sun-zenith-deg 30 --view 0,0 --set no.such_key=1
 bad --altitude-m 0 --sun-zenith-deg 30 --view 0,0 --samples 0
 bad --altitude-m 0 --sun-zenith-deg 30 --view 0,0 --scene "$tmp/missing.json"
 bad --altitude-m 0 --sun-zenith-deg 30 --view 0,0 --bogus
+bad --altitude-m 0 --sun-zenith-deg 30 --view 0,0 --distance-m 0
+bad --altitude-m 0 --sun-zenith-deg 30 --view 0,0 --distance-m -100
+bad --altitude-m 0 --sun-zenith-deg 30 --view 0,0 --distance-m 10km
+bad --altitude-m 0 --sun-zenith-deg 30 --view 0,0 --distance-m
 bad --altitude-m 0 --sun-zenith-deg 30 --view 0,0 --method reference \
     --set reference.min_order=3 --set reference.max_order=2
 exit $fail

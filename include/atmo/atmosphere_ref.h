@@ -62,6 +62,10 @@ void atmo_ref_single_scattering_parts(const atmo_atmosphere *a, double r, double
 /* Their sum. */
 void atmo_ref_single_scattering(const atmo_atmosphere *a, double r, double mu, double mu_s,
                                 double nu, double out_L[3]);
+/* The same over the segment [0, d] of the ray (d in metres from the camera, which may be above
+ * the atmosphere): aerial perspective toward a black surface at d. */
+void atmo_ref_single_scattering_to(const atmo_atmosphere *a, double r, double mu, double mu_s,
+                                   double nu, double d, double out_L[3]);
 /* A view ray that hits the ground: the Lambertian ground lit by the direct sun only,
  * T(0, d) (rho / pi) E T_sun(ground) max(mu_s,ground, 0); zero if the ray misses the ground. */
 void atmo_ref_ground_radiance(const atmo_atmosphere *a, double r, double mu, double mu_s,

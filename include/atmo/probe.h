@@ -4,7 +4,8 @@
  * precompute passes once; atmo_probe_rays() then averages `samples` samples of the method's
  * sky_radiance (the `sky_probe` kernel of kernels/sky.cl) for rays given as (r, mu, mu_s, nu),
  * as ATMO_PROBE_BATCHES independent batches (distinct RNG pixel indices) whose spread gives the
- * standard error. Used by `atmo radiance` and `atmo bench atmosphere`. */
+ * standard error. atmo_probe_segments() does the same for segments of the rays (aerial
+ * perspective). Used by `atmo radiance` and `atmo bench atmosphere`. */
 #ifndef ATMO_PROBE_H
 #define ATMO_PROBE_H
 #include "atmo/cl_runtime.h"
@@ -27,6 +28,12 @@ int atmo_probe_open(atmo_probe *p, const atmo_plan *plan, const char *device, at
  * to a multiple of ATMO_PROBE_BATCHES. */
 int atmo_probe_rays(atmo_probe *p, const float4 *rays, int n, int samples, double (*mean)[3],
                     double (*se)[3], atmo_err *e);
+/* Aerial perspective (sky_segment, kernel sky_probe_segment): ray i ends at a black surface at
+ * distances[i] metres; mean (and se) of the in-scattered radiance and t_mean (and t_se) of
+ * the transmittance T(0, d); either se may be NULL. */
+int atmo_probe_segments(atmo_probe *p, const float4 *rays, const float *distances, int n,
+                        int samples, double (*mean)[3], double (*se)[3], double (*t_mean)[3],
+                        double (*t_se)[3], atmo_err *e);
 void atmo_probe_close(atmo_probe *p);
 
 #endif
