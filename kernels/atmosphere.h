@@ -124,22 +124,30 @@ ATMO_FN vec3 atmosphere_sun_transmittance(ATMO_GLOBAL const atmo_gpu_atmosphere 
     return atmosphere_transmittance_to_top(a, lut, width, height, r, mu_s);
 }
 
+/* The discriminant / 4 of |x + t v| = top for a camera above the atmosphere, written
+ * top^2 - b^2 = (top - b)(top + b) with b = r sqrt((1 - mu)(1 + mu)) the ray's closest distance
+ * to the planet centre, not (top - r)(top + r) + (r mu)^2: far from the planet (r = 1e8 m) the
+ * two terms of the latter are ~1e16 m^2 and their float rounding (~4e9 m^2) moved the entry of
+ * rays near the limb by ~300 m and made rays grazing the top 4 % too bright or dark
+ * (tests/test_space_views.c); b carries ~3 float roundings, ~1 m. */
+ATMO_FN float __atmosphere_top_discriminant(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r,
+                                            float mu)
+{
+    float b = r * atmo_safe_sqrt((1.0f - mu) * (1.0f + mu));
+    return (a->top_radius - b) * (a->top_radius + b);
+}
+
 /* A camera above the atmosphere sees it from where its ray enters: moves (r, mu, mu_s) there
  * and returns 1, or returns 0 if the ray misses the atmosphere (nothing changed). With t0 the
  * distance to the entry, r' = top, r' mu' = r mu + t0 = -sqrt(discriminant) exactly, and
  * mu_s' = (r mu_s + t0 nu) / top. Rays from inside are left as they are.
- * The discriminant is written top^2 - b^2 = (top - b)(top + b) with b = r sqrt((1 - mu)(1 + mu))
- * the ray's closest distance to the planet centre, not (top - r)(top + r) + (r mu)^2: far from
- * the planet (r = 1e8 m) the two terms of the latter are ~1e16 m^2 and their float rounding
- * (~4e9 m^2) moved the entry of rays near the limb by ~300 m and made rays grazing the top
- * 4 % too bright or dark (tests/test_space_views.c); b carries ~3 float roundings, ~1 m. */
+ * The discriminant comes from __atmosphere_top_discriminant. */
 ATMO_FN int atmosphere_enter(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float *r, float *mu,
                              float *mu_s, float nu)
 {
     if (*r <= a->top_radius)
         return 1;
-    float b = *r * atmo_safe_sqrt((1.0f - *mu) * (1.0f + *mu));
-    float disc = (a->top_radius - b) * (a->top_radius + b);
+    float disc = __atmosphere_top_discriminant(a, *r, *mu);
     if (*mu >= 0.0f || disc < 0.0f)
         return 0;
     float t0 = -*r * *mu - sqrtf(disc);
@@ -157,7 +165,7 @@ ATMO_FN float atmosphere_entry_distance(ATMO_GLOBAL const atmo_gpu_atmosphere *a
 {
     if (r <= a->top_radius)
         return 0.0f;
-    return fmaxf(-r * mu - atmo_safe_sqrt(geometry_discriminant(r, mu, a->top_radius)), 0.0f);
+    return fmaxf(-r * mu - atmo_safe_sqrt(__atmosphere_top_discriminant(a, r, mu)), 0.0f);
 }
 
 /* Radiance of the sun disc outside the atmosphere: E over its solid angle 2 pi (1 - cos alpha)
