@@ -1,5 +1,5 @@
 /* plan_march.c — method "march": the Psi_ms LUT (buffer a) and the per-pixel march
- * (atmo/plan_march.h). The LUT is small (6 planes of 64 x 32, two passes) and cheap, so it
+ * (atmo/plan_march.h). The LUT is small (10 planes of 64 x 32, three passes) and cheap, so it
  * is rebuilt per frame rather than cached. */
 #include <stdio.h>
 #include <string.h>
@@ -21,8 +21,11 @@ int atmo_plan_ms_lut(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     p->gpu.method_int[1] = ATMO_MS_DIRECTIONS_PHI;
     p->gpu.method_int[2] = ATMO_MS_STEPS;
     p->gpu.method_float[0] = ATMO_MS_HIGHER_ANISOTROPY;
-    p->lut_bytes[1] = 6 * sizeof(float4) * ATMO_MS_LUT_WIDTH * ATMO_MS_LUT_HEIGHT;
+    p->lut_bytes[1] = 10 * sizeof(float4) * ATMO_MS_LUT_WIDTH * ATMO_MS_LUT_HEIGHT;
     rc = atmo_plan_add_pass(p, "ms_lut", ATMO_MS_LUT_WIDTH, ATMO_MS_LUT_HEIGHT, 1, 0, e);
+    if (!rc)
+        rc = atmo_plan_add_pass(p, "ms_lut_order3", ATMO_MS_LUT_WIDTH, ATMO_MS_LUT_HEIGHT, 1, 0,
+                                e);
     return rc ? rc
               : atmo_plan_add_pass(p, "ms_lut_second", ATMO_MS_LUT_WIDTH, ATMO_MS_LUT_HEIGHT, 1,
                                    0, e);

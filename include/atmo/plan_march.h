@@ -10,7 +10,7 @@
 #define ATMO_MS_DIRECTIONS_MU 16
 #define ATMO_MS_DIRECTIONS_PHI 8
 #define ATMO_MS_STEPS 20
-/* share of the order-2 anisotropy given to orders >= 3 (ms_lut.h) */
+/* share of the order-3 anisotropy given to orders >= 4 (ms_lut.h) */
 #define ATMO_MS_HIGHER_ANISOTROPY 1.0f
 
 /* The Psi_ms LUT in buffer a: its fragments, size, knobs and pass. */
