@@ -57,18 +57,27 @@ ATMO_FN float march_sun_visibility(ATMO_GLOBAL const atmo_gpu_scene *s, float r_
 }
 
 /* The integral above along (r, mu) with sun cosine mu_s and view-sun cosine nu, n segments
- * with sample offset `jitter`; with use_ms (method march, compiled with -DATMO_MS_LUT) each
- * sample adds the multiple-scattering source of ms_lut.h from the LUT `ms` (ms_w x ms_h) and
- * the ground is lit by the sky too. */
-ATMO_FN void sky_integrate(ATMO_GLOBAL const atmo_gpu_scene *s,
-                           ATMO_GLOBAL const float4 *transmittance, ATMO_GLOBAL const float4 *ms,
-                           int ms_w, int ms_h, int use_ms, float r, float mu, float mu_s, float nu,
-                           int n, float jitter, vec3 *sky, vec3 *sun)
+ * with sample offset `jitter`, equal ones or, with `quadratic`, growing as (i/n)^2 from the
+ * camera (short where the density changes fastest along rays that start low: the aerosols'
+ * 1.2 km scale height is shorter than an equal segment of an upward ray), in parts: nu is constant along a straight ray, so the phase
+ * functions factor out of single scattering, L = p_R(nu) *single_r + p_M(nu) *single_m + *rest,
+ * with single_r = int T sigma_R E T_sun V dt and single_m likewise for Mie; *rest holds the lit
+ * ground and, with use_ms (method march, compiled with -DATMO_MS_LUT), the multiple-scattering
+ * source of ms_lut.h from the LUT `ms` (ms_w x ms_h) at each sample and the ground lit by the
+ * sky too. *sun = the sun disc's radiance where the ray sees it. */
+ATMO_FN void sky_integrate_parts(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                 ATMO_GLOBAL const float4 *transmittance,
+                                 ATMO_GLOBAL const float4 *ms, int ms_w, int ms_h, int use_ms,
+                                 float r, float mu, float mu_s, float nu, int n, float jitter,
+                                 int quadratic, vec3 *single_r, vec3 *single_m, vec3 *rest,
+                                 vec3 *sun)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     int tw = s->transmittance_width, th = s->transmittance_height;
     vec3 E = v3_from4(a->solar_irradiance);
-    *sky = v3(0.0f, 0.0f, 0.0f);
+    *single_r = v3(0.0f, 0.0f, 0.0f);
+    *single_m = v3(0.0f, 0.0f, 0.0f);
+    *rest = v3(0.0f, 0.0f, 0.0f);
     *sun = v3(0.0f, 0.0f, 0.0f);
     int looks_at_sun = nu >= s->sun_direction.w;
 
@@ -81,33 +90,36 @@ ATMO_FN void sky_integrate(ATMO_GLOBAL const atmo_gpu_scene *s,
     int hits_ground = geometry_ray_hits_ground(r, mu, a->bottom_radius);
     float d = hits_ground ? geometry_distance_to_bottom(r, mu, a->bottom_radius)
                           : geometry_distance_to_top(r, mu, a->top_radius);
-    float p_r = phase_rayleigh(nu);
-    float p_m = sky_mie_phase(a, nu);
     vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
     float dt = d / (float)n;
-    vec3 L = v3(0.0f, 0.0f, 0.0f);
+    vec3 L_r = v3(0.0f, 0.0f, 0.0f), L_m = v3(0.0f, 0.0f, 0.0f), L = v3(0.0f, 0.0f, 0.0f);
     vec3 T = v3(1.0f, 1.0f, 1.0f);
     for (int i = 0; i < n; i++) {
         float t = ((float)i + jitter) * dt;
+        if (quadratic) {
+            float x0 = (float)i / (float)n, x1 = (float)(i + 1) / (float)n;
+            dt = d * (x1 * x1 - x0 * x0);
+            t = d * atmo_sq(((float)i + jitter) / (float)n);
+        }
         float r_t = geometry_radius_at(r, mu, t);
         float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
         float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
-        float rho_r = expf(-h / a->rayleigh_scale_height);
-        float rho_m = expf(-h / a->mie_scale_height);
+        vec3 sigma_r = v3_scale(beta_r, expf(-h / a->rayleigh_scale_height));
+        vec3 sigma_m = v3_scale(beta_m, expf(-h / a->mie_scale_height));
         vec3 sigma_t = atmosphere_extinction(a, h);
-        vec3 scattering = v3_add(v3_scale(beta_r, rho_r * p_r), v3_scale(beta_m, rho_m * p_m));
         vec3 sun_t = v3_scale(atmosphere_sun_transmittance(a, transmittance, tw, th, r_t, mu_s_t),
                               march_sun_visibility(s, r_t, mu_s_t, t));
-        vec3 source = v3_mul(v3_mul(scattering, E), sun_t);
-#ifdef ATMO_MS_LUT
-        if (use_ms)
-            source = v3_add(source, ms_lut_source(a, ms, ms_w, ms_h, r_t, (r * mu + t) / r_t,
-                                                  mu_s_t, nu, v3_scale(beta_r, rho_r),
-                                                  v3_scale(beta_m, rho_m)));
-#endif
         vec3 w = v3(__sky_segment_weight(sigma_t.x, dt), __sky_segment_weight(sigma_t.y, dt),
                     __sky_segment_weight(sigma_t.z, dt));
-        L = v3_add(L, v3_mul(v3_mul(T, source), w));
+        vec3 lit = v3_mul(v3_mul(T, w), v3_mul(E, sun_t));
+        L_r = v3_add(L_r, v3_mul(lit, sigma_r));
+        L_m = v3_add(L_m, v3_mul(lit, sigma_m));
+#ifdef ATMO_MS_LUT
+        if (use_ms)
+            L = v3_add(L, v3_mul(v3_mul(T, w),
+                                 ms_lut_source(a, ms, ms_w, ms_h, r_t, (r * mu + t) / r_t, mu_s_t,
+                                               nu, sigma_r, sigma_m)));
+#endif
         T = v3_mul(T, v3_exp(v3_scale(sigma_t, -dt)));
     }
     if (hits_ground) {
@@ -126,9 +138,24 @@ ATMO_FN void sky_integrate(ATMO_GLOBAL const atmo_gpu_scene *s,
         vec3 to_space = atmosphere_transmittance_to_top(a, transmittance, tw, th, r, mu);
         *sun = v3_mul(atmosphere_sun_disc_radiance(a, s->sun_direction.w), to_space);
     }
-    *sky = L;
+    *single_r = L_r;
+    *single_m = L_m;
+    *rest = L;
 }
 
+/* The integral above: sky_integrate_parts with the phase functions applied. */
+ATMO_FN void sky_integrate(ATMO_GLOBAL const atmo_gpu_scene *s,
+                           ATMO_GLOBAL const float4 *transmittance, ATMO_GLOBAL const float4 *ms,
+                           int ms_w, int ms_h, int use_ms, float r, float mu, float mu_s, float nu,
+                           int n, float jitter, vec3 *sky, vec3 *sun)
+{
+    vec3 single_r, single_m, rest;
+    sky_integrate_parts(s, transmittance, ms, ms_w, ms_h, use_ms, r, mu, mu_s, nu, n, jitter, 0,
+                        &single_r, &single_m, &rest, sun);
+    *sky = v3_add(v3_add(v3_scale(single_r, phase_rayleigh(nu)),
+                         v3_scale(single_m, sky_mie_phase(&s->atmosphere, nu))),
+                  rest);
+}
 
 /* Single scattering alone (method single), with s->view_steps segments. */
 ATMO_FN void sky_single_scattering(ATMO_GLOBAL const atmo_gpu_scene *s,
