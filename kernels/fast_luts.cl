@@ -18,7 +18,7 @@ __kernel void sky_view_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PA
     float3 single_r, single_m, rest, sun;
     sky_integrate_parts(scene, lut_transmittance, lut_a, scene->lut_dims[0][0],
                         scene->lut_dims[0][1], 1, scene->camera.local_up.w, mu, mu_s, nu,
-                        scene->method_int[3], 0.5f, 1, &single_r, &single_m, &rest, &sun);
+                        scene->method_int[3], 0.5f, &single_r, &single_m, &rest, &sun);
     int idx = j * w + i, n = w * h;
     lut_b[idx] = (float4)(single_r, 0.0f);
     lut_b[n + idx] = (float4)(single_m, 0.0f);

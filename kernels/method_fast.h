@@ -6,8 +6,8 @@
  * from the sun (the sky is symmetric about the sun's vertical plane, so phi in [0, pi]). The
  * sky-view LUT (buffer b, s->lut_dims[1][0] = W columns of phi, s->lut_dims[1][1] = 2 n rows)
  * holds the march of ms_lut.h (single scattering + sigma_s Psi_ms, the lit ground, no sun disc)
- * with s->method_int[3] segments growing as (i/n)^2 from the camera, at their midpoints (equal
- * segments missed 2 % of the aerosols' steep density near the ground), in three planes
+ * with s->method_int[3] segments (growing from the camera, sky_single.h) at their midpoints
+ * (equal segments missed 2 % of the aerosols' steep density near the ground), in three planes
  * (fast_luts.cl): the view-sun cosine nu is constant along a straight ray, so the phase
  * functions factor out of single scattering, and the LUT holds its Rayleigh and Mie integrals
  * without them, multiplied by p_R(nu) and p_M(nu) of each pixel's own ray at lookup; the third

@@ -4,10 +4,16 @@
  *     L = int_0^d T(0, t) [sigma_R(t) p_R(nu) + sigma_M,s(t) p_M(nu)] E T_sun(t) dt
  *       + T(0, d) (rho / pi) E T_sun(d) max(mu_s(d), 0)          if the ray hits the ground
  * with d the distance to the ground or to the top of the atmosphere and T_sun from the
- * transmittance LUT (zero where the planet hides the sun). The integral is cut into n equal
- * segments; in each, the coefficients are taken at one point (at the fraction `jitter` of the
- * segment, a random number per sample, so averaging samples removes the banding of a fixed
- * point) and the segment is integrated exactly for constant coefficients:
+ * transmittance LUT (zero where the planet hides the sun). The integral is cut into n segments
+ * growing as (i/n)^2 from the camera, [d (i/n)^2, d ((i+1)/n)^2]: short where the density
+ * changes fastest along rays that start low (the aerosols' 1.2 km scale height is shorter than
+ * an equal segment of an upward ray; measured against the double-precision reference with 64
+ * segments: 0.40 % worst with equal segments, 0.09 % with these; 4096-sample probes of the Monte
+ * Carlo table's views: median relative standard error 7.7e-4 -> 5.2e-4, worst 6.1e-3 ->
+ * 1.7e-3, and 32 segments of the march agree with 256 within 0.1 % instead of 0.6 %). In
+ * each, the coefficients are taken at one point (at the fraction `jitter` of the segment, a
+ * random number per sample, so averaging samples removes the banding of a fixed point) and the
+ * segment is integrated exactly for constant coefficients:
  *     L += T_acc S (1 - e^{-sigma_t dt}) / sigma_t,   T_acc *= e^{-sigma_t dt}
  * which conserves energy however long the segment (Hillaire 2015). A camera above the
  * atmosphere is first moved to where the ray enters it. The sun disc (radiance E / Omega_sun
@@ -57,9 +63,7 @@ ATMO_FN float march_sun_visibility(ATMO_GLOBAL const atmo_gpu_scene *s, float r_
 }
 
 /* The integral above along (r, mu) with sun cosine mu_s and view-sun cosine nu, n segments
- * with sample offset `jitter`, equal ones or, with `quadratic`, growing as (i/n)^2 from the
- * camera (short where the density changes fastest along rays that start low: the aerosols'
- * 1.2 km scale height is shorter than an equal segment of an upward ray), in parts: nu is constant along a straight ray, so the phase
+ * with sample offset `jitter`, in parts: nu is constant along a straight ray, so the phase
  * functions factor out of single scattering, L = p_R(nu) *single_r + p_M(nu) *single_m + *rest,
  * with single_r = int T sigma_R E T_sun V dt and single_m likewise for Mie; *rest holds the lit
  * ground and, with use_ms (method march, compiled with -DATMO_MS_LUT), the multiple-scattering
@@ -69,8 +73,7 @@ ATMO_FN void sky_integrate_parts(ATMO_GLOBAL const atmo_gpu_scene *s,
                                  ATMO_GLOBAL const float4 *transmittance,
                                  ATMO_GLOBAL const float4 *ms, int ms_w, int ms_h, int use_ms,
                                  float r, float mu, float mu_s, float nu, int n, float jitter,
-                                 int quadratic, vec3 *single_r, vec3 *single_m, vec3 *rest,
-                                 vec3 *sun)
+                                 vec3 *single_r, vec3 *single_m, vec3 *rest, vec3 *sun)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     int tw = s->transmittance_width, th = s->transmittance_height;
@@ -91,16 +94,11 @@ ATMO_FN void sky_integrate_parts(ATMO_GLOBAL const atmo_gpu_scene *s,
     float d = hits_ground ? geometry_distance_to_bottom(r, mu, a->bottom_radius)
                           : geometry_distance_to_top(r, mu, a->top_radius);
     vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
-    float dt = d / (float)n;
     vec3 L_r = v3(0.0f, 0.0f, 0.0f), L_m = v3(0.0f, 0.0f, 0.0f), L = v3(0.0f, 0.0f, 0.0f);
     vec3 T = v3(1.0f, 1.0f, 1.0f);
     for (int i = 0; i < n; i++) {
-        float t = ((float)i + jitter) * dt;
-        if (quadratic) {
-            float x0 = (float)i / (float)n, x1 = (float)(i + 1) / (float)n;
-            dt = d * (x1 * x1 - x0 * x0);
-            t = d * atmo_sq(((float)i + jitter) / (float)n);
-        }
+        float x0 = (float)i / (float)n, x1 = (float)(i + 1) / (float)n;
+        float dt = d * (x1 * x1 - x0 * x0), t = d * x0 * x0 + jitter * dt;
         float r_t = geometry_radius_at(r, mu, t);
         float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
         float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
@@ -150,7 +148,7 @@ ATMO_FN void sky_integrate(ATMO_GLOBAL const atmo_gpu_scene *s,
                            int n, float jitter, vec3 *sky, vec3 *sun)
 {
     vec3 single_r, single_m, rest;
-    sky_integrate_parts(s, transmittance, ms, ms_w, ms_h, use_ms, r, mu, mu_s, nu, n, jitter, 0,
+    sky_integrate_parts(s, transmittance, ms, ms_w, ms_h, use_ms, r, mu, mu_s, nu, n, jitter,
                         &single_r, &single_m, &rest, sun);
     *sky = v3_add(v3_add(v3_scale(single_r, phase_rayleigh(nu)),
                          v3_scale(single_m, sky_mie_phase(&s->atmosphere, nu))),
