@@ -46,11 +46,12 @@ ATMO_FN float sky_mie_phase(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float nu)
 
 #ifdef ATMO_MS_LUT
 /* method march: the multiple-scattering terms, defined in kernels/ms_lut.h (after this file) */
-ATMO_FN vec3 ms_lut_lookup(ATMO_GLOBAL const atmo_gpu_atmosphere *a, ATMO_GLOBAL const float4 *lut,
-                           int width, int height, float r, float mu_s);
-ATMO_FN vec3 ms_lut_source(ATMO_GLOBAL const atmo_gpu_atmosphere *a,
-                           ATMO_GLOBAL const float4 *lut, int width, int height, float r, float mu,
-                           float mu_s, float nu, vec3 sigma_r, vec3 sigma_m);
+ATMO_FN vec3 ms_lut_sky_irradiance(ATMO_GLOBAL const atmo_gpu_atmosphere *a,
+                                   ATMO_GLOBAL const float4 *lut, int width, int height,
+                                   float mu_s);
+ATMO_FN vec3 ms_lut_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *lut,
+                           int width, int height, float r, float mu, float mu_s, float nu,
+                           vec3 sigma_r, vec3 sigma_m);
 #define ATMO_SKY_INTEGRATE_HAS_MS
 #endif
 
@@ -115,7 +116,7 @@ ATMO_FN void sky_integrate_parts(ATMO_GLOBAL const atmo_gpu_scene *s,
 #ifdef ATMO_MS_LUT
         if (use_ms)
             L = v3_add(L, v3_mul(v3_mul(T, w),
-                                 ms_lut_source(a, ms, ms_w, ms_h, r_t, (r * mu + t) / r_t, mu_s_t,
+                                 ms_lut_source(s, ms, ms_w, ms_h, r_t, (r * mu + t) / r_t, mu_s_t,
                                                nu, sigma_r, sigma_m)));
 #endif
         T = v3_mul(T, v3_exp(v3_scale(sigma_t, -dt)));
@@ -126,9 +127,8 @@ ATMO_FN void sky_integrate_parts(ATMO_GLOBAL const atmo_gpu_scene *s,
                                                   mu_s_g);
         vec3 irradiance = v3_scale(v3_mul(E, sun_t), fmaxf(mu_s_g, 0.0f));
 #ifdef ATMO_MS_LUT
-        if (use_ms) /* plus the sky's (plane 5 of the LUT) */
-            irradiance = v3_add(irradiance, ms_lut_lookup(a, ms + 5 * ms_w * ms_h, ms_w, ms_h,
-                                                          a->bottom_radius, mu_s_g));
+        if (use_ms) /* plus the sky's */
+            irradiance = v3_add(irradiance, ms_lut_sky_irradiance(a, ms, ms_w, ms_h, mu_s_g));
 #endif
         L = v3_add(L, v3_mul(T, v3_scale(v3_mul(v3_from4(a->ground_albedo), irradiance),
                                          1.0f / ATMO_PI)));

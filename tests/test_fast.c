@@ -50,6 +50,9 @@ static void make_plan(const char *method, double altitude_m, double sun_zenith, 
     snprintf(buf, sizeof buf, "sun.zenith_deg=%.17g", sun_zenith);
     test_scene_set(&s, buf);
     test_plan(&s, p);
+    /* the Psi_ms LUT does not depend on the camera or the sun: computed once per method and
+     * loaded from the test's LUT cache after (test_lut_cache: a load equals a computation) */
+    p->cache_luts = 2;
 }
 
 static void probe(const atmo_plan *p, const float4 *rays, int n, int samples, double (*mean)[3],
