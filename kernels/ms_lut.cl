@@ -1,16 +1,22 @@
 /* ms_lut.cl — fills the multiple-scattering transfer LUT Psi_ms (ms_lut.h) into LUT buffer a.
  *
  * Size s->lut_dims[0][0] (mu_s) x s->lut_dims[0][1] (altitude); quadrature knobs from
- * s->method_int: [0] cosine bands, [1] azimuths over [0, pi], [2] segments per direction;
- * s->method_float[0]: share of the order-3 anisotropy given to orders >= 4; [1], [2]: the
- * aerosol phase function's Legendre coefficients g_1, g_2 (ms_lut.h). Fourteen planes of w x h
- * texels (ms_lut.h): 0 Psi and f_ms, 1-5 the anisotropy D_uu, D_ss, D_us, b_u, b_s (final after
- * the third pass), 6 the source of the third pass and 7-11 its anisotropy, 12 the sky
- * irradiance of the ground, 13 scratch (f_ms, then E_1 + E_2 / (1 - f)). Each pass writes only
- * planes that no texel of the same pass reads from another texel. Needs the transmittance LUT,
- * so its passes run after transmittance_lut. */
+ * s->method_int: [0] cosine bands, [1] azimuths over [0, pi] (half in the gathering passes),
+ * [2] segments per direction; s->method_float[0]: share of the order-3 anisotropy given to
+ * orders >= 4; [1], [2]: the aerosol phase function's Legendre coefficients g_1, g_2
+ * (ms_lut.h). Fourteen planes of w x h texels (ms_lut.h): 0 Psi and f_ms, 1-5 the anisotropy
+ * D_uu, D_ss, D_us, b_u, b_s (final after the third pass), 6 the source of the third pass and
+ * 7-11 its anisotropy, 12 the sky irradiance of the ground, 13 scratch (f_ms, then E_1 + E_2 /
+ * (1 - f)). Each pass writes only planes that no texel of the same pass reads from another
+ * texel. Needs the transmittance LUT, so its passes run after transmittance_lut. */
 
 #define MS_PLANE(k) (lut_a + (k) * scene->lut_dims[0][0] * scene->lut_dims[0][1])
+
+/* Azimuths of the gathering passes: half of pass 1's. The gathered light has no aureole, and
+ * the n-point midpoint rule over [0, pi] integrates its azimuthal harmonics exactly up to
+ * cos((2n - 1) phi) (measured with 4 instead of 8: the sky changes by 1.2e-5 relative, the
+ * precompute takes 35 % less time). */
+#define MS_GATHER_PHI (scene->method_int[1] > 1 ? scene->method_int[1] / 2 : 1)
 
 /* Pass 1: order 2 from the first-order light at x (ms_lut_texel): plane 0 = (L_2, f_y),
  * 1-5 = its anisotropy, 13 = f_ms per channel, 12 = E_1 (the ground's first-order sky light). */
@@ -48,8 +54,7 @@ __kernel void ms_lut_order3(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_P
     int idx = j * w + i;
     float4 dev[6];
     float3 s3 = ms_lut_gather(scene, MS_PLANE(0), MS_PLANE(1), MS_PLANE(12), w, h, r, mu_s,
-                              scene->method_int[0], scene->method_int[1], scene->method_int[2],
-                              dev);
+                              scene->method_int[0], MS_GATHER_PHI, scene->method_int[2], dev);
     float3 f = MS_PLANE(13)[idx].xyz, series = 1.0f / (1.0f - f);
     float3 gain = 1.0f + scene->method_float[0] * f * series;
     MS_PLANE(6)[idx] = (float4)(MS_PLANE(0)[idx].xyz + s3 * series, 0.0f);
@@ -72,8 +77,7 @@ __kernel void ms_lut_second(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_P
     int idx = j * w + i;
     float4 dev[6];
     float3 higher = ms_lut_gather(scene, MS_PLANE(6), MS_PLANE(7), MS_PLANE(13), w, h, r, mu_s,
-                                  scene->method_int[0], scene->method_int[1],
-                                  scene->method_int[2], dev);
+                                  scene->method_int[0], MS_GATHER_PHI, scene->method_int[2], dev);
     MS_PLANE(0)[idx] = (float4)(MS_PLANE(0)[idx].xyz + higher, MS_PLANE(0)[idx].w);
     for (int k = 0; k < 5; k++)
         MS_PLANE(k + 1)[idx] += (float4)(dev[k].xyz, 0.0f);

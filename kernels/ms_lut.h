@@ -330,7 +330,7 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
  * w as the view direction), E from the plane `sky_e`. Returns <G> (the next order's source per
  * unit sigma_s, isotropic part); dev[0..4] = its anisotropy from the moments of G, as
  * ms_lut_texel's from L_1'; dev[5] = the irradiance G gives a horizontal surface,
- * 4 pi <G max(mu, 0)>. Same directions and segments as ms_lut_texel. */
+ * 4 pi <G max(mu, 0)>. Same quadrature as ms_lut_texel (ms_lut.cl passes half the azimuths). */
 ATMO_FN vec3 ms_lut_gather(ATMO_GLOBAL const atmo_gpu_scene *s,
                            ATMO_GLOBAL const float4 *psi_src, ATMO_GLOBAL const float4 *aniso_src,
                            ATMO_GLOBAL const float4 *sky_e,
