@@ -17,7 +17,7 @@ int atmo_plan_fast(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     p->gpu.lut_dims[1][0] = w;
     p->gpu.lut_dims[1][1] = h;
     p->gpu.method_int[3] = ATMO_SKY_VIEW_STEPS;
-    p->lut_bytes[2] = sizeof(float4) * (size_t)w * (size_t)h;
+    p->lut_bytes[2] = 3 * sizeof(float4) * (size_t)w * (size_t)h; /* fast_luts.cl's planes */
     p->lut_follows_view[2] = 1; /* the sky-view LUT is made for this camera and sun */
     if ((rc = atmo_plan_add_pass(p, "sky_view_lut", w, h, 1, 0, e)))
         return rc;

@@ -1,5 +1,8 @@
 /* fast_luts.cl — the per-frame LUTs of method "fast" (method_fast.h): the sky-view LUT around
- * the camera, into buffer b. Needs the transmittance and Psi_ms LUTs (passes before it). */
+ * the camera, into buffer b, in three planes of w x h texels: single scattering without its
+ * phase functions, Rayleigh (0) and Mie (1), and the rest (2: multiple scattering and the
+ * ground), sky_integrate_parts' parts. Needs the transmittance and Psi_ms LUTs (passes before
+ * it). */
 
 __kernel void sky_view_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PARAMS, int arg)
 {
@@ -12,9 +15,13 @@ __kernel void sky_view_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PA
     float mu_s = fast_camera_mu_s(scene);
     float nu = atmo_clamp_cos(mu * mu_s + atmo_safe_sqrt((1.0f - mu * mu) * (1.0f - mu_s * mu_s)) *
                                               cos_phi);
-    float3 sky, sun;
-    march_integrate(scene, lut_transmittance, lut_a, scene->lut_dims[0][0], scene->lut_dims[0][1],
-                    scene->camera.local_up.w, mu, mu_s, nu, scene->method_int[3], 0.5f, &sky,
-                    &sun);
-    lut_b[j * w + i] = (float4)(sky, 0.0f);
+    float3 single_r, single_m, rest, sun, view_t;
+    sky_integrate_parts(scene, lut_transmittance, lut_a, scene->lut_dims[0][0],
+                        scene->lut_dims[0][1], 1, scene->camera.local_up.w, mu, mu_s, nu,
+                        INFINITY, scene->method_int[3], 0.5f, &single_r, &single_m, &rest, &sun,
+                        &view_t);
+    int idx = j * w + i, n = w * h;
+    lut_b[idx] = (float4)(single_r, 0.0f);
+    lut_b[n + idx] = (float4)(single_m, 0.0f);
+    lut_b[2 * n + idx] = (float4)(rest, 0.0f);
 }

@@ -2,8 +2,8 @@
  * the multiple-scattering term sigma_s Psi_ms (ms_lut.h, after Hillaire 2020 sec. 5.5), with a
  * sun-visibility hook per sample for light shafts.
  *
- * LUTs: a = Psi_ms, its Rayleigh anisotropy and scratch (6 planes), s->lut_dims[0][0..1] = the size of
- * a plane (mu_s x altitude), filled by ms_lut.cl.
+ * LUTs: a = Psi_ms, its anisotropy and scratch (14 planes), s->lut_dims[0][0..1] =
+ * the size of a plane (mu_s x altitude), filled by ms_lut.cl.
  * Knobs: s->view_steps segments per view ray; one random offset of the segment samples per
  * sample (dimension ATMO_RNG_METHOD_DIM), as method "single" does, so both draw the same
  * offsets and agree exactly where Psi is zero. */

@@ -26,50 +26,76 @@
  * Quadrature: w on n_mu bands in cos(zenith) times n_phi azimuths over [0, pi] (the light
  * field is symmetric about the vertical plane through the sun); half the bands lie above the
  * horizon cosine mu_h = -sqrt(r^2 - R^2) / r and half below, so no band straddles the step
- * between sky and ground, each half crowding toward the horizon as the square of its index (a grid in the sun's frame, tried to resolve the aerosol peak,
- * cut that step diagonally and was 10 % off a finer grid at the ground). Each direction
- * is marched with n_steps segments growing as (i/n)^2 from x, each integrated exactly for
- * constant coefficients as in sky_single.h. LUT: x_mu = (1 + sign(mu_s) sqrt|mu_s|) / 2 along
- * the width, x_h = h / (top - bottom) along the height, texel centres at x = 0 and 1 (atmosphere_texcoord_from_unit); xyz = Psi
- * (W m^-2 sr^-1 nm^-1, with the solar irradiance E folded in), w = f_ms of the middle channel.
+ * between sky and ground, each half crowding toward the horizon as the square of its index
+ * (a grid in the sun's frame, tried to resolve the aerosol peak, cut that step diagonally and
+ * was 10 % off a finer grid at the ground). Each direction is marched with n_steps segments
+ * growing as (i/n)^2 from x, each integrated exactly for constant coefficients as in
+ * sky_single.h. LUT: x_mu = (1 + sign(mu_s) sqrt|mu_s|) / 2 along the width, x_h = h / (top -
+ * bottom) along the height, texel centres at x = 0 and 1 (atmosphere_texcoord_from_unit);
+ * xyz = Psi (W m^-2 sr^-1 nm^-1, with the solar irradiance E folded in), w = f_ms of the
+ * middle channel.
  *
  * March (march_integrate): single scattering as in sky_single.h (same segments, same per-sample
  * offset, same sun-disc and ground terms), with, at each sample,
- *     J = [sigma_R p_R(nu) + sigma_M p_M(nu)] E T_sun V + (sigma_R + sigma_M) Psi_ms(h, mu_s)
+ *     J = [sigma_R p_R(nu) + sigma_M p_M(nu)] E T_sun V + J_ms
  * where V = march_sun_visibility(...) is the shadow hook (terrain and clouds will plug into it;
- * 1 for now). With Psi = 0 the sum is the single-scattering sum term for term. The ground
- * seen by the view ray is lit by the sun and by the sky (E_sky of plane 5, below).
+ * 1 for now) and J_ms = (sigma_R + sigma_M) Psi_ms(h, mu_s) for isotropic light, plus the
+ * anisotropic terms below (ms_lut_source). With Psi = 0 the sum is the single-scattering sum
+ * term for term. The ground seen by the view ray is lit by the sun and by the sky (E_sky, below).
  *
  * Rayleigh anisotropy of the second order. For the Rayleigh phase p_R = 3/(16 pi)(1 + (v.w)^2)
  * the second order toward v is exact from three moments of L_1': int L_1'(w) p_R(v.w) dw =
  * L_2 + v^T D v with m = (3/4) <L_1' w w^T> (the sphere average <.>) and D = m - (L_2/4) I,
  * traceless and 0 for isotropic light. By the symmetry about the sun's vertical plane D has
  * three free components in the frame (up, sun-ward horizontal, across): D_uu, D_ss, D_us
- * (D_pp = -D_uu - D_ss). They are stored per channel in planes 1-3 of the LUT, scaled by
- * 1 + k f/(1 - f) (k = method_float[0]: k = 1 gives orders >= 3 the angular shape of the
- * second; k = 0 keeps them isotropic); the Mie part of orders >= 2 stays isotropic.
- * J_ms = sigma_R (Psi + v^T D v) + sigma_M Psi (ms_lut_source).
- * Second pass (ms_lut_gather, kernel ms_lut_second): Hillaire's series f L_2 + f^2 L_2 + ...
- * takes the higher orders at x from x's own L_2, which fails where they come from elsewhere
- * (into the Earth's shadow at twilight) and leaves out the ground lit by the sky. The second
- * pass keeps L_2 and replaces the series by the sphere average of int T sigma_s Psi_1 dt
- * (Psi_1 = L_2 / (1 - f) of the first pass, gathered along the same directions) plus, where a
- * direction meets the ground, T (rho / pi) E_sky with E_sky = 4 pi <L_1 max(mu, 0)> / (1 - f)
- * at the ground. Planes of the LUT (each width x height): 0 Psi (xyz), f of channel y (w);
- * 1-3 D_uu, D_ss, D_us; 4 Psi_1 and 5 E_sky (scratch of the second pass).
+ * (D_pp = -D_uu - D_ss), stored per channel.
+ * Mie anisotropy. The same moments are the light field's spherical harmonics up to l = 2: with
+ * the first moment b = <L w> (b_u, b_s; b_p = 0 by the symmetry), L = a_0 + 3 b.w + 10 w^T D w +
+ * (l >= 3), a_0 = <L> = Psi. A phase function p convolves the l-th harmonic by its Legendre
+ * coefficient g_l = 2 pi int p(x) P_l(x) dx (Funk-Hecke): Rayleigh's g_1 = 0, g_2 = 1/10 give the
+ * D term above exactly; the aerosols' (Cornette-Shanks g = 0.8: g_1 = 0.844, g_2 = 0.710,
+ * computed by the plan into method_float[1..2]) give, truncated at l = 2,
+ *     J_ms = sigma_R (Psi + v^T D v) + sigma_M (Psi + 3 g_1 b.v + 10 g_2 v^T D v)
+ * with v the direction the camera looks along (light arriving from v scatters forward into it);
+ * each part is kept >= 0. The truncation keeps the sky/ground and sun/anti-sun asymmetries and
+ * the horizon band of the light field but not the aureole, narrower than l = 2 resolves: red
+ * order 2 is still ~20 % low toward a low sun (it was 30 % low, and 5-8 % high toward the zenith
+ * with an isotropic Mie part).
+ * Gathered higher orders (ms_lut_gather; kernels ms_lut_order3, ms_lut_second). Hillaire's
+ * series f L_2 + f^2 L_2 + ... takes the higher orders at x from x's own L_2, which fails where
+ * they come from elsewhere (into the Earth's shadow at twilight), leaves out the ground lit by
+ * the sky, and, measured against the reference's per-order tallies, makes orders >= 4 20-45 %
+ * too low even in daylight (f at x underestimates what the brighter air above and along the
+ * horizon sends back). So orders are gathered where they are scattered: a gathering pass
+ * computes, along the same directions and segments, the radiance G(w) arriving at x from a
+ * source J_src of the form of J_ms (anisotropy included: light sent along the horizon and
+ * forward by the aerosols counts it), plus T (rho / pi) E where w meets the ground; <G> is the
+ * next order's source per unit sigma_s and the moments of G give its anisotropy A = (D, b) the
+ * same way as L_1''s. Pass 2 gathers order 3 exactly from order 2 (L_2, A_2, the ground lit by
+ * the first-order sky E_1 = 4 pi <L_1' max(mu, 0)>): S_3, A_3, E_2. Pass 3 gathers orders >= 3
+ * from the series over the gathered order 3, Psi_src = L_2 + S_3 / (1 - f), A_src = A_2 + A_3 (1
+ * + k f / (1 - f)) (k = method_float[0]: orders >= 4 shaped like order 3), E = E_1 + E_2 /
+ * (1 - f): Psi = L_2 + <G>, A = A_2 + A_G. Orders >= 4 keep part of the local series' error
+ * (measured: 5-10 % low in blue, ~0.5 % of the sky at the horizon). Planes of the LUT (each
+ * width x height; ms_lut.cl): 0 Psi (xyz), f of channel y (w); 1-5 D_uu, D_ss, D_us, b_u, b_s;
+ * 12 E_sky (the ground's sky irradiance, all orders); 6-11 and 13 scratch of the passes.
  * Measured against the Monte Carlo reference (tests/data/reference_sky.csv, ground camera,
- * views 0..85 deg; worst error in blue, sun zenith 0..80 deg / 90 deg; red and green stay
- * within 2.1 % at every step from the third line on):
+ * views 0..85 deg; worst error, sun zenith 0..80 deg / 90 deg; in blue up to the sixth line,
+ * red and green within 2.2 % there; over all channels after it):
  *   isotropic Psi, uniform 32-point mu_s grid (before):   -6.5 %  /  +7.6 % (zenith, twilight)
  *   + sqrt mu_s mapping, 64 points, still isotropic:      -6.6 %  / -16.5 % (horizon, twilight)
  *   + Rayleigh anisotropy, k = 0:                         -5.7 %  / -13.7 %
  *   + Rayleigh anisotropy, k = 1 (kept):                  -5.6 %  / -12.4 %
  *   + second pass, gathered orders >= 3:                  -4.6 %  /  -7.0 %
- *   + ground lit by the sky (kept):                       -2.9 %  /  -4.1 %
+ *   + ground lit by the sky:                              -2.9 %  /  -4.1 %
+ *   + anisotropic source in the gather, D of orders >= 3
+ *     from G's moments:                                   -2.3 %  /  -3.4 % (blue)
+ *   + order 3 gathered exactly, series over it:           -2.1 %  /  -1.9 % (green / red)
+ *   + growing segments (sky_single.h):                    -1.8 %  /  -1.7 % (blue)
+ *   + Mie anisotropy (kept):                              -1.3 %  /  -1.2 % (blue / red)
  * The old grid's twilight error had hidden the model's; 4x the directions and 3x the segments
- * change these by < 0.3 %. What is left: the isotropic Mie part of orders >= 2 (red order 2
- * is 10-30 % low toward the sun at a low sun, a small part of the total) and the isotropic
- * shape of orders >= 3. */
+ * change these by < 0.3 %. What is left: the aureole in the aerosols' part of orders >= 2 and
+ * the local series in orders >= 4 (both above). */
 #ifndef ATMO_MS_LUT_H
 #define ATMO_MS_LUT_H
 #ifndef __OPENCL_VERSION__
@@ -133,31 +159,62 @@ ATMO_FN float4 __ms_float4(vec3 v, float w)
     return out;
 }
 
-/* The multiple-scattering source toward the view direction at a point (radius r, view cosine
- * mu, sun cosine mu_s, view-sun cosine nu) with scattering coefficients sigma_r (Rayleigh) and
- * sigma_m (Mie): sigma_r (Psi + v^T D v) + sigma_m Psi, v in the frame (up, sun-ward
- * horizontal, across); the Rayleigh part is kept >= 0. */
-ATMO_FN vec3 ms_lut_source(ATMO_GLOBAL const atmo_gpu_atmosphere *a,
-                           ATMO_GLOBAL const float4 *lut, int width, int height, float r, float mu,
-                           float mu_s, float nu, vec3 sigma_r, vec3 sigma_m)
+/* The source J = sigma_R (Psi + v^T D v) + sigma_M (Psi + 3 g_1 b.v + 10 g_2 v^T D v) toward
+ * the view direction v (radius r, view cosine mu, sun cosine mu_s, view-sun cosine nu: v is the
+ * direction a camera looks along, so light arriving from v scatters forward into it) with Psi
+ * in the plane `psi_plane` and the anisotropy in the five consecutive planes from `aniso`
+ * (D_uu, D_ss, D_us, b_u, b_s; each width x height); v in the frame (up, sun-ward horizontal,
+ * across); g_1, g_2 = s->method_float[1], [2]; each part is kept >= 0. */
+ATMO_FN vec3 __ms_lut_source_planes(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                    ATMO_GLOBAL const float4 *psi_plane,
+                                    ATMO_GLOBAL const float4 *aniso, int width, int height,
+                                    float r, float mu, float mu_s, float nu, vec3 sigma_r,
+                                    vec3 sigma_m)
 {
     float u, v;
     int n = width * height;
-    ms_lut_uv(a, r, mu_s, width, height, &u, &v);
-    vec3 psi = atmosphere_lut_bilinear(lut, width, height, u, v);
-    vec3 d_uu = atmosphere_lut_bilinear(lut + n, width, height, u, v);
-    vec3 d_ss = atmosphere_lut_bilinear(lut + 2 * n, width, height, u, v);
-    vec3 d_us = atmosphere_lut_bilinear(lut + 3 * n, width, height, u, v);
+    ms_lut_uv(&s->atmosphere, r, mu_s, width, height, &u, &v);
+    vec3 psi = atmosphere_lut_bilinear(psi_plane, width, height, u, v);
+    vec3 d_uu = atmosphere_lut_bilinear(aniso, width, height, u, v);
+    vec3 d_ss = atmosphere_lut_bilinear(aniso + n, width, height, u, v);
+    vec3 d_us = atmosphere_lut_bilinear(aniso + 2 * n, width, height, u, v);
+    vec3 b_u = atmosphere_lut_bilinear(aniso + 3 * n, width, height, u, v);
+    vec3 b_s = atmosphere_lut_bilinear(aniso + 4 * n, width, height, u, v);
     float sin_s = atmo_safe_sqrt(1.0f - mu_s * mu_s), across = 1.0f - mu * mu;
-    /* the sun-ward component is undefined with the sun at the zenith, where D_ss = D_pp */
+    /* the sun-ward component is undefined with the sun at the zenith, where D_ss = D_pp and
+     * b_s = 0 */
     float v_s = sin_s > 1e-4f ? (nu - mu * mu_s) / sin_s : 0.0f;
     v_s = clamp(v_s, -atmo_safe_sqrt(across), atmo_safe_sqrt(across));
     float v_p2 = fmaxf(across - v_s * v_s, 0.0f);
-    vec3 c = v3_add(v3_add(v3_scale(d_uu, mu * mu - v_p2), v3_scale(d_ss, v_s * v_s - v_p2)),
-                    v3_scale(d_us, 2.0f * mu * v_s));
-    vec3 j_r = v3_mul(sigma_r, v3_add(psi, c));
-    j_r = v3(fmaxf(j_r.x, 0.0f), fmaxf(j_r.y, 0.0f), fmaxf(j_r.z, 0.0f));
-    return v3_add(j_r, v3_mul(sigma_m, psi));
+    vec3 c2 = v3_add(v3_add(v3_scale(d_uu, mu * mu - v_p2), v3_scale(d_ss, v_s * v_s - v_p2)),
+                     v3_scale(d_us, 2.0f * mu * v_s));
+    vec3 c1 = v3_add(v3_scale(b_u, mu), v3_scale(b_s, v_s));
+    vec3 l_r = v3_add(psi, c2);
+    vec3 l_m = v3_add(psi, v3_add(v3_scale(c1, 3.0f * s->method_float[1]),
+                                  v3_scale(c2, 10.0f * s->method_float[2])));
+    vec3 j_r = v3_mul(sigma_r, v3(fmaxf(l_r.x, 0.0f), fmaxf(l_r.y, 0.0f), fmaxf(l_r.z, 0.0f)));
+    vec3 j_m = v3_mul(sigma_m, v3(fmaxf(l_m.x, 0.0f), fmaxf(l_m.y, 0.0f), fmaxf(l_m.z, 0.0f)));
+    return v3_add(j_r, j_m);
+}
+
+/* The multiple-scattering source toward the view direction at a point (radius r, view cosine
+ * mu, sun cosine mu_s, view-sun cosine nu) with scattering coefficients sigma_r (Rayleigh) and
+ * sigma_m (Mie), from planes 0-5 of the LUT (__ms_lut_source_planes). */
+ATMO_FN vec3 ms_lut_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *lut,
+                           int width, int height, float r, float mu, float mu_s, float nu,
+                           vec3 sigma_r, vec3 sigma_m)
+{
+    return __ms_lut_source_planes(s, lut, lut + width * height, width, height, r, mu, mu_s, nu,
+                                  sigma_r, sigma_m);
+}
+
+/* The sky irradiance of the ground (all orders, W m^-2 nm^-1) where the sun cosine is mu_s:
+ * plane 12 of the LUT at the bottom radius. */
+ATMO_FN vec3 ms_lut_sky_irradiance(ATMO_GLOBAL const atmo_gpu_atmosphere *a,
+                                   ATMO_GLOBAL const float4 *lut, int width, int height,
+                                   float mu_s)
+{
+    return ms_lut_lookup(a, lut + 12 * width * height, width, height, a->bottom_radius, mu_s);
 }
 
 /* Band k of n_mu direction bands for the sphere integrals at a point whose horizon cosine is
@@ -174,13 +231,13 @@ ATMO_FN float __ms_band(int k, int n_mu, float mu_h, float *u)
     return atmo_clamp_cos(up ? mu_h + span * v * v : mu_h - span * v * v);
 }
 
-/* One texel at radius r and sun cosine mu_s: returns Psi_ms (xyz) and f_ms of channel y (w);
- * dev[0..2] = the Rayleigh anisotropy D_uu, D_ss, D_us (xyz per channel; see the file's
- * comment), scaled by `gain(f) = 1 + higher * f / (1 - f)`; dev[3] = L_2 (xyz) and f (w);
- * dev[4] = the sky irradiance of a horizontal surface at x, E_1 / (1 - f). */
+/* First pass at one texel at radius r and sun cosine mu_s: returns L_2 (xyz) and f_ms of
+ * channel y (w); dev[0..4] = the anisotropy of order 2 (xyz per channel; see the file's
+ * comment): D_uu, D_ss, D_us, b_u, b_s; dev[5] = f_ms (xyz per channel); dev[6] = E_1, the
+ * first-order sky irradiance of a horizontal surface at x, 4 pi <L_1' max(mu, 0)>. */
 ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
                             ATMO_GLOBAL const float4 *transmittance, float r, float mu_s,
-                            int n_mu, int n_phi, int n_steps, float higher, float4 *dev)
+                            int n_mu, int n_phi, int n_steps, float4 *dev)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     int tw = s->transmittance_width, th = s->transmittance_height;
@@ -190,7 +247,7 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
     float sin_s = atmo_safe_sqrt(1.0f - mu_s * mu_s);
     vec3 L2 = v3(0.0f, 0.0f, 0.0f), f = v3(0.0f, 0.0f, 0.0f);
     vec3 m_uu = v3(0.0f, 0.0f, 0.0f), m_ss = v3(0.0f, 0.0f, 0.0f), m_us = v3(0.0f, 0.0f, 0.0f);
-    vec3 e_sky = v3(0.0f, 0.0f, 0.0f);
+    vec3 b_u = v3(0.0f, 0.0f, 0.0f), b_s = v3(0.0f, 0.0f, 0.0f), e_sky = v3(0.0f, 0.0f, 0.0f);
     float mu_h = -atmo_safe_sqrt((r - a->bottom_radius) * (r + a->bottom_radius)) / r;
     float weights = 0.0f;
     for (int k = 0; k < n_mu; k++) {
@@ -245,6 +302,8 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
             m_uu = v3_add(m_uu, v3_scale(L1, u * mu * mu));
             m_ss = v3_add(m_ss, v3_scale(L1, u * w_s * w_s));
             m_us = v3_add(m_us, v3_scale(L1, u * mu * w_s));
+            b_u = v3_add(b_u, v3_scale(L1, u * mu));
+            b_s = v3_add(b_s, v3_scale(L1, u * w_s));
             L2 = v3_add(L2, v3_scale(L1, u));
             f = v3_add(f, v3_scale(f1, u));
             weights += u;
@@ -253,33 +312,30 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
     /* normalised by the sum of the weights (2 up to rounding) */
     L2 = v3_scale(L2, 1.0f / weights);
     f = v3_scale(f, 1.0f / weights);
-    vec3 psi = v3(L2.x / (1.0f - f.x), L2.y / (1.0f - f.y), L2.z / (1.0f - f.z));
     /* m = (3/4) <L1 w w^T>, D = m - (L2 / 4) I (traceless, 0 for an isotropic L1) */
-    vec3 gain = v3(1.0f + higher * f.x / (1.0f - f.x), 1.0f + higher * f.y / (1.0f - f.y),
-                   1.0f + higher * f.z / (1.0f - f.z));
-    vec3 d_uu = v3_sub(v3_scale(m_uu, 0.75f / weights), v3_scale(L2, 0.25f));
-    vec3 d_ss = v3_sub(v3_scale(m_ss, 0.75f / weights), v3_scale(L2, 0.25f));
-    vec3 d_us = v3_scale(m_us, 0.75f / weights);
-    dev[0] = __ms_float4(v3_mul(d_uu, gain), 0.0f);
-    dev[1] = __ms_float4(v3_mul(d_ss, gain), 0.0f);
-    dev[2] = __ms_float4(v3_mul(d_us, gain), 0.0f);
-    dev[3] = __ms_float4(L2, f.y);
-    /* irradiance of a horizontal surface from the sky, 4 pi <L_1 max(mu, 0)> / (1 - f) */
-    e_sky = v3_scale(e_sky, 4.0f * ATMO_PI / weights);
-    dev[4] = __ms_float4(v3(e_sky.x / (1.0f - f.x), e_sky.y / (1.0f - f.y),
-                            e_sky.z / (1.0f - f.z)), 0.0f);
-    return __ms_float4(psi, f.y);
+    dev[0] = __ms_float4(v3_sub(v3_scale(m_uu, 0.75f / weights), v3_scale(L2, 0.25f)), 0.0f);
+    dev[1] = __ms_float4(v3_sub(v3_scale(m_ss, 0.75f / weights), v3_scale(L2, 0.25f)), 0.0f);
+    dev[2] = __ms_float4(v3_scale(m_us, 0.75f / weights), 0.0f);
+    dev[3] = __ms_float4(v3_scale(b_u, 1.0f / weights), 0.0f);
+    dev[4] = __ms_float4(v3_scale(b_s, 1.0f / weights), 0.0f);
+    dev[5] = __ms_float4(f, 0.0f);
+    dev[6] = __ms_float4(v3_scale(e_sky, 4.0f * ATMO_PI / weights), 0.0f);
+    return __ms_float4(L2, f.y);
 }
 
-/* Second pass at one texel: the sphere average of int_0^d T(x, y) sigma_s(y) Psi_1(y) dt,
- * Psi_1 = the first pass's L_2 / (1 - f_ms) read from `psi1` (width x height). It replaces the
- * local series f L_2 + f^2 L_2 + ... by orders >= 3 gathered from where they are scattered
- * (light carried from the lit air into the Earth's shadow at twilight), plus the ground lit
- * by the sky, (rho / pi) E_sky, with E_sky from `sky_e` (ms_lut_texel's dev[4]) where a
- * direction meets the ground. Same directions and segments as ms_lut_texel. */
-ATMO_FN vec3 ms_lut_gather(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *psi1,
-                           ATMO_GLOBAL const float4 *sky_e, int width, int height, float r,
-                           float mu_s, int n_mu, int n_phi, int n_steps)
+/* A gathering pass at one texel (x at radius r, sun cosine mu_s): the radiance arriving at x
+ * from each direction w of the quadrature, G(w) = int_0^d T(x, y) J(y, w) dt + T(x, g) (rho / pi)
+ * E(g) where w meets the ground g, for the source per unit scattering coefficient read from the
+ * plane `psi_src` and the five anisotropy planes from `aniso_src` (__ms_lut_source_planes, with
+ * w as the view direction), E from the plane `sky_e`. Returns <G> (the next order's source per
+ * unit sigma_s, isotropic part); dev[0..4] = its anisotropy from the moments of G, as
+ * ms_lut_texel's from L_1'; dev[5] = the irradiance G gives a horizontal surface,
+ * 4 pi <G max(mu, 0)>. Same quadrature as ms_lut_texel (ms_lut.cl passes half the azimuths). */
+ATMO_FN vec3 ms_lut_gather(ATMO_GLOBAL const atmo_gpu_scene *s,
+                           ATMO_GLOBAL const float4 *psi_src, ATMO_GLOBAL const float4 *aniso_src,
+                           ATMO_GLOBAL const float4 *sky_e,
+                           int width, int height, float r, float mu_s, int n_mu, int n_phi,
+                           int n_steps, float4 *dev)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     vec3 albedo = v3_from4(a->ground_albedo);
@@ -287,6 +343,8 @@ ATMO_FN vec3 ms_lut_gather(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL cons
     float sin_s = atmo_safe_sqrt(1.0f - mu_s * mu_s);
     float mu_h = -atmo_safe_sqrt((r - a->bottom_radius) * (r + a->bottom_radius)) / r;
     vec3 sum = v3(0.0f, 0.0f, 0.0f);
+    vec3 m_uu = v3(0.0f, 0.0f, 0.0f), m_ss = v3(0.0f, 0.0f, 0.0f), m_us = v3(0.0f, 0.0f, 0.0f);
+    vec3 b_u = v3(0.0f, 0.0f, 0.0f), b_s = v3(0.0f, 0.0f, 0.0f), e_up = v3(0.0f, 0.0f, 0.0f);
     float weights = 0.0f;
     for (int k = 0; k < n_mu; k++) {
         float u, mu = __ms_band(k, n_mu, mu_h, &u);
@@ -306,25 +364,42 @@ ATMO_FN vec3 ms_lut_gather(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL cons
                 float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
                 float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
                 vec3 sigma_t = atmosphere_extinction(a, h);
-                vec3 sigma_s = v3_add(v3_scale(beta_r, expf(-h / a->rayleigh_scale_height)),
-                                      v3_scale(beta_m, expf(-h / a->mie_scale_height)));
+                vec3 sigma_r = v3_scale(beta_r, expf(-h / a->rayleigh_scale_height));
+                vec3 sigma_m = v3_scale(beta_m, expf(-h / a->mie_scale_height));
                 vec3 w = v3(__sky_segment_weight(sigma_t.x, dt),
                             __sky_segment_weight(sigma_t.y, dt),
                             __sky_segment_weight(sigma_t.z, dt));
-                vec3 psi = ms_lut_lookup(a, psi1, width, height, r_t, mu_s_t);
-                acc = v3_add(acc, v3_mul(v3_mul(T, w), v3_mul(sigma_s, psi)));
+                vec3 j = __ms_lut_source_planes(s, psi_src, aniso_src, width, height, r_t,
+                                                (r * mu + t) / r_t, mu_s_t, nu, sigma_r,
+                                                sigma_m);
+                acc = v3_add(acc, v3_mul(v3_mul(T, w), j));
                 T = v3_mul(T, v3_exp(v3_scale(sigma_t, -dt)));
             }
-            if (!up) { /* the ground lit by the sky: (rho / pi) E_sky */
+            if (!up) { /* the ground lit by the sky: (rho / pi) E */
                 float mu_s_g = atmo_clamp_cos((r * mu_s + d * nu) / a->bottom_radius);
                 vec3 e = ms_lut_lookup(a, sky_e, width, height, a->bottom_radius, mu_s_g);
                 acc = v3_add(acc, v3_mul(T, v3_scale(v3_mul(albedo, e), 1.0f / ATMO_PI)));
             }
+            float w_s = sin_v * cosf(phi);
+            if (mu > 0.0f)
+                e_up = v3_add(e_up, v3_scale(acc, u * mu));
+            m_uu = v3_add(m_uu, v3_scale(acc, u * mu * mu));
+            m_ss = v3_add(m_ss, v3_scale(acc, u * w_s * w_s));
+            m_us = v3_add(m_us, v3_scale(acc, u * mu * w_s));
+            b_u = v3_add(b_u, v3_scale(acc, u * mu));
+            b_s = v3_add(b_s, v3_scale(acc, u * w_s));
             sum = v3_add(sum, v3_scale(acc, u));
             weights += u;
         }
     }
-    return v3_scale(sum, 1.0f / weights);
+    sum = v3_scale(sum, 1.0f / weights);
+    dev[0] = __ms_float4(v3_sub(v3_scale(m_uu, 0.75f / weights), v3_scale(sum, 0.25f)), 0.0f);
+    dev[1] = __ms_float4(v3_sub(v3_scale(m_ss, 0.75f / weights), v3_scale(sum, 0.25f)), 0.0f);
+    dev[2] = __ms_float4(v3_scale(m_us, 0.75f / weights), 0.0f);
+    dev[3] = __ms_float4(v3_scale(b_u, 1.0f / weights), 0.0f);
+    dev[4] = __ms_float4(v3_scale(b_s, 1.0f / weights), 0.0f);
+    dev[5] = __ms_float4(v3_scale(e_up, 4.0f * ATMO_PI / weights), 0.0f);
+    return sum;
 }
 
 /* Single scattering plus sigma_s Psi_ms from the LUT `ms` (ms_w x ms_h): sky_single.h's
