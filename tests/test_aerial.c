@@ -34,12 +34,13 @@
  *    at worst; skipped, and said so, where the file is missing), each method's error within
  *    issue 4's target plus 3 standard errors (the table's and the method's combined): lut 2 %
  *    for sun zenith <= 80 deg and 5 % at 90 deg; march and fast 3 % and 5 % from 10 km.
- *    From the ground march and fast miss those targets: their Psi_ms source (ms_lut.h: orders
- *    >= 2 with an approximate angular shape) is off by up to 6 % in the air next to the ground,
+ *    From the ground march and fast meet the daytime target (measured 2.7 %) but not the
+ *    one with the sun on the horizon: their Psi_ms source (ms_lut.h: orders >= 2 with an
+ *    approximate angular shape) is off by a few % in the air next to the ground at twilight,
  *    which a whole ray averages away (they meet the targets for the sky) but a 1-10 km segment
- *    does not: measured 5.9 % (sun zenith <= 80 deg, 85 deg views away from the sun) and 14.5 %
- *    (90 deg); asserted here as measured bounds, 6.5 % and 15.5 % + 3 SE, so that it cannot
- *    silently get worse -- not as a target met.
+ *    does not: measured 5.3 % at 90 deg (14.5 % before the gathered order 3 and the Mie
+ *    anisotropy of ms_lut.h); asserted here as a measured bound, 5.5 % + 3 SE, so that it
+ *    cannot silently get worse -- not as a target met. (From 10 km: 0.85 % and 0.92 %.)
  * 6. The horizon: lut segments for views scanned across the horizon in 0.005 deg steps (+-0.3
  *    deg) from 1 km and 10 km with d = 10 and 50 km (segments that end in the air on both sides,
  *    so the radiance is continuous there), all with the same random offsets (pixel 0): every
@@ -578,9 +579,9 @@ int main(void)
             segments(all[k], tq, n_rows, all[k] == &lut ? 256 : 1024, &res);
             if (all[k] == &lut) {
                 table_check("lut", rows, n_rows, &res, -1.0, 0.02, 0.05);
-            } else { /* the targets from 10 km; the measured bounds from the ground */
+            } else { /* the targets from 10 km; from the ground, the measured bound at 90 deg */
                 table_check(all[k]->name, rows, n_rows, &res, 1e4, 0.03, 0.05);
-                table_check(all[k]->name, rows, n_rows, &res, 0.0, 0.065, 0.155);
+                table_check(all[k]->name, rows, n_rows, &res, 0.0, 0.03, 0.055);
             }
         }
     }
