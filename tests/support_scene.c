@@ -1,6 +1,7 @@
 /* Test helpers that need a whole scene: see testscene.h. */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include "atmo/render.h"
 #include "testscene.h"
 
@@ -30,6 +31,28 @@ void test_plan(const atmo_scene *s, atmo_plan *p)
         fprintf(stderr, "plan: %s\n", e.msg);
         exit(1);
     }
+}
+
+void test_sky_plan(const char *method, double altitude_m, double sun_zenith_deg, atmo_plan *p)
+{
+    static const char *const small_lut[] = {"lut.r_size=8",   "lut.mu_size=32",
+                                            "lut.mu_s_size=8", "lut.nu_size=4",
+                                            "lut.orders=2",    "lut.sphere_samples=8",
+                                            "lut.steps=16"};
+    atmo_scene s;
+    char buf[96];
+    test_scene_preset(&s, "sky-noon");
+    snprintf(buf, sizeof buf, "atmosphere.method=%s", method);
+    test_scene_set(&s, buf);
+    snprintf(buf, sizeof buf, "camera.position_m=0,%.17g,0", altitude_m);
+    test_scene_set(&s, buf);
+    snprintf(buf, sizeof buf, "sun.zenith_deg=%.17g", sun_zenith_deg);
+    test_scene_set(&s, buf);
+    if (strcmp(method, "lut") == 0)
+        for (size_t i = 0; i < sizeof small_lut / sizeof small_lut[0]; i++)
+            test_scene_set(&s, small_lut[i]);
+    test_plan(&s, p);
+    p->cache_luts = 2;
 }
 
 cl_program test_plan_program(atmo_cl *cl, const atmo_plan *p, const char *extra)

@@ -38,23 +38,6 @@ typedef struct probe_run {
     double mean[MAX_RAYS][3], se[MAX_RAYS][3];
 } probe_run;
 
-static void make_plan(const char *method, double altitude_m, double sun_zenith, atmo_plan *p)
-{
-    atmo_scene s;
-    char buf[96];
-    test_scene_preset(&s, "sky-noon");
-    snprintf(buf, sizeof buf, "atmosphere.method=%s", method);
-    test_scene_set(&s, buf);
-    snprintf(buf, sizeof buf, "camera.position_m=0,%.17g,0", altitude_m);
-    test_scene_set(&s, buf);
-    snprintf(buf, sizeof buf, "sun.zenith_deg=%.17g", sun_zenith);
-    test_scene_set(&s, buf);
-    test_plan(&s, p);
-    /* the Psi_ms LUT does not depend on the camera or the sun: computed once per method and
-     * loaded from the test's LUT cache after (test_lut_cache: a load equals a computation) */
-    p->cache_luts = 2;
-}
-
 static void probe(const atmo_plan *p, const float4 *rays, int n, int samples, double (*mean)[3],
                   double (*se)[3])
 {
@@ -104,8 +87,8 @@ int main(void)
     double worst_sky = 0.0, worst_near = 0.0, worst_ground = 0.0, worst_se = 0.0;
     for (int ia = 0; ia < 2; ia++)
         for (int is = 0; is < 5; is++) {
-            make_plan("fast", alt[ia], sz[is], &pf);
-            make_plan("march", alt[ia], sz[is], &pm);
+            test_sky_plan("fast", alt[ia], sz[is], &pf);
+            test_sky_plan("march", alt[ia], sz[is], &pm);
             pm.gpu.view_steps = 256;
             int n = camera_rays(&pf, zen, 44, az, 5, rays);
             probe(&pf, rays, n, 64, fm, fse);
@@ -139,8 +122,8 @@ int main(void)
            100 * worst_near, 100 * worst_sky, 100 * worst_ground, 100 * worst_se);
 
     /* 2 */
-    make_plan("fast", 1e6, 40, &pf);
-    make_plan("march", 1e6, 40, &pm);
+    test_sky_plan("fast", 1e6, 40, &pf);
+    test_sky_plan("march", 1e6, 40, &pm);
     CHECK(pf.lut_bytes[2] == 0 && pf.gpu.lut_dims[1][0] == 0);
     static const double zen_top[] = {95, 100, 105, 110, 115, 120, 150, 180};
     int n = camera_rays(&pf, zen_top, 8, az, 5, rays);
@@ -164,7 +147,7 @@ int main(void)
     int bad = 0, total = 0;
     for (int ia = 0; ia < 2; ia++)
         for (int is = 0; is <= 9; is++) {
-            make_plan("fast", scan_alt[ia], 20.0 * is, &pf);
+            test_sky_plan("fast", scan_alt[ia], 20.0 * is, &pf);
             n = camera_rays(&pf, scan_zen, 37, scan_az, 7, rays);
             probe(&pf, rays, n, 64, fm, NULL);
             for (int i = 0; i < n; i++)

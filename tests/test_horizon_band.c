@@ -153,30 +153,6 @@ static double check_steps(const char *what, const scan *s, const double (*L)[3],
     return worst;
 }
 
-static void make_plan(const char *method, double altitude_m, double sun_zenith, atmo_plan *p)
-{
-    atmo_scene s;
-    char buf[96];
-    test_scene_preset(&s, "sky-noon");
-    snprintf(buf, sizeof buf, "atmosphere.method=%s", method);
-    test_scene_set(&s, buf);
-    snprintf(buf, sizeof buf, "camera.position_m=0,%.17g,0", altitude_m);
-    test_scene_set(&s, buf);
-    snprintf(buf, sizeof buf, "sun.zenith_deg=%.17g", sun_zenith);
-    test_scene_set(&s, buf);
-    if (!strcmp(method, "lut")) {
-        test_scene_set(&s, "lut.r_size=8");
-        test_scene_set(&s, "lut.mu_size=32");
-        test_scene_set(&s, "lut.mu_s_size=8");
-        test_scene_set(&s, "lut.nu_size=4");
-        test_scene_set(&s, "lut.orders=2");
-        test_scene_set(&s, "lut.sphere_samples=8");
-        test_scene_set(&s, "lut.steps=16");
-    }
-    test_plan(&s, p);
-    p->cache_luts = 2; /* one Psi_ms LUT for all plans of march and fast (keyed, in the cache) */
-}
-
 /* The deterministic methods (common random numbers: every ray of a scan gets the same march
  * offsets, so a scan is as smooth as the method). */
 static void check_method(atmo_cl *cl, const char *method, const double cam_r[N_CAMERAS],
@@ -187,7 +163,7 @@ static void check_method(atmo_cl *cl, const char *method, const double cam_r[N_C
     int fails = 0, is_fast = !strcmp(method, "fast");
     double worst = 0.0, detect[N_CAMERAS][2] = {{0}};
     atmo_plan p;
-    make_plan(method, 0.0, 0.0, &p);
+    test_sky_plan(method, 0.0, 0.0, &p);
     const atmo_atmosphere *a = &p.atmosphere;
     test_probe t;
     int open = 0;
@@ -200,7 +176,7 @@ static void check_method(atmo_cl *cl, const char *method, const double cam_r[N_C
             if (open && new_view)
                 test_probe_close(&t), open = 0;
             if (new_view)
-                make_plan(method, cam_r[ic] - a->bottom_radius_m, sun_cfg[is][0], &p);
+                test_sky_plan(method, cam_r[ic] - a->bottom_radius_m, sun_cfg[is][0], &p);
             if (!open)
                 test_probe_open(&t, cl, &p), open = 1;
             scan s = make_scan(a, fast_lut ? p.gpu.camera.local_up.w : cam_r[ic]);
@@ -257,8 +233,8 @@ static void check_reference(atmo_cl *cl, const double cam_r[N_CAMERAS])
     static float4 all[STEPS], rays[N];
     static double Lr[N][3], se[N][3], Lm[N][3], rel[3 * N * 6];
     atmo_plan pr, pm;
-    make_plan("reference", 0.0, 0.0, &pr);
-    make_plan("march", 0.0, 0.0, &pm);
+    test_sky_plan("reference", 0.0, 0.0, &pr);
+    test_sky_plan("march", 0.0, 0.0, &pm);
     const atmo_atmosphere *a = &pr.atmosphere;
     test_probe tr, tm;
     test_probe_open(&tr, cl, &pr);

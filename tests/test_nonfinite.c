@@ -33,30 +33,6 @@
 #define N_AZ 5
 #define MAX_RAYS (N_ALT * N_SUN * N_VIEW * N_AZ)
 
-static void make_plan(const char *method, double altitude_m, double sun_zenith, atmo_plan *p)
-{
-    atmo_scene s;
-    char buf[96];
-    test_scene_preset(&s, "sky-noon");
-    snprintf(buf, sizeof buf, "atmosphere.method=%s", method);
-    test_scene_set(&s, buf);
-    snprintf(buf, sizeof buf, "camera.position_m=0,%.17g,0", altitude_m);
-    test_scene_set(&s, buf);
-    snprintf(buf, sizeof buf, "sun.zenith_deg=%.17g", sun_zenith);
-    test_scene_set(&s, buf);
-    if (!strcmp(method, "lut")) {
-        test_scene_set(&s, "lut.r_size=8");
-        test_scene_set(&s, "lut.mu_size=32");
-        test_scene_set(&s, "lut.mu_s_size=8");
-        test_scene_set(&s, "lut.nu_size=4");
-        test_scene_set(&s, "lut.orders=2");
-        test_scene_set(&s, "lut.sphere_samples=8");
-        test_scene_set(&s, "lut.steps=16");
-    }
-    test_plan(&s, p);
-    p->cache_luts = 2; /* one Psi_ms LUT for all plans of fast (keyed, in the cache) */
-}
-
 /* View zeniths for a camera at radius r: every 10 deg, and 1e-3 deg either side of the
  * ground's horizon and (from above the atmosphere) of its outer limb; N_VIEW values. */
 static void view_zeniths(const atmo_atmosphere *a, double r, double *out)
@@ -107,7 +83,7 @@ int main(void)
     static int bad[MAX_RAYS];
     static const char *const methods[] = {"single", "march", "lut", "reference", "fast"};
     atmo_plan p;
-    make_plan("single", 0.0, 0.0, &p);
+    test_sky_plan("single", 0.0, 0.0, &p);
     const atmo_atmosphere *a = &p.atmosphere;
     double R = a->bottom_radius_m, top = a->top_radius_m, alt[N_ALT];
     for (int i = 0; i <= 8; i++)
@@ -121,7 +97,7 @@ int main(void)
 
     for (int m = 0; m < 5; m++) {
         const char *method = methods[m];
-        make_plan(method, 0.0, 0.0, &p);
+        test_sky_plan(method, 0.0, 0.0, &p);
         test_probe t;
         test_probe_open(&t, &cl, &p);
         test_probe_rays(&t, rays, n, 4, 1, TEST_PROBE_INDEPENDENT, L, NULL, NULL,
@@ -145,7 +121,7 @@ int main(void)
     int total = 0, count = 0;
     for (int ia = 0; ia < 3; ia++)
         for (int is = 0; is < N_SUN; is++) {
-            make_plan("fast", fast_alt[ia], 10.0 * is, &p);
+            test_sky_plan("fast", fast_alt[ia], 10.0 * is, &p);
             int k = camera_rays(a, p.gpu.camera.local_up.w, p.gpu.sun_direction.y, rays);
             test_probe t;
             test_probe_open(&t, &cl, &p);

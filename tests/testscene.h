@@ -9,6 +9,11 @@
 void test_scene_preset(atmo_scene *s, const char *preset);
 void test_scene_set(atmo_scene *s, const char *assignment);
 void test_plan(const atmo_scene *s, atmo_plan *p);
+/* The plan of the sky-noon preset with `method`, the camera at altitude_m above (0, 0) and the
+ * sun at sun_zenith_deg; method lut at small tables (2 orders: tests of geometry and stability,
+ * not of the LUT's accuracy); LUTs through the test's keyed cache (cache_luts = 2), since the
+ * view-independent ones (Psi_ms, lut's tables) do not change between such plans. */
+void test_sky_plan(const char *method, double altitude_m, double sun_zenith_deg, atmo_plan *p);
 /* The plan's program plus a probe kernel. */
 cl_program test_plan_program(atmo_cl *cl, const atmo_plan *p, const char *extra);
 /* The plan's precompute passes into luts[] (allocated here; release with test_release_luts). */
