@@ -231,6 +231,42 @@ ATMO_FN float __ms_band(int k, int n_mu, float mu_h, float *u)
     return atmo_clamp_cos(up ? mu_h + span * v * v : mu_h - span * v * v);
 }
 
+/* Sums over the quadrature's directions w (weights u) of a radiance L(w) and its moments in the
+ * local frame (up component mu, sun-ward horizontal w_s): <L>, the second moments of the
+ * Rayleigh D, the first moments b_u, b_s, and the upward flux <L max(mu, 0)>. */
+typedef struct __ms_moments {
+    vec3 sum, m_uu, m_ss, m_us, b_u, b_s, e_up;
+    float weights;
+} __ms_moments;
+
+ATMO_FN void __ms_moments_add(__ms_moments *m, vec3 L, float u, float mu, float w_s)
+{
+    if (mu > 0.0f)
+        m->e_up = v3_add(m->e_up, v3_scale(L, u * mu));
+    m->m_uu = v3_add(m->m_uu, v3_scale(L, u * mu * mu));
+    m->m_ss = v3_add(m->m_ss, v3_scale(L, u * w_s * w_s));
+    m->m_us = v3_add(m->m_us, v3_scale(L, u * mu * w_s));
+    m->b_u = v3_add(m->b_u, v3_scale(L, u * mu));
+    m->b_s = v3_add(m->b_s, v3_scale(L, u * w_s));
+    m->sum = v3_add(m->sum, v3_scale(L, u));
+    m->weights += u;
+}
+
+/* <L> (normalised by the sum of the weights, 2 up to rounding); dev[0..4] = D_uu, D_ss, D_us,
+ * b_u, b_s with m = (3/4) <L w w^T>, D = m - (<L> / 4) I (traceless, 0 for an isotropic L). */
+ATMO_FN vec3 __ms_moments_finish(const __ms_moments *m, float4 *dev)
+{
+    vec3 mean = v3_scale(m->sum, 1.0f / m->weights);
+    dev[0] = __ms_float4(v3_sub(v3_scale(m->m_uu, 0.75f / m->weights), v3_scale(mean, 0.25f)),
+                         0.0f);
+    dev[1] = __ms_float4(v3_sub(v3_scale(m->m_ss, 0.75f / m->weights), v3_scale(mean, 0.25f)),
+                         0.0f);
+    dev[2] = __ms_float4(v3_scale(m->m_us, 0.75f / m->weights), 0.0f);
+    dev[3] = __ms_float4(v3_scale(m->b_u, 1.0f / m->weights), 0.0f);
+    dev[4] = __ms_float4(v3_scale(m->b_s, 1.0f / m->weights), 0.0f);
+    return mean;
+}
+
 /* First pass at one texel at radius r and sun cosine mu_s: returns L_2 (xyz) and f_ms of
  * channel y (w); dev[0..4] = the anisotropy of order 2 (xyz per channel; see the file's
  * comment): D_uu, D_ss, D_us, b_u, b_s; dev[5] = f_ms (xyz per channel); dev[6] = E_1, the
@@ -245,11 +281,9 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
     vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
     vec3 albedo = v3_from4(a->ground_albedo);
     float sin_s = atmo_safe_sqrt(1.0f - mu_s * mu_s);
-    vec3 L2 = v3(0.0f, 0.0f, 0.0f), f = v3(0.0f, 0.0f, 0.0f);
-    vec3 m_uu = v3(0.0f, 0.0f, 0.0f), m_ss = v3(0.0f, 0.0f, 0.0f), m_us = v3(0.0f, 0.0f, 0.0f);
-    vec3 b_u = v3(0.0f, 0.0f, 0.0f), b_s = v3(0.0f, 0.0f, 0.0f), e_sky = v3(0.0f, 0.0f, 0.0f);
+    vec3 f = v3(0.0f, 0.0f, 0.0f), zero = v3(0.0f, 0.0f, 0.0f);
+    __ms_moments mom = {zero, zero, zero, zero, zero, zero, zero, 0.0f};
     float mu_h = -atmo_safe_sqrt((r - a->bottom_radius) * (r + a->bottom_radius)) / r;
-    float weights = 0.0f;
     for (int k = 0; k < n_mu; k++) {
         float u, mu = __ms_band(k, n_mu, mu_h, &u);
         int up = k >= n_mu / 2;
@@ -296,30 +330,14 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
                 L1 = v3_add(L1, v3_mul(T, radiance));
             }
             /* w in the local frame: up component mu, sun-ward horizontal sin_v cos(phi) */
-            float w_s = sin_v * cosf(phi);
-            if (mu > 0.0f)
-                e_sky = v3_add(e_sky, v3_scale(L1, u * mu));
-            m_uu = v3_add(m_uu, v3_scale(L1, u * mu * mu));
-            m_ss = v3_add(m_ss, v3_scale(L1, u * w_s * w_s));
-            m_us = v3_add(m_us, v3_scale(L1, u * mu * w_s));
-            b_u = v3_add(b_u, v3_scale(L1, u * mu));
-            b_s = v3_add(b_s, v3_scale(L1, u * w_s));
-            L2 = v3_add(L2, v3_scale(L1, u));
+            __ms_moments_add(&mom, L1, u, mu, sin_v * cosf(phi));
             f = v3_add(f, v3_scale(f1, u));
-            weights += u;
         }
     }
-    /* normalised by the sum of the weights (2 up to rounding) */
-    L2 = v3_scale(L2, 1.0f / weights);
-    f = v3_scale(f, 1.0f / weights);
-    /* m = (3/4) <L1 w w^T>, D = m - (L2 / 4) I (traceless, 0 for an isotropic L1) */
-    dev[0] = __ms_float4(v3_sub(v3_scale(m_uu, 0.75f / weights), v3_scale(L2, 0.25f)), 0.0f);
-    dev[1] = __ms_float4(v3_sub(v3_scale(m_ss, 0.75f / weights), v3_scale(L2, 0.25f)), 0.0f);
-    dev[2] = __ms_float4(v3_scale(m_us, 0.75f / weights), 0.0f);
-    dev[3] = __ms_float4(v3_scale(b_u, 1.0f / weights), 0.0f);
-    dev[4] = __ms_float4(v3_scale(b_s, 1.0f / weights), 0.0f);
+    vec3 L2 = __ms_moments_finish(&mom, dev);
+    f = v3_scale(f, 1.0f / mom.weights);
     dev[5] = __ms_float4(f, 0.0f);
-    dev[6] = __ms_float4(v3_scale(e_sky, 4.0f * ATMO_PI / weights), 0.0f);
+    dev[6] = __ms_float4(v3_scale(mom.e_up, 4.0f * ATMO_PI / mom.weights), 0.0f);
     return __ms_float4(L2, f.y);
 }
 
@@ -342,10 +360,8 @@ ATMO_FN vec3 ms_lut_gather(ATMO_GLOBAL const atmo_gpu_scene *s,
     vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
     float sin_s = atmo_safe_sqrt(1.0f - mu_s * mu_s);
     float mu_h = -atmo_safe_sqrt((r - a->bottom_radius) * (r + a->bottom_radius)) / r;
-    vec3 sum = v3(0.0f, 0.0f, 0.0f);
-    vec3 m_uu = v3(0.0f, 0.0f, 0.0f), m_ss = v3(0.0f, 0.0f, 0.0f), m_us = v3(0.0f, 0.0f, 0.0f);
-    vec3 b_u = v3(0.0f, 0.0f, 0.0f), b_s = v3(0.0f, 0.0f, 0.0f), e_up = v3(0.0f, 0.0f, 0.0f);
-    float weights = 0.0f;
+    vec3 zero = v3(0.0f, 0.0f, 0.0f);
+    __ms_moments mom = {zero, zero, zero, zero, zero, zero, zero, 0.0f};
     for (int k = 0; k < n_mu; k++) {
         float u, mu = __ms_band(k, n_mu, mu_h, &u);
         int up = k >= n_mu / 2;
@@ -380,25 +396,11 @@ ATMO_FN vec3 ms_lut_gather(ATMO_GLOBAL const atmo_gpu_scene *s,
                 vec3 e = ms_lut_lookup(a, sky_e, width, height, a->bottom_radius, mu_s_g);
                 acc = v3_add(acc, v3_mul(T, v3_scale(v3_mul(albedo, e), 1.0f / ATMO_PI)));
             }
-            float w_s = sin_v * cosf(phi);
-            if (mu > 0.0f)
-                e_up = v3_add(e_up, v3_scale(acc, u * mu));
-            m_uu = v3_add(m_uu, v3_scale(acc, u * mu * mu));
-            m_ss = v3_add(m_ss, v3_scale(acc, u * w_s * w_s));
-            m_us = v3_add(m_us, v3_scale(acc, u * mu * w_s));
-            b_u = v3_add(b_u, v3_scale(acc, u * mu));
-            b_s = v3_add(b_s, v3_scale(acc, u * w_s));
-            sum = v3_add(sum, v3_scale(acc, u));
-            weights += u;
+            __ms_moments_add(&mom, acc, u, mu, sin_v * cosf(phi));
         }
     }
-    sum = v3_scale(sum, 1.0f / weights);
-    dev[0] = __ms_float4(v3_sub(v3_scale(m_uu, 0.75f / weights), v3_scale(sum, 0.25f)), 0.0f);
-    dev[1] = __ms_float4(v3_sub(v3_scale(m_ss, 0.75f / weights), v3_scale(sum, 0.25f)), 0.0f);
-    dev[2] = __ms_float4(v3_scale(m_us, 0.75f / weights), 0.0f);
-    dev[3] = __ms_float4(v3_scale(b_u, 1.0f / weights), 0.0f);
-    dev[4] = __ms_float4(v3_scale(b_s, 1.0f / weights), 0.0f);
-    dev[5] = __ms_float4(v3_scale(e_up, 4.0f * ATMO_PI / weights), 0.0f);
+    vec3 sum = __ms_moments_finish(&mom, dev);
+    dev[5] = __ms_float4(v3_scale(mom.e_up, 4.0f * ATMO_PI / mom.weights), 0.0f);
     return sum;
 }
 
