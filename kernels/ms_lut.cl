@@ -18,18 +18,27 @@
  * precompute takes 35 % less time). */
 #define MS_GATHER_PHI (scene->method_int[1] > 1 ? scene->method_int[1] / 2 : 1)
 
-/* Pass 1: order 2 from the first-order light at x (ms_lut_texel): plane 0 = (L_2, f_y),
- * 1-5 = its anisotropy, 13 = f_ms per channel, 12 = E_1 (the ground's first-order sky light). */
-__kernel void ms_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PARAMS, int arg)
+/* The texel of this work item: its (r, mu_s) and index in a plane, or -1 outside the LUT
+ * (the global size is padded). */
+int __ms_this_texel(__global const atmo_gpu_scene *scene, float *r, float *mu_s)
 {
     int i = get_global_id(0), j = get_global_id(1);
     int w = scene->lut_dims[0][0], h = scene->lut_dims[0][1];
     if (i >= w || j >= h)
-        return;
+        return -1;
+    ms_lut_r_mu_s(&scene->atmosphere, i, j, w, h, r, mu_s);
+    return j * w + i;
+}
+
+/* Pass 1: order 2 from the first-order light at x (ms_lut_texel): plane 0 = (L_2, f_y),
+ * 1-5 = its anisotropy, 13 = f_ms per channel, 12 = E_1 (the ground's first-order sky light). */
+__kernel void ms_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PARAMS, int arg)
+{
     float r, mu_s;
-    ms_lut_r_mu_s(&scene->atmosphere, i, j, w, h, &r, &mu_s);
+    int idx = __ms_this_texel(scene, &r, &mu_s);
+    if (idx < 0)
+        return;
     float4 dev[7];
-    int idx = j * w + i;
     MS_PLANE(0)[idx] = ms_lut_texel(scene, lut_transmittance, r, mu_s, scene->method_int[0],
                                     scene->method_int[1], scene->method_int[2], dev);
     for (int k = 0; k < 5; k++)
@@ -45,13 +54,11 @@ __kernel void ms_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PARAMS, 
  * third pass). */
 __kernel void ms_lut_order3(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PARAMS, int arg)
 {
-    int i = get_global_id(0), j = get_global_id(1);
-    int w = scene->lut_dims[0][0], h = scene->lut_dims[0][1];
-    if (i >= w || j >= h)
-        return;
     float r, mu_s;
-    ms_lut_r_mu_s(&scene->atmosphere, i, j, w, h, &r, &mu_s);
-    int idx = j * w + i;
+    int idx = __ms_this_texel(scene, &r, &mu_s);
+    if (idx < 0)
+        return;
+    int w = scene->lut_dims[0][0], h = scene->lut_dims[0][1];
     float4 dev[6];
     float3 s3 = ms_lut_gather(scene, MS_PLANE(0), MS_PLANE(1), MS_PLANE(12), w, h, r, mu_s,
                               scene->method_int[0], MS_GATHER_PHI, scene->method_int[2], dev);
@@ -68,13 +75,11 @@ __kernel void ms_lut_order3(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_P
  * sky irradiance for the march. */
 __kernel void ms_lut_second(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PARAMS, int arg)
 {
-    int i = get_global_id(0), j = get_global_id(1);
-    int w = scene->lut_dims[0][0], h = scene->lut_dims[0][1];
-    if (i >= w || j >= h)
-        return;
     float r, mu_s;
-    ms_lut_r_mu_s(&scene->atmosphere, i, j, w, h, &r, &mu_s);
-    int idx = j * w + i;
+    int idx = __ms_this_texel(scene, &r, &mu_s);
+    if (idx < 0)
+        return;
+    int w = scene->lut_dims[0][0], h = scene->lut_dims[0][1];
     float4 dev[6];
     float3 higher = ms_lut_gather(scene, MS_PLANE(6), MS_PLANE(7), MS_PLANE(13), w, h, r, mu_s,
                                   scene->method_int[0], MS_GATHER_PHI, scene->method_int[2], dev);
