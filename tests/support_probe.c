@@ -4,7 +4,7 @@
 #include <string.h>
 #include "testprobe.h"
 
-static const char __probe_src[] =
+static const char probe_source[] =
     "__kernel void test_probe(__global const atmo_gpu_scene *s, ATMO_LUT_PARAMS,\n"
     "                         __global const float4 *rays, __global float4 *sky_out,\n"
     "                         __global float4 *sun_out, uint n, uint batches, uint samples,\n"
@@ -32,7 +32,7 @@ void test_probe_open(test_probe *t, atmo_cl *cl, const atmo_plan *plan)
 {
     memset(t, 0, sizeof *t);
     t->cl = cl;
-    t->program = test_plan_program(cl, plan, __probe_src);
+    t->program = test_plan_program(cl, plan, probe_source);
     t->scene = test_cl_buffer(cl, sizeof plan->gpu, &plan->gpu);
     test_precompute(cl, t->program, t->scene, plan, t->luts);
 }

@@ -1,4 +1,4 @@
-/* test_aerial — aerial perspective: every method's sky_segment (kernels/sky_method.h), the light
+/* test_aerial — aerial perspective: every method's sky_segment (kernels/atmosphere/sky_method.h), the light
  * in-scattered toward the camera by the air before a black surface at distance d, and the
  * transmittance T(0, d), run through the sky_probe_segment kernel (atmo_probe_segments: 64
  * batches, whose spread gives each value's standard error SE).
@@ -109,14 +109,14 @@ static const char scan_src[] =
     "                       : geometry_distance_to_top(r, mu, a->top_radius);\n"
     "  float3 L, T;\n"
     "  if (d >= d_end) {\n"
-    "    L = __lut_sky(s, ATMO_LUT_ARGS, r, mu, mu_s, nu, ground, &T);\n"
+    "    L = lut_sky(s, ATMO_LUT_ARGS, r, mu, mu_s, nu, ground, &T);\n"
     "  } else {\n"
     "    float r_d = geometry_radius_at(r, mu, d);\n"
     "    float mu_d = atmo_clamp_cos((r * mu + d) / r_d);\n"
     "    float mu_s_d = atmo_clamp_cos((r * mu_s + d * nu) / r_d);\n"
     "    T = lut_transmittance_between(s, lut_transmittance, r, mu, r_d, mu_d, ground);\n"
-    "    L = max(__lut_scattered(s, lut_a, lut_b, r, mu, mu_s, nu, ground) -\n"
-    "            T * __lut_scattered(s, lut_a, lut_b, r_d, mu_d, mu_s_d, nu, ground), 0.0f);\n"
+    "    L = max(lut_scattered(s, lut_a, lut_b, r, mu, mu_s, nu, ground) -\n"
+    "            T * lut_scattered(s, lut_a, lut_b, r_d, mu_d, mu_s_d, nu, ground), 0.0f);\n"
     "  }\n"
     "  out[i] = (float4)(L, 0.0f);\n"
     "}\n";

@@ -330,7 +330,7 @@ static void simpson_piece(const simple_ray *s, double t0, double t1, int n, int 
     double h = (t1 - t0) / n;
     double nu = dot3(s->view, s->sun);
     double p_r = atmo_ref_phase_rayleigh(nu), p_m = atmo_ref_phase_mie(s->a, nu);
-    double prev_ext[3];
+    double prev_ext[3] = {0.0, 0.0, 0.0};
     for (int i = 0; i <= n; i++) {
         double t = t0 + i * h, x[3], ext[3], sr[3], sm[3];
         for (int k = 0; k < 3; k++)

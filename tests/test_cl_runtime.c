@@ -44,7 +44,7 @@ int main(void)
           strstr(e.msg, "clFoo") && strstr(e.msg, "CL_OUT_OF_RESOURCES"));
 
     /* build twice: the second is served by the cache (ctest gives this test its own cache dir) */
-    const char *fragments[] = {"kernels/compat.h"};
+    const char *fragments[] = {"kernels/common/compat.h"};
     atmo_cl_build_options o = {fragments, 1, "", NULL, 1, good};
     atmo_cl_build_info first, second;
     cl_program p1, p2;
@@ -91,7 +91,7 @@ int main(void)
 
     /* #line directives name every fragment */
     char *src = atmo_cl_assemble(fragments, 1, good, &e);
-    CHECK(src && strstr(src, "#line 1 \"kernels/compat.h\"") && strstr(src, "#line 1 \"extra\""));
+    CHECK(src && strstr(src, "#line 1 \"kernels/common/compat.h\"") && strstr(src, "#line 1 \"extra\""));
     free(src);
     atmo_cl_close(&cl);
     return test_finish();

@@ -1,4 +1,4 @@
-/* test_cloud_shell — the cloud shell and observer of kernels/cloud_shell.h.
+/* test_cloud_shell — the cloud shell and observer of kernels/media/cloud_shell.h.
  * labels: kernel render
  *
  * Oracles:
@@ -23,7 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 #define ATMO_CLOUD_OCTAVES 1
-#include "cloud_shell.h"
+#include "media/cloud_shell.h"
 #include "testlib.h"
 #include "testscene.h"
 

@@ -1,4 +1,4 @@
-/* test_fast — method "fast" (kernels/method_fast.h, fast_luts.cl): its sky-view LUT against the
+/* test_fast — method "fast" (kernels/atmosphere/method_fast.h, fast_luts.cl): its sky-view LUT against the
  * march it tabulates, the fallback above the atmosphere, and a NaN scan of the LUT path.
  * labels: kernel
  *

@@ -36,7 +36,7 @@ int main(void)
     enum { N = sizeof want / sizeof want[0] };
     atmo_cl cl;
     test_cl_open(&cl);
-    const char *fragments[] = {"kernels/compat.h", "include/atmo/gpu_types.h"};
+    const char *fragments[] = {"kernels/common/compat.h", "include/atmo/gpu_types.h"};
     cl_program prog = test_cl_build(&cl, fragments, 2, probe);
     cl_int err;
     cl_kernel k = clCreateKernel(prog, "probe", &err);

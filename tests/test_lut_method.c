@@ -3,7 +3,7 @@
  * labels: kernel
  *
  * Oracles and tolerances:
- * 1. Parametrisation (kernels/lut_scattering.h, on the host): the inverse maps are exact
+ * 1. Parametrisation (kernels/atmosphere/lut_scattering.h, on the host): the inverse maps are exact
  *    inverses. Texel centres: value_at(i) maps back to position i within 5e-3 texel (r rounds
  *    to 0.25 m at 6.4e6 m, and next to the ground, where dp/dr = (n - 1) r / (H rho) is
  *    steepest, that is 2e-3 texel of a 32-texel axis), and within 5e-2 texel for mu, whose
@@ -40,7 +40,7 @@
 #include <time.h>
 #include "atmo/atmosphere_ref.h"
 #include "atmo/render.h"
-#include "lut_scattering.h"
+#include "atmosphere/lut_scattering.h"
 #include "testlib.h"
 #include "testscene.h"
 

@@ -1,5 +1,5 @@
-/* test_lut_param — ray geometry and the transmittance LUT parametrisation (kernels/geometry.h,
- * kernels/atmosphere.h), compiled on the host exactly as the kernels use them.
+/* test_lut_param — ray geometry and the transmittance LUT parametrisation (kernels/common/geometry.h,
+ * kernels/atmosphere/atmosphere.h), compiled on the host exactly as the kernels use them.
  * labels: unit
  *
  * Oracles: closed forms of sphere geometry (distance to the top straight up = top - bottom;
@@ -13,8 +13,8 @@
  * Float tolerances: r to 1 m (float spacing at 6.4e6 m is 0.5 m); d to 1e-5 of the longest ray
  * (17.5 m of 1750 km: mu carries 6e-8 relative rounding, which near the horizon the slope
  * dd/dmu ~ r^2 / sqrt(discriminant) amplifies; 17.5 m is 1/400 of a texel of a 256-wide LUT). */
-#include "atmosphere.h"
-#include "geometry.h"
+#include "atmosphere/atmosphere.h"
+#include "common/geometry.h"
 #include "testlib.h"
 
 int main(void)

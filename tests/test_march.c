@@ -1,4 +1,4 @@
-/* test_march — method "march" (kernels/method_march.h, kernels/ms_lut.h) against its limits.
+/* test_march — method "march" (kernels/atmosphere/method_march.h, kernels/atmosphere/ms_lut.h) against its limits.
  * labels: kernel
  *
  * Oracles:

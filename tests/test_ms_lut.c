@@ -1,4 +1,4 @@
-/* test_ms_lut — the multiple-scattering transfer LUT Psi_ms (kernels/ms_lut.h, ms_lut.cl).
+/* test_ms_lut — the multiple-scattering transfer LUT Psi_ms (kernels/atmosphere/ms_lut.h, ms_lut.cl).
  * labels: kernel
  *
  * Oracles:

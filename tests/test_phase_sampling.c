@@ -1,4 +1,4 @@
-/* test_phase_sampling.c — samplers and pdfs of kernels/phase.h (host build of the shared header,
+/* test_phase_sampling.c — samplers and pdfs of kernels/common/phase.h (host build of the shared header,
  * float), for HG, Cornette-Shanks, Draine, two-term HG, Jendersie-d'Eon and the Mie table.
  * labels: stat
  *
@@ -13,7 +13,7 @@
  *     theta that normalised it (1 +- 1e-4, test_mie_table) by O(h^2): 2e-4 there.
  *     Jendersie-d'Eon at d = 50 um has an HG lobe with g = 0.995, whose peak 1 + g^2 - 2 g nu
  *     = (1 - g)^2 = 2.5e-5 the textbook float formula formed by cancellation (7.7e-4 off in the
- *     integral); kernels/phase.h forms it without, and it must meet the same 1e-4 (measured
+ *     integral); kernels/common/phase.h forms it without, and it must meet the same 1e-4 (measured
  *     2.4e-5, the rounding of nu to float in this integrator).
  *   - pdf == phase where the sampling is exact (every analytic one): pdf(nu) and phase(nu) agree
  *     to float rounding (1e-6 relative). The table's pdf is its own piecewise-constant density;
@@ -22,7 +22,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include "atmo/mie.h"
-#include "phase.h"
+#include "common/phase.h"
 #include "testlib.h"
 
 #define NBINS 100

@@ -1,4 +1,4 @@
-/* test_phase_sampling_cl.c — the samplers and pdfs of kernels/phase.h compiled by OpenCL (PoCL):
+/* test_phase_sampling_cl.c — the samplers and pdfs of kernels/common/phase.h compiled by OpenCL (PoCL):
  * HG (g up to 0.995), Cornette-Shanks, Draine, two-term HG, Jendersie-d'Eon at 5, 10, 20 and
  * 50 um, and the tabulated Mie CDF of a cumulus at 550 nm (built on the host, uploaded as float
  * buffers).
@@ -6,7 +6,7 @@
  *
  * Oracles:
  *   - Chi-square goodness of fit of 200000 device samples per sampler (counter-based uniforms of
- *     kernels/rng.h, fixed seed) against the exact distribution in double: the closed-form CDFs
+ *     kernels/common/rng.h, fixed seed) against the exact distribution in double: the closed-form CDFs
  *     (HG: F(mu) = (1-g^2)/(2g) [1/t - 1/(1+g)], t = sqrt(1+g^2-2g mu); Draine: the A(mu) of
  *     phase.h's comment, whose derivative is 2 pi p_D; mixtures by weight), and for the table the
  *     piecewise-linear-in-mu CDF that the table sampler inverts. 100 bins of equal expected
@@ -28,8 +28,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/mie.h"
-#include "phase.h"
-#include "rng.h"
+#include "common/phase.h"
+#include "common/rng.h"
 #include "testcl.h"
 #include "testlib.h"
 
@@ -278,7 +278,7 @@ int main(void)
         tab_mu[i] = (float)t.mu[i], tab_P[i] = (float)t.P[i], tab_cdf[i] = (float)t.cdf[i];
 
     test_cl_open(&cl);
-    const char *fragments[] = {"kernels/compat.h", "kernels/rng.h", "kernels/phase.h"};
+    const char *fragments[] = {"kernels/common/compat.h", "kernels/common/rng.h", "kernels/common/phase.h"};
     prog = test_cl_build(&cl, fragments, 3, probe_source);
     b_mu = test_cl_buffer(&cl, sizeof(float) * (size_t)tab_n, tab_mu);
     b_P = test_cl_buffer(&cl, sizeof(float) * (size_t)tab_n, tab_P);

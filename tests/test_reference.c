@@ -1,4 +1,4 @@
-/* test_reference — the Monte Carlo reference method (kernels/method_reference.h) checked as an
+/* test_reference — the Monte Carlo reference method (kernels/atmosphere/method_reference.h) checked as an
  * estimator.
  * labels: kernel stat
  *

@@ -20,7 +20,7 @@
  *   fast:  0.8/0.9/1.3 %  /  1.1/0.8/1.2 %  (issue 4's stretch goal for fast, 2 %, is met)
  *   lut:   0.6/0.7/0.9 %  /  1.0/2.8/4.0 %  (default table sizes and 7 orders: its precompute
  *          takes 1-2 minutes of this test's time)
- * (before the Psi_ms changes listed in kernels/ms_lut.h, march and fast were 6-7 % off in blue
+ * (before the Psi_ms changes listed in kernels/atmosphere/ms_lut.h, march and fast were 6-7 % off in blue
  * near the horizon and 7.6 % at the zenith with the sun at the horizon; before the gathered
  * order 3, the Mie anisotropy, growing segments and fast's phase-free sky-view LUT, march was
  * 2.1/1.9/2.9 % / 1.8/1.5/4.1 % and fast 2.8/2.2/3.3 % / 1.5/1.8/4.7 %.)

@@ -1,4 +1,4 @@
-/* test_rng — the counter-based RNG of kernels/rng.h.
+/* test_rng — the counter-based RNG of kernels/common/rng.h.
  * labels: stat kernel
  *
  * Oracle: statistical tests. Chi-square goodness of fit of 10^6 draws to the uniform
@@ -9,7 +9,7 @@
  * Second oracle: the same header compiled by PoCL gives bitwise the same numbers as the host. */
 #include <stdlib.h>
 #include <string.h>
-#include "rng.h"
+#include "common/rng.h"
 #include "testcl.h"
 #include "testlib.h"
 
@@ -78,7 +78,7 @@ int main(void)
     /* host and device agree bit for bit */
     atmo_cl cl;
     test_cl_open(&cl);
-    const char *fragments[] = {"kernels/compat.h", "kernels/rng.h"};
+    const char *fragments[] = {"kernels/common/compat.h", "kernels/common/rng.h"};
     cl_program prog = test_cl_build(&cl, fragments, 2, probe);
     cl_int err;
     cl_kernel k = clCreateKernel(prog, "probe", &err);

@@ -60,7 +60,7 @@
  *
  * Measured: single, march and lut agree within 0.4 of their rounding bounds (worst 7.6e-5,
  * 3.2e-4 and 1.8e-4 of L); reference: worst |z| 3.4, median standard error of a difference 3 %.
- * Before atmosphere_enter computed the discriminant from b (kernels/atmosphere.h), rays from
+ * Before atmosphere_enter computed the discriminant from b (kernels/atmosphere/atmosphere.h), rays from
  * 1e8 m differed by up to 53 times these bounds (single 4.1 % of L on a ray grazing the top,
  * 1.1 % at the ground limb; march up to 9 %, lut 5 %); the reference's z-test, at 3 %
  * resolution, did not see it.
@@ -71,7 +71,7 @@
 #include <string.h>
 #include "testlib.h"
 #include "testprobe.h"
-#include "method_fast.h"
+#include "atmosphere/method_fast.h"
 
 #define DEG (M_PI / 180.0)
 #define U_FLOAT 5.9604644775390625e-8 /* 2^-24 */

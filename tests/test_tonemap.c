@@ -2,7 +2,7 @@
  * labels: unit
  *
  * Oracles:
- *   - closed-form values of each operator (kernels/tonemap.h) at inputs where the formula reduces
+ *   - closed-form values of each operator (kernels/post/tonemap.h) at inputs where the formula reduces
  *     to simple numbers: exposure 1 - e^-1; Reinhard 1/2 and 3/4; Reinhard-white maps w to exactly
  *     1; ACES(1) = 2.54/3.16; Unreal 3 at x = 0.155 is 1.019/2 before linearisation; Uchimura is
  *     the identity on its linear part [m, S0] = [0.22, 0.532], continuous into the shoulder at
@@ -24,7 +24,7 @@
 #include "atmo/image.h"
 #include "atmo/scene.h"
 #include "testlib.h"
-#include "tonemap.h"
+#include "post/tonemap.h"
 
 static const int all_ops[] = {ATMO_TONEMAP_NONE,     ATMO_TONEMAP_EXPOSURE, ATMO_TONEMAP_REINHARD,
                               ATMO_TONEMAP_REINHARD_WHITE, ATMO_TONEMAP_ACES, ATMO_TONEMAP_UNREAL3,

@@ -34,7 +34,7 @@ typedef struct atmo_cl {
 } atmo_cl;
 
 typedef struct atmo_cl_build_options {
-    const char *const *fragments; /* embedded names, in order, e.g. "kernels/compat.h" */
+    const char *const *fragments; /* embedded names, in order, e.g. "kernels/common/compat.h" */
     int fragment_count;
     const char *defines;          /* extra options, e.g. "-DATMO_LUMINANCE" (may be NULL) */
     const char *dump_dir;         /* --dump-kernels DIR, or NULL */

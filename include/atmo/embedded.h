@@ -1,6 +1,6 @@
 /* Files embedded into the binary at build time (tools/embed.c): the OpenCL C fragments of
  * kernels/ and the spectral tables of data/. Names are paths relative to the source tree,
- * e.g. "kernels/rng.h" or "data/cie1931_2deg_cmf.csv". Each table ends with a NULL name. */
+ * e.g. "kernels/common/rng.h" or "data/cie1931_2deg_cmf.csv". Each table ends with a NULL name. */
 #ifndef ATMO_EMBEDDED_H
 #define ATMO_EMBEDDED_H
 #include <stddef.h>

@@ -9,7 +9,7 @@
 #ifndef ATMO_GPU_TYPES_H
 #define ATMO_GPU_TYPES_H
 #ifndef __OPENCL_VERSION__
-#include "compat.h"
+#include "common/compat.h"
 #endif
 
 typedef struct atmo_gpu_atmosphere {
@@ -52,7 +52,7 @@ typedef struct atmo_gpu_scene {
     int lut_dims[3][4];    /* sizes of the method's LUTs a, b, c (the method says which axes) */
     int method_int[4];     /* integer knobs of the method (its fragment documents them) */
     float method_float[4]; /* float knobs of the method */
-    /* cloud shell and observer (kernels/cloud_shell.h): zero unless the plan defines ATMO_CLOUD */
+    /* cloud shell and observer (kernels/media/cloud_shell.h): zero unless the plan defines ATMO_CLOUD */
     float4 cloud_extinction; /* xyz: sigma_ext (1/m); w: altitude of the shell's base (m) */
     float4 cloud_albedo;     /* xyz: single-scattering albedo; w: altitude of its top (m) */
     float4 cloud_g;          /* xyz: asymmetry g of the table; w: Jendersie-d'Eon diameter (um) */

@@ -4,7 +4,7 @@
  * channels are (spectral radiance at three wavelengths, or luminance-based colour) is said by
  * atmo_image_meta and written into the files that can carry it:
  *   .png  8-bit, display-encoded through atmo_post (white balance, exposure, tone map, transfer
- *         curve; kernels/tonemap.h); the description goes into tEXt chunks.
+ *         curve; kernels/post/tonemap.h); the description goes into tEXt chunks.
  *   .hdr  Radiance RGBE of the linear values (shared 8-bit exponent: relative precision 2^-8 of
  *         the pixel's largest channel); the description goes into header comment lines.
  *   .exr  OpenEXR, scanline, ZIP, 32-bit float R, G, B: the linear values exactly; the

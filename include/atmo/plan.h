@@ -14,7 +14,7 @@
 
 #define ATMO_PLAN_MAX_FRAGMENTS 24
 #define ATMO_PLAN_MAX_PASSES 64
-#define ATMO_PLAN_LUTS 4 /* LUT buffers every sky kernel gets (kernels/sky_method.h) */
+#define ATMO_PLAN_LUTS 4 /* LUT buffers every sky kernel gets (kernels/atmosphere/sky_method.h) */
 
 /* One precompute launch: kernel(scene, lut0..lut3, arg) over width x height x depth items. */
 typedef struct atmo_plan_pass {

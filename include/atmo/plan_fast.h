@@ -1,4 +1,4 @@
-/* plan_fast.h — plan of the atmosphere method "fast" (kernels/method_fast.h). */
+/* plan_fast.h — plan of the atmosphere method "fast" (kernels/atmosphere/method_fast.h). */
 #ifndef ATMO_PLAN_FAST_H
 #define ATMO_PLAN_FAST_H
 #include "atmo/plan.h"

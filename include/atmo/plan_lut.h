@@ -1,5 +1,5 @@
 /* plan_lut.h — the plan of atmosphere method "lut" (precomputed 4-D scattering LUTs with all
- * orders; kernels/method_lut.h). */
+ * orders; kernels/atmosphere/method_lut.h). */
 #ifndef ATMO_PLAN_LUT_H
 #define ATMO_PLAN_LUT_H
 #include "atmo/plan.h"

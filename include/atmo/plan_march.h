@@ -1,5 +1,5 @@
-/* plan_march.h — plan of the atmosphere method "march" (kernels/method_march.h) and of the
- * multiple-scattering transfer LUT it shares with "fast" (kernels/ms_lut.h). */
+/* plan_march.h — plan of the atmosphere method "march" (kernels/atmosphere/method_march.h) and of the
+ * multiple-scattering transfer LUT it shares with "fast" (kernels/atmosphere/ms_lut.h). */
 #ifndef ATMO_PLAN_MARCH_H
 #define ATMO_PLAN_MARCH_H
 #include "atmo/plan.h"

@@ -1,4 +1,4 @@
-/* plan_reference.h — the plan of atmosphere method "reference" (kernels/method_reference.h):
+/* plan_reference.h — the plan of atmosphere method "reference" (kernels/atmosphere/method_reference.h):
  * the Monte Carlo path tracer that is the oracle of the other methods. */
 #ifndef ATMO_PLAN_REFERENCE_H
 #define ATMO_PLAN_REFERENCE_H

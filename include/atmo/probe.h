@@ -2,7 +2,7 @@
  *
  * A probe session opens the device, builds the plan's program, uploads the scene and runs the
  * precompute passes once; atmo_probe_rays() then averages `samples` samples of the method's
- * sky_radiance (the `sky_probe` kernel of kernels/sky.cl) for rays given as (r, mu, mu_s, nu),
+ * sky_radiance (the `sky_probe` kernel of kernels/render/sky.cl) for rays given as (r, mu, mu_s, nu),
  * as ATMO_PROBE_BATCHES independent batches (distinct RNG pixel indices) whose spread gives the
  * standard error. atmo_probe_segments() does the same for segments of the rays (aerial
  * perspective). Used by `atmo radiance` and `atmo bench atmosphere`. */

@@ -88,7 +88,7 @@ typedef struct atmo_scene {
         int white_balance;     /* 0/1: divide by the sun's white point */
         int transfer;          /* ATMO_TRANSFER_*: PNG encoding curve */
     } post;
-    struct {                   /* homogeneous cloud/fog shell (kernels/cloud_shell.h) */
+    struct {                   /* homogeneous cloud/fog shell (kernels/media/cloud_shell.h) */
         int enabled;
         double bottom_m, top_m; /* altitudes of the shell above sea level */
         int dsd;               /* index into mie_dsd_preset_names */

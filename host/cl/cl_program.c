@@ -1,0 +1,216 @@
+/* cl_program.c — assemble embedded kernel fragments, build them, and cache the binaries
+ * (atmo/cl_runtime.h). */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include "atmo/cl_runtime.h"
+#include "atmo/embedded.h"
+#include "atmo/fileio.h"
+
+#define ATMO_CL_STD "-cl-std=CL1.2"
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+char *atmo_cl_assemble(const char *const *fragments, int count, const char *extra, atmo_err *e)
+{
+    size_t total = 1 + (extra ? strlen(extra) + 32 : 0);
+    for (int i = 0; i < count; i++) {
+        const struct atmo_embedded_file *f = atmo_embedded_find(atmo_kernel_sources, fragments[i]);
+        if (!f) {
+            atmo_fail(e, ATMO_ERR_RUNTIME, "kernel fragment '%s' is not embedded (a build bug)",
+                      fragments[i]);
+            return NULL;
+        }
+        total += f->size + strlen(f->name) + 32;
+    }
+    char *src = malloc(total), *p = src;
+    if (!src) {
+        atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory assembling kernels");
+        return NULL;
+    }
+    for (int i = 0; i < count; i++) {
+        const struct atmo_embedded_file *f = atmo_embedded_find(atmo_kernel_sources, fragments[i]);
+        p += sprintf(p, "#line 1 \"%s\"\n", f->name);
+        memcpy(p, f->text, f->size);
+        p += f->size;
+        if (f->size && f->text[f->size - 1] != '\n')
+            *p++ = '\n';
+    }
+    if (extra)
+        p += sprintf(p, "#line 1 \"extra\"\n%s\n", extra);
+    *p = 0;
+    return src;
+}
+
+/* FNV-1a, 64 bit: enough to key a cache, not a security hash. */
+static unsigned long long fnv1a(unsigned long long h, const char *s)
+{
+    for (; *s; s++) {
+        h ^= (unsigned char)*s;
+        h *= 1099511628211ull;
+    }
+    return h ^ 0xffu; /* separator, so "ab"+"c" differs from "a"+"bc" */
+}
+
+static int mkdir_p(const char *dir)
+{
+    char tmp[1024];
+    snprintf(tmp, sizeof tmp, "%s", dir);
+    for (char *p = tmp + 1; *p; p++)
+        if (*p == '/') {
+            *p = 0;
+            if (mkdir(tmp, 0755) != 0 && errno != EEXIST)
+                return -1;
+            *p = '/';
+        }
+    return mkdir(tmp, 0755) != 0 && errno != EEXIST ? -1 : 0;
+}
+
+int atmo_cache_dir(char *dir, size_t size)
+{
+    const char *env = getenv("ATMO_CACHE_DIR");
+    const char *xdg = getenv("XDG_CACHE_HOME");
+    const char *home = getenv("HOME");
+    if (env && *env)
+        snprintf(dir, size, "%s", env);
+    else if (xdg && *xdg)
+        snprintf(dir, size, "%s/atmo", xdg);
+    else if (home && *home)
+        snprintf(dir, size, "%s/.cache/atmo", home);
+    else
+        return -1;
+    return mkdir_p(dir);
+}
+
+static int dump_source(const char *dir, unsigned long long key, const char *src, atmo_err *e)
+{
+    char path[1024];
+    if (mkdir_p(dir) != 0)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "cannot create --dump-kernels directory '%s': %s",
+                         dir, strerror(errno));
+    snprintf(path, sizeof path, "%s/atmo-%016llx.cl", dir, key);
+    return atmo_write_text_file(path, src, e);
+}
+
+/* Load a cached binary; returns a built program or NULL. */
+static cl_program cache_load(atmo_cl *cl, const char *path, const char *options)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long size = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    unsigned char *bin = size > 0 ? malloc((size_t)size) : NULL;
+    cl_program prog = NULL;
+    if (bin && fread(bin, 1, (size_t)size, f) == (size_t)size) {
+        size_t len = (size_t)size;
+        const unsigned char *bins[1] = {bin};
+        cl_int status, err;
+        prog = clCreateProgramWithBinary(cl->context, 1, &cl->device, &len, bins, &status, &err);
+        if (err != CL_SUCCESS || status != CL_SUCCESS ||
+            clBuildProgram(prog, 1, &cl->device, options, NULL, NULL) != CL_SUCCESS) {
+            if (prog)
+                clReleaseProgram(prog);
+            prog = NULL; /* a stale or foreign binary: rebuild from source */
+        }
+    }
+    free(bin);
+    fclose(f);
+    return prog;
+}
+
+/* Store a built program's binary; failures only cost the next run a compile. */
+static void cache_store(cl_program prog, const char *path)
+{
+    size_t size = 0;
+    if (clGetProgramInfo(prog, CL_PROGRAM_BINARY_SIZES, sizeof size, &size, NULL) != CL_SUCCESS ||
+        size == 0)
+        return;
+    unsigned char *bin = malloc(size);
+    unsigned char *bins[1] = {bin};
+    if (bin && clGetProgramInfo(prog, CL_PROGRAM_BINARIES, sizeof bins, bins, NULL) == CL_SUCCESS) {
+        char tmp[ATMO_TMP_PATH_MAX];
+        FILE *f = atmo_atomic_open(path, tmp, NULL);
+        if (f) {
+            fwrite(bin, 1, size, f);
+            atmo_atomic_commit(f, tmp, path, NULL);
+        }
+    }
+    free(bin);
+}
+
+int atmo_cl_build(atmo_cl *cl, const atmo_cl_build_options *o, cl_program *program,
+                  atmo_cl_build_info *info, atmo_err *e)
+{
+    double t0 = now_seconds();
+    int rc = ATMO_OK;
+    char options[2048];
+    snprintf(options, sizeof options, "%s %s", ATMO_CL_STD, o->defines ? o->defines : "");
+    char *src = atmo_cl_assemble(o->fragments, o->fragment_count, o->extra_source, e);
+    if (!src)
+        return ATMO_ERR_RUNTIME;
+
+    unsigned long long key = 1469598103934665603ull;
+    key = fnv1a(key, cl->platform_name);
+    key = fnv1a(key, cl->device_name);
+    key = fnv1a(key, cl->driver_version);
+    key = fnv1a(key, options);
+    key = fnv1a(key, src);
+    info->key = key;
+    info->cache_hit = 0;
+    if (o->dump_dir && (rc = dump_source(o->dump_dir, key, src, e)))
+        goto out;
+
+    char dir[1024], path[1200];
+    int cached = o->use_cache && atmo_cache_dir(dir, sizeof dir) == 0;
+    if (cached) {
+        snprintf(path, sizeof path, "%s/kernel-%016llx.bin", dir, key);
+        *program = cache_load(cl, path, options);
+        if (*program) {
+            info->cache_hit = 1;
+            goto out;
+        }
+    }
+
+    cl_int err;
+    const char *srcs[1] = {src};
+    *program = clCreateProgramWithSource(cl->context, 1, srcs, NULL, &err);
+    if (err != CL_SUCCESS) {
+        rc = atmo_cl_fail(e, "clCreateProgramWithSource", err);
+        goto out;
+    }
+    err = clBuildProgram(*program, 1, &cl->device, options, NULL, NULL);
+    if (err != CL_SUCCESS) {
+        size_t log_size = 0;
+        clGetProgramBuildInfo(*program, cl->device, CL_PROGRAM_BUILD_LOG, 0, NULL, &log_size);
+        char *log = malloc(log_size + 1);
+        if (log && clGetProgramBuildInfo(*program, cl->device, CL_PROGRAM_BUILD_LOG, log_size,
+                                         log, NULL) == CL_SUCCESS) {
+            log[log_size] = 0;
+            fprintf(stderr, "OpenCL build log:\n%s\n", log);
+        }
+        free(log);
+        rc = atmo_fail(e, ATMO_ERR_RUNTIME,
+                       "clBuildProgram failed: %s (build log above; --dump-kernels DIR writes the "
+                       "assembled source as DIR/atmo-%016llx.cl)",
+                       atmo_cl_error_string(err), key);
+        clReleaseProgram(*program);
+        *program = NULL;
+        goto out;
+    }
+    if (cached)
+        cache_store(*program, path);
+out:
+    free(src);
+    info->seconds = now_seconds() - t0;
+    return rc;
+}

@@ -1,0 +1,48 @@
+/* cmd_presets.c — `atmo presets`: the built-in scenes (scene_presets.c) with what each shows;
+ * `atmo presets NAME` prints the settings a preset applies over the defaults, in the
+ * key=value form that --set takes. */
+#include <stdio.h>
+#include <string.h>
+#include "atmo/scene.h"
+#include "commands.h"
+
+static void print_usage(FILE *f)
+{
+    fprintf(f, "usage: atmo presets [NAME]\n\n"
+               "List the built-in scenes and what each shows; with NAME, print the settings that\n"
+               "preset applies over the defaults (atmo params lists the defaults).\n"
+               "Render one with: atmo render --preset NAME\n\n"
+               "  --help   this text\n");
+}
+
+int cmd_presets(int argc, char **argv)
+{
+    const char *name = NULL;
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+            print_usage(stdout);
+            return ATMO_OK;
+        } else if (argv[i][0] == '-' || name) {
+            fprintf(stderr, "atmo presets: unexpected argument '%s'; run 'atmo presets --help'\n",
+                    argv[i]);
+            return ATMO_ERR_USAGE;
+        }
+        name = argv[i];
+    }
+    if (name) {
+        const atmo_preset *p = atmo_preset_find(name);
+        if (!p) {
+            fprintf(stderr, "atmo presets: unknown preset '%s'; run 'atmo presets' for the list\n",
+                    name);
+            return ATMO_ERR_USAGE;
+        }
+        printf("# %s: %s\n", p->name, p->summary);
+        for (const char *const *s = p->settings; *s; s++)
+            printf("%s\n", *s);
+        return ATMO_OK;
+    }
+    for (const atmo_preset *p = atmo_presets; p->name; p++)
+        printf("%-14s %s%s\n", p->name, p->summary,
+               strcmp(p->name, atmo_default_preset) == 0 ? " [default]" : "");
+    return ATMO_OK;
+}

@@ -1,0 +1,370 @@
+/* cmd_render.c — `atmo render`: scene -> plan -> device -> images and a run report.
+ *
+ * Scene assembly, in this order: the defaults; --preset NAME (default: atmo_default_preset) or
+ * --scene FILE; then --set KEY=VALUE and the shorthands (--width, --height, --samples, --seed,
+ * --camera) in command-line order. Every output's format is checked before anything runs, so a
+ * bad argument never costs a render. */
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <libgen.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+#include "atmo/colour.h"
+#include "atmo/fileio.h"
+#include "atmo/image.h"
+#include "atmo/plan.h"
+#include "atmo/render.h"
+#include "atmo/scene.h"
+#include "atmo/spectral_render.h"
+#include "commands.h"
+
+#define RENDER_MAX_OUTPUTS 8
+#define RENDER_MAX_SETS 256
+
+static const char render_usage[] =
+    "usage: atmo render [--preset NAME | --scene FILE] [--set KEY=VALUE ...] [options]\n"
+    "\n"
+    "Renders a scene and writes one image per --output (format from the extension):\n"
+    "  .png  8-bit sRGB after white balance, exposure and tone mapping (post.*)\n"
+    "  .hdr  Radiance RGBE, linear     .exr  OpenEXR 32-bit float, linear\n"
+    "  .pfm  portable float map, linear\n"
+    "Linear outputs hold spectral radiance (W m^-2 sr^-1 nm^-1) at render.wavelengths_nm, or\n"
+    "luminance (cd/m^2) with --set render.quantity=luminance. With --set render.spectral_bands=N\n"
+    "(N >= 15) the scene is rendered at N wavelengths over 360-830 nm, three at a time, and\n"
+    "combined through the CIE 1931 colour matching functions into linear sRGB (cd/m^2).\n"
+    "\n"
+    "scene:\n"
+    "  --preset NAME          a built-in scene (atmo presets; default %s)\n"
+    "  --scene FILE           a JSON scene file (atmo params lists every key)\n"
+    "  --set KEY=VALUE        override one parameter, e.g. --set sun.zenith_deg=60 (repeatable)\n"
+    "  --width N, --height N, --samples N, --seed N, --camera perspective|panorama\n"
+    "                         shorthands for image.width, image.height, image.samples,\n"
+    "                         image.seed and camera.kind\n"
+    "  --save-scene FILE      write the fully resolved scene as JSON (rendering it reproduces\n"
+    "                         the image bit for bit); without --output nothing is rendered\n"
+    "output:\n"
+    "  --output FILE          image to write (repeatable; default atmo.png)\n"
+    "  --report FILE          JSON run report: settings, device, samples, stage timings\n"
+    "device:\n"
+    "  --device N|NAME        OpenCL device by index or name part (or ATMO_DEVICE; atmo devices)\n"
+    "  --tile-size N          tile edge in pixels (default 64)\n"
+    "  --launch-budget-ms MS  time per kernel launch to aim for (default 100)\n"
+    "  --dump-kernels DIR     write the assembled OpenCL source to DIR\n"
+    "  --no-kernel-cache      always compile the kernels (cache: ATMO_CACHE_DIR or ~/.cache/atmo)\n"
+    "  --no-lut-cache         always precompute LUTs (LUTs that take over 0.5 s are cached)\n"
+    "  --quiet                no progress output\n"
+    "\n"
+    "Ctrl-C during the render writes the samples finished so far and says so.\n";
+
+static void on_sigint(int sig)
+{
+    (void)sig;
+    atmo_render_interrupt();
+    signal(SIGINT, SIG_DFL); /* a second Ctrl-C ends the process */
+}
+
+/* Fails with exit code 2 unless dir(path) exists and is writable. */
+static int check_writable(const char *path, const char *what, atmo_err *e)
+{
+    char copy[4096];
+    snprintf(copy, sizeof copy, "%s", path);
+    const char *dir = dirname(copy);
+    if (access(dir, W_OK) != 0)
+        return atmo_fail(e, ATMO_ERR_USAGE, "%s '%s': directory '%s' is not writable (%s)", what,
+                         path, dir, strerror(errno));
+    return ATMO_OK;
+}
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int write_report(const char *path, const atmo_scene *s, const atmo_render_result *r,
+                          const atmo_render_settings *rs, const char *const *outputs, int n_out,
+                          double seconds_write, atmo_err *e)
+{
+    cJSON *root = cJSON_CreateObject();
+    char *scene_text = atmo_scene_to_json(s);
+    cJSON *scene = scene_text ? cJSON_Parse(scene_text) : NULL;
+    free(scene_text);
+    cJSON_AddStringToObject(root, "software", "atmo " ATMO_VERSION);
+    cJSON_AddItemToObject(root, "scene", scene ? scene : cJSON_CreateNull());
+    cJSON *dev = cJSON_AddObjectToObject(root, "device");
+    cJSON_AddStringToObject(dev, "platform", r->platform_name);
+    cJSON_AddStringToObject(dev, "name", r->device_name);
+    cJSON_AddStringToObject(dev, "driver_version", r->driver_version);
+    cJSON *ren = cJSON_AddObjectToObject(root, "render");
+    cJSON_AddNumberToObject(ren, "width", r->width);
+    cJSON_AddNumberToObject(ren, "height", r->height);
+    cJSON_AddNumberToObject(ren, "samples_requested", r->samples_requested);
+    cJSON_AddNumberToObject(ren, "samples_min", r->samples_min);
+    cJSON_AddNumberToObject(ren, "samples_max", r->samples_max);
+    cJSON_AddBoolToObject(ren, "interrupted", r->interrupted);
+    cJSON_AddNumberToObject(ren, "nonfinite_samples_dropped", r->nonfinite);
+    cJSON_AddNumberToObject(ren, "launches", r->launches);
+    cJSON_AddNumberToObject(ren, "tile_size", rs->tile_size);
+    cJSON_AddNumberToObject(ren, "launch_budget_ms", rs->launch_budget_ms);
+    cJSON_AddBoolToObject(ren, "kernel_cache_hit", r->kernel_cache_hit);
+    cJSON_AddBoolToObject(ren, "lut_cache_hit", r->lut_cache_hit);
+    cJSON_AddStringToObject(ren, "mode", s->render.spectral_bands ? "spectral" : "3-wavelength");
+    cJSON_AddNumberToObject(ren, "spectral_bands", s->render.spectral_bands);
+    cJSON_AddStringToObject(ren, "quantity",
+                            s->render.spectral_bands ? "luminance, linear sRGB from the spectral "
+                                                       "bands through the CIE 1931 CMFs (cd m^-2)"
+                            : s->render.quantity == ATMO_QUANTITY_LUMINANCE
+                                ? "luminance (cd m^-2)"
+                                : "spectral radiance (W m^-2 sr^-1 nm^-1)");
+    cJSON *t = cJSON_AddObjectToObject(root, "seconds");
+    cJSON_AddNumberToObject(t, "device_init", r->seconds_device);
+    cJSON_AddNumberToObject(t, "kernel_build", r->seconds_build);
+    cJSON_AddNumberToObject(t, "precompute", r->seconds_precompute);
+    cJSON_AddNumberToObject(t, "render", r->seconds_render);
+    cJSON_AddNumberToObject(t, "write", seconds_write);
+    cJSON *outs = cJSON_AddArrayToObject(root, "outputs");
+    for (int i = 0; i < n_out; i++)
+        cJSON_AddItemToArray(outs, cJSON_CreateString(outputs[i]));
+    char *text = cJSON_Print(root);
+    cJSON_Delete(root);
+    if (!text)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory writing the report");
+    size_t len = strlen(text);
+    char *with_newline = malloc(len + 2);
+    int rc = ATMO_ERR_RUNTIME;
+    if (with_newline) {
+        memcpy(with_newline, text, len);
+        memcpy(with_newline + len, "\n", 2);
+        rc = atmo_write_text_file(path, with_newline, e);
+    }
+    free(with_newline);
+    free(text);
+    return rc;
+}
+
+static int parse_int_arg(const char *opt, const char *v, int lo, int hi, int *out, atmo_err *e)
+{
+    char *end;
+    long x = v ? strtol(v, &end, 10) : 0;
+    if (!v || *v == 0 || *end != 0 || x < lo || x > hi)
+        return atmo_fail(e, ATMO_ERR_USAGE, "%s needs an integer in [%d, %d], got '%s'", opt, lo,
+                         hi, v ? v : "");
+    *out = (int)x;
+    return ATMO_OK;
+}
+
+int cmd_render(int argc, char **argv)
+{
+    atmo_err e = {{0}};
+    atmo_scene scene;
+    atmo_render_settings rs;
+    atmo_render_result res = {0};
+    const char *preset = NULL, *scene_file = NULL, *report = NULL, *save_scene = NULL;
+    const char *outputs[RENDER_MAX_OUTPUTS];
+    char *sets[RENDER_MAX_SETS];
+    char set_buffers[RENDER_MAX_SETS][64];
+    int n_out = 0, n_set = 0, quiet = 0, lut_cache = 1, rc = ATMO_OK;
+    atmo_render_settings_default(&rs);
+
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        const char *shorthand = NULL;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            printf(render_usage, atmo_default_preset);
+            return ATMO_OK;
+        }
+        if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
+            quiet = 1;
+            continue;
+        }
+        if (strcmp(a, "--no-kernel-cache") == 0) {
+            rs.use_kernel_cache = 0;
+            continue;
+        }
+        if (strcmp(a, "--no-lut-cache") == 0) {
+            lut_cache = 0;
+            continue;
+        }
+        static const char *const with_value[] = {
+            "--preset", "--scene", "--set", "--output", "-o", "--report", "--save-scene",
+            "--device", "--dump-kernels", "--tile-size", "--launch-budget-ms", "--width",
+            "--height", "--samples", "--seed", "--camera", NULL};
+        int known = 0;
+        for (int k = 0; with_value[k]; k++)
+            known |= strcmp(a, with_value[k]) == 0;
+        if (!known) {
+            fprintf(stderr, "atmo render: %s '%s' (atmo render --help)\n",
+                    a[0] == '-' ? "unknown option" : "unexpected argument", a);
+            return ATMO_ERR_USAGE;
+        }
+        if (!v) {
+            fprintf(stderr, "atmo render: %s needs a value (atmo render --help)\n", a);
+            return ATMO_ERR_USAGE;
+        }
+        i++;
+        if (strcmp(a, "--preset") == 0)
+            preset = v;
+        else if (strcmp(a, "--scene") == 0)
+            scene_file = v;
+        else if (strcmp(a, "--set") == 0) {
+            if (n_set == RENDER_MAX_SETS) {
+                fprintf(stderr, "atmo render: more than %d --set options\n", RENDER_MAX_SETS);
+                return ATMO_ERR_USAGE;
+            }
+            sets[n_set++] = (char *)v;
+        } else if (strcmp(a, "--output") == 0 || strcmp(a, "-o") == 0) {
+            if (n_out == RENDER_MAX_OUTPUTS) {
+                fprintf(stderr, "atmo render: more than %d --output options\n", RENDER_MAX_OUTPUTS);
+                return ATMO_ERR_USAGE;
+            }
+            outputs[n_out++] = v;
+        } else if (strcmp(a, "--report") == 0)
+            report = v;
+        else if (strcmp(a, "--save-scene") == 0)
+            save_scene = v;
+        else if (strcmp(a, "--device") == 0)
+            rs.device = v;
+        else if (strcmp(a, "--dump-kernels") == 0)
+            rs.dump_dir = v;
+        else if (strcmp(a, "--tile-size") == 0) {
+            if ((rc = parse_int_arg(a, v, 8, 4096, &rs.tile_size, &e)))
+                goto usage_error;
+        } else if (strcmp(a, "--launch-budget-ms") == 0) {
+            char *end;
+            rs.launch_budget_ms = strtod(v, &end);
+            if (*v == 0 || *end != 0 || !(rs.launch_budget_ms >= 1.0 && rs.launch_budget_ms <= 1e5)) {
+                rc = atmo_fail(&e, ATMO_ERR_USAGE,
+                               "--launch-budget-ms needs milliseconds in [1, 100000], got '%s'", v);
+                goto usage_error;
+            }
+        } else if (strcmp(a, "--width") == 0)
+            shorthand = "image.width";
+        else if (strcmp(a, "--height") == 0)
+            shorthand = "image.height";
+        else if (strcmp(a, "--samples") == 0)
+            shorthand = "image.samples";
+        else if (strcmp(a, "--seed") == 0)
+            shorthand = "image.seed";
+        else /* --camera, the last of with_value[] */
+            shorthand = "camera.kind";
+        if (shorthand) {
+            if (n_set == RENDER_MAX_SETS || strlen(v) > 40) {
+                fprintf(stderr, "atmo render: bad value '%s' for %s\n", v, a);
+                return ATMO_ERR_USAGE;
+            }
+            snprintf(set_buffers[n_set], sizeof set_buffers[n_set], "%s=%s", shorthand, v);
+            sets[n_set] = set_buffers[n_set];
+            n_set++;
+        }
+    }
+
+    /* scene */
+    if (preset && scene_file) {
+        rc = atmo_fail(&e, ATMO_ERR_USAGE, "--preset and --scene exclude each other; pick one");
+        goto usage_error;
+    }
+    atmo_scene_defaults(&scene);
+    if (scene_file)
+        rc = atmo_scene_load_json(&scene, scene_file, &e);
+    else
+        rc = atmo_scene_apply_preset(&scene, preset ? preset : atmo_default_preset, &e);
+    for (int i = 0; i < n_set && !rc; i++)
+        rc = atmo_scene_assign(&scene, sets[i], "--set", &e);
+    if (rc || (rc = atmo_scene_validate(&scene, &e)))
+        goto usage_error;
+
+    /* outputs: formats and directories, before any work */
+    if (n_out == 0 && !save_scene)
+        outputs[n_out++] = "atmo.png";
+    for (int i = 0; i < n_out; i++) {
+        if (atmo_image_format_from_path(outputs[i]) < 0) {
+            rc = atmo_fail(&e, ATMO_ERR_USAGE,
+                           "--output '%s': unknown image format (use .png, .hdr, .exr or .pfm)",
+                           outputs[i]);
+            goto usage_error;
+        }
+        if ((rc = check_writable(outputs[i], "--output", &e)))
+            goto usage_error;
+    }
+    if ((report && (rc = check_writable(report, "--report", &e))) ||
+        (save_scene && (rc = check_writable(save_scene, "--save-scene", &e))))
+        goto usage_error;
+    if (save_scene && (rc = atmo_scene_save_json(&scene, save_scene, &e)))
+        goto runtime_error;
+    if (n_out == 0)
+        return ATMO_OK;
+
+    /* spectral mode plans each triplet of bands itself */
+    int spectral = scene.render.spectral_bands > 0;
+    atmo_plan plan;
+    if (!spectral && (rc = atmo_plan_make(&scene, &plan, &e)))
+        goto usage_error;
+    plan.cache_luts = lut_cache;
+    rs.progress = quiet ? 0 : (isatty(STDERR_FILENO) ? 2 : 1);
+
+    atmo_render_clear_interrupt();
+    struct sigaction sa = {0}, old;
+    sa.sa_handler = on_sigint;
+    sigaction(SIGINT, &sa, &old);
+    rc = spectral ? atmo_spectral_render(&scene, lut_cache, &rs, &res, &e)
+                  : atmo_render(&plan, &rs, &res, &e);
+    sigaction(SIGINT, &old, NULL);
+    if (rc)
+        goto runtime_error;
+    if (res.interrupted)
+        fprintf(stderr, "atmo render: interrupted; writing %d to %d of %d samples per pixel\n",
+                res.samples_min, res.samples_max, res.samples_requested);
+    if (res.nonfinite)
+        fprintf(stderr, "atmo render: warning: %u non-finite samples were dropped (a bug; please "
+                        "report it with the scene)\n", res.nonfinite);
+
+    /* outputs */
+    double tw = now_seconds();
+    atmo_post post = {(float)scene.post.exposure, scene.post.tonemap, (float)scene.post.white_point,
+                      scene.post.white_balance, {1.0f, 1.0f, 1.0f}, scene.post.transfer};
+    double wp[3];
+    atmo_solar_white_point(wp);
+    for (int c = 0; c < 3; c++)
+        post.white_balance_rgb[c] = (float)wp[c];
+    int lum = spectral || scene.render.quantity == ATMO_QUANTITY_LUMINANCE;
+    char spectral_quantity[96];
+    snprintf(spectral_quantity, sizeof spectral_quantity,
+             "luminance (linear sRGB from %d spectral bands, 360-830 nm; no channel wavelengths)",
+             scene.render.spectral_bands);
+    atmo_image_meta meta = {spectral ? spectral_quantity : lum ? "luminance" : "spectral radiance",
+                            lum ? "cd m^-2" : "W m^-2 sr^-1 nm^-1",
+                            {spectral ? 0.0 : scene.render.wavelengths_nm[0],
+                             spectral ? 0.0 : scene.render.wavelengths_nm[1],
+                             spectral ? 0.0 : scene.render.wavelengths_nm[2]},
+                            res.samples_min, res.interrupted, "atmo " ATMO_VERSION};
+    atmo_image img = {res.width, res.height, res.rgb};
+    for (int i = 0; i < n_out; i++)
+        if ((rc = atmo_image_write(outputs[i], &img, &post, &meta, &e)))
+            goto runtime_error;
+    double seconds_write = now_seconds() - tw;
+    if (report && (rc = write_report(report, &scene, &res, &rs, outputs, n_out, seconds_write, &e)))
+        goto runtime_error;
+    if (!quiet)
+        fprintf(stderr, "atmo render: wrote %d image%s (%dx%d, %d samples/pixel%s) in %.2fs render "
+                        "+ %.2fs build%s on %s\n",
+                n_out, n_out > 1 ? "s" : "", res.width, res.height, res.samples_min,
+                spectral ? ", spectral mode" : "",
+                res.seconds_render, res.seconds_build, res.kernel_cache_hit ? " (cached)" : "",
+                res.device_name);
+    atmo_render_result_free(&res);
+    return ATMO_OK;
+
+usage_error:
+    fprintf(stderr, "atmo render: %s\n", e.msg);
+    return rc;
+runtime_error:
+    atmo_render_result_free(&res);
+    fprintf(stderr, "atmo render: %s\n", e.msg);
+    return rc;
+}

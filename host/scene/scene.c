@@ -1,0 +1,514 @@
+/* scene.c — the scene parameter registry and the checks on every value a user can set.
+ *
+ * atmo_params[] has one row per field of atmo_scene (scene.h): its dotted key (the struct path),
+ * type, unit, valid range, default and a one-line meaning. Everything that reads or writes a
+ * scene goes through it: the defaults, --set, presets, JSON scene files (scene_json.c), and
+ * `atmo params`. Units are those of the key's name: _deg degrees, _m metres, _nm nanometres,
+ * _per_m 1/m; the Rayleigh coefficient c gives beta_R(lambda) = c * lambda[um]^-4 in 1/m.
+ *
+ * Values are rejected, with one line naming the key, the value, the valid range and the unit:
+ * unknown keys (with the closest key by Levenshtein edit distance), text that is not entirely a
+ * number (strtod must consume it all), NaN and Inf, values outside [min, max] (inclusive, every
+ * component of a vec3), non-integers for int keys, and enum names not in the list.
+ * atmo_scene_validate adds the checks between parameters: top radius above the bottom radius,
+ * ozone bottom <= peak <= top with bottom < top, and the camera not below the ground. */
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "atmo/atmosphere.h"
+#include "atmo/scene.h"
+#include "atmo/spectral_render.h"
+
+/* offsetof(atmo_scene, f), failing to compile when the field's size is not that of the row's
+ * type (a row declared INT on a double field would otherwise write 4 bytes into 8). */
+#define SCENE_FIELD(f, type)                                                                       \
+    (offsetof(atmo_scene, f) +                                                                     \
+     0 * sizeof(char[sizeof(((atmo_scene *)0)->f) == sizeof(type) ? 1 : -1]))
+#define ROW_INT(k, f, unit, lo, hi, d, help) \
+    {k, ATMO_PARAM_INT, SCENE_FIELD(f, int), unit, lo, hi, {d, 0, 0}, NULL, help}
+#define ROW_FLOAT(k, f, unit, lo, hi, d, help) \
+    {k, ATMO_PARAM_FLOAT, SCENE_FIELD(f, double), unit, lo, hi, {d, 0, 0}, NULL, help}
+#define ROW_VEC3(k, f, unit, lo, hi, x, y, z, help) \
+    {k, ATMO_PARAM_VEC3, SCENE_FIELD(f, double[3]), unit, lo, hi, {x, y, z}, NULL, help}
+#define ROW_ENUM(k, f, names, d, help)                                                       \
+    {k, ATMO_PARAM_ENUM, SCENE_FIELD(f, int), "", 0, sizeof names / sizeof names[0] - 2, \
+     {d, 0, 0}, names, help}
+#define ROW_BOOL(k, f, d, help) \
+    {k, ATMO_PARAM_BOOL, SCENE_FIELD(f, int), "", 0, 1, {d, 0, 0}, NULL, help}
+
+/* Enum names in the order of the ATMO_* constants of scene.h and atmosphere.h. */
+static const char *const camera_kinds[] = {"perspective", "panorama", NULL};
+static const char *const phase_names[] = {"cornette-shanks", "henyey-greenstein", NULL};
+static const char *const method_names[] = {"single", "march", "fast", "lut", "reference", NULL};
+static const char *const quantity_names[] = {"radiance", "luminance", NULL};
+static const char *const tonemap_names[] = {"none",           "exposure", "reinhard",
+                                            "reinhard-white", "aces",     "unreal3",
+                                            "uchimura",       "lottes",   NULL};
+static const char *const transfer_names[] = {"srgb", "gamma22", NULL};
+/* the size-distribution presets of mie_dsd_preset (host/mie_dsd.c), in its order */
+static const char *const cloud_dsd_names[] = {"cumulus", "stratus", "fog", "corona",
+                                              "thesis-disperse", "thesis-uniform", NULL};
+static const char *const cloud_phase_names[] = {"mie", "hg", "jendersie-deon", NULL};
+_Static_assert(ATMO_CAMERA_PANORAMA == 1 && ATMO_PHASE_HENYEY_GREENSTEIN == 1 &&
+                   ATMO_QUANTITY_LUMINANCE == 1 && ATMO_TONEMAP_LOTTES == 7 &&
+                   ATMO_TRANSFER_GAMMA22 == 1,
+               "enum name tables follow the order of the constants");
+
+const atmo_param atmo_params[] = {
+    ROW_INT("image.width", image.width, "px", 1, 16384, 640, "image width in pixels"),
+    ROW_INT("image.height", image.height, "px", 1, 16384, 360, "image height in pixels"),
+    ROW_INT("image.samples", image.samples, "", 1, 1e6, 16,
+            "samples per pixel (more: less noise, longer render)"),
+    ROW_INT("image.seed", image.seed, "", 0, 2147483647, 0,
+            "random-number seed; the same seed and scene give the same image"),
+    ROW_ENUM("camera.kind", camera.kind, camera_kinds, ATMO_CAMERA_PERSPECTIVE,
+             "perspective pinhole, or a 360-degree equirectangular panorama (environment map)"),
+    ROW_VEC3("camera.position_m", camera.position_m, "m", -1e9, 1e9, 0, 1.7, 0,
+             "camera position in metres: Y up, origin at sea level, planet centre (0,-R,0)"),
+    ROW_FLOAT("camera.pitch_deg", camera.pitch_deg, "deg", -90, 90, 0,
+              "camera pitch in degrees above the horizontal (ignored by panoramas)"),
+    ROW_FLOAT(
+        "camera.yaw_deg", camera.yaw_deg, "deg", -3600, 3600, 0,
+        "camera yaw in degrees: 0 looks along +Z, forward = (-cos p sin y, sin p, cos p cos y)"),
+    ROW_FLOAT("camera.fov_deg", camera.fov_deg, "deg", 1, 179, 45,
+              "vertical field of view of the perspective camera in degrees"),
+    ROW_FLOAT("sun.zenith_deg", sun.zenith_deg, "deg", 0, 180, 0,
+              "sun zenith angle in degrees from world +Y (90 = on the horizon)"),
+    ROW_FLOAT(
+        "sun.azimuth_deg", sun.azimuth_deg, "deg", -3600, 3600, 0,
+        "sun azimuth in degrees: direction (sin z sin a, cos z, sin z cos a); a = -yaw faces it"),
+    ROW_FLOAT("sun.angular_radius_deg", sun.angular_radius_deg, "deg", 0.01, 10, 0.26786,
+              "angular radius of the sun disc in degrees"),
+    ROW_FLOAT("sun.irradiance_scale", sun.irradiance_scale, "", 0, 1e6, 1,
+              "factor on the solar spectrum (1 = ASTM G-173 extraterrestrial)"),
+    ROW_FLOAT("atmosphere.bottom_radius_m", atmosphere.bottom_radius_m, "m", 1e3, 1e8, 6360e3,
+              "planet (sea-level) radius in metres"),
+    ROW_FLOAT("atmosphere.top_radius_m", atmosphere.top_radius_m, "m", 1e3, 1e8, 6420e3,
+              "radius of the top of the atmosphere in metres"),
+    ROW_FLOAT("atmosphere.rayleigh_coefficient", atmosphere.rayleigh_coefficient, "1/m um^4", 0, 1,
+              1.24062e-6, "Rayleigh scattering at sea level: beta_R = c * lambda[um]^-4 in 1/m"),
+    ROW_FLOAT("atmosphere.rayleigh_scale_height_m", atmosphere.rayleigh_scale_height_m, "m", 1, 1e6,
+              8000, "Rayleigh (air) density scale height in metres"),
+    ROW_FLOAT("atmosphere.mie_extinction_per_m", atmosphere.mie_extinction_per_m, "1/m", 0, 1,
+              4.44e-6, "aerosol extinction coefficient at sea level in 1/m, every wavelength"),
+    ROW_FLOAT("atmosphere.mie_albedo", atmosphere.mie_albedo, "", 0, 1, 0.9,
+              "aerosol single-scattering albedo (scattering / extinction)"),
+    ROW_FLOAT("atmosphere.mie_scale_height_m", atmosphere.mie_scale_height_m, "m", 1, 1e6, 1200,
+              "aerosol density scale height in metres"),
+    ROW_FLOAT("atmosphere.mie_g", atmosphere.mie_g, "", -0.999, 0.999, 0.8,
+              "aerosol phase asymmetry parameter g (0 = isotropic, > 0 forward)"),
+    ROW_ENUM("atmosphere.mie_phase", atmosphere.mie_phase, phase_names, ATMO_PHASE_CORNETTE_SHANKS,
+             "aerosol phase function"),
+    ROW_ENUM("atmosphere.method", atmosphere.method, method_names, ATMO_METHOD_FAST,
+             "how light transport in the atmosphere is computed (see README: Methods)"),
+    ROW_BOOL("cloud.enabled", cloud.enabled, 0,
+             "a homogeneous cloud/fog shell (methods single and march; kernels/media/cloud_shell.h)"),
+    ROW_FLOAT("cloud.bottom_m", cloud.bottom_m, "m", 0, 1e5, 1000,
+              "altitude of the cloud shell's base above sea level"),
+    ROW_FLOAT("cloud.top_m", cloud.top_m, "m", 0, 1e5, 2000,
+              "altitude of the cloud shell's top above sea level (above cloud.bottom_m)"),
+    ROW_ENUM("cloud.dsd", cloud.dsd, cloud_dsd_names, 0,
+             "droplet size distribution (presets of atmo mie --dsd)"),
+    ROW_FLOAT("cloud.lwc_g_m3", cloud.lwc_g_m3, "g/m^3", 1e-6, 10, 0.3,
+              "liquid water content; extinction = sigma_ext/LWC of the distribution x this"),
+    ROW_ENUM("cloud.phase", cloud.phase, cloud_phase_names, 0,
+             "cloud phase function: Mie table, Henyey-Greenstein with the table's g, or "
+             "Jendersie-d'Eon for the distribution's effective diameter"),
+    ROW_BOOL("cloud.sun_disc", cloud.sun_disc, 1,
+             "convolve the Mie table with the sun's disc (smooths ripples a point sun shows)"),
+    ROW_BOOL("observer.enabled", observer.enabled, 0,
+             "an observer sphere that casts a shadow on the cloud (Brocken spectre)"),
+    ROW_FLOAT("observer.distance_m", observer.distance_m, "m", 0, 1e4, 5,
+              "observer's centre: horizontal distance ahead of the camera toward the antisolar "
+              "point (it stays in the vertical plane through the sun)"),
+    ROW_FLOAT("observer.height_m", observer.height_m, "m", -1e4, 1e4, -1,
+              "observer's centre: height relative to the camera"),
+    ROW_FLOAT("observer.radius_m", observer.radius_m, "m", 0.01, 1e3, 1,
+              "observer sphere's radius"),
+    ROW_INT("lut.orders", atmosphere.lut_orders, "", 1, 15, 7,
+            "lut method: scattering orders precomputed (1 = single scattering only)"),
+    ROW_INT("lut.r_size", atmosphere.lut_r_size, "", 2, 1024, 32,
+            "lut method: texels of the scattering LUT along the altitude"),
+    ROW_INT("lut.mu_size", atmosphere.lut_mu_size, "", 4, 4096, 128,
+            "lut method: texels along the view zenith (even: half ground rays, half sky rays)"),
+    ROW_INT("lut.mu_s_size", atmosphere.lut_mu_s_size, "", 2, 1024, 32,
+            "lut method: texels along the sun zenith (0 to 120 degrees)"),
+    ROW_INT("lut.nu_size", atmosphere.lut_nu_size, "", 2, 256, 8,
+            "lut method: texels along the view-sun angle"),
+    ROW_INT("lut.steps", atmosphere.lut_steps, "", 4, 4096, 64,
+            "lut method: integration steps along the ray of each texel"),
+    ROW_INT("lut.sphere_samples", atmosphere.lut_sphere_samples, "", 4, 256, 32,
+            "lut method: zenith rings of the direction grid for multiple scattering"),
+    ROW_INT("reference.min_order", atmosphere.reference_min_order, "", 1, 1000, 1,
+            "reference method: count scattering orders from this one (1 = single scattering)"),
+    ROW_INT("reference.max_order", atmosphere.reference_max_order, "", 0, 1000, 0,
+            "reference method: count scattering orders up to this one (0 = all orders)"),
+    ROW_FLOAT("atmosphere.ozone_column_du", atmosphere.ozone_column_du, "DU", 0, 1000, 300,
+              "total ozone column in Dobson units (0 = no ozone absorption)"),
+    ROW_FLOAT("atmosphere.ozone_bottom_m", atmosphere.ozone_bottom_m, "m", 0, 1e6, 10000,
+              "altitude in metres where the ozone tent profile starts"),
+    ROW_FLOAT("atmosphere.ozone_peak_m", atmosphere.ozone_peak_m, "m", 0, 1e6, 25000,
+              "altitude in metres of the ozone density peak"),
+    ROW_FLOAT("atmosphere.ozone_top_m", atmosphere.ozone_top_m, "m", 0, 1e6, 40000,
+              "altitude in metres where the ozone tent profile ends"),
+    ROW_FLOAT("atmosphere.ground_albedo", atmosphere.ground_albedo, "", 0, 1, 0.1,
+              "Lambertian albedo of the ground"),
+    ROW_VEC3("render.wavelengths_nm", render.wavelengths_nm, "nm", 360, 830, 680, 550, 440,
+             "the three render wavelengths in nm (R, G, B channels)"),
+    ROW_INT("render.spectral_bands", render.spectral_bands, "", 0, 470, 0,
+            "0: render at the three wavelengths; N >= 15: spectral mode, N bands over 360-830 nm "
+            "combined through the CIE 1931 CMFs into luminance-based linear sRGB (cd/m^2)"),
+    ROW_ENUM("render.quantity", render.quantity, quantity_names, ATMO_QUANTITY_RADIANCE,
+             "what HDR outputs hold: spectral radiance (W/m^2/sr/nm) or luminance (cd/m^2)"),
+    ROW_INT("render.view_steps", render.view_steps, "", 1, 4096, 32,
+            "ray-march steps along each view ray"),
+    ROW_INT("render.transmittance_width", render.transmittance_width, "", 4, 4096, 256,
+            "transmittance LUT size along the view-zenith cosine"),
+    ROW_INT("render.transmittance_height", render.transmittance_height, "", 4, 4096, 256,
+            "transmittance LUT size along the altitude"),
+    ROW_FLOAT("post.exposure", post.exposure, "", 0, 1e9, 10,
+              "exposure factor on the (white-balanced) radiance before tone mapping"),
+    ROW_ENUM("post.tonemap", post.tonemap, tonemap_names, ATMO_TONEMAP_EXPOSURE,
+             "tone-mapping operator for PNG output"),
+    ROW_FLOAT("post.white_point", post.white_point, "", 1e-6, 1e9, 4,
+              "white point of the reinhard-white operator (exposed units)"),
+    ROW_BOOL("post.white_balance", post.white_balance, 1,
+             "divide by the sun's colour so sunlight is white"),
+    ROW_ENUM("post.transfer", post.transfer, transfer_names, ATMO_TRANSFER_SRGB,
+             "PNG encoding curve: sRGB or a pure 2.2 gamma"),
+    {NULL, ATMO_PARAM_INT, 0, NULL, 0, 0, {0, 0, 0}, NULL, NULL},
+};
+
+const atmo_param *atmo_param_find(const char *key)
+{
+    for (const atmo_param *p = atmo_params; p->key; p++)
+        if (strcmp(p->key, key) == 0)
+            return p;
+    return NULL;
+}
+
+static int *int_field(atmo_scene *s, const atmo_param *p)
+{
+    return (int *)((char *)s + p->offset);
+}
+
+static double *double_field(atmo_scene *s, const atmo_param *p)
+{
+    return (double *)((char *)s + p->offset);
+}
+
+void atmo_param_get(const atmo_scene *s, const atmo_param *p, double v[3])
+{
+    const char *base = (const char *)s + p->offset;
+    v[0] = v[1] = v[2] = 0;
+    if (p->type == ATMO_PARAM_FLOAT || p->type == ATMO_PARAM_VEC3)
+        memcpy(v, base, (p->type == ATMO_PARAM_VEC3 ? 3 : 1) * sizeof(double));
+    else
+        v[0] = *(const int *)base;
+}
+
+void atmo_scene_defaults(atmo_scene *s)
+{
+    memset(s, 0, sizeof *s); /* padding too, so scenes compare with memcmp */
+    for (const atmo_param *p = atmo_params; p->key; p++) {
+        if (p->type == ATMO_PARAM_FLOAT || p->type == ATMO_PARAM_VEC3)
+            memcpy(double_field(s, p), p->def,
+                   (p->type == ATMO_PARAM_VEC3 ? 3 : 1) * sizeof(double));
+        else
+            *int_field(s, p) = (int)p->def[0];
+    }
+}
+
+/* Levenshtein distance, for suggesting the closest key; keys are short (< 64 characters). */
+static size_t edit_distance(const char *a, const char *b)
+{
+    size_t la = strlen(a), lb = strlen(b);
+    if (la > 63)
+        la = 63;
+    if (lb > 63)
+        lb = 63;
+    size_t row[64];
+    for (size_t j = 0; j <= lb; j++)
+        row[j] = j;
+    for (size_t i = 1; i <= la; i++) {
+        size_t diag = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= lb; j++) {
+            size_t up = row[j];
+            size_t best =
+                diag + (tolower((unsigned char)a[i - 1]) != tolower((unsigned char)b[j - 1]));
+            if (up + 1 < best)
+                best = up + 1;
+            if (row[j - 1] + 1 < best)
+                best = row[j - 1] + 1;
+            row[j] = best;
+            diag = up;
+        }
+    }
+    return row[lb];
+}
+
+const char *atmo_param_closest(const char *key)
+{
+    const char *best = NULL;
+    size_t best_d = (size_t)-1;
+    for (const atmo_param *p = atmo_params; p->key; p++) {
+        size_t d = edit_distance(key, p->key);
+        /* "zenith_deg" alone should find "sun.zenith_deg": also compare with the part after the
+         * dot, counting one edit for the missing group */
+        const char *leaf = strchr(p->key, '.');
+        if (leaf) {
+            size_t dl = edit_distance(key, leaf + 1) + 1;
+            if (dl < d)
+                d = dl;
+        }
+        if (d < best_d) {
+            best_d = d;
+            best = p->key;
+        }
+    }
+    return best;
+}
+
+static int unknown_key(const char *key, const char *where, atmo_err *e)
+{
+    return atmo_fail(
+        e, ATMO_ERR_USAGE,
+        "unknown parameter '%s' (from %s); did you mean '%s'? (atmo params lists them all)", key,
+        where, atmo_param_closest(key));
+}
+
+/* "0 .. 180 deg" */
+static void range_text(const atmo_param *p, char *buf, size_t n)
+{
+    snprintf(buf, n, "%.15g .. %.15g%s%s%s", p->min, p->max,
+             p->type == ATMO_PARAM_VEC3 ? " (each)" : "", p->unit[0] ? " " : "", p->unit);
+}
+
+static void names_text(const atmo_param *p, char *buf, size_t n)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (const char *const *name = p->names; *name && used < n; name++)
+        used += (size_t)snprintf(buf + used, n - used, "%s%s", name == p->names ? "" : ", ", *name);
+}
+
+int atmo_param_store(atmo_scene *s, const atmo_param *p, const double v[3], const char *shown,
+                     const char *where, atmo_err *e)
+{
+    char range[128];
+    int n = p->type == ATMO_PARAM_VEC3 ? 3 : 1;
+    for (int i = 0; i < n; i++) {
+        if (!isfinite(v[i]))
+            return atmo_fail(e, ATMO_ERR_USAGE,
+                             "%s = %s (from %s) is not a finite number; give a value in %s", p->key,
+                             shown, where, (range_text(p, range, sizeof range), range));
+        if (p->type == ATMO_PARAM_ENUM) {
+            char names[256];
+            names_text(p, names, sizeof names);
+            if (v[i] != floor(v[i]) || v[i] < p->min || v[i] > p->max)
+                return atmo_fail(e, ATMO_ERR_USAGE,
+                                 "%s = %s (from %s) is not a valid name; use one of: %s", p->key,
+                                 shown, where, names);
+            continue;
+        }
+        if (v[i] < p->min || v[i] > p->max) {
+            range_text(p, range, sizeof range);
+            if (p->type == ATMO_PARAM_BOOL)
+                return atmo_fail(e, ATMO_ERR_USAGE,
+                                 "%s = %s (from %s) is not a boolean; use true or false", p->key,
+                                 shown, where);
+            return atmo_fail(e, ATMO_ERR_USAGE, "%s = %s (from %s) is out of range; valid: %s",
+                             p->key, shown, where, range);
+        }
+        if ((p->type == ATMO_PARAM_INT || p->type == ATMO_PARAM_BOOL) && v[i] != floor(v[i])) {
+            range_text(p, range, sizeof range);
+            return atmo_fail(e, ATMO_ERR_USAGE,
+                             "%s = %s (from %s) must be a whole number; valid: integers in %s",
+                             p->key, shown, where, range);
+        }
+    }
+    if (p->type == ATMO_PARAM_FLOAT || p->type == ATMO_PARAM_VEC3)
+        memcpy(double_field(s, p), v, (size_t)n * sizeof(double));
+    else
+        *int_field(s, p) = (int)v[0];
+    return ATMO_OK;
+}
+
+/* The whole of text (surrounding blanks aside) as one number; 0 when it is not one. strtod's
+ * "nan" and "inf" are accepted here so that the caller reports them as not finite. */
+static int parse_number(const char *text, double *out)
+{
+    char *end;
+    errno = 0;
+    while (isspace((unsigned char)*text))
+        text++;
+    if (!*text)
+        return 0;
+    *out = strtod(text, &end);
+    if (end == text)
+        return 0;
+    while (isspace((unsigned char)*end))
+        end++;
+    if (*end)
+        return 0;
+    if (errno == ERANGE && fabs(*out) > 1.0) /* overflow: report as Inf, not as garbage */
+        *out = HUGE_VAL;
+    return 1;
+}
+
+static int parse_value(const atmo_param *p, const char *value, double v[3])
+{
+    switch (p->type) {
+    case ATMO_PARAM_INT:
+    case ATMO_PARAM_FLOAT:
+        return parse_number(value, &v[0]);
+    case ATMO_PARAM_VEC3: {
+        char buf[256];
+        if (strlen(value) >= sizeof buf)
+            return 0;
+        strcpy(buf, value);
+        char *parts[4] = {buf, NULL, NULL, NULL};
+        int n = 1;
+        for (char *c = buf; *c; c++)
+            if (*c == ',') {
+                if (n == 3)
+                    return 0;
+                *c = '\0';
+                parts[n++] = c + 1;
+            }
+        if (n != 3)
+            return 0;
+        for (int i = 0; i < 3; i++)
+            if (!parse_number(parts[i], &v[i]))
+                return 0;
+        return 1;
+    }
+    case ATMO_PARAM_ENUM:
+        for (int i = 0; p->names[i]; i++)
+            if (strcmp(value, p->names[i]) == 0) {
+                v[0] = i;
+                return 1;
+            }
+        v[0] = -1; /* reported by atmo_param_store with the list of names */
+        return 1;
+    case ATMO_PARAM_BOOL:
+        if (!strcmp(value, "true") || !strcmp(value, "1") || !strcmp(value, "yes") ||
+            !strcmp(value, "on"))
+            v[0] = 1;
+        else if (!strcmp(value, "false") || !strcmp(value, "0") || !strcmp(value, "no") ||
+                 !strcmp(value, "off"))
+            v[0] = 0;
+        else
+            v[0] = -1; /* reported as not a boolean */
+        return 1;
+    }
+    return 0;
+}
+
+int atmo_scene_set(atmo_scene *s, const char *key, const char *value, const char *where,
+                   atmo_err *e)
+{
+    const atmo_param *p = atmo_param_find(key);
+    if (!p)
+        return unknown_key(key, where, e);
+    double v[3] = {0, 0, 0};
+    if (!parse_value(p, value, v)) {
+        char range[128];
+        range_text(p, range, sizeof range);
+        return atmo_fail(e, ATMO_ERR_USAGE, "%s = '%s' (from %s) is not %s; valid: %s%s", p->key,
+                         value, where,
+                         p->type == ATMO_PARAM_VEC3  ? "three numbers x,y,z"
+                         : p->type == ATMO_PARAM_INT ? "an integer"
+                                                     : "a number",
+                         range, p->type == ATMO_PARAM_VEC3 ? ", e.g. 0,1.7,0" : "");
+    }
+    return atmo_param_store(s, p, v, value, where, e);
+}
+
+int atmo_scene_assign(atmo_scene *s, const char *assignment, const char *where, atmo_err *e)
+{
+    const char *eq = strchr(assignment, '=');
+    char key[128];
+    if (!eq || eq == assignment)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "'%s' (from %s) is not key=value; write e.g. sun.zenith_deg=60",
+                         assignment, where);
+    size_t n = (size_t)(eq - assignment);
+    if (n >= sizeof key)
+        return unknown_key(assignment, where, e);
+    memcpy(key, assignment, n);
+    key[n] = '\0';
+    return atmo_scene_set(s, key, eq + 1, where, e);
+}
+
+int atmo_scene_apply_preset(atmo_scene *s, const char *name, atmo_err *e)
+{
+    const atmo_preset *pr = atmo_preset_find(name);
+    if (!pr) {
+        char names[512];
+        size_t used = 0;
+        names[0] = '\0';
+        for (const atmo_preset *q = atmo_presets; q->name && used < sizeof names; q++)
+            used += (size_t)snprintf(names + used, sizeof names - used, "%s%s",
+                                     q == atmo_presets ? "" : ", ", q->name);
+        return atmo_fail(e, ATMO_ERR_USAGE, "unknown preset '%s'; use one of: %s", name, names);
+    }
+    char where[96];
+    snprintf(where, sizeof where, "preset %s", pr->name);
+    for (const char *const *a = pr->settings; *a; a++) {
+        int rc = atmo_scene_assign(s, *a, where, e);
+        if (rc)
+            return rc;
+    }
+    return ATMO_OK;
+}
+
+int atmo_scene_validate(const atmo_scene *s, atmo_err *e)
+{
+    /* every value again, for scenes filled in by code rather than through atmo_scene_set */
+    atmo_scene copy = *s;
+    for (const atmo_param *p = atmo_params; p->key; p++) {
+        double v[3];
+        char shown[96];
+        atmo_param_get(s, p, v);
+        if (p->type == ATMO_PARAM_VEC3)
+            snprintf(shown, sizeof shown, "%.9g,%.9g,%.9g", v[0], v[1], v[2]);
+        else
+            snprintf(shown, sizeof shown, "%.9g", v[0]);
+        int rc = atmo_param_store(&copy, p, v, shown, "the scene", e);
+        if (rc)
+            return rc;
+    }
+    int rc = atmo_spectral_check_bands(s->render.spectral_bands, e);
+    if (rc)
+        return rc;
+    double bottom = s->atmosphere.bottom_radius_m, top = s->atmosphere.top_radius_m;
+    double oz_bottom = s->atmosphere.ozone_bottom_m, oz_peak = s->atmosphere.ozone_peak_m,
+           oz_top = s->atmosphere.ozone_top_m;
+    if (!(top > bottom))
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "atmosphere.top_radius_m (%.9g m) must be greater than "
+                         "atmosphere.bottom_radius_m (%.9g m); raise the top or lower the bottom",
+                         top, bottom);
+    if (!(oz_bottom <= oz_peak && oz_peak <= oz_top && oz_bottom < oz_top))
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "ozone layer out of order: atmosphere.ozone_bottom_m (%.9g m) <= "
+                         "atmosphere.ozone_peak_m (%.9g m) <= atmosphere.ozone_top_m (%.9g m) with "
+                         "bottom < top is required; reorder the three altitudes",
+                         oz_bottom, oz_peak, oz_top);
+    const double *c = s->camera.position_m;
+    double dy = c[1] + bottom;
+    double r = sqrt(c[0] * c[0] + dy * dy + c[2] * c[2]);
+    /* 1 m of slack: a camera placed at sea level must not fail on rounding */
+    if (r < bottom - 1.0)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "camera.position_m (%.9g, %.9g, %.9g) is %.6g m below the ground of "
+                         "radius atmosphere.bottom_radius_m = %.9g m around (0, -R, 0); raise the "
+                         "camera's y",
+                         c[0], c[1], c[2], bottom - r, bottom);
+    return ATMO_OK;
+}

@@ -1,0 +1,236 @@
+/* lut_precompute.cl — method "lut": the precompute passes that fill the scattering LUTs with all
+ * orders of scattering (Bruneton 2017, "Multiple scattering"; parametrisation in
+ * lut_scattering.h, buffers and knobs in method_lut.h).
+ *
+ * Order 1 (lut_single), each texel (r, mu, mu_s, nu) integrated along its ray to the ground or
+ * the top:
+ *     S_R = E int_0^d T(0,t) beta_R e^{-h/H_R} T_sun(t) dt,  S_M likewise with beta_M,s, H_M,
+ * phase functions left out (applied at lookup with the exact nu, so the forward Mie peak is never
+ * interpolated). The ray is cut into `steps` equal segments; each takes the mean of each
+ * exponential density over the segment (exact where the altitude is linear along it,
+ * lut_mean_density) and the sun's transmittance at its midpoint, and is integrated exactly for
+ * constant coefficients,
+ *     L += T_acc S (1 - e^{-sigma_t dt}) / sigma_t,  T_acc *= e^{-sigma_t dt},
+ * so long grazing segments neither overshoot nor lose energy (Bruneton's trapezoidal rule with
+ * LUT transmittance ratios overshoots forward Mie by ~6 %, atmosphere.md).
+ * Then for each order n = 2..N, with k = n - 1:
+ *   lut_grid:       L_k(r, omega_i) on the sphere grid at every (r, mu_s) texel: the order-k
+ *                   sky radiance (k = 1: S_R p_R(nu_i) + S_M p_M(nu_i) from the single tables
+ *                   with exact phases; k > 1: the delta table), plus for ground-hitting
+ *                   directions the ground reflecting the irradiance of order k - 1,
+ *                   T(r -> ground) (rho / pi) E_{k-1}(mu_s at the ground point), with
+ *                   E_0 = E T_sun max(mu_s, 0) the direct sun;
+ *   lut_irradiance: E_k(r, mu_s) = int_{mu_i > 0} L_k mu_i d omega_i (delta irradiance, also
+ *                   summed into the total indirect irradiance);
+ *   lut_density:    J_n(r, mu, mu_s, nu) = int_{4 pi} [beta_R e^{-h/H_R} p_R(omega.omega_i)
+ *                   + beta_M,s e^{-h/H_M} p_M(omega.omega_i)] L_k(omega_i) d omega_i
+ *                   (radiance per metre), from the grid, each grid direction with its mirror,
+ *                   also summed into the density table of orders >= 2 (aerial perspective);
+ *   lut_multiple:   L_n = int_0^d T(0,t) J_n(r_t, mu_t, mu_s_t, nu) dt with the same exponential
+ *                   segments (J interpolated in the 4-D density table), written to the delta
+ *                   table and summed into the multiple-scattering table.
+ * The grid reuses one set of radiance lookups for all (mu, nu) texels of an (r, mu_s) pair;
+ * that is what makes many orders affordable on a CPU. */
+
+/* (1 - e^{-sigma dt}) / sigma from e = e^{-sigma dt} (computed once for the transmittance too);
+ * a Taylor series where 1 - e would cancel (its error there, x^3 / 24, is below float epsilon). */
+float3 lut_weights(float3 sigma, float dt, float3 e)
+{
+    float3 x = sigma * dt;
+    float3 series = dt * (1.0f - x * (0.5f - x / 6.0f));
+    return select((1.0f - e) / sigma, series, isless(x, (float3)(1e-2f)));
+}
+
+/* Mean of e^{-h/H} over a segment of length dt whose altitude is h at its middle and changes at
+ * the rate dh (the cosine mu_t of the ray there): with h linear along the segment the mean is
+ * e^{-h/H} sinh(y) / y, y = dh dt / (2 H). The bare midpoint value would be low by y^2 / 6: 2.6 %
+ * for the Mie layer (H = 1.2 km) on a 64-segment zenith ray from the ground. */
+float lut_mean_density(float h, float dh, float dt, float H)
+{
+    float y = 0.5f * dh * dt / H;
+    return exp(-h / H) * (fabs(y) > 1e-3f ? sinh(y) / y : 1.0f + y * y / 6.0f);
+}
+
+/* Mean extinction over such a segment (the ozone tent is linear in h: its midpoint value). */
+float3 lut_mean_extinction(__global const atmo_gpu_atmosphere *a, float h, float dh, float dt)
+{
+    return a->rayleigh_scattering.xyz * lut_mean_density(h, dh, dt, a->rayleigh_scale_height) +
+           a->mie_extinction.xyz * lut_mean_density(h, dh, dt, a->mie_scale_height) +
+           a->ozone_absorption.xyz * atmosphere_ozone_tent(a, h);
+}
+
+float lut_ray_length(__global const atmo_gpu_atmosphere *a, float r, float mu, int ground)
+{
+    return ground ? geometry_distance_to_bottom(r, mu, a->bottom_radius)
+                  : geometry_distance_to_top(r, mu, a->top_radius);
+}
+
+/* This work item's texel of a 4-D table: its index and its (r, mu, mu_s, nu, ground); 0 for
+ * the padding items past the table's end. */
+int lut_this_texel(__global const atmo_gpu_atmosphere *a, __global const int *dims, int *idx,
+                     float *r, float *mu, float *mu_s, float *nu, int *ground)
+{
+    int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
+    if (x >= dims[0] * dims[1] || y >= dims[2] || z >= dims[3])
+        return 0;
+    *idx = (z * dims[2] + y) * dims[0] * dims[1] + x;
+    lut_scattering_texel(a, dims, x, y, z, r, mu, mu_s, nu, ground);
+    return 1;
+}
+
+__kernel void lut_single(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, int arg)
+{
+    __global const atmo_gpu_atmosphere *a = &s->atmosphere;
+    __global const int *dims = s->lut_dims[0];
+    int x = get_global_id(0), z = get_global_id(2), n_mu_s = dims[1], idx, ground;
+    float r, mu, mu_s, nu;
+    if (!lut_this_texel(a, dims, &idx, &r, &mu, &mu_s, &nu, &ground))
+        return;
+    int N = LUT_TEXELS(dims);
+    int n = s->method_int[LUT_INT_STEPS];
+    float dt = lut_ray_length(a, r, mu, ground) / (float)n;
+    float3 beta_r = a->rayleigh_scattering.xyz, beta_m = a->mie_scattering.xyz;
+    float3 T = (float3)(1.0f), S_r = (float3)(0.0f), S_m = (float3)(0.0f);
+    for (int i = 0; i < n; i++) {
+        float t = ((float)i + 0.5f) * dt;
+        float r_t = geometry_radius_at(r, mu, t);
+        float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
+        float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
+        float mu_t = atmo_clamp_cos((r * mu + t) / r_t);
+        float rayleigh = lut_mean_density(h, mu_t, dt, a->rayleigh_scale_height);
+        float mie = lut_mean_density(h, mu_t, dt, a->mie_scale_height);
+        float3 sigma_t = a->rayleigh_scattering.xyz * rayleigh + a->mie_extinction.xyz * mie +
+                         a->ozone_absorption.xyz * atmosphere_ozone_tent(a, h);
+        float3 e = exp(-sigma_t * dt);
+        float3 lit = T * lut_weights(sigma_t, dt, e) *
+                     atmosphere_sun_transmittance(a, lut_transmittance, s->transmittance_width,
+                                                  s->transmittance_height, r_t, mu_s_t);
+        S_r += lit * rayleigh;
+        S_m += lit * mie;
+        T *= e;
+    }
+    float3 E = a->solar_irradiance.xyz;
+    lut_a[idx] = (float4)(E * beta_r * S_r, 0.0f);
+    lut_a[N + idx] = (float4)(0.0f); /* multiple scattering: orders >= 2 add to it */
+    lut_b[idx] = (float4)(E * beta_m * S_m, 0.0f);
+    lut_b[LUT_DENSITY_SUM(dims) + idx] = (float4)(0.0f); /* orders >= 2 add to it */
+    if (get_global_id(1) == 0 && x < n_mu_s) /* once per (r, mu_s): clear the total indirect irradiance */
+        lut_b[N + z * n_mu_s + x] = (float4)(0.0f);
+}
+
+__kernel void lut_grid(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, int k)
+{
+    __global const atmo_gpu_atmosphere *a = &s->atmosphere;
+    __global const int *dims = s->lut_dims[0];
+    int rings = s->method_int[LUT_INT_RINGS], G = rings * rings;
+    int g = get_global_id(0), i_mu_s = get_global_id(1), i_r = get_global_id(2);
+    if (g >= G || i_mu_s >= dims[1] || i_r >= dims[3])
+        return;
+    int N = LUT_TEXELS(dims);
+    float r = lut_r_at(a, (float)i_r, dims[3]), mu_s = lut_mu_s_at(a, (float)i_mu_s, dims[1]);
+    float domega;
+    float3 dir = lut_grid_direction(g, rings, &domega);
+    float mu = dir.z, nu = atmo_clamp_cos(dot(dir, lut_grid_sun(mu_s)));
+    int ground = geometry_ray_hits_ground(r, mu, a->bottom_radius);
+    float3 L;
+    if (k == 1)
+        L = lut_scattering_lookup(a, lut_a, dims, r, mu, mu_s, nu, ground) * phase_rayleigh(nu) +
+            lut_scattering_lookup(a, lut_b, dims, r, mu, mu_s, nu, ground) *
+                sky_mie_phase(a, nu);
+    else
+        L = lut_scattering_lookup(a, lut_c, dims, r, mu, mu_s, nu, ground);
+    if (ground) {
+        float d = geometry_distance_to_bottom(r, mu, a->bottom_radius);
+        float mu_s_g = atmo_clamp_cos((r * mu_s + d * nu) / a->bottom_radius);
+        float3 E;
+        if (k == 1)
+            E = a->solar_irradiance.xyz * fmax(mu_s_g, 0.0f) *
+                atmosphere_sun_transmittance(a, lut_transmittance, s->transmittance_width,
+                                             s->transmittance_height, a->bottom_radius, mu_s_g);
+        else
+            E = lut_irradiance_lookup(a, lut_c + LUT_DELTA_IRRADIANCE(dims, G), dims,
+                                      a->bottom_radius, mu_s_g);
+        L += lut_transmittance_to_ground(s, lut_transmittance, r, mu, d) *
+             a->ground_albedo.xyz * E / ATMO_PI;
+    }
+    lut_c[2 * N + (i_r * dims[1] + i_mu_s) * G + g] = (float4)(L, 0.0f);
+    if (i_mu_s == 0 && i_r == 0)
+        lut_c[LUT_DIRECTIONS(dims, G) + g] = (float4)(dir, domega);
+}
+
+__kernel void lut_irradiance(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, int k)
+{
+    __global const int *dims = s->lut_dims[0];
+    int rings = s->method_int[LUT_INT_RINGS], G = rings * rings;
+    int i_mu_s = get_global_id(0), i_r = get_global_id(1);
+    if (i_mu_s >= dims[1] || i_r >= dims[3])
+        return;
+    int N = LUT_TEXELS(dims), cell = i_r * dims[1] + i_mu_s;
+    __global const float4 *grid = lut_c + 2 * N + cell * G;
+    float3 E = (float3)(0.0f);
+    __global const float4 *dirs = lut_c + LUT_DIRECTIONS(dims, G);
+    for (int g = 0; g < G / 2; g++) /* the upper hemisphere: the first rings/2 rings */
+        E += grid[g].xyz * (2.0f * dirs[g].z * dirs[g].w); /* 2: the mirror half */
+    lut_c[LUT_DELTA_IRRADIANCE(dims, G) + cell] = (float4)(E, 0.0f);
+    lut_b[N + cell] += (float4)(E, 0.0f);
+}
+
+__kernel void lut_density(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, int n)
+{
+    __global const atmo_gpu_atmosphere *a = &s->atmosphere;
+    __global const int *dims = s->lut_dims[0];
+    int rings = s->method_int[LUT_INT_RINGS], G = rings * rings;
+    int x = get_global_id(0), z = get_global_id(2), n_mu_s = dims[1], idx, ground;
+    float r, mu, mu_s, nu;
+    if (!lut_this_texel(a, dims, &idx, &r, &mu, &mu_s, &nu, &ground))
+        return;
+    int N = LUT_TEXELS(dims);
+    /* the view direction in the grid's frame (sun in the x-z plane) */
+    float sin_v = atmo_safe_sqrt(1.0f - mu * mu), sin_s = atmo_safe_sqrt(1.0f - mu_s * mu_s);
+    float vx = sin_s > 1e-6f ? clamp((nu - mu * mu_s) / sin_s, -sin_v, sin_v) : sin_v;
+    float vy = atmo_safe_sqrt(sin_v * sin_v - vx * vx);
+    float h = fmax(r - a->bottom_radius, 0.0f);
+    float3 beta_r = a->rayleigh_scattering.xyz * exp(-h / a->rayleigh_scale_height);
+    float3 beta_m = a->mie_scattering.xyz * exp(-h / a->mie_scale_height);
+    __global const float4 *grid = lut_c + 2 * N + (z * n_mu_s + x % n_mu_s) * G;
+    float3 J = (float3)(0.0f);
+    __global const float4 *dirs = lut_c + LUT_DIRECTIONS(dims, G);
+    for (int g = 0; g < G; g++) {
+        float4 dir = dirs[g];
+        float c1 = vx * dir.x + vy * dir.y + mu * dir.z;
+        float c2 = vx * dir.x - vy * dir.y + mu * dir.z; /* the mirror direction */
+        float p_r = phase_rayleigh(c1) + phase_rayleigh(c2);
+        float p_m = sky_mie_phase(a, c1) + sky_mie_phase(a, c2);
+        J += grid[g].xyz * ((beta_r * p_r + beta_m * p_m) * dir.w);
+    }
+    lut_c[N + idx] = (float4)(J, 0.0f);
+    lut_b[LUT_DENSITY_SUM(dims) + idx] += (float4)(J, 0.0f);
+}
+
+__kernel void lut_multiple(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, int order)
+{
+    __global const atmo_gpu_atmosphere *a = &s->atmosphere;
+    __global const int *dims = s->lut_dims[0];
+    int idx, ground;
+    float r, mu, mu_s, nu;
+    if (!lut_this_texel(a, dims, &idx, &r, &mu, &mu_s, &nu, &ground))
+        return;
+    int N = LUT_TEXELS(dims);
+    int n = s->method_int[LUT_INT_STEPS];
+    float dt = lut_ray_length(a, r, mu, ground) / (float)n;
+    float3 T = (float3)(1.0f), L = (float3)(0.0f);
+    for (int i = 0; i < n; i++) {
+        float t = ((float)i + 0.5f) * dt;
+        float r_t = geometry_radius_at(r, mu, t);
+        float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
+        float mu_t = atmo_clamp_cos((r * mu + t) / r_t);
+        float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
+        float3 sigma_t = lut_mean_extinction(a, h, mu_t, dt);
+        float3 J = lut_scattering_lookup(a, lut_c + N, dims, r_t, mu_t, mu_s_t, nu, ground);
+        float3 e = exp(-sigma_t * dt);
+        L += T * J * lut_weights(sigma_t, dt, e);
+        T *= e;
+    }
+    lut_c[idx] = (float4)(L, 0.0f);
+    lut_a[N + idx] += (float4)(L, 0.0f);
+}

@@ -1,0 +1,148 @@
+/* method_fast.h — atmosphere method "fast": per-frame LUTs in the spirit of Hillaire 2020
+ * (sec. 5.3, the sky-view LUT), over the march of ms_lut.h.
+ *
+ * The camera's radius r_c and sun cosine mu_s,c are fixed for a frame, so the sky seen from
+ * the camera is a function of two angles only: the view zenith angle theta and the azimuth phi
+ * from the sun (the sky is symmetric about the sun's vertical plane, so phi in [0, pi]). The
+ * sky-view LUT (buffer b, s->lut_dims[1][0] = W columns of phi, s->lut_dims[1][1] = 2 n rows)
+ * holds the march of ms_lut.h (single scattering + sigma_s Psi_ms, the lit ground, no sun disc)
+ * with s->method_int[3] segments (growing from the camera, sky_single.h) at their midpoints
+ * (equal segments missed 2 % of the aerosols' steep density near the ground), in three planes
+ * (fast_luts.cl): the view-sun cosine nu is constant along a straight ray, so the phase
+ * functions factor out of single scattering, and the LUT holds its Rayleigh and Mie integrals
+ * without them, multiplied by p_R(nu) and p_M(nu) of each pixel's own ray at lookup; the third
+ * plane holds the rest (multiple scattering, the ground). The aerosol peak around the sun,
+ * narrower than a LUT column, then comes from the exact phase function instead of the
+ * interpolation of texels (which was 3 % off the march within 20 deg of the sun). Each plane
+ * has two halves of n rows:
+ *   rows 0 .. n-1 : rays that leave the atmosphere, x = 1 - sqrt(1 - theta / theta_h)
+ *   rows n .. 2n-1: rays that hit the ground,       x = sqrt((theta - theta_h) / (pi - theta_h))
+ * with theta_h = acos(-sqrt(r_c^2 - R^2) / r_c) the zenith angle of the horizon, texel centres
+ * at x = 0 and 1 and columns at phi = pi i / (W - 1). Both mappings put most rows next to the
+ * horizon, where the sky changes fastest (Hillaire's non-linear latitude mapping), and a lookup
+ * interpolates within one half only, so the step between sky and ground at the horizon is not
+ * smeared over a texel (the horizon band of a single mapping). Lookups are bilinear, written here
+ * (DESIGN.md: LUTs in plain buffers).
+ *
+ * sky_radiance: rays from the camera's (r_c, mu_s,c) read the LUT; any other ray (a camera above
+ * the atmosphere, where the plan builds no sky-view LUT, or a probe from elsewhere) falls back
+ * to the march with one random offset per sample, like method "march". The sun disc is added
+ * apart from the LUT: E T(r, mu) / Omega_sun when the ray sees the sun's disc and not the ground.
+ * The sky-view LUT's inputs (r_c, mu_s,c) are those sky.cl computes for every pixel. */
+#ifndef ATMO_METHOD_FAST_H
+#define ATMO_METHOD_FAST_H
+#ifndef __OPENCL_VERSION__
+#include "common/compat.h"
+#include "common/rng.h"
+#include "atmosphere/sky_method.h"
+#include "atmosphere/ms_lut.h"
+#endif
+
+/* The camera's sun cosine, computed as sky.cl computes it. */
+ATMO_FN float fast_camera_mu_s(ATMO_GLOBAL const atmo_gpu_scene *s)
+{
+    vec3 up = v3_from4(s->camera.local_up), sun = v3_from4(s->sun_direction);
+    return v3_dot(up, sun);
+}
+
+ATMO_FN float fast_horizon_zenith(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r)
+{
+    float rho = atmo_safe_sqrt((r - a->bottom_radius) * (r + a->bottom_radius));
+    return acosf(atmo_clamp_cos(-rho / r));
+}
+
+/* Texel (i, j) of the sky-view LUT -> (mu, cos phi) of its ray. The rows at x = 1 of the sky
+ * half and x = 0 of the ground half sit a hair (1e-4 rad) off the horizon on their own side. */
+ATMO_FN void fast_sky_view_ray(ATMO_GLOBAL const atmo_gpu_scene *s, int i, int j, int width,
+                               int height, float *mu, float *cos_phi)
+{
+    int n = height / 2;
+    float theta_h = fast_horizon_zenith(&s->atmosphere, s->camera.local_up.w);
+    float theta;
+    if (j < n) {
+        float x = (float)j / (float)(n - 1);
+        theta = fminf(theta_h * (1.0f - atmo_sq(1.0f - x)), theta_h - 1e-4f);
+    } else {
+        float x = (float)(j - n) / (float)(n - 1);
+        theta = fmaxf(theta_h + (ATMO_PI - theta_h) * x * x, theta_h + 1e-4f);
+    }
+    *mu = cosf(theta);
+    *cos_phi = cosf(ATMO_PI * (float)i / (float)(width - 1));
+}
+
+/* Bilinear lookup of the sky-view LUT for a ray (mu, nu) from the camera: its three planes
+ * interpolated at one place, single scattering's with the phase functions of the ray's nu. */
+ATMO_FN vec3 fast_sky_view_lookup(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                  ATMO_GLOBAL const float4 *lut, float mu, float mu_s, float nu,
+                                  int hits_ground)
+{
+    int width = s->lut_dims[1][0], n = s->lut_dims[1][1] / 2, plane = 2 * n * width;
+    float theta_h = fast_horizon_zenith(&s->atmosphere, s->camera.local_up.w);
+    float theta = acosf(atmo_clamp_cos(mu));
+    float x = hits_ground
+                  ? atmo_safe_sqrt((theta - theta_h) / (ATMO_PI - theta_h))
+                  : 1.0f - atmo_safe_sqrt(1.0f - theta / theta_h);
+    float y = clamp(x, 0.0f, 1.0f) * (float)(n - 1);
+    float denom = atmo_safe_sqrt((1.0f - mu * mu) * (1.0f - mu_s * mu_s));
+    float cos_phi = denom > 1e-6f ? atmo_clamp_cos((nu - mu * mu_s) / denom) : 1.0f;
+    float c = clamp(acosf(cos_phi) / ATMO_PI, 0.0f, 1.0f) * (float)(width - 1);
+    int x0 = (int)c, y0 = (int)y;
+    int x1 = x0 + 1 < width ? x0 + 1 : x0;
+    int y1 = y0 + 1 < n ? y0 + 1 : y0;
+    float fx = c - (float)x0, fy = y - (float)y0;
+    int row0 = hits_ground ? n : 0;
+    int i00 = (row0 + y0) * width + x0, i10 = (row0 + y0) * width + x1;
+    int i01 = (row0 + y1) * width + x0, i11 = (row0 + y1) * width + x1;
+    float w00 = (1.0f - fx) * (1.0f - fy), w10 = fx * (1.0f - fy);
+    float w01 = (1.0f - fx) * fy, w11 = fx * fy;
+    float weight[3] = {phase_rayleigh(nu), sky_mie_phase(&s->atmosphere, nu), 1.0f};
+    vec3 sum = v3(0.0f, 0.0f, 0.0f);
+    for (int k = 0; k < 3; k++) {
+        ATMO_GLOBAL const float4 *p = lut + k * plane;
+        vec3 top = v3_add(v3_scale(v3_from4(p[i00]), w00), v3_scale(v3_from4(p[i10]), w10));
+        vec3 bottom = v3_add(v3_scale(v3_from4(p[i01]), w01), v3_scale(v3_from4(p[i11]), w11));
+        vec3 part = v3_add(top, bottom);
+        sum = v3_add(sum, v3_scale(part, weight[k]));
+    }
+    return sum;
+}
+
+ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float r,
+                          float mu, float mu_s, float nu, uint pixel, uint sample, vec3 *sky,
+                          vec3 *sun)
+{
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    float r_c = s->camera.local_up.w;
+    int from_camera = s->lut_dims[1][0] > 0 && fabsf(r - r_c) <= 1e-6f * r_c &&
+                      fabsf(mu_s - fast_camera_mu_s(s)) <= 1e-6f;
+    if (!from_camera) {
+        float jitter = rng_uniform(s->seed, pixel, sample, ATMO_RNG_METHOD_DIM);
+        march_integrate(s, lut_transmittance, lut_a, s->lut_dims[0][0], s->lut_dims[0][1], r,
+                        mu, mu_s, nu, s->view_steps, jitter, sky, sun);
+        return;
+    }
+    int hits_ground = geometry_ray_hits_ground(r, mu, a->bottom_radius);
+    *sky = fast_sky_view_lookup(s, lut_b, mu, mu_s, nu, hits_ground);
+    *sun = v3(0.0f, 0.0f, 0.0f);
+    if (!hits_ground && nu >= s->sun_direction.w) {
+        vec3 to_space = atmosphere_transmittance_to_top(a, lut_transmittance,
+                                                        s->transmittance_width,
+                                                        s->transmittance_height, r, mu);
+        *sun = v3_mul(atmosphere_sun_disc_radiance(a, s->sun_direction.w), to_space);
+    }
+}
+
+/* The segment [0, d]: march's integrator with this method's Psi_ms LUT, the very march the
+ * sky-view LUT tabulates, ended at d. (Hillaire's aerial-perspective volume, froxels in a
+ * camera's frustum, would tabulate the same for a perspective view of surfaces; none is built
+ * yet.) */
+ATMO_FN void sky_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float r, float mu,
+                         float mu_s, float nu, float d, uint pixel, uint sample, vec3 *inscatter,
+                         vec3 *transmittance)
+{
+    float jitter = rng_uniform(s->seed, pixel, sample, ATMO_RNG_METHOD_DIM);
+    march_segment(s, lut_transmittance, lut_a, s->lut_dims[0][0], s->lut_dims[0][1], r, mu, mu_s,
+                  nu, d, s->view_steps, jitter, inscatter, transmittance);
+}
+
+#endif

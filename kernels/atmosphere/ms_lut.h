@@ -1,0 +1,431 @@
+/* ms_lut.h — the multiple-scattering transfer LUT Psi_ms(h, mu_s) and the view-ray march that
+ * uses it (methods "march" and "fast").
+ *
+ * Idea (Hillaire 2020, "A Scalable and Production Ready Sky and Atmosphere Rendering Technique",
+ * EGSR, sec. 5.5): light that has scattered at least once arrives at a point x from every
+ * direction with a radiance that changes slowly with x; treat it as if it were the same from
+ * all directions and as if every later order were scattered isotropically. Then the radiance
+ * scattered at x by orders >= 2 is sigma_s(x) Psi_ms(x), and Psi depends only on the altitude h
+ * of x and the sun cosine mu_s there. With p_u = 1/(4 pi) and the sphere of directions w:
+ *
+ *   L_1'(x, w) = int_0^d T(x, y) sum_k sigma_k(y) p_k(w . s) E T_sun(y) dt
+ *              + T(x, g) (rho / pi) E T_sun(g) max(mu_s(g), 0)          if the ray hits ground g
+ *   L_2(x)     = int_4pi L_1'(x, w) p_u dw       (first-order light arriving at x, averaged)
+ *   f_ms(x)    = int_4pi p_u int_0^d T(x, y) sigma_s(y) dt dw
+ *                (the fraction of isotropic light scattered at x that scatters once more
+ *                 before it leaves the atmosphere: Hillaire's eq. 7)
+ *   Psi_ms(x)  = L_2 (1 + f_ms + f_ms^2 + ...) = L_2 / (1 - f_ms)                 (eq. 9-10)
+ *
+ * with sum_k over Rayleigh and Mie, p_k their phase functions and s the sun direction.
+ * Where Hillaire uses the isotropic p_u for the first scattering too, L_1' here uses the true
+ * phase functions: it costs nothing (the sun direction is known for each w) and removes the part
+ * of his error that comes from spreading the strongly forward Mie scattering (and the
+ * 1 + cos^2 shape of Rayleigh's) evenly over the sphere. What stays approximate is the angular
+ * shape of orders >= 2 at x.
+ *
+ * Quadrature: w on n_mu bands in cos(zenith) times n_phi azimuths over [0, pi] (the light
+ * field is symmetric about the vertical plane through the sun); half the bands lie above the
+ * horizon cosine mu_h = -sqrt(r^2 - R^2) / r and half below, so no band straddles the step
+ * between sky and ground, each half crowding toward the horizon as the square of its index
+ * (a grid in the sun's frame, tried to resolve the aerosol peak, cut that step diagonally and
+ * was 10 % off a finer grid at the ground). Each direction is marched with n_steps segments
+ * growing as (i/n)^2 from x, each integrated exactly for constant coefficients as in
+ * sky_single.h. LUT: x_mu = (1 + sign(mu_s) sqrt|mu_s|) / 2 along the width, x_h = h / (top -
+ * bottom) along the height, texel centres at x = 0 and 1 (atmosphere_texcoord_from_unit);
+ * xyz = Psi (W m^-2 sr^-1 nm^-1, with the solar irradiance E folded in), w = f_ms of the
+ * middle channel.
+ *
+ * March (march_integrate): single scattering as in sky_single.h (same segments, same per-sample
+ * offset, same sun-disc and ground terms), with, at each sample,
+ *     J = [sigma_R p_R(nu) + sigma_M p_M(nu)] E T_sun V + J_ms
+ * where V = march_sun_visibility(...) is the shadow hook (terrain and clouds will plug into it;
+ * 1 for now) and J_ms = (sigma_R + sigma_M) Psi_ms(h, mu_s) for isotropic light, plus the
+ * anisotropic terms below (ms_lut_source). With Psi = 0 the sum is the single-scattering sum
+ * term for term. The ground seen by the view ray is lit by the sun and by the sky (E_sky, below).
+ *
+ * Rayleigh anisotropy of the second order. For the Rayleigh phase p_R = 3/(16 pi)(1 + (v.w)^2)
+ * the second order toward v is exact from three moments of L_1': int L_1'(w) p_R(v.w) dw =
+ * L_2 + v^T D v with m = (3/4) <L_1' w w^T> (the sphere average <.>) and D = m - (L_2/4) I,
+ * traceless and 0 for isotropic light. By the symmetry about the sun's vertical plane D has
+ * three free components in the frame (up, sun-ward horizontal, across): D_uu, D_ss, D_us
+ * (D_pp = -D_uu - D_ss), stored per channel.
+ * Mie anisotropy. The same moments are the light field's spherical harmonics up to l = 2: with
+ * the first moment b = <L w> (b_u, b_s; b_p = 0 by the symmetry), L = a_0 + 3 b.w + 10 w^T D w +
+ * (l >= 3), a_0 = <L> = Psi. A phase function p convolves the l-th harmonic by its Legendre
+ * coefficient g_l = 2 pi int p(x) P_l(x) dx (Funk-Hecke): Rayleigh's g_1 = 0, g_2 = 1/10 give the
+ * D term above exactly; the aerosols' (Cornette-Shanks g = 0.8: g_1 = 0.844, g_2 = 0.710,
+ * computed by the plan into method_float[1..2]) give, truncated at l = 2,
+ *     J_ms = sigma_R (Psi + v^T D v) + sigma_M (Psi + 3 g_1 b.v + 10 g_2 v^T D v)
+ * with v the direction the camera looks along (light arriving from v scatters forward into it);
+ * each part is kept >= 0. The truncation keeps the sky/ground and sun/anti-sun asymmetries and
+ * the horizon band of the light field but not the aureole, narrower than l = 2 resolves: red
+ * order 2 is still ~20 % low toward a low sun (it was 30 % low, and 5-8 % high toward the zenith
+ * with an isotropic Mie part).
+ * Gathered higher orders (ms_lut_gather; kernels ms_lut_order3, ms_lut_second). Hillaire's
+ * series f L_2 + f^2 L_2 + ... takes the higher orders at x from x's own L_2, which fails where
+ * they come from elsewhere (into the Earth's shadow at twilight), leaves out the ground lit by
+ * the sky, and, measured against the reference's per-order tallies, makes orders >= 4 20-45 %
+ * too low even in daylight (f at x underestimates what the brighter air above and along the
+ * horizon sends back). So orders are gathered where they are scattered: a gathering pass
+ * computes, along the same directions and segments, the radiance G(w) arriving at x from a
+ * source J_src of the form of J_ms (anisotropy included: light sent along the horizon and
+ * forward by the aerosols counts it), plus T (rho / pi) E where w meets the ground; <G> is the
+ * next order's source per unit sigma_s and the moments of G give its anisotropy A = (D, b) the
+ * same way as L_1''s. Pass 2 gathers order 3 exactly from order 2 (L_2, A_2, the ground lit by
+ * the first-order sky E_1 = 4 pi <L_1' max(mu, 0)>): S_3, A_3, E_2. Pass 3 gathers orders >= 3
+ * from the series over the gathered order 3, Psi_src = L_2 + S_3 / (1 - f), A_src = A_2 + A_3 (1
+ * + k f / (1 - f)) (k = method_float[0]: orders >= 4 shaped like order 3), E = E_1 + E_2 /
+ * (1 - f): Psi = L_2 + <G>, A = A_2 + A_G. Orders >= 4 keep part of the local series' error
+ * (measured: 5-10 % low in blue, ~0.5 % of the sky at the horizon). Planes of the LUT (each
+ * width x height; ms_lut.cl): 0 Psi (xyz), f of channel y (w); 1-5 D_uu, D_ss, D_us, b_u, b_s;
+ * 12 E_sky (the ground's sky irradiance, all orders); 6-11 and 13 scratch of the passes.
+ * Measured against the Monte Carlo reference (tests/data/reference_sky.csv, ground camera,
+ * views 0..85 deg; worst error, sun zenith 0..80 deg / 90 deg; in blue up to the sixth line,
+ * red and green within 2.2 % there; over all channels after it):
+ *   isotropic Psi, uniform 32-point mu_s grid (before):   -6.5 %  /  +7.6 % (zenith, twilight)
+ *   + sqrt mu_s mapping, 64 points, still isotropic:      -6.6 %  / -16.5 % (horizon, twilight)
+ *   + Rayleigh anisotropy, k = 0:                         -5.7 %  / -13.7 %
+ *   + Rayleigh anisotropy, k = 1 (kept):                  -5.6 %  / -12.4 %
+ *   + second pass, gathered orders >= 3:                  -4.6 %  /  -7.0 %
+ *   + ground lit by the sky:                              -2.9 %  /  -4.1 %
+ *   + anisotropic source in the gather, D of orders >= 3
+ *     from G's moments:                                   -2.3 %  /  -3.4 % (blue)
+ *   + order 3 gathered exactly, series over it:           -2.1 %  /  -1.9 % (green / red)
+ *   + growing segments (sky_single.h):                    -1.8 %  /  -1.7 % (blue)
+ *   + Mie anisotropy (kept):                              -1.3 %  /  -1.2 % (blue / red)
+ * The old grid's twilight error had hidden the model's; 4x the directions and 3x the segments
+ * change these by < 0.3 %. What is left: the aureole in the aerosols' part of orders >= 2 and
+ * the local series in orders >= 4 (both above). */
+#ifndef ATMO_MS_LUT_H
+#define ATMO_MS_LUT_H
+#ifndef __OPENCL_VERSION__
+#include "common/compat.h"
+#include "atmosphere/atmosphere.h"
+#include "common/geometry.h"
+#include "common/phase.h"
+#ifndef ATMO_MS_LUT
+#define ATMO_MS_LUT /* the host build of this header: sky_single.h gets the terms too */
+#endif
+#include "atmosphere/sky_single.h"
+#include "atmo/gpu_types.h"
+#endif
+#ifndef ATMO_SKY_INTEGRATE_HAS_MS
+#error "sky_single.h was compiled without ATMO_MS_LUT: build method march with -DATMO_MS_LUT"
+#endif
+
+/* mu_s -> x in [0, 1]: x = (1 + sign(mu_s) sqrt|mu_s|) / 2, so texels crowd toward the
+ * terminator (mu_s = 0), where Psi rises from ~0 within a few degrees of sun elevation. */
+ATMO_FN float ms_lut_unit_from_mu_s(float mu_s)
+{
+    float y = sqrtf(fminf(fabsf(mu_s), 1.0f));
+    y = mu_s < 0.0f ? -y : y;
+    return clamp(0.5f + 0.5f * y, 0.0f, 1.0f);
+}
+
+/* (r, mu_s) -> (u, v) of the Psi LUT of size width x height. */
+ATMO_FN void ms_lut_uv(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r, float mu_s, int width,
+                       int height, float *u, float *v)
+{
+    float x_h = clamp((r - a->bottom_radius) / (a->top_radius - a->bottom_radius), 0.0f, 1.0f);
+    *u = atmosphere_texcoord_from_unit(ms_lut_unit_from_mu_s(mu_s), width);
+    *v = atmosphere_texcoord_from_unit(x_h, height);
+}
+
+/* Texel (i, j) -> (r, mu_s), the inverse at texel centres. */
+ATMO_FN void ms_lut_r_mu_s(ATMO_GLOBAL const atmo_gpu_atmosphere *a, int i, int j, int width,
+                           int height, float *r, float *mu_s)
+{
+    float y = 2.0f * (float)i / (float)(width - 1) - 1.0f, x_h = (float)j / (float)(height - 1);
+    *mu_s = atmo_clamp_cos(y * fabsf(y));
+    /* a hair above the ground so rays along the horizontal do not graze it */
+    *r = a->bottom_radius + fmaxf(x_h * (a->top_radius - a->bottom_radius), 1.0f);
+}
+
+ATMO_FN vec3 ms_lut_lookup(ATMO_GLOBAL const atmo_gpu_atmosphere *a, ATMO_GLOBAL const float4 *lut,
+                           int width, int height, float r, float mu_s)
+{
+    float u, v;
+    ms_lut_uv(a, r, mu_s, width, height, &u, &v);
+    return atmosphere_lut_bilinear(lut, width, height, u, v);
+}
+
+ATMO_FN float4 ms_float4(vec3 v, float w)
+{
+    float4 out;
+    out.x = v.x;
+    out.y = v.y;
+    out.z = v.z;
+    out.w = w;
+    return out;
+}
+
+/* The source J = sigma_R (Psi + v^T D v) + sigma_M (Psi + 3 g_1 b.v + 10 g_2 v^T D v) toward
+ * the view direction v (radius r, view cosine mu, sun cosine mu_s, view-sun cosine nu: v is the
+ * direction a camera looks along, so light arriving from v scatters forward into it) with Psi
+ * in the plane `psi_plane` and the anisotropy in the five consecutive planes from `aniso`
+ * (D_uu, D_ss, D_us, b_u, b_s; each width x height); v in the frame (up, sun-ward horizontal,
+ * across); g_1, g_2 = s->method_float[1], [2]; each part is kept >= 0. */
+ATMO_FN vec3 ms_lut_source_planes(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                    ATMO_GLOBAL const float4 *psi_plane,
+                                    ATMO_GLOBAL const float4 *aniso, int width, int height,
+                                    float r, float mu, float mu_s, float nu, vec3 sigma_r,
+                                    vec3 sigma_m)
+{
+    float u, v;
+    int n = width * height;
+    ms_lut_uv(&s->atmosphere, r, mu_s, width, height, &u, &v);
+    vec3 psi = atmosphere_lut_bilinear(psi_plane, width, height, u, v);
+    vec3 d_uu = atmosphere_lut_bilinear(aniso, width, height, u, v);
+    vec3 d_ss = atmosphere_lut_bilinear(aniso + n, width, height, u, v);
+    vec3 d_us = atmosphere_lut_bilinear(aniso + 2 * n, width, height, u, v);
+    vec3 b_u = atmosphere_lut_bilinear(aniso + 3 * n, width, height, u, v);
+    vec3 b_s = atmosphere_lut_bilinear(aniso + 4 * n, width, height, u, v);
+    float sin_s = atmo_safe_sqrt(1.0f - mu_s * mu_s), across = 1.0f - mu * mu;
+    /* the sun-ward component is undefined with the sun at the zenith, where D_ss = D_pp and
+     * b_s = 0 */
+    float v_s = sin_s > 1e-4f ? (nu - mu * mu_s) / sin_s : 0.0f;
+    v_s = clamp(v_s, -atmo_safe_sqrt(across), atmo_safe_sqrt(across));
+    float v_p2 = fmaxf(across - v_s * v_s, 0.0f);
+    vec3 c2 = v3_add(v3_add(v3_scale(d_uu, mu * mu - v_p2), v3_scale(d_ss, v_s * v_s - v_p2)),
+                     v3_scale(d_us, 2.0f * mu * v_s));
+    vec3 c1 = v3_add(v3_scale(b_u, mu), v3_scale(b_s, v_s));
+    vec3 l_r = v3_add(psi, c2);
+    vec3 l_m = v3_add(psi, v3_add(v3_scale(c1, 3.0f * s->method_float[1]),
+                                  v3_scale(c2, 10.0f * s->method_float[2])));
+    vec3 j_r = v3_mul(sigma_r, v3(fmaxf(l_r.x, 0.0f), fmaxf(l_r.y, 0.0f), fmaxf(l_r.z, 0.0f)));
+    vec3 j_m = v3_mul(sigma_m, v3(fmaxf(l_m.x, 0.0f), fmaxf(l_m.y, 0.0f), fmaxf(l_m.z, 0.0f)));
+    return v3_add(j_r, j_m);
+}
+
+/* The multiple-scattering source toward the view direction at a point (radius r, view cosine
+ * mu, sun cosine mu_s, view-sun cosine nu) with scattering coefficients sigma_r (Rayleigh) and
+ * sigma_m (Mie), from planes 0-5 of the LUT (ms_lut_source_planes). */
+ATMO_FN vec3 ms_lut_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *lut,
+                           int width, int height, float r, float mu, float mu_s, float nu,
+                           vec3 sigma_r, vec3 sigma_m)
+{
+    return ms_lut_source_planes(s, lut, lut + width * height, width, height, r, mu, mu_s, nu,
+                                  sigma_r, sigma_m);
+}
+
+/* The sky irradiance of the ground (all orders, W m^-2 nm^-1) where the sun cosine is mu_s:
+ * plane 12 of the LUT at the bottom radius. */
+ATMO_FN vec3 ms_lut_sky_irradiance(ATMO_GLOBAL const atmo_gpu_atmosphere *a,
+                                   ATMO_GLOBAL const float4 *lut, int width, int height,
+                                   float mu_s)
+{
+    return ms_lut_lookup(a, lut + 12 * width * height, width, height, a->bottom_radius, mu_s);
+}
+
+/* Band k of n_mu direction bands for the sphere integrals at a point whose horizon cosine is
+ * mu_h: half the bands above mu_h, half below, so no band straddles the step between sky and
+ * ground, crowding toward the horizon as v^2 where the sky is brightest and changes fastest:
+ * mu = mu_h +- span v^2. Returns mu; *u = span v is the band's weight (its share of the sphere
+ * is span 2 v dv). */
+ATMO_FN float ms_band(int k, int n_mu, float mu_h, float *u)
+{
+    int n_half = n_mu / 2, up = k >= n_half;
+    float span = up ? 1.0f - mu_h : mu_h + 1.0f;
+    float v = ((float)(up ? k - n_half : k) + 0.5f) / (float)n_half;
+    *u = span * v;
+    return atmo_clamp_cos(up ? mu_h + span * v * v : mu_h - span * v * v);
+}
+
+/* Sums over the quadrature's directions w (weights u) of a radiance L(w) and its moments in the
+ * local frame (up component mu, sun-ward horizontal w_s): <L>, the second moments of the
+ * Rayleigh D, the first moments b_u, b_s, and the upward flux <L max(mu, 0)>. */
+typedef struct ms_moments {
+    vec3 sum, m_uu, m_ss, m_us, b_u, b_s, e_up;
+    float weights;
+} ms_moments;
+
+ATMO_FN void ms_moments_add(ms_moments *m, vec3 L, float u, float mu, float w_s)
+{
+    if (mu > 0.0f)
+        m->e_up = v3_add(m->e_up, v3_scale(L, u * mu));
+    m->m_uu = v3_add(m->m_uu, v3_scale(L, u * mu * mu));
+    m->m_ss = v3_add(m->m_ss, v3_scale(L, u * w_s * w_s));
+    m->m_us = v3_add(m->m_us, v3_scale(L, u * mu * w_s));
+    m->b_u = v3_add(m->b_u, v3_scale(L, u * mu));
+    m->b_s = v3_add(m->b_s, v3_scale(L, u * w_s));
+    m->sum = v3_add(m->sum, v3_scale(L, u));
+    m->weights += u;
+}
+
+/* <L> (normalised by the sum of the weights, 2 up to rounding); dev[0..4] = D_uu, D_ss, D_us,
+ * b_u, b_s with m = (3/4) <L w w^T>, D = m - (<L> / 4) I (traceless, 0 for an isotropic L). */
+ATMO_FN vec3 ms_moments_finish(const ms_moments *m, float4 *dev)
+{
+    vec3 mean = v3_scale(m->sum, 1.0f / m->weights);
+    dev[0] = ms_float4(v3_sub(v3_scale(m->m_uu, 0.75f / m->weights), v3_scale(mean, 0.25f)),
+                         0.0f);
+    dev[1] = ms_float4(v3_sub(v3_scale(m->m_ss, 0.75f / m->weights), v3_scale(mean, 0.25f)),
+                         0.0f);
+    dev[2] = ms_float4(v3_scale(m->m_us, 0.75f / m->weights), 0.0f);
+    dev[3] = ms_float4(v3_scale(m->b_u, 1.0f / m->weights), 0.0f);
+    dev[4] = ms_float4(v3_scale(m->b_s, 1.0f / m->weights), 0.0f);
+    return mean;
+}
+
+/* First pass at one texel at radius r and sun cosine mu_s: returns L_2 (xyz) and f_ms of
+ * channel y (w); dev[0..4] = the anisotropy of order 2 (xyz per channel; see the file's
+ * comment): D_uu, D_ss, D_us, b_u, b_s; dev[5] = f_ms (xyz per channel); dev[6] = E_1, the
+ * first-order sky irradiance of a horizontal surface at x, 4 pi <L_1' max(mu, 0)>. */
+ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
+                            ATMO_GLOBAL const float4 *transmittance, float r, float mu_s,
+                            int n_mu, int n_phi, int n_steps, float4 *dev)
+{
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    int tw = s->transmittance_width, th = s->transmittance_height;
+    vec3 E = v3_from4(a->solar_irradiance);
+    vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
+    vec3 albedo = v3_from4(a->ground_albedo);
+    float sin_s = atmo_safe_sqrt(1.0f - mu_s * mu_s);
+    vec3 f = v3(0.0f, 0.0f, 0.0f), zero = v3(0.0f, 0.0f, 0.0f);
+    ms_moments mom = {zero, zero, zero, zero, zero, zero, zero, 0.0f};
+    float mu_h = -atmo_safe_sqrt((r - a->bottom_radius) * (r + a->bottom_radius)) / r;
+    for (int k = 0; k < n_mu; k++) {
+        float u, mu = ms_band(k, n_mu, mu_h, &u);
+        int up = k >= n_mu / 2;
+        float sin_v = atmo_safe_sqrt(1.0f - mu * mu);
+        int hits_ground = !up;
+        float d = hits_ground ? geometry_distance_to_bottom(r, mu, a->bottom_radius)
+                              : geometry_distance_to_top(r, mu, a->top_radius);
+        for (int l = 0; l < n_phi; l++) {
+            float phi = ATMO_PI * ((float)l + 0.5f) / (float)n_phi;
+            float nu = atmo_clamp_cos(mu * mu_s + sin_v * sin_s * cosf(phi));
+            vec3 L1 = v3(0.0f, 0.0f, 0.0f), f1 = v3(0.0f, 0.0f, 0.0f);
+            float p_r = phase_rayleigh(nu), p_m = sky_mie_phase(a, nu);
+            vec3 T = v3(1.0f, 1.0f, 1.0f);
+            for (int i = 0; i < n_steps; i++) {
+                /* segments grow as (i/n)^2: short near x, where the density changes
+                 * fastest along rays that start low (most of the light) */
+                float t0 = d * atmo_sq((float)i / (float)n_steps);
+                float t1 = d * atmo_sq((float)(i + 1) / (float)n_steps);
+                float dt = t1 - t0, t = d * atmo_sq(((float)i + 0.5f) / (float)n_steps);
+                float r_t = geometry_radius_at(r, mu, t);
+                float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
+                float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
+                float rho_r = expf(-h / a->rayleigh_scale_height);
+                float rho_m = expf(-h / a->mie_scale_height);
+                vec3 sigma_t = atmosphere_extinction(a, h);
+                vec3 sigma_s = v3_add(v3_scale(beta_r, rho_r), v3_scale(beta_m, rho_m));
+                vec3 scattering = v3_add(v3_scale(beta_r, rho_r * p_r),
+                                         v3_scale(beta_m, rho_m * p_m));
+                vec3 sun_t = atmosphere_sun_transmittance(a, transmittance, tw, th, r_t, mu_s_t);
+                vec3 w = v3(sky_segment_weight(sigma_t.x, dt),
+                            sky_segment_weight(sigma_t.y, dt),
+                            sky_segment_weight(sigma_t.z, dt));
+                vec3 Tw = v3_mul(T, w);
+                L1 = v3_add(L1, v3_mul(Tw, v3_mul(v3_mul(scattering, E), sun_t)));
+                f1 = v3_add(f1, v3_mul(Tw, sigma_s));
+                T = v3_mul(T, v3_exp(v3_scale(sigma_t, -dt)));
+            }
+            if (hits_ground) {
+                float mu_s_g = atmo_clamp_cos((r * mu_s + d * nu) / a->bottom_radius);
+                vec3 sun_g = atmosphere_sun_transmittance(a, transmittance, tw, th,
+                                                          a->bottom_radius, mu_s_g);
+                vec3 radiance = v3_scale(v3_mul(v3_mul(albedo, E), sun_g),
+                                         fmaxf(mu_s_g, 0.0f) / ATMO_PI);
+                L1 = v3_add(L1, v3_mul(T, radiance));
+            }
+            /* w in the local frame: up component mu, sun-ward horizontal sin_v cos(phi) */
+            ms_moments_add(&mom, L1, u, mu, sin_v * cosf(phi));
+            f = v3_add(f, v3_scale(f1, u));
+        }
+    }
+    vec3 L2 = ms_moments_finish(&mom, dev);
+    f = v3_scale(f, 1.0f / mom.weights);
+    dev[5] = ms_float4(f, 0.0f);
+    dev[6] = ms_float4(v3_scale(mom.e_up, 4.0f * ATMO_PI / mom.weights), 0.0f);
+    return ms_float4(L2, f.y);
+}
+
+/* A gathering pass at one texel (x at radius r, sun cosine mu_s): the radiance arriving at x
+ * from each direction w of the quadrature, G(w) = int_0^d T(x, y) J(y, w) dt + T(x, g) (rho / pi)
+ * E(g) where w meets the ground g, for the source per unit scattering coefficient read from the
+ * plane `psi_src` and the five anisotropy planes from `aniso_src` (ms_lut_source_planes, with
+ * w as the view direction), E from the plane `sky_e`. Returns <G> (the next order's source per
+ * unit sigma_s, isotropic part); dev[0..4] = its anisotropy from the moments of G, as
+ * ms_lut_texel's from L_1'; dev[5] = the irradiance G gives a horizontal surface,
+ * 4 pi <G max(mu, 0)>. Same quadrature as ms_lut_texel (ms_lut.cl passes half the azimuths). */
+ATMO_FN vec3 ms_lut_gather(ATMO_GLOBAL const atmo_gpu_scene *s,
+                           ATMO_GLOBAL const float4 *psi_src, ATMO_GLOBAL const float4 *aniso_src,
+                           ATMO_GLOBAL const float4 *sky_e,
+                           int width, int height, float r, float mu_s, int n_mu, int n_phi,
+                           int n_steps, float4 *dev)
+{
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    vec3 albedo = v3_from4(a->ground_albedo);
+    vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
+    float sin_s = atmo_safe_sqrt(1.0f - mu_s * mu_s);
+    float mu_h = -atmo_safe_sqrt((r - a->bottom_radius) * (r + a->bottom_radius)) / r;
+    vec3 zero = v3(0.0f, 0.0f, 0.0f);
+    ms_moments mom = {zero, zero, zero, zero, zero, zero, zero, 0.0f};
+    for (int k = 0; k < n_mu; k++) {
+        float u, mu = ms_band(k, n_mu, mu_h, &u);
+        int up = k >= n_mu / 2;
+        float sin_v = atmo_safe_sqrt(1.0f - mu * mu);
+        float d = up ? geometry_distance_to_top(r, mu, a->top_radius)
+                     : geometry_distance_to_bottom(r, mu, a->bottom_radius);
+        for (int l = 0; l < n_phi; l++) {
+            float phi = ATMO_PI * ((float)l + 0.5f) / (float)n_phi;
+            float nu = atmo_clamp_cos(mu * mu_s + sin_v * sin_s * cosf(phi));
+            vec3 T = v3(1.0f, 1.0f, 1.0f), acc = v3(0.0f, 0.0f, 0.0f);
+            for (int i = 0; i < n_steps; i++) {
+                float t0 = d * atmo_sq((float)i / (float)n_steps);
+                float t1 = d * atmo_sq((float)(i + 1) / (float)n_steps);
+                float dt = t1 - t0, t = d * atmo_sq(((float)i + 0.5f) / (float)n_steps);
+                float r_t = geometry_radius_at(r, mu, t);
+                float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
+                float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
+                vec3 sigma_t = atmosphere_extinction(a, h);
+                vec3 sigma_r = v3_scale(beta_r, expf(-h / a->rayleigh_scale_height));
+                vec3 sigma_m = v3_scale(beta_m, expf(-h / a->mie_scale_height));
+                vec3 w = v3(sky_segment_weight(sigma_t.x, dt),
+                            sky_segment_weight(sigma_t.y, dt),
+                            sky_segment_weight(sigma_t.z, dt));
+                vec3 j = ms_lut_source_planes(s, psi_src, aniso_src, width, height, r_t,
+                                                (r * mu + t) / r_t, mu_s_t, nu, sigma_r,
+                                                sigma_m);
+                acc = v3_add(acc, v3_mul(v3_mul(T, w), j));
+                T = v3_mul(T, v3_exp(v3_scale(sigma_t, -dt)));
+            }
+            if (!up) { /* the ground lit by the sky: (rho / pi) E */
+                float mu_s_g = atmo_clamp_cos((r * mu_s + d * nu) / a->bottom_radius);
+                vec3 e = ms_lut_lookup(a, sky_e, width, height, a->bottom_radius, mu_s_g);
+                acc = v3_add(acc, v3_mul(T, v3_scale(v3_mul(albedo, e), 1.0f / ATMO_PI)));
+            }
+            ms_moments_add(&mom, acc, u, mu, sin_v * cosf(phi));
+        }
+    }
+    vec3 sum = ms_moments_finish(&mom, dev);
+    dev[5] = ms_float4(v3_scale(mom.e_up, 4.0f * ATMO_PI / mom.weights), 0.0f);
+    return sum;
+}
+
+/* Single scattering plus sigma_s Psi_ms from the LUT `ms` (ms_w x ms_h): sky_single.h's
+ * integrator with the multiple-scattering terms, n segments with sample offset `jitter`. */
+ATMO_FN void march_integrate(ATMO_GLOBAL const atmo_gpu_scene *s,
+                             ATMO_GLOBAL const float4 *transmittance, ATMO_GLOBAL const float4 *ms,
+                             int ms_w, int ms_h, float r, float mu, float mu_s, float nu, int n,
+                             float jitter, vec3 *sky, vec3 *sun)
+{
+    vec3 view_t;
+    sky_integrate(s, transmittance, ms, ms_w, ms_h, 1, r, mu, mu_s, nu, INFINITY, n, jitter, sky,
+                  sun, &view_t);
+}
+
+/* The same over the segment [0, d] of the ray (sky_method.h's sky_segment): in-scattered light
+ * of all orders and T(0, d). */
+ATMO_FN void march_segment(ATMO_GLOBAL const atmo_gpu_scene *s,
+                           ATMO_GLOBAL const float4 *transmittance, ATMO_GLOBAL const float4 *ms,
+                           int ms_w, int ms_h, float r, float mu, float mu_s, float nu, float d,
+                           int n, float jitter, vec3 *inscatter, vec3 *view_t)
+{
+    vec3 sun;
+    sky_integrate(s, transmittance, ms, ms_w, ms_h, 1, r, mu, mu_s, nu, d, n, jitter, inscatter,
+                  &sun, view_t);
+}
+
+#endif

@@ -1,0 +1,55 @@
+/* geometry.h — rays against the planet's spheres, in the (r, mu) form of Bruneton 2017.
+ *
+ * A point is described by r, its distance to the planet centre, and a ray by mu, the cosine of
+ * its angle to the local vertical. The distance along the ray to a sphere of radius R is
+ *     d = -r mu +- sqrt(r^2 (mu^2 - 1) + R^2)           (Bruneton 2017, sec. "Distance to ...")
+ * The discriminant is evaluated as (R - r)(R + r) + (r mu)^2, which keeps its precision at planet
+ * scale where r^2 ~ 4e13 would swallow the difference of the two radii in float. Points along a
+ * ray: r_t = sqrt(t^2 + 2 r mu t + r^2), and cosines at t are (r mu + t) / r_t for the ray itself
+ * and (r mu_s + t nu) / r_t for the sun, nu being the cosine between ray and sun. */
+#ifndef ATMO_GEOMETRY_H
+#define ATMO_GEOMETRY_H
+#ifndef __OPENCL_VERSION__
+#include "common/compat.h"
+#endif
+
+ATMO_FN float geometry_discriminant(float r, float mu, float radius)
+{
+    return (radius - r) * (radius + r) + atmo_sq(r * mu);
+}
+
+/* Distance to the outer intersection with a sphere the point is inside of (r <= radius). */
+ATMO_FN float geometry_distance_to_top(float r, float mu, float top_radius)
+{
+    float d = -r * mu + atmo_safe_sqrt(geometry_discriminant(r, mu, top_radius));
+    return fmaxf(d, 0.0f);
+}
+
+/* Distance to the near intersection with the ground sphere (r >= radius). */
+ATMO_FN float geometry_distance_to_bottom(float r, float mu, float bottom_radius)
+{
+    float d = -r * mu - atmo_safe_sqrt(geometry_discriminant(r, mu, bottom_radius));
+    return fmaxf(d, 0.0f);
+}
+
+ATMO_FN int geometry_ray_hits_ground(float r, float mu, float bottom_radius)
+{
+    return mu < 0.0f && geometry_discriminant(r, mu, bottom_radius) >= 0.0f;
+}
+
+/* Radius at distance t along the ray. */
+ATMO_FN float geometry_radius_at(float r, float mu, float t)
+{
+    return atmo_safe_sqrt(t * t + 2.0f * r * mu * t + r * r);
+}
+
+/* Altitude above a sphere of radius R at distance t along the ray, written as
+ * (r_t^2 - R^2) / (r_t + R) so it keeps metre precision instead of losing the ~0.5 m that
+ * r_t - R loses to float rounding of r_t ~ 6.4e6 m. */
+ATMO_FN float geometry_altitude_at(float r, float mu, float t, float radius)
+{
+    float r_t = geometry_radius_at(r, mu, t);
+    return (t * (t + 2.0f * r * mu) + (r - radius) * (r + radius)) / (r_t + radius);
+}
+
+#endif

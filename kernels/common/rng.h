@@ -1,0 +1,41 @@
+/* rng.h — counter-based random numbers: a pure function of (seed, pixel, sample, dimension).
+ *
+ * Nothing is carried between launches, so an image is bitwise identical whatever the tile size,
+ * the samples per launch or the order of tiles. Each of the four counters is folded in by
+ * xor followed by a full-avalanche 32-bit permutation (the "lowbias32" constants found by
+ * C. Wellons' hash prospector; bias about 0.17 of the ideal avalanche). Because every step is a
+ * bijection of the running state, distinct counters never share a state before the last mix.
+ * Uniform floats keep the top 24 bits, so they lie on the float grid k * 2^-24 in [0, 1).
+ * Tested by chi-square for uniformity of each dimension and independence of pairs
+ * (tests/test_rng.c). */
+#ifndef ATMO_RNG_H
+#define ATMO_RNG_H
+#ifndef __OPENCL_VERSION__
+#include "common/compat.h"
+#endif
+
+ATMO_FN uint rng_permute(uint x)
+{
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
+ATMO_FN uint rng_hash(uint seed, uint pixel, uint sample, uint dimension)
+{
+    uint h = rng_permute(seed ^ 0x9e3779b9u); /* golden-ratio offset keeps seed 0 off the fixed point 0 */
+    h = rng_permute(h ^ pixel);
+    h = rng_permute(h ^ sample);
+    return rng_permute(h ^ dimension);
+}
+
+/* Uniform in [0, 1). */
+ATMO_FN float rng_uniform(uint seed, uint pixel, uint sample, uint dimension)
+{
+    return (float)(rng_hash(seed, pixel, sample, dimension) >> 8) * (1.0f / 16777216.0f);
+}
+
+#endif
