@@ -2,7 +2,7 @@
  * in-scattered toward the camera by the air before a black surface at distance d, and the
  * transmittance T(0, d), run through the sky_probe_segment kernel (atmo_probe_segments: 64
  * batches, whose spread gives each value's standard error SE).
- * labels: kernel
+ * labels: kernel slow
  *
  * Oracles and tolerances:
  * 1. Definition: a segment longer than its ray (d = 1e9 m) is the ray's sky radiance. The same

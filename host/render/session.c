@@ -148,9 +148,10 @@ static int restart(atmo_session *s, atmo_err *e)
         err = clEnqueueWriteBuffer(s->cl.queue, s->nonfinite, CL_TRUE, 0, sizeof zero, &zero, 0,
                                    NULL, NULL);
     if (err != CL_SUCCESS)
-        return atmo_cl_fail(e, "clEnqueueFillBuffer(accumulation image)", err);
+        return atmo_cl_fail(e, "clear accumulation image", err);
     atmo_tiles_reset(&s->tiles);
     s->info.nonfinite = 0;
+    s->progress_start = now_seconds();
     return ATMO_OK;
 }
 
@@ -276,8 +277,6 @@ int atmo_session_step(atmo_session *s, const atmo_step *step, atmo_step_status *
         return rc;
     int target = step->samples > 0 ? step->samples : s->plan.samples;
     double t0 = now_seconds();
-    if (s->info.launches == 0)
-        s->progress_start = t0;
     atmo_tile t;
     while (!atmo_cancel_requested(step->cancel)) {
         if (!atmo_tiles_next(&s->tiles, target, &t)) {
