@@ -27,7 +27,14 @@
  *    standard errors (delta method over the pixels) of 1. The scene is sky-noon (the sun out
  *    of the frame, whose disc edge would make a few pixels dominate R), 48 x 32 pixels at 16
  *    samples: the bands are then about 0.18 and 0.22, and a standard error off by a factor 1.2
- *    moves both statistics by 0.3 to 0.5. */
+ *    moves both statistics by 0.3 to 0.5.
+ * 4. Scene updates (the spectral mode's path). Oracle: the determinism contract again. The
+ *    glory preset (cloud shell with Mie tables uploaded per wavelength) renders at its
+ *    wavelengths (680, 550, 440 nm), then atmo_session_set_scene moves the same session to 680,
+ *    550, 450 nm (other scene struct, another phase table for the third channel, all passes
+ *    rerun, no rebuild) and renders again: that image must equal a fresh render at 680, 550,
+ *    450 nm with memcmp. A plan with other kernels
+ *    (another method) is refused. */
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -320,6 +327,59 @@ static void check_standard_error(void)
     CHECK_ABS(r, 1.0, 4.4 * se_r);
 }
 
+/* ------------------------------------------------------------------ 4 */
+
+static void plan_glory(const char *wavelengths, atmo_plan *p)
+{
+    atmo_scene scene;
+    char buf[64];
+    test_scene_preset(&scene, "glory");
+    snprintf(buf, sizeof buf, "image.width=%d", W);
+    test_scene_set(&scene, buf);
+    snprintf(buf, sizeof buf, "image.height=%d", H);
+    test_scene_set(&scene, buf);
+    test_scene_set(&scene, "image.samples=3");
+    if (wavelengths) {
+        snprintf(buf, sizeof buf, "render.wavelengths_nm=%s", wavelengths);
+        test_scene_set(&scene, buf);
+    }
+    test_plan(&scene, p);
+}
+
+static void check_set_scene(void)
+{
+    atmo_plan first, second, other;
+    atmo_err e;
+    plan_glory(NULL, &first);
+    plan_glory("680,550,450", &second);
+    CHECK(first.upload_count > 0 && second.upload_count > 0);
+    float *want = render_once(&second);
+    atmo_render_settings rs;
+    settings(&rs, 16, 0);
+    atmo_session *s;
+    atmo_step step = {0, 0.0, NULL, NULL, NULL};
+    atmo_step_status status;
+    must(atmo_session_open(&s, &first, &rs, &e), &e);
+    must(atmo_session_step(s, &step, &status, &e), &e);
+    float *at_first = read_mean(s, NULL, NULL);
+    must(atmo_session_set_scene(s, &second, &e), &e);
+    must(atmo_session_step(s, &step, &status, &e), &e);
+    CHECK(status.complete);
+    float *got = read_mean(s, NULL, NULL);
+    int equal = memcmp(got, want, sizeof(float) * 3 * PIXELS) == 0;
+    CHECK(equal);
+    CHECK(memcmp(at_first, want, sizeof(float) * 3 * PIXELS) != 0);
+    plan_view("fast", 0, 3, &other);
+    CHECK(atmo_session_set_scene(s, &other, &e) == ATMO_ERR_USAGE);
+    printf("4. glory at its wavelengths, then set_scene to 680, 550, 450 nm (phase table %d -> "
+           "%d rows): %s a fresh render\n", first.gpu.cloud_table_size,
+           second.gpu.cloud_table_size, equal ? "bitwise equal to" : "DIFFERENT from");
+    atmo_session_close(s);
+    free(got);
+    free(at_first);
+    free(want);
+}
+
 int main(void)
 {
     test_require_opencl();
@@ -327,5 +387,6 @@ int main(void)
     check_steps("march");
     check_cancel();
     check_standard_error();
+    check_set_scene();
     return test_finish();
 }
