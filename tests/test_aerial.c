@@ -2,7 +2,7 @@
  * in-scattered toward the camera by the air before a black surface at distance d, and the
  * transmittance T(0, d), run through the sky_probe_segment kernel (atmo_probe_segments: 64
  * batches, whose spread gives each value's standard error SE).
- * labels: kernel
+ * labels: kernel slow
  *
  * Oracles and tolerances:
  * 1. Definition: a segment longer than its ray (d = 1e9 m) is the ray's sky radiance. The same
@@ -414,7 +414,8 @@ static void table_check(const char *name, const table_row *rows, int n, const re
 static void run_scan_kernel(method *lut, cl_program prog, const char *name, const float4 *rays,
                             const float *dist, int n, float (*out)[4])
 {
-    atmo_cl *cl = &lut->probe.cl;
+    atmo_cl *cl = atmo_session_cl(lut->probe.session);
+    atmo_err e;
     cl_int err;
     cl_mem b_rays = test_cl_buffer(cl, sizeof(float4) * (size_t)n, rays);
     cl_mem b_dist = test_cl_buffer(cl, sizeof(float) * (size_t)n, dist);
@@ -422,9 +423,8 @@ static void run_scan_kernel(method *lut, cl_program prog, const char *name, cons
     cl_kernel k = clCreateKernel(prog, name, &err);
     cl_uint count = (cl_uint)n, samples = 64;
     CHECK(err == CL_SUCCESS);
-    clSetKernelArg(k, 0, sizeof lut->probe.scene, &lut->probe.scene);
-    for (int i = 0; i < ATMO_PLAN_LUTS; i++)
-        clSetKernelArg(k, 1 + i, sizeof lut->probe.luts[i], &lut->probe.luts[i]);
+    cl_uint arg = 0;
+    CHECK(atmo_session_bind(lut->probe.session, k, &arg, &e) == ATMO_OK && arg == 5);
     clSetKernelArg(k, 5, sizeof b_rays, &b_rays);
     clSetKernelArg(k, 6, sizeof b_dist, &b_dist);
     clSetKernelArg(k, 7, sizeof b_out, &b_out);
@@ -586,7 +586,7 @@ int main(void)
         }
     }
 
-    cl_program prog = test_plan_program(&lut.probe.cl, &lut.plan, scan_src);
+    cl_program prog = test_plan_program(atmo_session_cl(lut.probe.session), &lut.plan, scan_src);
     check_horizon(&lut, prog);
     if (n_rows > 0)
         check_naive_short(&lut, prog, rows, n_rows);

@@ -1,6 +1,6 @@
 /* test_horizon_band — no band at the horizon: scans of the view zenith across the horizon in
  * fine steps, every method (issue 4: "no band at the horizon (a test scans across it)").
- * labels: kernel
+ * labels: kernel slow
  *
  * Scans. View zenith across the true horizon (the ground's tangent, where the ground begins to
  * hide the air behind it: a real jump) in 400 steps: 0.01 deg over +-2 deg for cameras at

@@ -1,6 +1,6 @@
 /* test_lut_method — atmosphere method "lut": the 4-D parametrisation on the host, then the
  * precomputed tables on the device, order by order.
- * labels: kernel
+ * labels: kernel slow
  *
  * Oracles and tolerances:
  * 1. Parametrisation (kernels/atmosphere/lut_scattering.h, on the host): the inverse maps are exact

@@ -1,5 +1,5 @@
 /* test_reference_accuracy — every fast method's sky radiance against the Monte Carlo reference.
- * labels: kernel
+ * labels: kernel slow
  *
  * Oracle: the stored table tests/data/reference_sky.csv (method `reference`, all orders,
  * camera at the ground, sun zenith 0/30/60/80/90 deg, views 0..85 deg at azimuth 0/90/180 from

@@ -5,7 +5,9 @@
  * Oracle: the renderer's contract (DESIGN.md, "Random numbers"). Each render is 37 x 23 pixels
  * (no tile size divides it, so edge tiles are partial) with 7 samples per pixel, compared with
  * memcmp against the first. The scene is the default sunset with a panorama camera, so rays
- * see sky, sun, ground and horizon. */
+ * see sky, sun, ground and horizon. Every method is checked: single, march, fast, lut (at
+ * reduced table sizes, as testscene.h's test_sky_plan: the contract does not depend on them)
+ * and reference (whose random walks use many dimensions per sample). */
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/render.h"
@@ -30,31 +32,43 @@ static float *render(const atmo_plan *plan, int tile, int max_batch, double budg
     return r.rgb;
 }
 
-int main(void)
+static void check_method(const char *method)
 {
-    test_require_opencl();
+    static const char *const small_lut[] = {"lut.r_size=8",   "lut.mu_size=32",
+                                            "lut.mu_s_size=8", "lut.nu_size=4",
+                                            "lut.orders=2",    "lut.sphere_samples=8",
+                                            "lut.steps=16"};
     atmo_scene scene;
     atmo_plan plan;
+    char buf[64];
     test_scene_preset(&scene, "sky-sunset");
+    snprintf(buf, sizeof buf, "atmosphere.method=%s", method);
+    test_scene_set(&scene, buf);
     test_scene_set(&scene, "camera.kind=panorama");
     test_scene_set(&scene, "image.width=37");
     test_scene_set(&scene, "image.height=23");
     test_scene_set(&scene, "image.samples=7");
     test_scene_set(&scene, "render.view_steps=8");
+    if (strcmp(method, "lut") == 0)
+        for (size_t i = 0; i < sizeof small_lut / sizeof small_lut[0]; i++)
+            test_scene_set(&scene, small_lut[i]);
     test_plan(&scene, &plan);
+    plan.cache_luts = 2; /* every render after the first loads the view-independent LUTs */
     size_t bytes = sizeof(float) * 3 * 37 * 23;
 
     float *first = render(&plan, 64, 0, 100.0);
     struct { int tile, max_batch; double budget; } variants[] = {
         {8, 1, 100.0}, {16, 3, 100.0}, {32, 0, 1.0}, {64, 7, 1e5}, {24, 2, 5.0}};
-    for (size_t i = 0; i < sizeof variants / sizeof variants[0]; i++) {
+    int same = 0, n = (int)(sizeof variants / sizeof variants[0]);
+    for (int i = 0; i < n; i++) {
         float *other = render(&plan, variants[i].tile, variants[i].max_batch, variants[i].budget);
         if (memcmp(first, other, bytes) != 0)
-            fprintf(stderr, "tile %d, batch <= %d, budget %.0f ms differs\n", variants[i].tile,
-                    variants[i].max_batch, variants[i].budget);
-        CHECK(memcmp(first, other, bytes) == 0);
+            fprintf(stderr, "%s: tile %d, batch <= %d, budget %.0f ms differs\n", method,
+                    variants[i].tile, variants[i].max_batch, variants[i].budget);
+        same += memcmp(first, other, bytes) == 0;
         free(other);
     }
+    CHECK(same == n);
 
     int finite = 1;
     for (size_t i = 0; i < 3 * 37 * 23; i++)
@@ -63,8 +77,20 @@ int main(void)
 
     plan.gpu.seed = 99u; /* a different seed gives a different image */
     float *reseeded = render(&plan, 64, 0, 100.0);
-    CHECK(memcmp(first, reseeded, bytes) != 0);
+    int differs = memcmp(first, reseeded, bytes) != 0;
+    CHECK(differs);
+    printf("%-9s %d of %d tile/batch/budget variants bitwise equal; another seed %s\n", method,
+           same, n, differs ? "differs" : "is THE SAME");
     free(reseeded);
     free(first);
+}
+
+int main(void)
+{
+    test_require_opencl();
+    test_fresh_cache_dir(); /* the LUTs of this build, not an earlier one's from the cache */
+    static const char *const methods[] = {"single", "march", "fast", "lut", "reference"};
+    for (size_t i = 0; i < sizeof methods / sizeof methods[0]; i++)
+        check_method(methods[i]);
     return test_finish();
 }

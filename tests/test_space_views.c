@@ -1,7 +1,7 @@
 /* test_space_views — a ray seen from space gives the radiance of the same ray started where it
  * enters the atmosphere, for every method (issue 4: "views from space and from inside the
  * atmosphere agree where they overlap").
- * labels: kernel
+ * labels: kernel slow
  *
  * Rays. Cameras at the altitude of the `space` preset (2000 km) and at 1e8 m (100 000 km). Each
  * ray is designed at its entry point (r = top): its closest distance b to the planet centre

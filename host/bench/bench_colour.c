@@ -69,7 +69,7 @@ static int run_probe(const atmo_scene *base, const double wl[3], const float4 *r
         rc = atmo_probe_rays(&probe, rays, n, 64, L, NULL, e);
     *seconds += probe.seconds_precompute + (now_s() - t0);
     if (!rc)
-        snprintf(device_name, 256, "%s", probe.cl.device_name);
+        snprintf(device_name, 256, "%s", atmo_session_get_info(probe.session)->device_name);
     atmo_probe_close(&probe);
     return rc;
 }

@@ -325,7 +325,7 @@ int cmd_radiance(int argc, char **argv)
             cJSON_AddNumberToObject(root, "distance_m", distance);
         cJSON_AddNumberToObject(root, "samples", samples);
         cJSON_AddNumberToObject(root, "seed", scene.image.seed);
-        cJSON_AddStringToObject(root, "device", probe.cl.device_name);
+        cJSON_AddStringToObject(root, "device", atmo_session_get_info(probe.session)->device_name);
         cJSON *arr = cJSON_AddArrayToObject(root, "views");
         for (int i = 0; i < n_views; i++) {
             cJSON *o = cJSON_CreateObject();

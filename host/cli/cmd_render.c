@@ -60,10 +60,14 @@ static const char render_usage[] =
     "\n"
     "Ctrl-C during the render writes the samples finished so far and says so.\n";
 
+/* The token the SIGINT handler sets: a handler takes no user data, so this file holds the one
+ * token that the render it starts is given (atmo_render_settings.cancel). */
+static atmo_cancel render_cancel;
+
 static void on_sigint(int sig)
 {
     (void)sig;
-    atmo_render_interrupt();
+    atmo_cancel_request(&render_cancel);
     signal(SIGINT, SIG_DFL); /* a second Ctrl-C ends the process */
 }
 
@@ -308,7 +312,8 @@ int cmd_render(int argc, char **argv)
     plan.cache_luts = lut_cache;
     rs.progress = quiet ? 0 : (isatty(STDERR_FILENO) ? 2 : 1);
 
-    atmo_render_clear_interrupt();
+    atmo_cancel_clear(&render_cancel);
+    rs.cancel = &render_cancel;
     struct sigaction sa = {0}, old;
     sa.sa_handler = on_sigint;
     sigaction(SIGINT, &sa, &old);

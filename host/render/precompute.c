@@ -139,6 +139,32 @@ static void lut_store(atmo_cl *cl, const atmo_plan *plan, const char *path,
         atmo_atomic_abort(f, tmp);
 }
 
+/* One pass: kernel(scene, lut0..lut3, arg) over its padded global size. */
+static int run_pass(atmo_cl *cl, cl_program program, const atmo_plan_pass *pass, cl_mem scene,
+                    cl_mem luts[ATMO_PLAN_LUTS], atmo_err *e)
+{
+    cl_int err;
+    cl_kernel k = clCreateKernel(program, pass->kernel, &err);
+    if (err != CL_SUCCESS)
+        return atmo_cl_fail(e, "clCreateKernel(precompute)", err);
+    err = clSetKernelArg(k, 0, sizeof scene, &scene);
+    for (int i = 0; i < ATMO_PLAN_LUTS && err == CL_SUCCESS; i++)
+        err = clSetKernelArg(k, 1 + i, sizeof luts[i], &luts[i]);
+    if (err == CL_SUCCESS)
+        err = clSetKernelArg(k, 1 + ATMO_PLAN_LUTS, sizeof pass->arg, &pass->arg);
+    int three_d = pass->depth > 1;
+    size_t local[3] = {three_d ? 4 : 8, three_d ? 4 : 8, three_d ? 4 : 1};
+    size_t global[3] = {pad_to(pass->width, local[0]), pad_to(pass->height, local[1]),
+                        pad_to(pass->depth, local[2])};
+    if (err == CL_SUCCESS)
+        err = clEnqueueNDRangeKernel(cl->queue, k, three_d ? 3 : 2, NULL, global, local, 0, NULL,
+                                     NULL);
+    clReleaseKernel(k);
+    if (err != CL_SUCCESS)
+        return atmo_cl_fail(e, pass->kernel, err);
+    return ATMO_OK;
+}
+
 int atmo_precompute(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_mem scene,
                     cl_mem luts[ATMO_PLAN_LUTS], atmo_precompute_info *info, atmo_err *e)
 {
@@ -166,26 +192,9 @@ int atmo_precompute(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_m
         const atmo_plan_pass *pass = &plan->passes[p];
         if (info->cache_hit && !pass->follows_view)
             continue;
-        if (info->cache_hit && !pass->follows_view)
-            continue;
-        cl_kernel k = clCreateKernel(program, pass->kernel, &err);
-        if (err != CL_SUCCESS)
-            return atmo_cl_fail(e, "clCreateKernel(precompute)", err);
-        err = clSetKernelArg(k, 0, sizeof scene, &scene);
-        for (int i = 0; i < ATMO_PLAN_LUTS && err == CL_SUCCESS; i++)
-            err = clSetKernelArg(k, 1 + i, sizeof luts[i], &luts[i]);
-        if (err == CL_SUCCESS)
-            err = clSetKernelArg(k, 1 + ATMO_PLAN_LUTS, sizeof pass->arg, &pass->arg);
-        int three_d = pass->depth > 1;
-        size_t local[3] = {three_d ? 4 : 8, three_d ? 4 : 8, three_d ? 4 : 1};
-        size_t global[3] = {pad_to(pass->width, local[0]), pad_to(pass->height, local[1]),
-                            pad_to(pass->depth, local[2])};
-        if (err == CL_SUCCESS)
-            err = clEnqueueNDRangeKernel(cl->queue, k, three_d ? 3 : 2, NULL, global, local, 0,
-                                         NULL, NULL);
-        clReleaseKernel(k);
-        if (err != CL_SUCCESS)
-            return atmo_cl_fail(e, pass->kernel, err);
+        int rc = run_pass(cl, program, pass, scene, luts, e);
+        if (rc)
+            return rc;
     }
     err = clFinish(cl->queue);
     if (err != CL_SUCCESS)
@@ -194,5 +203,23 @@ int atmo_precompute(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_m
     if (cacheable && !info->cache_hit &&
         (info->seconds > ATMO_LUT_CACHE_MIN_SECONDS || plan->cache_luts == 2))
         lut_store(cl, plan, path, luts);
+    return ATMO_OK;
+}
+
+int atmo_precompute_view(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_mem scene,
+                         cl_mem luts[ATMO_PLAN_LUTS], double *seconds, atmo_err *e)
+{
+    double t0 = now_seconds();
+    for (int p = 0; p < plan->pass_count; p++) {
+        int rc = plan->passes[p].follows_view
+                     ? run_pass(cl, program, &plan->passes[p], scene, luts, e)
+                     : ATMO_OK;
+        if (rc)
+            return rc;
+    }
+    cl_int err = clFinish(cl->queue);
+    if (err != CL_SUCCESS)
+        return atmo_cl_fail(e, "clFinish(precompute)", err);
+    *seconds = now_seconds() - t0;
     return ATMO_OK;
 }

@@ -3,29 +3,19 @@
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/probe.h"
-#include "atmo/render.h"
 
 int atmo_probe_open(atmo_probe *p, const atmo_plan *plan, const char *device, atmo_err *e)
 {
-    int rc;
-    cl_int err;
-    if ((rc = atmo_cl_open(&p->cl, device, e)))
+    atmo_render_settings rs;
+    atmo_render_settings_default(&rs);
+    rs.device = device;
+    int rc = atmo_session_open(&p->session, plan, &rs, e);
+    if (rc)
         return rc;
-    p->cl_open = 1;
-    atmo_cl_build_options bo = {plan->fragments, plan->fragment_count, plan->defines, NULL, 1,
-                                NULL};
-    atmo_cl_build_info bi;
-    if ((rc = atmo_cl_build(&p->cl, &bo, &p->program, &bi, e)))
-        return rc;
-    p->seconds_build = bi.seconds;
-    p->scene = clCreateBuffer(p->cl.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                              sizeof plan->gpu, (void *)&plan->gpu, &err);
-    if (err != CL_SUCCESS)
-        return atmo_cl_fail(e, "clCreateBuffer(scene)", err);
-    atmo_precompute_info info;
-    rc = atmo_precompute(&p->cl, p->program, plan, p->scene, p->luts, &info, e);
-    p->seconds_precompute = info.seconds;
-    return rc;
+    const atmo_session_info *in = atmo_session_get_info(p->session);
+    p->seconds_build = in->seconds_build;
+    p->seconds_precompute = in->seconds_precompute;
+    return ATMO_OK;
 }
 
 /* Mean and standard error of each ray over its ATMO_PROBE_BATCHES batch means in out. */
@@ -53,7 +43,7 @@ static int run_fast_probe(atmo_probe *p, const float4 *rays, const float *distan
                        int samples, double (*mean)[3], double (*se)[3], double (*t_mean)[3],
                        double (*t_se)[3], atmo_err *e)
 {
-    atmo_cl *cl = &p->cl;
+    atmo_cl *cl = atmo_session_cl(p->session);
     const char *name = distances ? "sky_probe_segment" : "sky_probe";
     int rc = ATMO_OK, per = (samples + ATMO_PROBE_BATCHES - 1) / ATMO_PROBE_BATCHES;
     size_t items = (size_t)n * ATMO_PROBE_BATCHES;
@@ -97,18 +87,16 @@ static int run_fast_probe(atmo_probe *p, const float4 *rays, const float *distan
         rc = atmo_cl_fail(e, "clCreateBuffer(radiance)", err);
         goto cleanup;
     }
-    k = clCreateKernel(p->program, name, &err);
+    k = clCreateKernel(atmo_session_program(p->session), name, &err);
     if (err != CL_SUCCESS) {
         rc = atmo_cl_fail(e, distances ? "clCreateKernel(sky_probe_segment)"
                                        : "clCreateKernel(sky_probe)", err);
         goto cleanup;
     }
     cl_uint count = (cl_uint)items, n_samples = (cl_uint)per, arg = 0;
-    err = clSetKernelArg(k, arg++, sizeof p->scene, &p->scene);
-    for (int i = 0; i < ATMO_PLAN_LUTS && err == CL_SUCCESS; i++)
-        err = clSetKernelArg(k, arg++, sizeof p->luts[i], &p->luts[i]);
-    if (err == CL_SUCCESS)
-        err = clSetKernelArg(k, arg++, sizeof b_rays, &b_rays);
+    if ((rc = atmo_session_bind(p->session, k, &arg, e)))
+        goto cleanup;
+    err = clSetKernelArg(k, arg++, sizeof b_rays, &b_rays);
     if (err == CL_SUCCESS && distances)
         err = clSetKernelArg(k, arg++, sizeof b_dist, &b_dist);
     if (err == CL_SUCCESS)
@@ -168,14 +156,6 @@ int atmo_probe_segments(atmo_probe *p, const float4 *rays, const float *distance
 
 void atmo_probe_close(atmo_probe *p)
 {
-    for (int i = ATMO_PLAN_LUTS - 1; i >= 0; i--)
-        if (p->luts[i])
-            clReleaseMemObject(p->luts[i]);
-    if (p->scene)
-        clReleaseMemObject(p->scene);
-    if (p->program)
-        clReleaseProgram(p->program);
-    if (p->cl_open)
-        atmo_cl_close(&p->cl);
+    atmo_session_close(p->session);
     memset(p, 0, sizeof *p);
 }

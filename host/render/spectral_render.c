@@ -134,14 +134,19 @@ int atmo_spectral_render(const atmo_scene *s, int cache_luts, const atmo_render_
     }
 
     double *sum = NULL;
+    float *band_rgb = NULL;
     size_t pixels = (size_t)s->image.width * (size_t)s->image.height;
     int triplets = (n + 2) / 3;
-    atmo_render_result r = {0};
-    if (!(sum = calloc(pixels * 3, sizeof *sum))) {
+    atmo_session *session = NULL;
+    int lut_cache_hits = 1;
+    if (!(sum = calloc(pixels * 3, sizeof *sum)) ||
+        !(band_rgb = malloc(pixels * 3 * sizeof *band_rgb))) {
         rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for a %dx%d spectral image",
                        s->image.width, s->image.height);
         goto cleanup;
     }
+    /* one session, one program: each triplet only changes the scene struct, the host tables
+     * and the LUTs */
     for (int t = 0; t < triplets; t++) {
         atmo_scene st = *s;
         int band[3];
@@ -155,43 +160,49 @@ int atmo_spectral_render(const atmo_scene *s, int cache_luts, const atmo_render_
         if ((rc = atmo_plan_make(&st, &plan, e)))
             goto cleanup;
         plan.cache_luts = cache_luts;
-        if ((rc = atmo_render(&plan, rs, &r, e)))
+        double seconds_before = 0.0;
+        if (session) {
+            const atmo_session_info *in = atmo_session_get_info(session);
+            seconds_before = in->seconds_precompute + in->seconds_render;
+            rc = atmo_session_set_scene(session, &plan, e);
+        } else {
+            rc = atmo_session_open(&session, &plan, rs, e);
+        }
+        atmo_step step = {plan.samples, 0.0, NULL, NULL, rs->cancel};
+        atmo_step_status status;
+        if (rc || (rc = atmo_session_step(session, &step, &status, e)))
             goto cleanup;
-        if (r.interrupted) {
+        if (!status.complete) {
             rc = atmo_fail(e, ATMO_ERR_RUNTIME,
                            "interrupted in spectral triplet %d of %d; a partial set of bands has "
                            "no meaningful colour, so no image is written",
                            t + 1, triplets);
             goto cleanup;
         }
+        if ((rc = atmo_session_read(session, band_rgb, NULL, NULL, e)))
+            goto cleanup;
         for (int c = 0; c < 3; c++) {
             if (3 * t + c >= n)
                 continue; /* padding */
             const double *w = rgb_w[band[c]];
             for (size_t p = 0; p < pixels; p++) {
-                double L = r.rgb[3 * p + (size_t)c];
+                double L = band_rgb[3 * p + (size_t)c];
                 for (int k = 0; k < 3; k++)
                     sum[3 * p + (size_t)k] += w[k] * L;
             }
         }
-        if (t == 0) {
-            *result = r; /* device names, sizes, sample counts */
-            result->rgb = NULL;
-        } else {
-            result->launches += r.launches;
-            result->nonfinite += r.nonfinite;
-            result->kernel_cache_hit &= r.kernel_cache_hit;
-            result->lut_cache_hit &= r.lut_cache_hit;
-            result->seconds_device += r.seconds_device;
-            result->seconds_build += r.seconds_build;
-            result->seconds_precompute += r.seconds_precompute;
-            result->seconds_render += r.seconds_render;
-        }
-        if (rs->progress)
+        unsigned nonfinite = result->nonfinite + atmo_session_get_info(session)->nonfinite;
+        lut_cache_hits &= atmo_session_get_info(session)->lut_cache_hit;
+        atmo_render_result_from_session(session, result);
+        result->nonfinite = nonfinite;
+        result->lut_cache_hit = lut_cache_hits;
+        if (rs->progress) {
+            const atmo_session_info *in = atmo_session_get_info(session);
             fprintf(stderr, "spectral: triplet %d/%d (%.1f, %.1f, %.1f nm) rendered in %.2fs\n",
                     t + 1, triplets, st.render.wavelengths_nm[0], st.render.wavelengths_nm[1],
-                    st.render.wavelengths_nm[2], r.seconds_precompute + r.seconds_render);
-        atmo_render_result_free(&r);
+                    st.render.wavelengths_nm[2],
+                    in->seconds_precompute + in->seconds_render - seconds_before);
+        }
     }
     if (!(result->rgb = malloc(pixels * 3 * sizeof *result->rgb))) {
         rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for a %dx%d spectral image",
@@ -202,7 +213,8 @@ int atmo_spectral_render(const atmo_scene *s, int cache_luts, const atmo_render_
         result->rgb[i] = (float)sum[i];
     rc = ATMO_OK;
 cleanup:
-    atmo_render_result_free(&r);
+    atmo_session_close(session);
+    free(band_rgb);
     free(sum);
     return rc;
 }

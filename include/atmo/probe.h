@@ -1,7 +1,7 @@
 /* probe.h — a method's sky radiance for a list of rays, outside of an image.
  *
- * A probe session opens the device, builds the plan's program, uploads the scene and runs the
- * precompute passes once; atmo_probe_rays() then averages `samples` samples of the method's
+ * A probe holds a render session (atmo/session.h: device, the plan's program, the scene and the
+ * precomputed data, opened once); atmo_probe_rays() then averages `samples` samples of the method's
  * sky_radiance (the `sky_probe` kernel of kernels/render/sky.cl) for rays given as (r, mu, mu_s, nu),
  * as ATMO_PROBE_BATCHES independent batches (distinct RNG pixel indices) whose spread gives the
  * standard error. atmo_probe_segments() does the same for segments of the rays (aerial
@@ -10,15 +10,12 @@
 #define ATMO_PROBE_H
 #include "atmo/cl_runtime.h"
 #include "atmo/plan.h"
+#include "atmo/session.h"
 
 #define ATMO_PROBE_BATCHES 64
 
 typedef struct atmo_probe {
-    atmo_cl cl;
-    int cl_open;
-    cl_program program;
-    cl_mem scene;
-    cl_mem luts[ATMO_PLAN_LUTS];
+    atmo_session *session;
     double seconds_build, seconds_precompute;
 } atmo_probe;
 

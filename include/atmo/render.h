@@ -1,28 +1,16 @@
-/* render.h — the render pipeline: device, kernel build, precompute, tiles x sample batches.
+/* render.h — a whole render in one call, and the precompute passes a session runs.
  *
- * The image is cut into square tiles of a fixed size (--tile-size, default 64) launched with one
- * fixed local size (8 x 8); global sizes are padded to it and the kernel bounds-checks. Samples
- * are added in passes over all tiles (progressive): each launch renders a batch of samples of one
- * tile, and the batch adapts so that a launch stays under the launch budget (--launch-budget-ms,
- * default 100: GPU watchdogs kill kernels after about 2 s). The random numbers and the order of
- * the per-pixel sums do not depend on tile size, batch or tile order, so the image is bitwise
- * the same on one device for any of them. An interrupt (SIGINT, see atmo_render_interrupt) stops
- * after the launch in flight; the image is then the average of the samples each tile got. */
+ * atmo_render is the convenience wrapper over a render session (atmo/session.h): open, step to
+ * the plan's samples (stopped early by settings->cancel), read the mean image, close. Tiles,
+ * batches and the launch budget are the session's (atmo/tiles.h): the image is bitwise the same
+ * on one device for any tile size, launch budget or batch. A cancelled render returns the mean
+ * of the samples each tile got, with interrupted set. */
 #ifndef ATMO_RENDER_H
 #define ATMO_RENDER_H
 #include "atmo/cl_runtime.h"
 #include "atmo/plan.h"
+#include "atmo/session.h"
 #include "atmo/status.h"
-
-typedef struct atmo_render_settings {
-    const char *device;        /* selector, or NULL for ATMO_DEVICE / the default */
-    int tile_size;             /* pixels, > 0 */
-    double launch_budget_ms;   /* > 0 */
-    int max_batch;             /* upper bound on samples per launch (0 = no bound; tests use it) */
-    int progress;              /* 0 none, 1 plain lines, 2 terminal bar */
-    const char *dump_dir;      /* --dump-kernels DIR */
-    int use_kernel_cache;
-} atmo_render_settings;
 
 typedef struct atmo_render_result {
     int width, height;
@@ -38,10 +26,11 @@ typedef struct atmo_render_result {
     char device_name[256], platform_name[256], driver_version[128];
 } atmo_render_result;
 
-void atmo_render_settings_default(atmo_render_settings *s);
 int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
                 atmo_render_result *result, atmo_err *e);
 void atmo_render_result_free(atmo_render_result *r);
+/* Fill result's device names, cache flags, timings, launches and sample range from a session. */
+void atmo_render_result_from_session(const atmo_session *s, atmo_render_result *result);
 
 /* Allocate the plan's LUT buffers (a 16-byte dummy for each unused one) and run its precompute
  * passes in order, waiting for the last. On failure, luts[] holds what was allocated: the
@@ -52,10 +41,9 @@ typedef struct atmo_precompute_info {
 } atmo_precompute_info;
 int atmo_precompute(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_mem scene,
                     cl_mem luts[ATMO_PLAN_LUTS], atmo_precompute_info *info, atmo_err *e);
-
-/* Ask a running render to stop after the current launch (async-signal-safe). */
-void atmo_render_interrupt(void);
-/* Clear the request (before a new render). */
-void atmo_render_clear_interrupt(void);
+/* Rerun only the passes that follow the view (follows_view) into the allocated luts[], after
+ * the scene struct got another camera or sun; waits for the last. */
+int atmo_precompute_view(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_mem scene,
+                         cl_mem luts[ATMO_PLAN_LUTS], double *seconds, atmo_err *e);
 
 #endif

@@ -56,9 +56,11 @@ int atmo_spectral_check_bands(int bands, atmo_err *e);
  * successive triplets of band centres (the last triplet padded by repeating its last centre),
  * each triplet planned and rendered as radiance with the scene's seed (so the noise of the
  * bands is correlated and the colour noise small), and the band images are combined into
- * linear sRGB (cd/m^2). cache_luts as atmo_plan.cache_luts. With rs->progress a line per
- * triplet goes to stderr. result->rgb is the combined image; timings are sums over triplets.
- * An interrupt fails the render (a partial set of bands has no meaningful colour). */
+ * linear sRGB (cd/m^2). All triplets share one render session and so one kernel build: a
+ * triplet changes only the scene struct, the host tables and the LUTs (atmo_session_set_scene).
+ * cache_luts as atmo_plan.cache_luts. With rs->progress a line per triplet goes to stderr.
+ * result->rgb is the combined image; timings are sums over triplets. A cancel (rs->cancel)
+ * fails the render (a partial set of bands has no meaningful colour). */
 int atmo_spectral_render(const atmo_scene *s, int cache_luts, const atmo_render_settings *rs,
                          atmo_render_result *result, atmo_err *e);
 

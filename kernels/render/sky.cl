@@ -3,11 +3,13 @@
  * sky_render: one tile, a batch of samples. Work item (x, y) renders pixel (tile_x + x,
  * tile_y + y); global sizes are padded to the local size, so items outside the tile return at
  * once. Samples sample_begin .. sample_begin + sample_count - 1 are added one by one, in order,
- * to the pixel's running sum in `accum` (xyz; w unused). Because the sum is built in the same
- * order whatever the batches, and the random numbers depend only on (seed, pixel, sample,
- * dimension), the image is bitwise the same for any tile size and any split of samples into
- * launches. A non-finite sample (which should never happen) is dropped and counted in
- * `nonfinite`. Random dimensions 0 and 1 place the sample in the pixel.
+ * to the pixel's running sum in `accum` (xyz; w unused), and their squares to the running sum
+ * in `accum_sq` (xyz; w unused: the second moment for the standard error, atmo/session.h).
+ * Because the sums are built in the same order whatever the batches, and the random numbers
+ * depend only on (seed, pixel, sample, dimension), the image is bitwise the same for any tile
+ * size and any split of samples into launches. A non-finite sample (which should never happen)
+ * is dropped and counted in `nonfinite`. Random dimensions 0 and 1 place the sample in the
+ * pixel.
  *
  * sky_probe: the mean of `samples` samples of sky_radiance for a list of rays given as
  * (r, mu, mu_s, nu), for `atmo radiance` and the tests; ray i uses pixel index i.
@@ -15,8 +17,9 @@
  * in-scattered radiance in inscatter[i] and the mean transmittance in transmittance[i]. */
 
 __kernel void sky_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
-                         __global float4 *accum, __global uint *nonfinite, int tile_x, int tile_y,
-                         int tile_w, int tile_h, uint sample_begin, uint sample_count)
+                         __global float4 *accum, __global float4 *accum_sq,
+                         __global uint *nonfinite, int tile_x, int tile_y, int tile_w, int tile_h,
+                         uint sample_begin, uint sample_count)
 {
     int lx = get_global_id(0), ly = get_global_id(1);
     if (lx >= tile_w || ly >= tile_h)
@@ -28,7 +31,7 @@ __kernel void sky_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
     float r = cam->local_up.w;
     float3 sun_dir = scene->sun_direction.xyz;
     float mu_s = dot(up, sun_dir);
-    float4 sum = accum[pixel];
+    float4 sum = accum[pixel], sum_sq = accum_sq[pixel];
     for (uint k = 0; k < sample_count; k++) {
         uint s = sample_begin + k;
         float jx = rng_uniform(scene->seed, pixel, s, 0u);
@@ -43,8 +46,10 @@ __kernel void sky_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
             L = (float3)(0.0f);
         }
         sum.xyz += L;
+        sum_sq.xyz += L * L;
     }
     accum[pixel] = sum;
+    accum_sq[pixel] = sum_sq;
 }
 
 __kernel void sky_probe(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,

@@ -1,0 +1,421 @@
+/* session.c — render sessions (atmo/session.h): device, program and precomputed data opened
+ * once, an image accumulated in budgeted steps, view updates that rerun only the passes that
+ * follow the view.
+ *
+ * Launches: the scheduler (atmo/tiles.h) picks a tile and a batch; the tile is launched with one
+ * fixed 8 x 8 local size, its global size padded to it (the kernel bounds-checks), and the step
+ * waits for it (clFinish) before timing it, calling the tile callback and checking the cancel
+ * token, so a cancel takes effect after the launch in flight. */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include "atmo/render.h"
+#include "atmo/session.h"
+
+#define SESSION_LOCAL_SIZE 8
+
+struct atmo_session {
+    atmo_cl cl;
+    int cl_open;
+    cl_program program;
+    cl_kernel render;
+    cl_mem scene, luts[ATMO_PLAN_LUTS];
+    cl_mem accum, accum_sq, nonfinite; /* created at the first step or read */
+    atmo_plan plan;
+    atmo_render_settings settings;
+    atmo_tiles tiles;
+    atmo_session_info info;
+    double progress_start, progress_last;
+};
+
+void atmo_render_settings_default(atmo_render_settings *s)
+{
+    memset(s, 0, sizeof *s);
+    s->tile_size = 64;
+    s->launch_budget_ms = 100.0;
+    s->use_kernel_cache = 1;
+}
+
+void atmo_cancel_request(atmo_cancel *c) { c->requested = 1; }
+void atmo_cancel_clear(atmo_cancel *c) { c->requested = 0; }
+int atmo_cancel_requested(const atmo_cancel *c) { return c && c->requested; }
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static size_t round_up(int n, int m) { return (size_t)((n + m - 1) / m * m); }
+
+/* Progress on stderr: a bar redrawn in place on a terminal, a line every few seconds otherwise. */
+static void report_progress(atmo_session *s, int target, int finished)
+{
+    double t = now_seconds();
+    int mode = s->settings.progress;
+    if (!mode || (!finished && t - s->progress_last < (mode == 2 ? 0.2 : 5.0)))
+        return;
+    s->progress_last = t;
+    double done = 0.0, total = (double)target * s->tiles.width * s->tiles.height;
+    for (int y = 0; y < s->tiles.height; y += s->tiles.size)
+        for (int x = 0; x < s->tiles.width; x += s->tiles.size) {
+            int w = s->tiles.width - x < s->tiles.size ? s->tiles.width - x : s->tiles.size;
+            int h = s->tiles.height - y < s->tiles.size ? s->tiles.height - y : s->tiles.size;
+            int n = atmo_tiles_pixel_samples(&s->tiles, x, y);
+            done += (double)(n < target ? n : target) * w * h;
+        }
+    double f = total > 0 ? done / total : 1.0;
+    double elapsed = t - s->progress_start, eta = f > 0 ? elapsed * (1.0 - f) / f : 0.0;
+    if (mode == 2) {
+        char bar[41];
+        int n = (int)(f * 40.0);
+        for (int i = 0; i < 40; i++)
+            bar[i] = i < n ? '#' : '.';
+        bar[40] = 0;
+        fprintf(stderr, "\rrender [%s] %5.1f%%  %.1fs elapsed  ETA %.1fs ", bar, 100.0 * f,
+                elapsed, eta);
+        if (finished)
+            fputc('\n', stderr);
+    } else {
+        fprintf(stderr, "render: %.1f%% done, %.1fs elapsed, ETA %.1fs\n", 100.0 * f, elapsed,
+                eta);
+    }
+}
+
+int atmo_session_bind(const atmo_session *s, cl_kernel k, cl_uint *arg, atmo_err *e)
+{
+    cl_int err = clSetKernelArg(k, (*arg)++, sizeof s->scene, &s->scene);
+    for (int i = 0; i < ATMO_PLAN_LUTS && err == CL_SUCCESS; i++)
+        err = clSetKernelArg(k, (*arg)++, sizeof s->luts[i], &s->luts[i]);
+    return err == CL_SUCCESS ? ATMO_OK : atmo_cl_fail(e, "clSetKernelArg(scene and LUTs)", err);
+}
+
+static void release_luts(atmo_session *s)
+{
+    for (int i = ATMO_PLAN_LUTS - 1; i >= 0; i--) {
+        if (s->luts[i])
+            clReleaseMemObject(s->luts[i]);
+        s->luts[i] = NULL;
+    }
+}
+
+/* Upload the plan's scene struct, then every precompute pass (LUTs from the cache if keyed). */
+static int precompute_all(atmo_session *s, atmo_err *e)
+{
+    cl_int err = clEnqueueWriteBuffer(s->cl.queue, s->scene, CL_TRUE, 0, sizeof s->plan.gpu,
+                                      &s->plan.gpu, 0, NULL, NULL);
+    if (err != CL_SUCCESS)
+        return atmo_cl_fail(e, "clEnqueueWriteBuffer(scene)", err);
+    release_luts(s);
+    atmo_precompute_info pi;
+    int rc = atmo_precompute(&s->cl, s->program, &s->plan, s->scene, s->luts, &pi, e);
+    if (rc)
+        return rc;
+    s->info.seconds_precompute += pi.seconds;
+    s->info.lut_cache_hit = pi.cache_hit;
+    return ATMO_OK;
+}
+
+/* The render kernel's buffers: accumulators created (once) and cleared, counts to zero. */
+static int restart(atmo_session *s, atmo_err *e)
+{
+    cl_int err = CL_SUCCESS;
+    size_t bytes = (size_t)s->plan.width * (size_t)s->plan.height * 4 * sizeof(float);
+    if (!s->accum)
+        s->accum = clCreateBuffer(s->cl.context, CL_MEM_READ_WRITE, bytes, NULL, &err);
+    if (err != CL_SUCCESS)
+        return atmo_cl_fail(e, "clCreateBuffer(accumulation image)", err);
+    if (!s->accum_sq)
+        s->accum_sq = clCreateBuffer(s->cl.context, CL_MEM_READ_WRITE, bytes, NULL, &err);
+    if (err != CL_SUCCESS)
+        return atmo_cl_fail(e, "clCreateBuffer(second moments)", err);
+    if (!s->nonfinite)
+        s->nonfinite = clCreateBuffer(s->cl.context, CL_MEM_READ_WRITE, sizeof(cl_uint), NULL,
+                                      &err);
+    if (err != CL_SUCCESS)
+        return atmo_cl_fail(e, "clCreateBuffer(counter)", err);
+    float zero4[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    cl_uint zero = 0;
+    err = clEnqueueFillBuffer(s->cl.queue, s->accum, zero4, sizeof zero4, 0, bytes, 0, NULL, NULL);
+    if (err == CL_SUCCESS)
+        err = clEnqueueFillBuffer(s->cl.queue, s->accum_sq, zero4, sizeof zero4, 0, bytes, 0,
+                                  NULL, NULL);
+    if (err == CL_SUCCESS)
+        err = clEnqueueWriteBuffer(s->cl.queue, s->nonfinite, CL_TRUE, 0, sizeof zero, &zero, 0,
+                                   NULL, NULL);
+    if (err != CL_SUCCESS)
+        return atmo_cl_fail(e, "clear accumulation image", err);
+    atmo_tiles_reset(&s->tiles);
+    s->info.nonfinite = 0;
+    s->progress_start = now_seconds();
+    return ATMO_OK;
+}
+
+/* The render kernel's arguments that stay for a whole session (until set_scene's new LUTs). */
+static int bind_render(atmo_session *s, atmo_err *e)
+{
+    cl_uint arg = 0;
+    int rc = atmo_session_bind(s, s->render, &arg, e);
+    if (rc)
+        return rc;
+    cl_int err = clSetKernelArg(s->render, arg++, sizeof s->accum, &s->accum);
+    if (err == CL_SUCCESS)
+        err = clSetKernelArg(s->render, arg++, sizeof s->accum_sq, &s->accum_sq);
+    if (err == CL_SUCCESS)
+        err = clSetKernelArg(s->render, arg, sizeof s->nonfinite, &s->nonfinite);
+    return err == CL_SUCCESS ? ATMO_OK : atmo_cl_fail(e, "clSetKernelArg(sky_render)", err);
+}
+
+int atmo_session_open(atmo_session **out, const atmo_plan *plan, const atmo_render_settings *rs,
+                      atmo_err *e)
+{
+    int rc;
+    cl_int err;
+    atmo_session *s = calloc(1, sizeof *s);
+    *out = NULL;
+    if (!s)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for a render session");
+    s->plan = *plan;
+    s->settings = *rs;
+    if ((rc = atmo_tiles_init(&s->tiles, plan->width, plan->height, rs->tile_size, e)))
+        goto cleanup;
+    double t0 = now_seconds();
+    if ((rc = atmo_cl_open(&s->cl, rs->device, e)))
+        goto cleanup;
+    s->cl_open = 1;
+    snprintf(s->info.device_name, sizeof s->info.device_name, "%s", s->cl.device_name);
+    snprintf(s->info.platform_name, sizeof s->info.platform_name, "%s", s->cl.platform_name);
+    snprintf(s->info.driver_version, sizeof s->info.driver_version, "%s", s->cl.driver_version);
+    s->info.seconds_device = now_seconds() - t0;
+
+    atmo_cl_build_options bo = {plan->fragments, plan->fragment_count, plan->defines,
+                                rs->dump_dir, rs->use_kernel_cache, NULL};
+    atmo_cl_build_info bi;
+    if ((rc = atmo_cl_build(&s->cl, &bo, &s->program, &bi, e)))
+        goto cleanup;
+    s->info.kernel_cache_hit = bi.cache_hit;
+    s->info.seconds_build = bi.seconds;
+    s->render = clCreateKernel(s->program, "sky_render", &err);
+    if (err != CL_SUCCESS) {
+        rc = atmo_cl_fail(e, "clCreateKernel(sky_render)", err);
+        goto cleanup;
+    }
+    s->scene = clCreateBuffer(s->cl.context, CL_MEM_READ_ONLY, sizeof plan->gpu, NULL, &err);
+    if (err != CL_SUCCESS) {
+        rc = atmo_cl_fail(e, "clCreateBuffer(scene)", err);
+        goto cleanup;
+    }
+    if ((rc = precompute_all(s, e)))
+        goto cleanup;
+    *out = s;
+    return ATMO_OK;
+cleanup:
+    atmo_session_close(s);
+    return rc;
+}
+
+void atmo_session_close(atmo_session *s)
+{
+    if (!s)
+        return;
+    if (s->nonfinite)
+        clReleaseMemObject(s->nonfinite);
+    if (s->accum_sq)
+        clReleaseMemObject(s->accum_sq);
+    if (s->accum)
+        clReleaseMemObject(s->accum);
+    release_luts(s);
+    if (s->scene)
+        clReleaseMemObject(s->scene);
+    if (s->render)
+        clReleaseKernel(s->render);
+    if (s->program)
+        clReleaseProgram(s->program);
+    if (s->cl_open)
+        atmo_cl_close(&s->cl);
+    atmo_tiles_free(&s->tiles);
+    free(s);
+}
+
+/* One launch of the render kernel over a tile's batch, waited for. */
+static int launch(atmo_session *s, const atmo_tile *t, atmo_err *e)
+{
+    cl_uint begin = (cl_uint)t->sample_begin, count = (cl_uint)t->sample_count;
+    cl_uint arg = 1 + ATMO_PLAN_LUTS + 3;
+    cl_int err = clSetKernelArg(s->render, arg++, sizeof(int), &t->x);
+    if (err == CL_SUCCESS)
+        err = clSetKernelArg(s->render, arg++, sizeof(int), &t->y);
+    if (err == CL_SUCCESS)
+        err = clSetKernelArg(s->render, arg++, sizeof(int), &t->w);
+    if (err == CL_SUCCESS)
+        err = clSetKernelArg(s->render, arg++, sizeof(int), &t->h);
+    if (err == CL_SUCCESS)
+        err = clSetKernelArg(s->render, arg++, sizeof begin, &begin);
+    if (err == CL_SUCCESS)
+        err = clSetKernelArg(s->render, arg, sizeof count, &count);
+    if (err != CL_SUCCESS)
+        return atmo_cl_fail(e, "clSetKernelArg(sky_render)", err);
+    size_t local[2] = {SESSION_LOCAL_SIZE, SESSION_LOCAL_SIZE};
+    size_t global[2] = {round_up(t->w, SESSION_LOCAL_SIZE), round_up(t->h, SESSION_LOCAL_SIZE)};
+    err = clEnqueueNDRangeKernel(s->cl.queue, s->render, 2, NULL, global, local, 0, NULL, NULL);
+    if (err != CL_SUCCESS)
+        return atmo_cl_fail(e, "clEnqueueNDRangeKernel(render)", err);
+    err = clFinish(s->cl.queue);
+    return err == CL_SUCCESS ? ATMO_OK : atmo_cl_fail(e, "clFinish(render)", err);
+}
+
+int atmo_session_step(atmo_session *s, const atmo_step *step, atmo_step_status *status,
+                      atmo_err *e)
+{
+    int rc = ATMO_OK;
+    memset(status, 0, sizeof *status);
+    if (!s->accum && ((rc = restart(s, e)) || (rc = bind_render(s, e))))
+        return rc;
+    int target = step->samples > 0 ? step->samples : s->plan.samples;
+    double t0 = now_seconds();
+    atmo_tile t;
+    while (!atmo_cancel_requested(step->cancel)) {
+        if (!atmo_tiles_next(&s->tiles, target, &t)) {
+            status->complete = 1;
+            break;
+        }
+        if (status->launches > 0 && step->budget_seconds > 0.0 &&
+            now_seconds() - t0 >= step->budget_seconds)
+            break;
+        double tl = now_seconds();
+        if ((rc = launch(s, &t, e)))
+            break;
+        atmo_tiles_done(&s->tiles, &t, 1e3 * (now_seconds() - tl), s->settings.launch_budget_ms,
+                        s->settings.max_batch);
+        status->launches++;
+        s->info.launches++;
+        if (step->on_tile)
+            step->on_tile(step->user, &t);
+        report_progress(s, target, 0);
+    }
+    status->cancelled = !status->complete && atmo_cancel_requested(step->cancel);
+    s->info.seconds_render += now_seconds() - t0;
+    if (rc)
+        return rc;
+    if (status->complete || status->cancelled)
+        report_progress(s, target, 1);
+    cl_int err = clEnqueueReadBuffer(s->cl.queue, s->nonfinite, CL_TRUE, 0, sizeof(cl_uint),
+                                     &s->info.nonfinite, 0, NULL, NULL);
+    return err == CL_SUCCESS ? ATMO_OK : atmo_cl_fail(e, "clEnqueueReadBuffer(counter)", err);
+}
+
+/* A plan the session's program can render: same kernels, -D flags and image size. */
+static int check_program(const atmo_session *s, const atmo_plan *p, atmo_err *e)
+{
+    int same = p->fragment_count == s->plan.fragment_count &&
+               strcmp(p->defines, s->plan.defines) == 0 && p->width == s->plan.width &&
+               p->height == s->plan.height;
+    for (int i = 0; same && i < p->fragment_count; i++)
+        same = strcmp(p->fragments[i], s->plan.fragments[i]) == 0;
+    if (!same)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "the new plan needs other kernels or another image size than the "
+                         "session's; open a new session for it");
+    return ATMO_OK;
+}
+
+int atmo_session_set_view(atmo_session *s, const atmo_plan *plan, atmo_err *e)
+{
+    int rc = check_program(s, plan, e);
+    if (rc)
+        return rc;
+    /* everything but the view must be the session's: the other LUTs stay as they are */
+    atmo_gpu_scene g = plan->gpu;
+    g.camera = s->plan.gpu.camera;
+    g.sun_direction = s->plan.gpu.sun_direction;
+    g.observer = s->plan.gpu.observer;
+    if (memcmp(&g, &s->plan.gpu, sizeof g) != 0 || plan->pass_count != s->plan.pass_count ||
+        memcmp(plan->lut_bytes, s->plan.lut_bytes, sizeof plan->lut_bytes) != 0)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "the new plan changes more than the camera and the sun; use "
+                         "atmo_session_set_scene for it");
+    s->plan.gpu = plan->gpu;
+    cl_int err = clEnqueueWriteBuffer(s->cl.queue, s->scene, CL_TRUE, 0, sizeof s->plan.gpu,
+                                      &s->plan.gpu, 0, NULL, NULL);
+    if (err != CL_SUCCESS)
+        return atmo_cl_fail(e, "clEnqueueWriteBuffer(scene)", err);
+    double seconds;
+    if ((rc = atmo_precompute_view(&s->cl, s->program, &s->plan, s->scene, s->luts, &seconds, e)))
+        return rc;
+    s->info.seconds_precompute += seconds;
+    return s->accum ? restart(s, e) : ATMO_OK;
+}
+
+int atmo_session_set_scene(atmo_session *s, const atmo_plan *plan, atmo_err *e)
+{
+    int rc = check_program(s, plan, e);
+    if (rc)
+        return rc;
+    s->plan = *plan;
+    if ((rc = precompute_all(s, e)))
+        return rc;
+    if (!s->accum)
+        return ATMO_OK;
+    if ((rc = restart(s, e)))
+        return rc;
+    return bind_render(s, e); /* the LUT buffers are new */
+}
+
+int atmo_session_read(atmo_session *s, float *mean, float *se, int *samples, atmo_err *e)
+{
+    int rc = ATMO_OK, W = s->plan.width, H = s->plan.height;
+    size_t pixels = (size_t)W * (size_t)H;
+    if (!s->accum && ((rc = restart(s, e)) || (rc = bind_render(s, e))))
+        return rc;
+    float *s1 = malloc(pixels * 4 * sizeof(float));
+    float *s2 = se ? malloc(pixels * 4 * sizeof(float)) : NULL;
+    if (!s1 || (se && !s2)) {
+        rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for a %dx%d image", W, H);
+        goto cleanup;
+    }
+    cl_int err = clEnqueueReadBuffer(s->cl.queue, s->accum, CL_TRUE, 0, pixels * 4 * sizeof(float),
+                                     s1, 0, NULL, NULL);
+    if (err == CL_SUCCESS && se)
+        err = clEnqueueReadBuffer(s->cl.queue, s->accum_sq, CL_TRUE, 0,
+                                  pixels * 4 * sizeof(float), s2, 0, NULL, NULL);
+    if (err != CL_SUCCESS) {
+        rc = atmo_cl_fail(e, "clEnqueueReadBuffer(accumulation image)", err);
+        goto cleanup;
+    }
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            size_t i = (size_t)y * W + x;
+            int n = atmo_tiles_pixel_samples(&s->tiles, x, y);
+            float inv = n > 0 ? 1.0f / (float)n : 0.0f;
+            if (samples)
+                samples[i] = n;
+            for (int c = 0; c < 3; c++) {
+                if (mean)
+                    mean[3 * i + c] = s1[4 * i + c] * inv;
+                if (!se)
+                    continue;
+                double a = s1[4 * i + c], b = s2[4 * i + c];
+                double ss = n > 1 ? b - a * a / n : 0.0; /* sum of squared deviations */
+                se[3 * i + c] = n > 1 ? (float)sqrt(fmax(ss, 0.0) / ((double)n * (n - 1)))
+                                      : FLT_MAX;
+            }
+        }
+cleanup:
+    free(s2);
+    free(s1);
+    return rc;
+}
+
+const atmo_session_info *atmo_session_get_info(const atmo_session *s) { return &s->info; }
+const atmo_plan *atmo_session_plan(const atmo_session *s) { return &s->plan; }
+atmo_cl *atmo_session_cl(atmo_session *s) { return &s->cl; }
+cl_program atmo_session_program(const atmo_session *s) { return s->program; }
+
+void atmo_session_samples(const atmo_session *s, int *min, int *max)
+{
+    atmo_tiles_range(&s->tiles, min, max);
+}
