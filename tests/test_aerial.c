@@ -114,9 +114,9 @@ static const char scan_src[] =
     "    float r_d = geometry_radius_at(r, mu, d);\n"
     "    float mu_d = atmo_clamp_cos((r * mu + d) / r_d);\n"
     "    float mu_s_d = atmo_clamp_cos((r * mu_s + d * nu) / r_d);\n"
-    "    T = lut_transmittance_between(s, lut_transmittance, r, mu, r_d, mu_d, ground);\n"
-    "    L = max(lut_scattered(s, lut_a, lut_b, r, mu, mu_s, nu, ground) -\n"
-    "            T * lut_scattered(s, lut_a, lut_b, r_d, mu_d, mu_s_d, nu, ground), 0.0f);\n"
+    "    T = lut_transmittance_between(s, transmittance_lut, r, mu, r_d, mu_d, ground);\n"
+    "    L = max(lut_scattered(s, scattering_rayleigh, scattering_mie, r, mu, mu_s, nu, ground) -\n"
+    "            T * lut_scattered(s, scattering_rayleigh, scattering_mie, r_d, mu_d, mu_s_d, nu, ground), 0.0f);\n"
     "  }\n"
     "  out[i] = (float4)(L, 0.0f);\n"
     "}\n";
@@ -423,13 +423,12 @@ static void run_scan_kernel(method *lut, cl_program prog, const char *name, cons
     cl_uint count = (cl_uint)n, samples = 64;
     CHECK(err == CL_SUCCESS);
     clSetKernelArg(k, 0, sizeof lut->probe.scene, &lut->probe.scene);
-    for (int i = 0; i < ATMO_PLAN_LUTS; i++)
-        clSetKernelArg(k, 1 + i, sizeof lut->probe.luts[i], &lut->probe.luts[i]);
-    clSetKernelArg(k, 5, sizeof b_rays, &b_rays);
-    clSetKernelArg(k, 6, sizeof b_dist, &b_dist);
-    clSetKernelArg(k, 7, sizeof b_out, &b_out);
-    clSetKernelArg(k, 8, sizeof count, &count);
-    clSetKernelArg(k, 9, sizeof samples, &samples);
+    int a = test_bind_buffers(k, lut->probe.buffers);
+    clSetKernelArg(k, a, sizeof b_rays, &b_rays);
+    clSetKernelArg(k, a + 1, sizeof b_dist, &b_dist);
+    clSetKernelArg(k, a + 2, sizeof b_out, &b_out);
+    clSetKernelArg(k, a + 3, sizeof count, &count);
+    clSetKernelArg(k, a + 4, sizeof samples, &samples);
     test_cl_run_1d(cl, k, (size_t)n);
     test_cl_read(cl, b_out, sizeof(float4) * (size_t)n, out);
     clReleaseKernel(k);

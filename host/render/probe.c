@@ -13,17 +13,18 @@ int atmo_probe_open(atmo_probe *p, const atmo_plan *plan, const char *device, at
         return rc;
     p->cl_open = 1;
     atmo_cl_build_options bo = {plan->fragments, plan->fragment_count, plan->defines, NULL, 1,
-                                NULL};
+                                NULL, plan->prelude};
     atmo_cl_build_info bi;
     if ((rc = atmo_cl_build(&p->cl, &bo, &p->program, &bi, e)))
         return rc;
     p->seconds_build = bi.seconds;
+    p->plan = plan;
     p->scene = clCreateBuffer(p->cl.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                               sizeof plan->gpu, (void *)&plan->gpu, &err);
     if (err != CL_SUCCESS)
         return atmo_cl_fail(e, "clCreateBuffer(scene)", err);
     atmo_precompute_info info;
-    rc = atmo_precompute(&p->cl, p->program, plan, p->scene, p->luts, &info, e);
+    rc = atmo_precompute(&p->cl, p->program, plan, p->scene, p->buffers, &info, e);
     p->seconds_precompute = info.seconds;
     return rc;
 }
@@ -105,8 +106,12 @@ static int run_fast_probe(atmo_probe *p, const float4 *rays, const float *distan
     }
     cl_uint count = (cl_uint)items, n_samples = (cl_uint)per, arg = 0;
     err = clSetKernelArg(k, arg++, sizeof p->scene, &p->scene);
-    for (int i = 0; i < ATMO_PLAN_LUTS && err == CL_SUCCESS; i++)
-        err = clSetKernelArg(k, arg++, sizeof p->luts[i], &p->luts[i]);
+    int next = err == CL_SUCCESS ? atmo_bind_buffers(k, 1, p->plan, p->buffers, e) : 1;
+    if (next < 0) {
+        rc = ATMO_ERR_RUNTIME;
+        goto cleanup;
+    }
+    arg = (cl_uint)next;
     if (err == CL_SUCCESS)
         err = clSetKernelArg(k, arg++, sizeof b_rays, &b_rays);
     if (err == CL_SUCCESS && distances)
@@ -168,9 +173,7 @@ int atmo_probe_segments(atmo_probe *p, const float4 *rays, const float *distance
 
 void atmo_probe_close(atmo_probe *p)
 {
-    for (int i = ATMO_PLAN_LUTS - 1; i >= 0; i--)
-        if (p->luts[i])
-            clReleaseMemObject(p->luts[i]);
+    atmo_release_buffers(p->buffers);
     if (p->scene)
         clReleaseMemObject(p->scene);
     if (p->program)

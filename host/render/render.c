@@ -83,7 +83,7 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
     atmo_cl cl;
     cl_program program = NULL;
     cl_kernel k_render = NULL;
-    cl_mem b_scene = NULL, b_accum = NULL, b_nonfinite = NULL, b_luts[ATMO_PLAN_LUTS] = {NULL};
+    cl_mem b_scene = NULL, b_accum = NULL, b_nonfinite = NULL, b_buffers[ATMO_PLAN_MAX_BUFFERS] = {NULL};
     float *accum = NULL;
     int *tile_samples = NULL;
     const atmo_gpu_scene *g = &plan->gpu;
@@ -103,7 +103,8 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
     res->seconds_device = now_seconds() - t0;
 
     atmo_cl_build_options bo = {plan->fragments, plan->fragment_count, plan->defines,
-                                settings->dump_dir, settings->use_kernel_cache, NULL};
+                                settings->dump_dir, settings->use_kernel_cache, NULL,
+                                plan->prelude};
     atmo_cl_build_info bi;
     if ((rc = atmo_cl_build(&cl, &bo, &program, &bi, e)))
         goto cleanup;
@@ -118,7 +119,7 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
                              (void *)g, &err);
     CL_CHECK(err, "clCreateBuffer(scene)");
     atmo_precompute_info pi;
-    if ((rc = atmo_precompute(&cl, program, plan, b_scene, b_luts, &pi, e)))
+    if ((rc = atmo_precompute(&cl, program, plan, b_scene, b_buffers, &pi, e)))
         goto cleanup;
     res->seconds_precompute = pi.seconds;
     res->lut_cache_hit = pi.cache_hit;
@@ -141,10 +142,13 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
         goto cleanup;
     }
     CL_CHECK(clSetKernelArg(k_render, 0, sizeof b_scene, &b_scene), "clSetKernelArg");
-    for (int i = 0; i < ATMO_PLAN_LUTS; i++)
-        CL_CHECK(clSetKernelArg(k_render, 1 + i, sizeof b_luts[i], &b_luts[i]), "clSetKernelArg");
-    CL_CHECK(clSetKernelArg(k_render, 5, sizeof b_accum, &b_accum), "clSetKernelArg");
-    CL_CHECK(clSetKernelArg(k_render, 6, sizeof b_nonfinite, &b_nonfinite), "clSetKernelArg");
+    int arg = atmo_bind_buffers(k_render, 1, plan, b_buffers, e); /* then sky_render's own */
+    if (arg < 0) {
+        rc = ATMO_ERR_RUNTIME;
+        goto cleanup;
+    }
+    CL_CHECK(clSetKernelArg(k_render, arg, sizeof b_accum, &b_accum), "clSetKernelArg");
+    CL_CHECK(clSetKernelArg(k_render, arg + 1, sizeof b_nonfinite, &b_nonfinite), "clSetKernelArg");
 
     progress prog = {settings->progress, now_seconds(), 0.0};
     double t2 = now_seconds();
@@ -161,12 +165,12 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
             int tw = W - tx < ts ? W - tx : ts, th = H - ty < ts ? H - ty : ts;
             cl_uint begin = (cl_uint)tile_samples[t];
             cl_uint count = (cl_uint)(batch < remaining ? batch : remaining);
-            CL_CHECK(clSetKernelArg(k_render, 7, sizeof(int), &tx), "clSetKernelArg");
-            CL_CHECK(clSetKernelArg(k_render, 8, sizeof(int), &ty), "clSetKernelArg");
-            CL_CHECK(clSetKernelArg(k_render, 9, sizeof(int), &tw), "clSetKernelArg");
-            CL_CHECK(clSetKernelArg(k_render, 10, sizeof(int), &th), "clSetKernelArg");
-            CL_CHECK(clSetKernelArg(k_render, 11, sizeof(cl_uint), &begin), "clSetKernelArg");
-            CL_CHECK(clSetKernelArg(k_render, 12, sizeof(cl_uint), &count), "clSetKernelArg");
+            CL_CHECK(clSetKernelArg(k_render, arg + 2, sizeof(int), &tx), "clSetKernelArg");
+            CL_CHECK(clSetKernelArg(k_render, arg + 3, sizeof(int), &ty), "clSetKernelArg");
+            CL_CHECK(clSetKernelArg(k_render, arg + 4, sizeof(int), &tw), "clSetKernelArg");
+            CL_CHECK(clSetKernelArg(k_render, arg + 5, sizeof(int), &th), "clSetKernelArg");
+            CL_CHECK(clSetKernelArg(k_render, arg + 6, sizeof(cl_uint), &begin), "clSetKernelArg");
+            CL_CHECK(clSetKernelArg(k_render, arg + 7, sizeof(cl_uint), &count), "clSetKernelArg");
             size_t local[2] = {ATMO_LOCAL_SIZE, ATMO_LOCAL_SIZE};
             size_t global[2] = {round_up(tw, ATMO_LOCAL_SIZE), round_up(th, ATMO_LOCAL_SIZE)};
             double tl = now_seconds();
@@ -231,9 +235,7 @@ cleanup:
         clReleaseMemObject(b_nonfinite);
     if (b_accum)
         clReleaseMemObject(b_accum);
-    for (int i = ATMO_PLAN_LUTS - 1; i >= 0; i--)
-        if (b_luts[i])
-            clReleaseMemObject(b_luts[i]);
+    atmo_release_buffers(b_buffers);
     if (b_scene)
         clReleaseMemObject(b_scene);
     if (k_render)

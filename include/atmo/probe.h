@@ -18,7 +18,8 @@ typedef struct atmo_probe {
     int cl_open;
     cl_program program;
     cl_mem scene;
-    cl_mem luts[ATMO_PLAN_LUTS];
+    cl_mem buffers[ATMO_PLAN_MAX_BUFFERS]; /* the plan's named buffers */
+    const atmo_plan *plan;                 /* the plan it was opened with (must outlive it) */
     double seconds_build, seconds_precompute;
 } atmo_probe;
 
