@@ -63,16 +63,13 @@
  *      [2N + I G, 2N + I G + I) delta irradiance (order n - 1)
  *      [2N + I G + I, 2N + I G + I + G) the grid's directions (xyz) and solid angles (w), so
  *      the density pass reads them instead of evaluating four trigonometric functions each
- * method_int[LUT_INT_STEPS]: segments per texel ray; [LUT_INT_RINGS]: rings of the grid;
+ * lut.steps: segments per texel ray; [LUT_INT_RINGS]: rings of the grid;
  * [LUT_INT_ORDERS]: the number of orders (for reports; the plan lists the passes). */
 #define LUT_TEXELS(dims) ((dims)[0] * (dims)[1] * (dims)[2] * (dims)[3])
 #define LUT_IRRADIANCE_TEXELS(dims) ((dims)[1] * (dims)[3])
 #define LUT_DELTA_IRRADIANCE(dims, G) (2 * LUT_TEXELS(dims) + LUT_IRRADIANCE_TEXELS(dims) * (G))
 #define LUT_DIRECTIONS(dims, G) (LUT_DELTA_IRRADIANCE(dims, G) + LUT_IRRADIANCE_TEXELS(dims))
 #define LUT_DENSITY_SUM(dims) (LUT_TEXELS(dims) + LUT_IRRADIANCE_TEXELS(dims))
-#define LUT_INT_STEPS 0
-#define LUT_INT_RINGS 1
-#define LUT_INT_ORDERS 2
 
 ATMO_FN float lut_h(ATMO_GLOBAL const atmo_gpu_atmosphere *a)
 {

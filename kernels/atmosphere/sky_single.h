@@ -45,7 +45,7 @@ ATMO_FN float sky_segment_weight(float sigma, float dt)
 
 ATMO_FN float sky_mie_phase(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float nu)
 {
-    return a->mie_phase == 1 ? phase_henyey_greenstein(nu, a->mie_g)
+    return a->mie_phase == ATMO_PHASE_HENYEY_GREENSTEIN ? phase_henyey_greenstein(nu, a->mie_g)
                              : phase_cornette_shanks(nu, a->mie_g);
 }
 
@@ -61,13 +61,13 @@ ATMO_FN vec3 ms_lut_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL cons
 #endif
 
 #ifdef ATMO_LUT_J
-/* method lut: the density J of orders >= 2 toward the ray (the table at lut_b + N + I, with
+/* method lut: the density J of orders >= 2 toward the ray (the table at scattering_mie + N + I, with
  * `ground` the ray's side of the horizon) and the sky's irradiance on the ground, from its
  * tables; defined in kernels/atmosphere/method_lut.h (after this file) */
-ATMO_FN vec3 lut_ms_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *lut_b,
+ATMO_FN vec3 lut_ms_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *scattering_mie,
                            float r, float mu, float mu_s, float nu, int ground);
 ATMO_FN vec3 lut_ms_ground_irradiance(ATMO_GLOBAL const atmo_gpu_scene *s,
-                                      ATMO_GLOBAL const float4 *lut_b, float mu_s);
+                                      ATMO_GLOBAL const float4 *scattering_mie, float mu_s);
 #endif
 
 /* The shadow hook: visibility of the sun (0..1) from the sample at distance t along the view
