@@ -116,7 +116,8 @@ static const char scan_src[] =
     "    float mu_s_d = atmo_clamp_cos((r * mu_s + d * nu) / r_d);\n"
     "    T = lut_transmittance_between(s, transmittance_lut, r, mu, r_d, mu_d, ground);\n"
     "    L = max(lut_scattered(s, scattering_rayleigh, scattering_mie, r, mu, mu_s, nu, ground) -\n"
-    "            T * lut_scattered(s, scattering_rayleigh, scattering_mie, r_d, mu_d, mu_s_d, nu, ground), 0.0f);\n"
+    "            T * lut_scattered(s, scattering_rayleigh, scattering_mie, r_d, mu_d, mu_s_d, nu, "
+    "ground), 0.0f);\n"
     "  }\n"
     "  out[i] = (float4)(L, 0.0f);\n"
     "}\n";

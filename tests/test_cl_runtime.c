@@ -91,7 +91,8 @@ int main(void)
 
     /* #line directives name every fragment */
     char *src = atmo_cl_assemble(NULL, fragments, 1, good, &e);
-    CHECK(src && strstr(src, "#line 1 \"kernels/common/compat.h\"") && strstr(src, "#line 1 \"extra\""));
+    CHECK(src && strstr(src, "#line 1 \"kernels/common/compat.h\"") &&
+          strstr(src, "#line 1 \"extra\""));
     free(src);
     atmo_cl_close(&cl);
     return test_finish();

@@ -484,10 +484,10 @@ static void load_plan(ctx *c, const atmo_plan *plan)
     c->plan = plan;
     c->scene = test_cl_buffer(&c->cl, sizeof plan->gpu, &plan->gpu);
     for (int i = 0; i < ATMO_PLAN_MAX_BUFFERS; i++)
-        c->luts[i] = i < plan->buffer_count
-                         ? test_cl_buffer(&c->cl, plan->buffers[i].bytes ? plan->buffers[i].bytes : 16,
-                                          NULL)
-                         : NULL;
+        c->luts[i] =
+            i < plan->buffer_count
+                ? test_cl_buffer(&c->cl, plan->buffers[i].bytes ? plan->buffers[i].bytes : 16, NULL)
+                : NULL;
 }
 
 static void unload_plan(ctx *c)

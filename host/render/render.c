@@ -83,7 +83,8 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
     atmo_cl cl;
     cl_program program = NULL;
     cl_kernel k_render = NULL;
-    cl_mem b_scene = NULL, b_accum = NULL, b_nonfinite = NULL, b_buffers[ATMO_PLAN_MAX_BUFFERS] = {NULL};
+    cl_mem b_scene = NULL, b_accum = NULL, b_nonfinite = NULL,
+           b_buffers[ATMO_PLAN_MAX_BUFFERS] = {NULL};
     float *accum = NULL;
     int *tile_samples = NULL;
     const atmo_gpu_scene *g = &plan->gpu;

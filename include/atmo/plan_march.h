@@ -10,7 +10,7 @@
 #define ATMO_MS_DIRECTIONS_MU 16
 #define ATMO_MS_DIRECTIONS_PHI 8
 #define ATMO_MS_STEPS 20
-/* planes of w x h texels in the LUT buffer (ms_lut.cl) */
+/* planes of w x h texels in the buffer ms_lut (ms_lut.cl) */
 #define ATMO_MS_LUT_PLANES 14
 /* share of the order-3 anisotropy given to orders >= 4 (ms_lut.h) */
 #define ATMO_MS_HIGHER_ANISOTROPY 1.0f

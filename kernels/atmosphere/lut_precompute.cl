@@ -114,7 +114,8 @@ __kernel void lut_single(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, 
     scattering_rayleigh[N + idx] = (float4)(0.0f); /* multiple scattering: orders >= 2 add to it */
     scattering_mie[idx] = (float4)(E * beta_m * S_m, 0.0f);
     scattering_mie[LUT_DENSITY_SUM(dims) + idx] = (float4)(0.0f); /* orders >= 2 add to it */
-    if (get_global_id(1) == 0 && x < n_mu_s) /* once per (r, mu_s): clear the total indirect irradiance */
+    /* once per (r, mu_s): clear the total indirect irradiance */
+    if (get_global_id(1) == 0 && x < n_mu_s)
         scattering_mie[N + z * n_mu_s + x] = (float4)(0.0f);
 }
 
@@ -134,7 +135,8 @@ __kernel void lut_grid(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, in
     int ground = geometry_ray_hits_ground(r, mu, a->bottom_radius);
     float3 L;
     if (k == 1)
-        L = lut_scattering_lookup(a, scattering_rayleigh, dims, r, mu, mu_s, nu, ground) * phase_rayleigh(nu) +
+        L = lut_scattering_lookup(a, scattering_rayleigh, dims, r, mu, mu_s, nu, ground) *
+                phase_rayleigh(nu) +
             lut_scattering_lookup(a, scattering_mie, dims, r, mu, mu_s, nu, ground) *
                 sky_mie_phase(a, nu);
     else
@@ -226,7 +228,8 @@ __kernel void lut_multiple(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS
         float mu_t = atmo_clamp_cos((r * mu + t) / r_t);
         float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
         float3 sigma_t = lut_mean_extinction(a, h, mu_t, dt);
-        float3 J = lut_scattering_lookup(a, scattering_scratch + N, dims, r_t, mu_t, mu_s_t, nu, ground);
+        float3 J =
+            lut_scattering_lookup(a, scattering_scratch + N, dims, r_t, mu_t, mu_s_t, nu, ground);
         float3 e = exp(-sigma_t * dt);
         L += T * J * lut_weights(sigma_t, dt, e);
         T *= e;

@@ -33,7 +33,8 @@
  *
  * Orders: order n is light that scattered (in the air or on the ground) n times; order 1 is
  * single scattering plus the directly lit ground. Knobs (plan_reference.c):
- *   reference.min_order = reference.min_order (>= 1), reference.max_order = reference.max_order (0 = all);
+ *   s->reference.min_order = reference.min_order (>= 1), s->reference.max_order =
+ *   reference.max_order (0 = all);
  * only light of orders min..max is counted.
  * Aerial perspective (sky_segment): the camera ray ends at a black surface at distance d, later
  * segments of the path do not; the weight W at its end estimates T(0, d). On that cut segment
@@ -247,8 +248,9 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, float r, float
             pos = v3_add(pos, v3_scale(dir, t_hit));
             float u1 = reference_uniform(&g), phi = 2.0f * ATMO_PI * reference_uniform(&g);
             float c = !chose_mie ? phase_draine_sample(0.0f, 1.0f, u1)
-                      : a->mie_phase == ATMO_PHASE_HENYEY_GREENSTEIN ? phase_henyey_greenstein_sample(a->mie_g, u1)
-                                          : phase_cornette_shanks_sample(a->mie_g, u1);
+                      : a->mie_phase == ATMO_PHASE_HENYEY_GREENSTEIN
+                          ? phase_henyey_greenstein_sample(a->mie_g, u1)
+                          : phase_cornette_shanks_sample(a->mie_g, u1);
             dir = reference_rotate(dir, c, phi);
             w = ws;
         } else {

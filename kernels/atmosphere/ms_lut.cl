@@ -1,14 +1,15 @@
-/* ms_lut.cl — fills the multiple-scattering transfer LUT Psi_ms (ms_lut.h) into LUT buffer a.
+/* ms_lut.cl — fills the multiple-scattering transfer LUT Psi_ms (ms_lut.h) into the buffer
+ * ms_lut.
  *
- * Size s->ms.width (mu_s) x s->ms.height (altitude); quadrature knobs from
- * s->method_int: [0] cosine bands, [1] azimuths over [0, pi] (half in the gathering passes),
- * [2] segments per direction; s->ms.higher_anisotropy: share of the order-3 anisotropy given to
- * orders >= 4; [1], [2]: the aerosol phase function's Legendre coefficients g_1, g_2
- * (ms_lut.h). Fourteen planes of w x h texels (ms_lut.h): 0 Psi and f_ms, 1-5 the anisotropy
- * D_uu, D_ss, D_us, b_u, b_s (final after the third pass), 6 the source of the third pass and
- * 7-11 its anisotropy, 12 the sky irradiance of the ground, 13 scratch (f_ms, then E_1 + E_2 /
- * (1 - f)). Each pass writes only planes that no texel of the same pass reads from another
- * texel. Needs the transmittance LUT, so its passes run after transmittance_lut. */
+ * Size s->ms.width (mu_s) x s->ms.height (altitude); quadrature knobs (atmo_gpu_ms_lut):
+ * directions_mu cosine bands, directions_phi azimuths over [0, pi] (half in the gathering
+ * passes), steps segments per direction; higher_anisotropy: share of the order-3 anisotropy
+ * given to orders >= 4; g1, g2: the aerosol phase function's Legendre coefficients (ms_lut.h).
+ * Fourteen planes of w x h texels (ms_lut.h): 0 Psi and f_ms, 1-5 the anisotropy D_uu, D_ss, D_us,
+ * b_u, b_s (final after the third pass), 6 the source of the third pass and 7-11 its anisotropy, 12
+ * the sky irradiance of the ground, 13 scratch (f_ms, then E_1 + E_2 / (1 - f)). Each pass writes
+ * only planes that no texel of the same pass reads from another texel. Needs the transmittance LUT,
+ * so its passes run after transmittance_lut. */
 
 #define MS_PLANE(k) (ms_lut + (k) * scene->ms.width * scene->ms.height)
 

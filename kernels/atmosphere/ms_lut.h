@@ -54,7 +54,7 @@
  * (l >= 3), a_0 = <L> = Psi. A phase function p convolves the l-th harmonic by its Legendre
  * coefficient g_l = 2 pi int p(x) P_l(x) dx (Funk-Hecke): Rayleigh's g_1 = 0, g_2 = 1/10 give the
  * D term above exactly; the aerosols' (Cornette-Shanks g = 0.8: g_1 = 0.844, g_2 = 0.710,
- * computed by the plan into method_float[1..2]) give, truncated at l = 2,
+ * computed by the plan into s->ms.g1, g2) give, truncated at l = 2,
  *     J_ms = sigma_R (Psi + v^T D v) + sigma_M (Psi + 3 g_1 b.v + 10 g_2 v^T D v)
  * with v the direction the camera looks along (light arriving from v scatters forward into it);
  * each part is kept >= 0. The truncation keeps the sky/ground and sun/anti-sun asymmetries and

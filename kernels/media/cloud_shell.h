@@ -1,12 +1,14 @@
 /* cloud_shell.h — a homogeneous cloud or fog layer between two altitudes (a spherical shell, so
  * the atmosphere stays spherically symmetric), an observer sphere that shadows it (Brocken
  * spectre), and the view-ray integrator of methods "single" and "march" when a scene has them
- * (compiled only under -DATMO_CLOUD).
+ * (feature "cloud" of the plan's registry: assembled, with -DATMO_CLOUD for the methods, only
+ * when the scene has a cloud or an observer).
  *
  * Medium: extinction sigma (1/m, per wavelength) = (sigma_ext / LWC) x LWC of a droplet size
  * distribution, albedo omega and a phase function p (per steradian): the 4pi-normalised Mie table
- * P(theta) / 4pi of the distribution (host/plan_cloud.c builds it with mie_table_get, rows
- * float4 (P_680, P_550, P_440, theta) ascending in theta, interpolated linearly here), or
+ * P(theta) / 4pi of the distribution (host/plan/plan_cloud.c builds it with mie_table_get into
+ * the buffer cloud_phase_table, rows float4 (P_680, P_550, P_440, theta) ascending in theta,
+ * interpolated linearly here), or
  * Henyey-Greenstein with the table's g, or Jendersie & d'Eon 2023 for the effective diameter.
  *
  * View ray (cloud_integrate): the ray is cut at the shell's spheres (at most two cloud segments)
@@ -16,7 +18,7 @@
  * chord toward the sun, analytic: exp(-sigma l_sun)) and by the observer's shadow. The multiple
  * scattering term sigma_s Psi_ms of method march (ms_lut.h) is multiplied by the same cloud
  * transmittance: a documented approximation that darkens the haze under a thick deck. Each
- * cloud segment is integrated with `cloud_steps` steps equal in optical depth, up to
+ * cloud segment is integrated with `s->cloud.steps` steps equal in optical depth, up to
  * CLOUD_TAU_CUT (beyond it the view transmittance is below 1e-5), so a cloud of optical
  * thickness 10-1000 is resolved where it is seen. Within a step the sun's path length in the
  * shell is taken as linear in t, from l_0 to l_1, so with x(s) = a sigma l(s) + sigma_v s the
@@ -302,8 +304,9 @@ ATMO_FN void cloud_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL cons
 
 /* Sky radiance along (r, mu, mu_s, nu) through the atmosphere, the cloud shell and past the
  * observer, up to a black surface at distance t_max (INFINITY: none), as sky_integrate
- * (sky_single.h) with the same outputs; ms (ms_w x ms_h) is the Psi_ms LUT of method march,
- * used when use_ms (and when ms_lut.h is compiled in). */
+ * (sky_single.h) with the same outputs; lut0 is the transmittance LUT, table the droplets'
+ * phase table (cloud_phase_table), ms (ms_w x ms_h) the Psi_ms LUT of method march, used when
+ * use_ms (and when ms_lut.h is compiled in). */
 ATMO_FN void cloud_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *lut0,
                              ATMO_GLOBAL const float4 *table,
                              ATMO_GLOBAL const float4 *ms, int ms_w, int ms_h, int use_ms, float r,
@@ -388,7 +391,8 @@ ATMO_FN void cloud_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL co
 
     if (hits_observer) {
         vec3 p = v3_scale(ray.dir, t_end);
-        vec3 normal = v3_normalize(v3_sub(p, v3(s->cloud.observer.x, s->cloud.observer.y, s->cloud.observer.z)));
+        vec3 normal = v3_normalize(
+            v3_sub(p, v3(s->cloud.observer.x, s->cloud.observer.y, s->cloud.observer.z)));
         /* lit like the camera's surroundings (the sphere is small); its own shadow test
          * would block it, so the cloud's chord is taken at the camera */
         float chord = cloud_shell_chord(R, base, top, h_cam, r, mu_s);
