@@ -58,22 +58,21 @@ void test_probe_rays(test_probe *t, const float4 *rays, int n, int batches, int 
     cl_uint u_n = (cl_uint)n, u_batches = (cl_uint)batches, u_samples = (cl_uint)samples;
     cl_uint u_stride = stride == TEST_PROBE_COMMON ? 0u : (cl_uint)batches;
     err = clSetKernelArg(k, 0, sizeof t->scene, &t->scene);
-    for (int i = 0; i < ATMO_PLAN_LUTS && err == CL_SUCCESS; i++)
-        err = clSetKernelArg(k, 1 + i, sizeof t->luts[i], &t->luts[i]);
+    int a = test_bind_buffers(k, t->luts);
     if (err == CL_SUCCESS)
-        err = clSetKernelArg(k, 5, sizeof b_rays, &b_rays);
+        err = clSetKernelArg(k, a, sizeof b_rays, &b_rays);
     if (err == CL_SUCCESS)
-        err = clSetKernelArg(k, 6, sizeof b_sky, &b_sky);
+        err = clSetKernelArg(k, a + 1, sizeof b_sky, &b_sky);
     if (err == CL_SUCCESS)
-        err = clSetKernelArg(k, 7, sizeof b_sun, &b_sun);
+        err = clSetKernelArg(k, a + 2, sizeof b_sun, &b_sun);
     if (err == CL_SUCCESS)
-        err = clSetKernelArg(k, 8, sizeof u_n, &u_n);
+        err = clSetKernelArg(k, a + 3, sizeof u_n, &u_n);
     if (err == CL_SUCCESS)
-        err = clSetKernelArg(k, 9, sizeof u_batches, &u_batches);
+        err = clSetKernelArg(k, a + 4, sizeof u_batches, &u_batches);
     if (err == CL_SUCCESS)
-        err = clSetKernelArg(k, 10, sizeof u_samples, &u_samples);
+        err = clSetKernelArg(k, a + 5, sizeof u_samples, &u_samples);
     if (err == CL_SUCCESS)
-        err = clSetKernelArg(k, 11, sizeof u_stride, &u_stride);
+        err = clSetKernelArg(k, a + 6, sizeof u_stride, &u_stride);
     if (err != CL_SUCCESS) {
         fprintf(stderr, "clSetKernelArg(test_probe): %s\n", atmo_cl_error_string(err));
         exit(1);

@@ -57,11 +57,20 @@ void test_sky_plan(const char *method, double altitude_m, double sun_zenith_deg,
 
 cl_program test_plan_program(atmo_cl *cl, const atmo_plan *p, const char *extra)
 {
-    return test_cl_build_defines(cl, p->fragments, p->fragment_count, p->defines, extra);
+    atmo_err e;
+    cl_program prog;
+    atmo_cl_build_options o = {p->fragments, p->fragment_count, p->defines, NULL, 1, extra,
+                               p->prelude};
+    atmo_cl_build_info info;
+    if (atmo_cl_build(cl, &o, &prog, &info, &e)) {
+        fprintf(stderr, "kernel build failed: %s\n", e.msg);
+        exit(1);
+    }
+    return prog;
 }
 
 void test_precompute(atmo_cl *cl, cl_program prog, cl_mem scene, const atmo_plan *p,
-                     cl_mem luts[ATMO_PLAN_LUTS])
+                     cl_mem luts[ATMO_PLAN_MAX_BUFFERS])
 {
     atmo_err e;
     atmo_precompute_info info;
@@ -71,9 +80,30 @@ void test_precompute(atmo_cl *cl, cl_program prog, cl_mem scene, const atmo_plan
     }
 }
 
-void test_release_luts(cl_mem luts[ATMO_PLAN_LUTS])
+int test_bind_buffers(cl_kernel k, cl_mem luts[ATMO_PLAN_MAX_BUFFERS])
 {
-    for (int i = 0; i < ATMO_PLAN_LUTS; i++)
-        if (luts[i])
-            clReleaseMemObject(luts[i]);
+    int i = 0;
+    for (; i < ATMO_PLAN_MAX_BUFFERS && luts[i]; i++) {
+        cl_int err = clSetKernelArg(k, (cl_uint)(1 + i), sizeof luts[i], &luts[i]);
+        if (err != CL_SUCCESS) {
+            fprintf(stderr, "clSetKernelArg(buffer %d): %s\n", i, atmo_cl_error_string(err));
+            exit(1);
+        }
+    }
+    return 1 + i;
+}
+
+cl_mem test_plan_buffer(const atmo_plan *p, cl_mem luts[ATMO_PLAN_MAX_BUFFERS], const char *name)
+{
+    int i = atmo_plan_buffer_index(p, name);
+    if (i < 0) {
+        fprintf(stderr, "the plan has no buffer %s\n", name);
+        exit(1);
+    }
+    return luts[i];
+}
+
+void test_release_luts(cl_mem luts[ATMO_PLAN_MAX_BUFFERS])
+{
+    atmo_release_buffers(luts);
 }

@@ -114,9 +114,10 @@ static const char scan_src[] =
     "    float r_d = geometry_radius_at(r, mu, d);\n"
     "    float mu_d = atmo_clamp_cos((r * mu + d) / r_d);\n"
     "    float mu_s_d = atmo_clamp_cos((r * mu_s + d * nu) / r_d);\n"
-    "    T = lut_transmittance_between(s, lut_transmittance, r, mu, r_d, mu_d, ground);\n"
-    "    L = max(lut_scattered(s, lut_a, lut_b, r, mu, mu_s, nu, ground) -\n"
-    "            T * lut_scattered(s, lut_a, lut_b, r_d, mu_d, mu_s_d, nu, ground), 0.0f);\n"
+    "    T = lut_transmittance_between(s, transmittance_lut, r, mu, r_d, mu_d, ground);\n"
+    "    L = max(lut_scattered(s, scattering_rayleigh, scattering_mie, r, mu, mu_s, nu, ground) -\n"
+    "            T * lut_scattered(s, scattering_rayleigh, scattering_mie, r_d, mu_d, mu_s_d, nu, "
+    "ground), 0.0f);\n"
     "  }\n"
     "  out[i] = (float4)(L, 0.0f);\n"
     "}\n";
@@ -424,12 +425,13 @@ static void run_scan_kernel(method *lut, cl_program prog, const char *name, cons
     cl_uint count = (cl_uint)n, samples = 64;
     CHECK(err == CL_SUCCESS);
     cl_uint arg = 0;
-    CHECK(atmo_session_bind(lut->probe.session, k, &arg, &e) == ATMO_OK && arg == 5);
-    clSetKernelArg(k, 5, sizeof b_rays, &b_rays);
-    clSetKernelArg(k, 6, sizeof b_dist, &b_dist);
-    clSetKernelArg(k, 7, sizeof b_out, &b_out);
-    clSetKernelArg(k, 8, sizeof count, &count);
-    clSetKernelArg(k, 9, sizeof samples, &samples);
+    CHECK(atmo_session_bind(lut->probe.session, k, &arg, &e) == ATMO_OK &&
+          arg == 1 + (cl_uint)atmo_session_plan(lut->probe.session)->buffer_count);
+    clSetKernelArg(k, arg, sizeof b_rays, &b_rays);
+    clSetKernelArg(k, arg + 1, sizeof b_dist, &b_dist);
+    clSetKernelArg(k, arg + 2, sizeof b_out, &b_out);
+    clSetKernelArg(k, arg + 3, sizeof count, &count);
+    clSetKernelArg(k, arg + 4, sizeof samples, &samples);
     test_cl_run_1d(cl, k, (size_t)n);
     test_cl_read(cl, b_out, sizeof(float4) * (size_t)n, out);
     clReleaseKernel(k);

@@ -42,11 +42,11 @@ static void slab_tests(void)
     s.atmosphere.solar_irradiance.z = 1.0f;
     s.transmittance_width = s.transmittance_height = 4;
     s.sun_direction.w = cosf(0.0047f);
-    s.cloud_steps = 32;
-    s.cloud_phase = 1; /* Henyey-Greenstein, so the oracle's phase is exact */
-    s.cloud_g.x = 0.5f, s.cloud_g.y = 0.8f, s.cloud_g.z = -0.3f;
-    s.cloud_albedo.x = s.cloud_albedo.y = s.cloud_albedo.z = 0.99f;
-    s.cloud_extinction.w = 1000.0f, s.cloud_albedo.w = 1200.0f;
+    s.cloud.steps = 32;
+    s.cloud.phase = ATMO_CLOUD_PHASE_HG; /* so the oracle's phase is exact */
+    s.cloud.g.x = 0.5f, s.cloud.g.y = 0.8f, s.cloud.g.z = -0.3f;
+    s.cloud.albedo.x = s.cloud.albedo.y = s.cloud.albedo.z = 0.99f;
+    s.cloud.base_m = 1000.0f, s.cloud.top_m = 1200.0f;
     const double taus[] = {0.05, 1.0, 30.0}, mu_ss[] = {0.9, 0.4}, mu_vs[] = {1.0, 0.6};
     double worst = 0.0;
     for (int a = 0; a < 3; a++)
@@ -54,12 +54,12 @@ static void slab_tests(void)
             for (int c = 0; c < 2; c++) {
                 double tau = taus[a], mu_s = mu_ss[b], mu_v = mu_vs[c];
                 float sigma = (float)(tau / 200.0);
-                s.cloud_extinction.x = s.cloud_extinction.y = s.cloud_extinction.z = sigma;
+                s.cloud.extinction.x = s.cloud.extinction.y = s.cloud.extinction.z = sigma;
                 double phi = 2.0; /* azimuth between view and sun, radians */
                 double nu = -mu_v * mu_s + sqrt(1 - mu_v * mu_v) * sqrt(1 - mu_s * mu_s) * cos(phi);
                 float r = 6360e3f + 1300.0f;
                 vec3 sky, sun, view_t;
-                cloud_integrate(&s, lut, lut, 0, 0, 0, r, (float)-mu_v, (float)mu_s, (float)nu,
+                cloud_integrate(&s, lut, lut, lut, 0, 0, 0, r, (float)-mu_v, (float)mu_s, (float)nu,
                                 INFINITY, 8, 0.5f, &sky, &sun, &view_t);
                 double want[3], got[3] = {sky.x, sky.y, sky.z}, g[3] = {0.5, 0.8, -0.3};
                 for (int k = 0; k < 3; k++) {
@@ -78,7 +78,8 @@ static void slab_tests(void)
  * code exists only under -DATMO_CLOUD). */
 static cl_program build_plan(atmo_cl *cl, const atmo_plan *plan)
 {
-    atmo_cl_build_options bo = {plan->fragments, plan->fragment_count, plan->defines, NULL, 1, NULL};
+    atmo_cl_build_options bo = {plan->fragments, plan->fragment_count, plan->defines, NULL, 1, NULL,
+                                plan->prelude};
     atmo_cl_build_info bi;
     atmo_err e;
     cl_program prog = NULL;
@@ -93,7 +94,7 @@ static cl_mem probe_rays(atmo_cl *cl, cl_program prog, const atmo_plan *plan, co
                          int n, int samples, float4 *out)
 {
     cl_mem b_scene = test_cl_buffer(cl, sizeof plan->gpu, &plan->gpu);
-    cl_mem luts[ATMO_PLAN_LUTS];
+    cl_mem luts[ATMO_PLAN_MAX_BUFFERS];
     test_precompute(cl, prog, b_scene, plan, luts);
     cl_mem b_rays = test_cl_buffer(cl, sizeof(float4) * (size_t)n, rays);
     cl_mem b_out = test_cl_buffer(cl, sizeof(float4) * (size_t)n, NULL);
@@ -101,12 +102,11 @@ static cl_mem probe_rays(atmo_cl *cl, cl_program prog, const atmo_plan *plan, co
     cl_kernel k = clCreateKernel(prog, "sky_probe", &err);
     uint count = (uint)n, ns = (uint)samples;
     clSetKernelArg(k, 0, sizeof b_scene, &b_scene);
-    for (int i = 0; i < ATMO_PLAN_LUTS; i++)
-        clSetKernelArg(k, (cl_uint)(1 + i), sizeof luts[i], &luts[i]);
-    clSetKernelArg(k, 5, sizeof b_rays, &b_rays);
-    clSetKernelArg(k, 6, sizeof b_out, &b_out);
-    clSetKernelArg(k, 7, sizeof count, &count);
-    clSetKernelArg(k, 8, sizeof ns, &ns);
+    int a = test_bind_buffers(k, luts);
+    clSetKernelArg(k, a, sizeof b_rays, &b_rays);
+    clSetKernelArg(k, a + 1, sizeof b_out, &b_out);
+    clSetKernelArg(k, a + 2, sizeof count, &count);
+    clSetKernelArg(k, a + 3, sizeof ns, &ns);
     test_cl_run_1d(cl, k, (size_t)n);
     test_cl_read(cl, b_out, sizeof(float4) * (size_t)n, out);
     clReleaseKernel(k);
@@ -137,8 +137,8 @@ static void glory_tests(atmo_cl *cl)
     test_scene_preset(&scene, "glory");
     test_plan(&scene, &plan);
     cl_program prog = build_plan(cl, &plan);
-    const float4 *rows = plan.uploads[plan.upload_count - 1].data;
-    int nrows = plan.gpu.cloud_table_size;
+    const float4 *rows = atmo_plan_buffer_find(&plan, "cloud_phase_table")->host_data;
+    int nrows = plan.gpu.cloud.table_size;
     double mu_s = cos(scene.sun.zenith_deg * M_PI / 180), sin_s = sqrt(1 - mu_s * mu_s);
     double mu = -mu_s, sin_v = sin_s; /* view zenith of the antisolar point */
     static float4 rays[NTH], out[NTH];

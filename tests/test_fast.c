@@ -124,7 +124,7 @@ int main(void)
     /* 2 */
     test_sky_plan("fast", 1e6, 40, &pf);
     test_sky_plan("march", 1e6, 40, &pm);
-    CHECK(pf.lut_bytes[2] == 0 && pf.gpu.lut_dims[1][0] == 0);
+    CHECK(atmo_plan_buffer_find(&pf, "sky_view_lut")->bytes == 0 && pf.gpu.sky_view.width == 0);
     static const double zen_top[] = {95, 100, 105, 110, 115, 120, 150, 180};
     int n = camera_rays(&pf, zen_top, 8, az, 5, rays);
     probe(&pf, rays, n, 64, fm, NULL);

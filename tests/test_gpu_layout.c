@@ -1,5 +1,6 @@
-/* test_gpu_layout — the structs of include/atmo/gpu_types.h have the same size and field offsets
- * in the OpenCL C compiler as on the host.
+/* test_gpu_layout — the structs of include/atmo/gpu_types.h and of each feature's header
+ * (gpu_atmosphere.h, gpu_ms_lut.h, gpu_sky_view.h, gpu_lut.h, gpu_reference.h, gpu_cloud.h) have
+ * the same size and field offsets in the OpenCL C compiler as on the host.
  * labels: kernel
  *
  * Oracle: the host compiler's sizeof/offsetof (which host/plan.c also pins with _Static_assert);
@@ -15,9 +16,12 @@
     X(atmo_gpu_camera, local_up) X(atmo_gpu_camera, kind) X(atmo_gpu_camera, tan_half_fov)         \
     X(atmo_gpu_scene, camera) X(atmo_gpu_scene, sun_direction) X(atmo_gpu_scene, sun_factor)       \
     X(atmo_gpu_scene, view_steps) X(atmo_gpu_scene, seed)                        \
-    X(atmo_gpu_scene, lut_dims) X(atmo_gpu_scene, method_int) X(atmo_gpu_scene, method_float)  \
-    X(atmo_gpu_scene, cloud_extinction) X(atmo_gpu_scene, observer)                               \
-    X(atmo_gpu_scene, cloud_phase) X(atmo_gpu_scene, cloud_steps)
+    X(atmo_gpu_scene, ms) X(atmo_gpu_scene, sky_view) X(atmo_gpu_scene, lut)                      \
+    X(atmo_gpu_scene, reference) X(atmo_gpu_scene, cloud)                                         \
+    X(atmo_gpu_ms_lut, steps) X(atmo_gpu_ms_lut, higher_anisotropy) X(atmo_gpu_ms_lut, g2)        \
+    X(atmo_gpu_sky_view, steps) X(atmo_gpu_lut, steps) X(atmo_gpu_lut, orders)                    \
+    X(atmo_gpu_reference, max_order) X(atmo_gpu_cloud, observer) X(atmo_gpu_cloud, base_m)        \
+    X(atmo_gpu_cloud, phase) X(atmo_gpu_cloud, steps)
 
 #define HOST_OFFSET(type, field) (uint)offsetof(type, field),
 #define DEVICE_OFFSET(type, field) "out[n++] = (uint)__builtin_offsetof(" #type ", " #field ");\n"
@@ -27,17 +31,29 @@ static const char probe[] =
     "  int n = 0;\n"
     "  out[n++] = (uint)sizeof(atmo_gpu_atmosphere);\n"
     "  out[n++] = (uint)sizeof(atmo_gpu_camera);\n"
-    "  out[n++] = (uint)sizeof(atmo_gpu_scene);\n" FIELDS(DEVICE_OFFSET) "}\n";
+    "  out[n++] = (uint)sizeof(atmo_gpu_scene);\n"
+    "  out[n++] = (uint)sizeof(atmo_gpu_ms_lut);\n"
+    "  out[n++] = (uint)sizeof(atmo_gpu_sky_view);\n"
+    "  out[n++] = (uint)sizeof(atmo_gpu_lut);\n"
+    "  out[n++] = (uint)sizeof(atmo_gpu_reference);\n"
+    "  out[n++] = (uint)sizeof(atmo_gpu_cloud);\n" FIELDS(DEVICE_OFFSET) "}\n";
 
 int main(void)
 {
     uint want[] = {(uint)sizeof(atmo_gpu_atmosphere), (uint)sizeof(atmo_gpu_camera),
-                   (uint)sizeof(atmo_gpu_scene), FIELDS(HOST_OFFSET)};
+                   (uint)sizeof(atmo_gpu_scene), (uint)sizeof(atmo_gpu_ms_lut),
+                   (uint)sizeof(atmo_gpu_sky_view), (uint)sizeof(atmo_gpu_lut),
+                   (uint)sizeof(atmo_gpu_reference), (uint)sizeof(atmo_gpu_cloud),
+                   FIELDS(HOST_OFFSET)};
     enum { N = sizeof want / sizeof want[0] };
     atmo_cl cl;
     test_cl_open(&cl);
-    const char *fragments[] = {"kernels/common/compat.h", "include/atmo/gpu_types.h"};
-    cl_program prog = test_cl_build(&cl, fragments, 2, probe);
+    const char *fragments[] = {"kernels/common/compat.h",       "include/atmo/gpu_enums.h",
+                               "include/atmo/gpu_atmosphere.h", "include/atmo/gpu_ms_lut.h",
+                               "include/atmo/gpu_sky_view.h",   "include/atmo/gpu_lut.h",
+                               "include/atmo/gpu_reference.h",  "include/atmo/gpu_cloud.h",
+                               "include/atmo/gpu_types.h"};
+    cl_program prog = test_cl_build(&cl, fragments, 9, probe);
     cl_int err;
     cl_kernel k = clCreateKernel(prog, "probe", &err);
     cl_mem out = test_cl_buffer(&cl, sizeof want, NULL);

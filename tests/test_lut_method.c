@@ -128,7 +128,7 @@ static void test_parametrisation(const atmo_gpu_atmosphere *a, const int dims[4]
 typedef struct ctx {
     atmo_cl cl;
     cl_program prog;
-    cl_mem scene, luts[ATMO_PLAN_LUTS];
+    cl_mem scene, luts[ATMO_PLAN_MAX_BUFFERS];
     const atmo_plan *plan;
 } ctx;
 
@@ -138,9 +138,8 @@ static void run_pass(ctx *c, const atmo_plan_pass *pass)
     cl_kernel k = clCreateKernel(c->prog, pass->kernel, &err);
     CHECK(err == CL_SUCCESS);
     clSetKernelArg(k, 0, sizeof c->scene, &c->scene);
-    for (int i = 0; i < ATMO_PLAN_LUTS; i++)
-        clSetKernelArg(k, 1 + i, sizeof c->luts[i], &c->luts[i]);
-    clSetKernelArg(k, 1 + ATMO_PLAN_LUTS, sizeof pass->arg, &pass->arg);
+    int a = test_bind_buffers(k, c->luts);
+    clSetKernelArg(k, a, sizeof pass->arg, &pass->arg);
     int three_d = pass->depth > 1;
     size_t local[3] = {three_d ? 4 : 8, three_d ? 4 : 8, three_d ? 4 : 1};
     size_t global[3];
@@ -164,12 +163,11 @@ static void probe(ctx *c, const float4 *rays, int n, float (*sky)[4], float (*su
     cl_kernel k = clCreateKernel(c->prog, "lut_probe", &err);
     cl_uint count = (cl_uint)n;
     clSetKernelArg(k, 0, sizeof c->scene, &c->scene);
-    for (int i = 0; i < ATMO_PLAN_LUTS; i++)
-        clSetKernelArg(k, 1 + i, sizeof c->luts[i], &c->luts[i]);
-    clSetKernelArg(k, 5, sizeof b_rays, &b_rays);
-    clSetKernelArg(k, 6, sizeof b_sky, &b_sky);
-    clSetKernelArg(k, 7, sizeof b_sun, &b_sun);
-    clSetKernelArg(k, 8, sizeof count, &count);
+    int a = test_bind_buffers(k, c->luts);
+    clSetKernelArg(k, a, sizeof b_rays, &b_rays);
+    clSetKernelArg(k, a + 1, sizeof b_sky, &b_sky);
+    clSetKernelArg(k, a + 2, sizeof b_sun, &b_sun);
+    clSetKernelArg(k, a + 3, sizeof count, &count);
     test_cl_run_1d(&c->cl, k, (size_t)n);
     test_cl_read(&c->cl, b_sky, sizeof(float4) * (size_t)n, sky);
     if (sun)
@@ -485,8 +483,11 @@ static void load_plan(ctx *c, const atmo_plan *plan)
 {
     c->plan = plan;
     c->scene = test_cl_buffer(&c->cl, sizeof plan->gpu, &plan->gpu);
-    for (int i = 0; i < ATMO_PLAN_LUTS; i++)
-        c->luts[i] = test_cl_buffer(&c->cl, plan->lut_bytes[i] ? plan->lut_bytes[i] : 16, NULL);
+    for (int i = 0; i < ATMO_PLAN_MAX_BUFFERS; i++)
+        c->luts[i] =
+            i < plan->buffer_count
+                ? test_cl_buffer(&c->cl, plan->buffers[i].bytes ? plan->buffers[i].bytes : 16, NULL)
+                : NULL;
 }
 
 static void unload_plan(ctx *c)
@@ -515,8 +516,8 @@ int main(int argc, char **argv)
     test_plan(&scene, &plan);
     const atmo_atmosphere *a = &plan.atmosphere;
 
-    test_parametrisation(&plan1.gpu.atmosphere, plan1.gpu.lut_dims[0]);
-    test_parametrisation(&plan.gpu.atmosphere, plan.gpu.lut_dims[0]);
+    test_parametrisation(&plan1.gpu.atmosphere, plan1.gpu.lut.dims);
+    test_parametrisation(&plan.gpu.atmosphere, plan.gpu.lut.dims);
 
     ctx c;
     test_cl_open(&c.cl);
@@ -526,10 +527,10 @@ int main(int argc, char **argv)
     double t0 = seconds();
     run_pass(&c, &plan1.passes[0]); /* transmittance */
     run_pass(&c, &plan1.passes[1]); /* order 1 */
-    printf("order 1 at %d x %d x %d x %d: precomputed in %.1f s\n", plan1.gpu.lut_dims[0][0],
-           plan1.gpu.lut_dims[0][1], plan1.gpu.lut_dims[0][2], plan1.gpu.lut_dims[0][3],
+    printf("order 1 at %d x %d x %d x %d: precomputed in %.1f s\n", plan1.gpu.lut.dims[0],
+           plan1.gpu.lut.dims[1], plan1.gpu.lut.dims[2], plan1.gpu.lut.dims[3],
            seconds() - t0);
-    test_order1(&c, a, &plan1.gpu.atmosphere, plan1.gpu.lut_dims[0]);
+    test_order1(&c, a, &plan1.gpu.atmosphere, plan1.gpu.lut.dims);
     unload_plan(&c);
 
     load_plan(&c, &plan);
@@ -548,8 +549,8 @@ int main(int argc, char **argv)
             check_reference(&c, a);
     }
     printf("%d orders at %d x %d x %d x %d: precomputed in %.1f s\n", ORDERS,
-           plan.gpu.lut_dims[0][0], plan.gpu.lut_dims[0][1], plan.gpu.lut_dims[0][2],
-           plan.gpu.lut_dims[0][3], seconds() - t0);
+           plan.gpu.lut.dims[0], plan.gpu.lut.dims[1], plan.gpu.lut.dims[2],
+           plan.gpu.lut.dims[3], seconds() - t0);
     check_convergence(crays, conv, ORDERS);
     check_horizon(&c, a);
     check_finite(&c, a);

@@ -30,7 +30,7 @@
 typedef struct probe_ctx {
     atmo_cl cl;
     cl_program prog;
-    cl_mem scene, luts[ATMO_PLAN_LUTS];
+    cl_mem scene, luts[ATMO_PLAN_MAX_BUFFERS];
 } probe_ctx;
 
 static void ctx_open(probe_ctx *c, atmo_cl *cl, const atmo_plan *p)
@@ -56,12 +56,11 @@ static void probe(probe_ctx *c, const float4 *rays, int n, float (*out)[4])
     cl_kernel k = clCreateKernel(c->prog, "sky_probe", &err);
     cl_uint count = (cl_uint)n, samples = SAMPLES;
     clSetKernelArg(k, 0, sizeof c->scene, &c->scene);
-    for (int i = 0; i < ATMO_PLAN_LUTS; i++)
-        clSetKernelArg(k, 1 + i, sizeof c->luts[i], &c->luts[i]);
-    clSetKernelArg(k, 5, sizeof b_rays, &b_rays);
-    clSetKernelArg(k, 6, sizeof b_out, &b_out);
-    clSetKernelArg(k, 7, sizeof count, &count);
-    clSetKernelArg(k, 8, sizeof samples, &samples);
+    int a = test_bind_buffers(k, c->luts);
+    clSetKernelArg(k, a, sizeof b_rays, &b_rays);
+    clSetKernelArg(k, a + 1, sizeof b_out, &b_out);
+    clSetKernelArg(k, a + 2, sizeof count, &count);
+    clSetKernelArg(k, a + 3, sizeof samples, &samples);
     test_cl_run_1d(&c->cl, k, (size_t)n);
     test_cl_read(&c->cl, b_out, sizeof(float4) * (size_t)n, out);
     clReleaseKernel(k);
@@ -102,8 +101,8 @@ static void run(atmo_cl *cl, const char *method, const char *const *sets, int ns
     ctx_open(&c, cl, &p);
     if (zero_ms) {
         float zero = 0.0f;
-        clEnqueueFillBuffer(cl->queue, c.luts[1], &zero, sizeof zero, 0, p.lut_bytes[1], 0, NULL,
-                            NULL);
+        clEnqueueFillBuffer(cl->queue, test_plan_buffer(&p, c.luts, "ms_lut"), &zero, sizeof zero,
+                            0, atmo_plan_buffer_find(&p, "ms_lut")->bytes, 0, NULL, NULL);
         clFinish(cl->queue);
     }
     probe(&c, rays, n, out);

@@ -20,7 +20,7 @@
  *     Psi(k = 0.01) / Psi(k = 0.1) = 0.1 within the O(tau) attenuation difference of the thin
  *     limit (+-25 % at mu_s >= 0.29, where the sun's air mass keeps tau <= 0.15 at k = 0.1).
  *  4. f_ms -> 0 likewise (0.1 within +-25 %).
- *  5. The plan's Legendre coefficients g_1, g_2 of the aerosol phase function (method_float[1],
+ *  5. The plan's Legendre coefficients g_1, g_2 of the aerosol phase function (ms.g1,
  *     [2]; ms_lut.h's Mie anisotropy) against closed forms: Henyey-Greenstein g_l = g^l, and
  *     Cornette-Shanks g_1 = 3g(4 + g^2) / (5(2 + g^2)) (phase.h), within 1e-5 (a double
  *     midpoint rule on 20000 intervals of the scattering angle, stored as float). */
@@ -44,15 +44,15 @@ static void make_lut(atmo_cl *cl, const char *const *sets, int nsets, int fine, 
         test_scene_set(&s, sets[i]);
     test_plan(&s, &p);
     if (fine) {
-        p.gpu.method_int[0] *= 2;
-        p.gpu.method_int[1] *= 2;
-        p.gpu.method_int[2] *= 3;
+        p.gpu.ms.directions_mu *= 2;
+        p.gpu.ms.directions_phi *= 2;
+        p.gpu.ms.steps *= 3;
     }
     cl_program prog = test_plan_program(cl, &p, NULL);
     cl_mem scene = test_cl_buffer(cl, sizeof p.gpu, &p.gpu);
-    cl_mem luts[ATMO_PLAN_LUTS];
+    cl_mem luts[ATMO_PLAN_MAX_BUFFERS];
     test_precompute(cl, prog, scene, &p, luts);
-    test_cl_read(cl, luts[1], sizeof(float4) * W * H, lut);
+    test_cl_read(cl, test_plan_buffer(&p, luts, "ms_lut"), sizeof(float4) * W * H, lut);
     test_release_luts(luts);
     clReleaseMemObject(scene);
     clReleaseProgram(prog);
@@ -137,11 +137,11 @@ int main(void)
             test_plan(&sc, &p);
             double g = (float)gs[i];
             double g1 = k ? 3.0 * g * (4.0 + g * g) / (5.0 * (2.0 + g * g)) : g;
-            CHECK(fabs(p.gpu.method_float[1] - g1) <= 1e-5);
-            worst_g = fmax(worst_g, fabs(p.gpu.method_float[1] - g1));
+            CHECK(fabs(p.gpu.ms.g1 - g1) <= 1e-5);
+            worst_g = fmax(worst_g, fabs(p.gpu.ms.g1 - g1));
             if (!k) {
-                CHECK(fabs(p.gpu.method_float[2] - g * g) <= 1e-5);
-                worst_g = fmax(worst_g, fabs(p.gpu.method_float[2] - g * g));
+                CHECK(fabs(p.gpu.ms.g2 - g * g) <= 1e-5);
+                worst_g = fmax(worst_g, fabs(p.gpu.ms.g2 - g * g));
             }
         }
     printf("aerosol phase Legendre coefficients: worst %.1e from the closed forms\n", worst_g);

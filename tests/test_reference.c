@@ -53,7 +53,7 @@ static const char probe_src[] =
 typedef struct ctx {
     atmo_cl cl;
     cl_program prog;
-    cl_mem scene, luts[ATMO_PLAN_LUTS];
+    cl_mem scene, luts[ATMO_PLAN_MAX_BUFFERS];
 } ctx;
 
 /* per_ray samples of each ray (one work item each, pixel = item index): sky and sun. */
@@ -69,13 +69,12 @@ static void run_probe(ctx *c, const atmo_plan *p, const float4 *rays, int n_rays
     cl_kernel k = clCreateKernel(c->prog, "probe", &err);
     cl_uint count = (cl_uint)n, per = (cl_uint)per_ray;
     clSetKernelArg(k, 0, sizeof c->scene, &c->scene);
-    for (int i = 0; i < ATMO_PLAN_LUTS; i++)
-        clSetKernelArg(k, 1 + i, sizeof c->luts[i], &c->luts[i]);
-    clSetKernelArg(k, 5, sizeof b_rays, &b_rays);
-    clSetKernelArg(k, 6, sizeof b_sky, &b_sky);
-    clSetKernelArg(k, 7, sizeof b_sun, &b_sun);
-    clSetKernelArg(k, 8, sizeof count, &count);
-    clSetKernelArg(k, 9, sizeof per, &per);
+    int a = test_bind_buffers(k, c->luts);
+    clSetKernelArg(k, a, sizeof b_rays, &b_rays);
+    clSetKernelArg(k, a + 1, sizeof b_sky, &b_sky);
+    clSetKernelArg(k, a + 2, sizeof b_sun, &b_sun);
+    clSetKernelArg(k, a + 3, sizeof count, &count);
+    clSetKernelArg(k, a + 4, sizeof per, &per);
     test_cl_run_1d(&c->cl, k, n);
     test_cl_read(&c->cl, b_sky, sizeof(float4) * n, sky);
     test_cl_read(&c->cl, b_sun, sizeof(float4) * n, sun);

@@ -115,9 +115,9 @@ static void check_steps(const char *method)
     atmo_err e;
     plan_view(method, 0, 7, &a);
     plan_view(method, 1, 7, &b);
-    int view_passes = 0;
-    for (int i = 0; i < a.pass_count; i++)
-        view_passes += a.passes[i].follows_view;
+    int view_buffers = 0;
+    for (int i = 0; i < a.buffer_count; i++)
+        view_buffers += a.buffers[i].follows_view;
     float *want_a = render_once(&a), *want_b = render_once(&b);
     CHECK(memcmp(want_a, want_b, sizeof(float) * 3 * PIXELS) != 0);
 
@@ -146,8 +146,8 @@ static void check_steps(const char *method)
     float *got_a = read_mean(s, NULL, NULL);
     CHECK(memcmp(got_a, want_a, sizeof(float) * 3 * PIXELS) == 0);
     CHECK(atmo_session_get_info(s)->nonfinite == 0);
-    printf("1. %-5s %d view pass(es); B after 5 steps and an update, then A again in %d steps: "
-           "%s\n", method, view_passes, steps,
+    printf("1. %-5s %d view buffer(s); B after 5 steps and an update, then A again in %d steps: "
+           "%s\n", method, view_buffers, steps,
            memcmp(got_a, want_a, sizeof(float) * 3 * PIXELS) == 0 &&
                    memcmp(got_b, want_b, sizeof(float) * 3 * PIXELS) == 0
                ? "bitwise equal to one-call renders"
@@ -162,7 +162,7 @@ static void check_steps(const char *method)
     free(want_a);
     free(want_b);
     if (strcmp(method, "fast") == 0)
-        CHECK(view_passes > 0);
+        CHECK(view_buffers > 0);
 }
 
 /* ------------------------------------------------------------------ 2 */
@@ -352,7 +352,7 @@ static void check_set_scene(void)
     atmo_err e;
     plan_glory(NULL, &first);
     plan_glory("680,550,450", &second);
-    CHECK(first.upload_count > 0 && second.upload_count > 0);
+    CHECK(first.gpu.cloud.table_size > 0 && second.gpu.cloud.table_size > 0);
     float *want = render_once(&second);
     atmo_render_settings rs;
     settings(&rs, 16, 0);
@@ -372,8 +372,8 @@ static void check_set_scene(void)
     plan_view("fast", 0, 3, &other);
     CHECK(atmo_session_set_scene(s, &other, &e) == ATMO_ERR_USAGE);
     printf("4. glory at its wavelengths, then set_scene to 680, 550, 450 nm (phase table %d -> "
-           "%d rows): %s a fresh render\n", first.gpu.cloud_table_size,
-           second.gpu.cloud_table_size, equal ? "bitwise equal to" : "DIFFERENT from");
+           "%d rows): %s a fresh render\n", first.gpu.cloud.table_size,
+           second.gpu.cloud.table_size, equal ? "bitwise equal to" : "DIFFERENT from");
     atmo_session_close(s);
     free(got);
     free(at_first);

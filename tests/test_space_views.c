@@ -299,11 +299,11 @@ static void check_fast(atmo_cl *cl, const double cam_r[2], double top_altitude_m
         atmo_plan pf, pm;
         test_sky_plan("fast", top_altitude_m, sun_zenith_deg[is], &pf);
         test_sky_plan("march", top_altitude_m, sun_zenith_deg[is], &pm);
-        pm.gpu.view_steps = pf.gpu.method_int[3]; /* the LUT's segments per ray */
+        pm.gpu.view_steps = pf.gpu.sky_view.steps; /* the LUT's segments per ray */
         const atmo_atmosphere *a = &pf.atmosphere;
         double top = a->top_radius_m;
         float r_c = pf.gpu.camera.local_up.w, mu_s_c = pf.gpu.sun_direction.y;
-        int W = pf.gpu.lut_dims[1][0], H = pf.gpu.lut_dims[1][1];
+        int W = pf.gpu.sky_view.width, H = pf.gpu.sky_view.height;
         CHECK(r_c == (float)top && W > 0 && 3 * W * H <= 4096 * 4096 / 64 && H <= 4096);
 
         double mu_s_e[N_SUN] = {mu_s_c, mu_s_c, mu_s_c, mu_s_c};

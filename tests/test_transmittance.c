@@ -42,7 +42,7 @@ int main(void)
     test_cl_open(&cl);
     cl_program prog = test_plan_program(&cl, &plan, probe);
     cl_mem b_scene = test_cl_buffer(&cl, sizeof plan.gpu, &plan.gpu);
-    cl_mem luts[ATMO_PLAN_LUTS];
+    cl_mem luts[ATMO_PLAN_MAX_BUFFERS];
     test_precompute(&cl, prog, b_scene, &plan, luts);
     cl_mem b_lut = luts[0];
 

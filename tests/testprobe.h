@@ -23,7 +23,7 @@ typedef struct test_probe {
     atmo_cl *cl;
     cl_program program;
     cl_mem scene;
-    cl_mem luts[ATMO_PLAN_LUTS];
+    cl_mem luts[ATMO_PLAN_MAX_BUFFERS];
 } test_probe;
 
 /* Build the plan's program with the probe kernel (cached binaries), upload the scene, run the

@@ -16,9 +16,15 @@ void test_plan(const atmo_scene *s, atmo_plan *p);
 void test_sky_plan(const char *method, double altitude_m, double sun_zenith_deg, atmo_plan *p);
 /* The plan's program plus a probe kernel. */
 cl_program test_plan_program(atmo_cl *cl, const atmo_plan *p, const char *extra);
-/* The plan's precompute passes into luts[] (allocated here; release with test_release_luts). */
+/* The plan's precompute passes into luts[] (allocated here, one per plan buffer in plan order,
+ * the rest NULL; release with test_release_luts). */
 void test_precompute(atmo_cl *cl, cl_program prog, cl_mem scene, const atmo_plan *p,
-                     cl_mem luts[ATMO_PLAN_LUTS]);
-void test_release_luts(cl_mem luts[ATMO_PLAN_LUTS]);
+                     cl_mem luts[ATMO_PLAN_MAX_BUFFERS]);
+/* Bind luts[0], luts[1], ... up to the first NULL as arguments 1, 2, ... of k (the kernel's
+ * ATMO_LUT_PARAMS); returns the index of the kernel's next argument. */
+int test_bind_buffers(cl_kernel k, cl_mem luts[ATMO_PLAN_MAX_BUFFERS]);
+/* The plan's buffer `name` in luts[] (exits 1 when the plan has none). */
+cl_mem test_plan_buffer(const atmo_plan *p, cl_mem luts[ATMO_PLAN_MAX_BUFFERS], const char *name);
+void test_release_luts(cl_mem luts[ATMO_PLAN_MAX_BUFFERS]);
 
 #endif

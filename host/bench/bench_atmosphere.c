@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/bench.h"
+#include "atmo/features.h"
 #include "atmo/probe.h"
 
 #define BENCH_MAX_ROWS 256
@@ -93,20 +94,13 @@ static int config_scene(const bench_config *c, double sun_zenith, atmo_scene *s,
     return ATMO_OK;
 }
 
-static int method_index(const char *name)
-{
-    for (int i = 0; i <= ATMO_METHOD_REFERENCE; i++)
-        if (strcmp(atmo_plan_methods[i].name, name) == 0)
-            return i;
-    return 0;
-}
-
 /* Largest relative error of the method over the reference rows. */
 static int config_error(const bench_config *c, const reference_row *rows, int n,
                           const char *device, double *worst, atmo_err *e)
 {
     *worst = 0.0;
-    int per_sun = atmo_plan_methods[method_index(c->method)].luts_follow_view;
+    const atmo_feature *method = atmo_feature_find(c->method);
+    int per_sun = method && method->luts_follow_view;
     for (int start = 0; start < n;) {
         /* one probe session for all rows, or one per sun zenith where the LUTs hold one sun */
         int end = start;

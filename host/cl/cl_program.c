@@ -19,9 +19,10 @@ static double now_seconds(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-char *atmo_cl_assemble(const char *const *fragments, int count, const char *extra, atmo_err *e)
+char *atmo_cl_assemble(const char *prelude, const char *const *fragments, int count,
+                       const char *extra, atmo_err *e)
 {
-    size_t total = 1 + (extra ? strlen(extra) + 32 : 0);
+    size_t total = 1 + (extra ? strlen(extra) + 32 : 0) + (prelude ? strlen(prelude) + 32 : 0);
     for (int i = 0; i < count; i++) {
         const struct atmo_embedded_file *f = atmo_embedded_find(atmo_kernel_sources, fragments[i]);
         if (!f) {
@@ -36,6 +37,8 @@ char *atmo_cl_assemble(const char *const *fragments, int count, const char *extr
         atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory assembling kernels");
         return NULL;
     }
+    if (prelude)
+        p += sprintf(p, "#line 1 \"plan\"\n%s", prelude);
     for (int i = 0; i < count; i++) {
         const struct atmo_embedded_file *f = atmo_embedded_find(atmo_kernel_sources, fragments[i]);
         p += sprintf(p, "#line 1 \"%s\"\n", f->name);
@@ -155,7 +158,7 @@ int atmo_cl_build(atmo_cl *cl, const atmo_cl_build_options *o, cl_program *progr
     int rc = ATMO_OK;
     char options[2048];
     snprintf(options, sizeof options, "%s %s", ATMO_CL_STD, o->defines ? o->defines : "");
-    char *src = atmo_cl_assemble(o->fragments, o->fragment_count, o->extra_source, e);
+    char *src = atmo_cl_assemble(o->prelude, o->fragments, o->fragment_count, o->extra_source, e);
     if (!src)
         return ATMO_ERR_RUNTIME;
 

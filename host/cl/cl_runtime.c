@@ -98,6 +98,7 @@ static void cl_describe(atmo_cl *cl, cl_platform_id p, cl_device_id d)
                           NULL) != CL_SUCCESS)
         snprintf(cl->platform_name, sizeof cl->platform_name, "?");
     cl_string(d, CL_DEVICE_NAME, cl->device_name, sizeof cl->device_name);
+    cl_string(d, CL_DEVICE_VENDOR, cl->device_vendor, sizeof cl->device_vendor);
     cl_string(d, CL_DRIVER_VERSION, cl->driver_version, sizeof cl->driver_version);
     cl_string(d, CL_DEVICE_VERSION, cl->device_version, sizeof cl->device_version);
     cl->type = 0;

@@ -1,15 +1,12 @@
-/* plan.c — scene -> device structs and kernel list (atmo/plan.h). */
+/* plan.c — scene -> device structs, the features it contains and their kernels, buffers and
+ * passes (atmo/plan.h, atmo/features.h). */
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 #include "atmo/colour.h"
+#include "atmo/features.h"
 #include "atmo/plan.h"
-#include "atmo/plan_cloud.h"
-#include "atmo/plan_fast.h"
-#include "atmo/plan_lut.h"
-#include "atmo/plan_march.h"
-#include "atmo/plan_reference.h"
 
 /* The layout the kernels see: OpenCL C aligns float4 to 16 bytes, as compat.h does on the host. */
 _Static_assert(sizeof(float4) == 16, "float4 must be 16 bytes");
@@ -18,14 +15,24 @@ _Static_assert(offsetof(atmo_gpu_atmosphere, bottom_radius) == 96, "atmo_gpu_atm
 _Static_assert(offsetof(atmo_gpu_atmosphere, sun_angular_radius) == 132, "atmo_gpu_atmosphere");
 _Static_assert(sizeof(atmo_gpu_camera) == 80, "atmo_gpu_camera layout");
 _Static_assert(offsetof(atmo_gpu_camera, kind) == 64, "atmo_gpu_camera layout");
+_Static_assert(sizeof(atmo_gpu_ms_lut) == 32, "atmo_gpu_ms_lut layout");
+_Static_assert(offsetof(atmo_gpu_ms_lut, higher_anisotropy) == 20, "atmo_gpu_ms_lut layout");
+_Static_assert(sizeof(atmo_gpu_sky_view) == 16, "atmo_gpu_sky_view layout");
+_Static_assert(sizeof(atmo_gpu_lut) == 32, "atmo_gpu_lut layout");
+_Static_assert(offsetof(atmo_gpu_lut, steps) == 16, "atmo_gpu_lut layout");
+_Static_assert(sizeof(atmo_gpu_reference) == 16, "atmo_gpu_reference layout");
+_Static_assert(sizeof(atmo_gpu_cloud) == 96, "atmo_gpu_cloud layout");
+_Static_assert(offsetof(atmo_gpu_cloud, base_m) == 64, "atmo_gpu_cloud layout");
+_Static_assert(offsetof(atmo_gpu_cloud, steps) == 84, "atmo_gpu_cloud layout");
 _Static_assert(offsetof(atmo_gpu_scene, camera) == 144, "atmo_gpu_scene layout");
 _Static_assert(offsetof(atmo_gpu_scene, sun_direction) == 224, "atmo_gpu_scene layout");
 _Static_assert(offsetof(atmo_gpu_scene, view_steps) == 272, "atmo_gpu_scene layout");
-_Static_assert(offsetof(atmo_gpu_scene, lut_dims) == 288, "atmo_gpu_scene layout");
-_Static_assert(offsetof(atmo_gpu_scene, method_float) == 352, "atmo_gpu_scene layout");
-_Static_assert(offsetof(atmo_gpu_scene, cloud_extinction) == 368, "atmo_gpu_scene layout");
-_Static_assert(offsetof(atmo_gpu_scene, cloud_phase) == 432, "atmo_gpu_scene layout");
-_Static_assert(sizeof(atmo_gpu_scene) == 448, "atmo_gpu_scene layout");
+_Static_assert(offsetof(atmo_gpu_scene, ms) == 288, "atmo_gpu_scene layout");
+_Static_assert(offsetof(atmo_gpu_scene, sky_view) == 320, "atmo_gpu_scene layout");
+_Static_assert(offsetof(atmo_gpu_scene, lut) == 336, "atmo_gpu_scene layout");
+_Static_assert(offsetof(atmo_gpu_scene, reference) == 368, "atmo_gpu_scene layout");
+_Static_assert(offsetof(atmo_gpu_scene, cloud) == 384, "atmo_gpu_scene layout");
+_Static_assert(sizeof(atmo_gpu_scene) == 480, "atmo_gpu_scene layout");
 
 #define DEG (M_PI / 180.0)
 
@@ -80,10 +87,10 @@ static void fill_camera(const atmo_scene *s, const atmo_atmosphere *a, atmo_gpu_
     if (s->camera.kind == ATMO_CAMERA_PANORAMA) {
         /* panoramas are level: horizontal forward and right, world up */
         atmo_camera_basis(0.0, s->camera.yaw_deg, forward, right, up);
-        c->kind = ATMO_GPU_CAMERA_PANORAMA;
+        c->kind = ATMO_CAMERA_PANORAMA;
     } else {
         atmo_camera_basis(s->camera.pitch_deg, s->camera.yaw_deg, forward, right, up);
-        c->kind = ATMO_GPU_CAMERA_PERSPECTIVE;
+        c->kind = ATMO_CAMERA_PERSPECTIVE;
     }
     c->forward = f4(forward, 0.0);
     c->right = f4(right, 0.0);
@@ -99,39 +106,23 @@ static void fill_camera(const atmo_scene *s, const atmo_atmosphere *a, atmo_gpu_
     c->tan_half_fov = (float)tan(0.5 * s->camera.fov_deg * DEG);
 }
 
-/* Method "single": single scattering only (kernels/atmosphere/method_single.h); no LUTs of its own. */
-static int plan_single(const atmo_scene *s, atmo_plan *p, atmo_err *e)
+static int append(char *dst, size_t size, const char *fmt, const char *a, const char *b,
+                  atmo_err *e)
 {
-    static const char *const fragments[] = {"kernels/atmosphere/sky_single.h", "kernels/atmosphere/method_single.h"};
-    return atmo_plan_add_fragments(p, fragments, 2, e);
+    size_t used = strlen(dst);
+    int n = snprintf(dst + used, size - used, fmt, a, b);
+    if (n < 0 || (size_t)n >= size - used)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "plan text overflows (a build bug)");
+    return ATMO_OK;
 }
 
-/* Methods in ATMO_METHOD_* order; NULL: not implemented yet. */
-const atmo_plan_method atmo_plan_methods[] = {
-    {"single", plan_single, 0},
-    {"march", atmo_plan_march, 0},
-    {"fast", atmo_plan_fast, 1}, /* the sky-view LUT is made for one camera and one sun */
-    {"lut", atmo_plan_lut, 0},
-    {"reference", atmo_plan_reference, 0},
-};
-
-const char *atmo_plan_available_methods(void)
+int atmo_plan_add_buffer(atmo_plan *p, const char *name, const char *type, size_t bytes,
+                         int follows_view, const void *host_data, atmo_err *e)
 {
-    static char list[128];
-    list[0] = 0;
-    for (size_t i = 0; i < sizeof atmo_plan_methods / sizeof atmo_plan_methods[0]; i++)
-        if (atmo_plan_methods[i].plan)
-            snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", list[0] ? ", " : "",
-                     atmo_plan_methods[i].name);
-    return list;
-}
-
-int atmo_plan_add_fragments(atmo_plan *p, const char *const *names, int count, atmo_err *e)
-{
-    if (p->fragment_count + count + 2 > ATMO_PLAN_MAX_FRAGMENTS)
-        return atmo_fail(e, ATMO_ERR_RUNTIME, "too many kernel fragments (a build bug)");
-    for (int i = 0; i < count; i++)
-        p->fragments[p->fragment_count++] = names[i];
+    if (p->buffer_count == ATMO_PLAN_MAX_BUFFERS)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "too many buffers (a build bug)");
+    atmo_plan_buffer b = {name, type, bytes, follows_view, host_data, p->feature_count - 1};
+    p->buffers[p->buffer_count++] = b;
     return ATMO_OK;
 }
 
@@ -140,9 +131,65 @@ int atmo_plan_add_pass(atmo_plan *p, const char *kernel, int width, int height, 
 {
     if (p->pass_count == ATMO_PLAN_MAX_PASSES)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "too many precompute passes (a build bug)");
-    atmo_plan_pass pass = {kernel, width, height, depth, arg, 0};
+    atmo_plan_pass pass = {kernel, width, height, depth, arg, p->feature_count - 1};
     p->passes[p->pass_count++] = pass;
     return ATMO_OK;
+}
+
+int atmo_plan_buffer_index(const atmo_plan *p, const char *name)
+{
+    for (int i = 0; i < p->buffer_count; i++)
+        if (strcmp(p->buffers[i].name, name) == 0)
+            return i;
+    return -1;
+}
+
+atmo_plan_buffer *atmo_plan_buffer_find(atmo_plan *p, const char *name)
+{
+    int i = atmo_plan_buffer_index(p, name);
+    return i < 0 ? NULL : &p->buffers[i];
+}
+
+/* One feature: its fragments, flags, then its plan function (struct, buffers, passes). */
+static int add_feature(const atmo_scene *s, const atmo_feature *f, atmo_plan *p, atmo_err *e)
+{
+    int rc;
+    if (p->feature_count == ATMO_PLAN_MAX_FEATURES)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "too many features (a build bug)");
+    p->features[p->feature_count++] = f;
+    for (const char *const *frag = f->fragments; *frag; frag++) {
+        if (p->fragment_count == ATMO_PLAN_MAX_FRAGMENTS)
+            return atmo_fail(e, ATMO_ERR_RUNTIME, "too many kernel fragments (a build bug)");
+        p->fragments[p->fragment_count++] = *frag;
+    }
+    if (f->defines[0] && (rc = append(p->defines, sizeof p->defines, "%s%s",
+                                      p->defines[0] ? " " : "", f->defines, e)))
+        return rc;
+    return f->plan ? f->plan(s, p, e) : ATMO_OK;
+}
+
+/* The buffer parameter and argument lists (plan.h), in buffer order. */
+static int make_prelude(atmo_plan *p, atmo_err *e)
+{
+    static const char *const heads[3] = {"ATMO_LUT_PARAMS", "ATMO_LUT_OUT_PARAMS",
+                                         "ATMO_LUT_ARGS"};
+    int rc = ATMO_OK;
+    p->prelude[0] = 0;
+    for (int m = 0; m < 3 && !rc; m++) {
+        rc = append(p->prelude, sizeof p->prelude, "#define %s%s", heads[m], "", e);
+        for (int i = 0; i < p->buffer_count && !rc; i++) {
+            const atmo_plan_buffer *b = &p->buffers[i];
+            if (m == 2)
+                rc = append(p->prelude, sizeof p->prelude, "%s%s", i ? ", " : " ", b->name, e);
+            else
+                rc = append(p->prelude, sizeof p->prelude, "%sATMO_GLOBAL %s",
+                            i ? ", " : " ", m == 0 ? "const " : "", e) ||
+                     append(p->prelude, sizeof p->prelude, "%s *%s", b->type, b->name, e);
+        }
+        if (!rc)
+            rc = append(p->prelude, sizeof p->prelude, "%s%s", "\n", "", e);
+    }
+    return rc;
 }
 
 int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e)
@@ -172,29 +219,16 @@ int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     g->transmittance_height = s->render.transmittance_height;
     g->seed = (uint)s->image.seed;
 
-    /* common fragments, then the method's, then the kernels that use them */
-    static const char *const common[] = {
-        "kernels/common/compat.h",   "include/atmo/gpu_types.h", "kernels/common/rng.h",
-        "kernels/common/geometry.h", "kernels/common/phase.h",          "kernels/atmosphere/atmosphere.h",
-        "kernels/common/camera.h",   "kernels/atmosphere/sky_method.h",
-    };
-    for (size_t i = 0; i < sizeof common / sizeof common[0]; i++)
-        p->fragments[p->fragment_count++] = common[i];
-    p->lut_bytes[0] = sizeof(float4) * (size_t)g->transmittance_width *
-                      (size_t)g->transmittance_height;
-    atmo_plan_pass transmittance = {"transmittance_lut", g->transmittance_width,
-                                    g->transmittance_height, 1, 0, 0};
-    p->passes[p->pass_count++] = transmittance;
-    const atmo_plan_method *m = &atmo_plan_methods[s->atmosphere.method];
-    p->method = m->name;
-    if (!m->plan)
-        return atmo_fail(e, ATMO_ERR_USAGE,
-                         "atmosphere.method=%s is not implemented yet (available: %s)", m->name,
+    const atmo_feature *m = atmo_feature_method(s->atmosphere.method);
+    if (!m)
+        return atmo_fail(e, ATMO_ERR_USAGE, "atmosphere.method is not implemented (available: %s)",
                          atmo_plan_available_methods());
-    if ((rc = m->plan(s, p, e)) || (rc = atmo_plan_cloud(s, p, e)))
+    p->method = m->name;
+    for (int i = 0; i < atmo_feature_count; i++)
+        if (atmo_features[i].wanted(s) && (rc = add_feature(s, &atmo_features[i], p, e)))
+            return rc;
+    if ((rc = make_prelude(p, e)))
         return rc;
-    p->fragments[p->fragment_count++] = "kernels/atmosphere/transmittance.cl";
-    p->fragments[p->fragment_count++] = "kernels/render/sky.cl";
     p->width = s->image.width;
     p->height = s->image.height;
     p->samples = s->image.samples;

@@ -5,9 +5,10 @@
  * LWC (1/m), the single-scattering albedo and the asymmetry g. The three 4pi-normalised tables
  * have their own angle grids (finer for the shorter wavelength, where x is larger); they are
  * resampled by linear interpolation onto the grid of the longest one and packed as float4 rows
- * (P_0, P_1, P_2, theta in radians), uploaded into LUT buffer 0 behind the transmittance LUT.
+ * (P_0, P_1, P_2, theta in radians) into the buffer cloud_phase_table (a host table: copied to
+ * the device before the passes; one zero row when the scene has an observer but no cloud).
  *
- * The packed rows must outlive the render (plan.h's uploads); the plan has no destructor, so they
+ * The packed rows must outlive the render (plan.h's host_data); the plan has no destructor, so they
  * are kept for the life of the process in a small list keyed by their parameters, which also
  * spares re-packing when a program plans the same cloud twice. */
 #include <math.h>
@@ -48,31 +49,11 @@ static int pack_tables(const mie_table t[3], float4 **out, int *count, atmo_err 
     return ATMO_OK;
 }
 
-/* Insert a fragment before the method's own (the first kernels/method_*.h). */
-static int insert_fragment(atmo_plan *p, const char *name, atmo_err *e)
-{
-    int at = p->fragment_count;
-    for (int i = 0; i < p->fragment_count; i++)
-        if (strncmp(p->fragments[i], "kernels/atmosphere/method_", 26) == 0) {
-            at = i;
-            break;
-        }
-    if (p->fragment_count + 3 > ATMO_PLAN_MAX_FRAGMENTS)
-        return atmo_fail(e, ATMO_ERR_RUNTIME, "too many kernel fragments (a build bug)");
-    memmove(&p->fragments[at + 1], &p->fragments[at],
-            sizeof p->fragments[0] * (size_t)(p->fragment_count - at));
-    p->fragments[at] = name;
-    p->fragment_count++;
-    return ATMO_OK;
-}
-
 int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 {
     int rc = ATMO_OK;
     mie_table t[3];
     memset(t, 0, sizeof t);
-    if (!s->cloud.enabled && !s->observer.enabled)
-        return ATMO_OK;
     if (s->atmosphere.method != ATMO_METHOD_SINGLE && s->atmosphere.method != ATMO_METHOD_MARCH)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "cloud.enabled/observer.enabled work with atmosphere.method=single or "
@@ -82,9 +63,9 @@ int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "cloud.top_m (%g) must be above cloud.bottom_m (%g); raise the top",
                          s->cloud.top_m, s->cloud.bottom_m);
-    atmo_gpu_scene *g = &p->gpu;
-    g->cloud_steps = ATMO_CLOUD_STEPS;
-    g->cloud_phase = s->cloud.phase;
+    atmo_gpu_cloud *g = &p->gpu.cloud;
+    g->steps = ATMO_CLOUD_STEPS;
+    g->phase = s->cloud.phase;
     if (s->observer.enabled) {
         float4 o = {(float)-s->observer.distance_m, (float)s->observer.height_m, 0.0f,
                     (float)s->observer.radius_m};
@@ -112,15 +93,15 @@ int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e)
             if ((rc = mie_water_index(lambda, &n, &k, e)) ||
                 (rc = mie_table_get(&d, lambda, n, k, &opt, 1, &t[i], NULL, e)))
                 goto cleanup;
-            (&g->cloud_extinction.x)[i] = (float)(t[i].bulk.sigma_ext_per_lwc * s->cloud.lwc_g_m3);
-            (&g->cloud_albedo.x)[i] = (float)t[i].bulk.albedo;
-            (&g->cloud_g.x)[i] = (float)t[i].bulk.g;
+            (&g->extinction.x)[i] = (float)(t[i].bulk.sigma_ext_per_lwc * s->cloud.lwc_g_m3);
+            (&g->albedo.x)[i] = (float)t[i].bulk.albedo;
+            (&g->g.x)[i] = (float)t[i].bulk.g;
             diameter_um = 2.0 * t[1].bulk.r_eff_um;
         }
         /* Jendersie-d'Eon's fit holds for 5-50 um */
-        g->cloud_g.w = (float)fmin(fmax(diameter_um, 5.0), 50.0);
-        g->cloud_extinction.w = (float)s->cloud.bottom_m;
-        g->cloud_albedo.w = (float)s->cloud.top_m;
+        g->diameter_um = (float)fmin(fmax(diameter_um, 5.0), 50.0);
+        g->base_m = (float)s->cloud.bottom_m;
+        g->top_m = (float)s->cloud.top_m;
         if (!kept) {
             if (!(kept = calloc(1, sizeof *kept))) {
                 rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory planning the cloud");
@@ -136,24 +117,16 @@ int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e)
             kept->next = cloud_rows_kept;
             cloud_rows_kept = kept;
         }
-        if (p->upload_count == ATMO_PLAN_MAX_UPLOADS) {
-            rc = atmo_fail(e, ATMO_ERR_RUNTIME, "too many plan uploads (a build bug)");
-            goto cleanup;
-        }
-        size_t offset = (p->lut_bytes[0] + 15) / 16 * 16;
-        atmo_plan_upload up = {0, offset, sizeof(float4) * (size_t)kept->count, kept->rows};
-        p->uploads[p->upload_count++] = up;
-        p->lut_bytes[0] = offset + up.bytes;
-        g->cloud_table_offset = (int)(offset / sizeof(float4));
-        g->cloud_table_size = kept->count;
+        rc = atmo_plan_add_buffer(p, "cloud_phase_table", "float4",
+                                  sizeof(float4) * (size_t)kept->count, 0, kept->rows, e);
+        g->table_size = kept->count;
     } else {
-        /* observer only: an empty shell at the ground */
-        g->cloud_extinction.w = g->cloud_albedo.w = 0.0f;
+        /* observer only: an empty shell at the ground; the table is one zero row, never read */
+        static const float4 zero_row;
+        g->base_m = g->top_m = 0.0f;
+        rc = atmo_plan_add_buffer(p, "cloud_phase_table", "float4", sizeof zero_row, 0,
+                                  &zero_row, e);
     }
-    if ((rc = insert_fragment(p, "kernels/media/cloud_shell.h", e)))
-        goto cleanup;
-    size_t used = strlen(p->defines);
-    snprintf(p->defines + used, sizeof p->defines - used, "%s-DATMO_CLOUD", used ? " " : "");
 cleanup:
     for (int i = 0; i < 3; i++)
         mie_table_free(&t[i]);

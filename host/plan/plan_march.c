@@ -1,9 +1,6 @@
-/* plan_march.c — method "march": the Psi_ms LUT (buffer a) and the per-pixel march
- * (atmo/plan_march.h). The LUT is small (14 planes of 64 x 32, three passes) and cheap, so it
- * is rebuilt per frame rather than cached. */
+/* plan_march.c — the Psi_ms LUT of methods "march" and "fast" (atmo/plan_march.h): its knobs
+ * (atmo_gpu_ms_lut), its buffer ms_lut (14 planes of 64 x 32) and its three passes. */
 #include <math.h>
-#include <stdio.h>
-#include <string.h>
 #include "atmo/plan_march.h"
 #include "common/phase.h"
 
@@ -30,34 +27,25 @@ static void mie_legendre(const atmo_gpu_atmosphere *a, float *g1, float *g2)
 
 int atmo_plan_ms_lut(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 {
-    static const char *const fragments[] = {"kernels/atmosphere/sky_single.h", "kernels/atmosphere/ms_lut.h",
-                                            "kernels/atmosphere/ms_lut.cl"};
-    int rc = atmo_plan_add_fragments(p, fragments, 3, e);
-    if (rc)
-        return rc;
-    /* sky_single.h's integrator compiles the multiple-scattering terms in */
-    size_t used = strlen(p->defines);
-    snprintf(p->defines + used, sizeof p->defines - used, "%s-DATMO_MS_LUT", used ? " " : "");
-    p->gpu.lut_dims[0][0] = ATMO_MS_LUT_WIDTH;
-    p->gpu.lut_dims[0][1] = ATMO_MS_LUT_HEIGHT;
-    p->gpu.method_int[0] = ATMO_MS_DIRECTIONS_MU;
-    p->gpu.method_int[1] = ATMO_MS_DIRECTIONS_PHI;
-    p->gpu.method_int[2] = ATMO_MS_STEPS;
-    p->gpu.method_float[0] = ATMO_MS_HIGHER_ANISOTROPY;
-    mie_legendre(&p->gpu.atmosphere, &p->gpu.method_float[1], &p->gpu.method_float[2]);
-    p->lut_bytes[1] = ATMO_MS_LUT_PLANES * sizeof(float4) * ATMO_MS_LUT_WIDTH * ATMO_MS_LUT_HEIGHT;
-    rc = atmo_plan_add_pass(p, "ms_lut", ATMO_MS_LUT_WIDTH, ATMO_MS_LUT_HEIGHT, 1, 0, e);
+    (void)s;
+    atmo_gpu_ms_lut *ms = &p->gpu.ms;
+    ms->width = ATMO_MS_LUT_WIDTH;
+    ms->height = ATMO_MS_LUT_HEIGHT;
+    ms->directions_mu = ATMO_MS_DIRECTIONS_MU;
+    ms->directions_phi = ATMO_MS_DIRECTIONS_PHI;
+    ms->steps = ATMO_MS_STEPS;
+    ms->higher_anisotropy = ATMO_MS_HIGHER_ANISOTROPY;
+    mie_legendre(&p->gpu.atmosphere, &ms->g1, &ms->g2);
+    int rc = atmo_plan_add_buffer(p, "ms_lut", "float4",
+                                  ATMO_MS_LUT_PLANES * sizeof(float4) * ATMO_MS_LUT_WIDTH *
+                                      ATMO_MS_LUT_HEIGHT,
+                                  0, NULL, e);
+    if (!rc)
+        rc = atmo_plan_add_pass(p, "ms_lut", ATMO_MS_LUT_WIDTH, ATMO_MS_LUT_HEIGHT, 1, 0, e);
     if (!rc)
         rc = atmo_plan_add_pass(p, "ms_lut_order3", ATMO_MS_LUT_WIDTH, ATMO_MS_LUT_HEIGHT, 1, 0,
                                 e);
     return rc ? rc
               : atmo_plan_add_pass(p, "ms_lut_second", ATMO_MS_LUT_WIDTH, ATMO_MS_LUT_HEIGHT, 1,
                                    0, e);
-}
-
-int atmo_plan_march(const atmo_scene *s, atmo_plan *p, atmo_err *e)
-{
-    static const char *const fragments[] = {"kernels/atmosphere/method_march.h"};
-    int rc = atmo_plan_ms_lut(s, p, e);
-    return rc ? rc : atmo_plan_add_fragments(p, fragments, 1, e);
 }

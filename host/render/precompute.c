@@ -1,29 +1,34 @@
-/* precompute.c — run the plan's precompute passes (atmo/render.h).
+/* precompute.c — the plan's named buffers, their precompute passes and their disk cache
+ * (atmo/render.h).
  *
- * Host tables (plan->uploads) are copied first; then the passes run. Every precompute kernel
- * takes (scene, lut0, lut1, lut2, lut3, int arg) (kernels/atmosphere/sky_method.h), so one loop runs any
- * method's passes: LUT sizes and the list of launches come from the plan.
- * 2-D passes use 8 x 8 work-groups and 3-D passes 4 x 4 x 4; global sizes are padded to them and
- * the kernels bounds-check.
+ * Every precompute kernel takes (scene, <the plan's buffers in plan order>, int arg)
+ * (atmo/plan.h's ATMO_LUT_OUT_PARAMS), so one loop runs any feature's passes. 2-D passes use
+ * 8 x 8 work-groups and 3-D passes 4 x 4 x 4; global sizes are padded to them and the kernels
+ * bounds-check. Host tables (a buffer's host_data) are copied in before any pass.
  *
- * Disk cache (plan->cache_luts): LUTs that took more than ATMO_LUT_CACHE_MIN_SECONDS to compute
- * are stored in the cache directory under a 64-bit FNV-1a hash of everything they can depend on
- * (the kernel sources and -D flags, the device struct of the scene byte for byte without the
- * camera, the sun and the output factors, the LUT sizes, the passes and the uploaded tables),
- * and loaded instead of recomputed next time, so every view of one atmosphere shares them.
- * Buffers that hold one camera and sun (plan->lut_follows_view, e.g. a sky-view LUT) are never
- * stored; the passes that write them (follows_view) run after a load too. Cheap LUTs are not
- * stored: writing them would cost more than it saves. */
+ * Cache: the unit is one feature's buffers (the products of its passes), stored as
+ *   "<feature>-<key>.bin" = magic, key, buffer count, each buffer's size, the payloads, and a
+ *   64-bit FNV-1a checksum of the payloads,
+ * under the key of exactly its inputs (atmo_product_key), so editing sky.cl, changing
+ * render.view_steps, the camera or the sun keeps the `lut` tables, while another device or
+ * driver, another atmosphere or another source of the passes computes them anew. A file is used
+ * only when the magic, the key, the sizes, the checksum and its length all verify; a file that
+ * exists but does not verify is reported on stderr, recomputed and rewritten. Features whose
+ * buffers follow the view (fast's sky-view LUT) are never cached. Stores go through a temporary
+ * file and a rename, so a reader never sees half a file. */
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 #include "atmo/embedded.h"
+#include "atmo/features.h"
 #include "atmo/fileio.h"
 #include "atmo/render.h"
 
 #define ATMO_LUT_CACHE_MIN_SECONDS 0.5
-#define ATMO_LUT_CACHE_MAGIC "atmo-luts-1"
+#define CACHE_MAGIC "atmo-product-2"
+#define FNV_BASIS 1469598103934665603ull
 
 static double now_seconds(void)
 {
@@ -44,175 +49,303 @@ static unsigned long long fnv(unsigned long long h, const void *data, size_t n)
     return h;
 }
 
-static unsigned long long lut_key(const atmo_plan *plan)
+/* A string with its terminator, so "ab" + "c" differs from "a" + "bc". */
+static unsigned long long fnv_str(unsigned long long h, const char *s)
 {
-    unsigned long long h = 1469598103934665603ull;
-    for (int i = 0; i < plan->fragment_count; i++) {
-        const struct atmo_embedded_file *f = atmo_embedded_find(atmo_kernel_sources,
-                                                                plan->fragments[i]);
-        if (f)
-            h = fnv(h, f->text, f->size);
+    return fnv(h, s ? s : "", strlen(s ? s : "") + 1);
+}
+
+static int feature_index(const atmo_plan *plan, const char *name)
+{
+    for (int i = 0; i < plan->feature_count; i++)
+        if (strcmp(plan->features[i]->name, name) == 0)
+            return i;
+    return -1;
+}
+
+unsigned long long atmo_product_key(const atmo_plan *plan, int feature,
+                                    const atmo_device_identity *device,
+                                    const struct atmo_embedded_file *sources)
+{
+    const atmo_feature *f = plan->features[feature];
+    unsigned long long h = fnv_str(FNV_BASIS, CACHE_MAGIC);
+    h = fnv_str(h, device->name);
+    h = fnv_str(h, device->vendor);
+    h = fnv_str(h, device->driver);
+    h = fnv_str(h, f->name);
+    h = fnv_str(h, f->defines);
+    for (const char *const *src = f->sources; src && *src; src++) {
+        const struct atmo_embedded_file *text = atmo_embedded_find(sources, *src);
+        h = fnv_str(h, *src);
+        if (text)
+            h = fnv(h, text->text, text->size);
     }
-    h = fnv(h, plan->defines, strlen(plan->defines));
-    /* cached LUTs serve any ray: the camera, the sun and the output factors stay out of the key */
-    atmo_gpu_scene g = plan->gpu;
-    memset(&g.camera, 0, sizeof g.camera);
-    memset(&g.sun_direction, 0, sizeof g.sun_direction);
-    memset(&g.sky_factor, 0, sizeof g.sky_factor);
-    memset(&g.sun_factor, 0, sizeof g.sun_factor);
-    g.seed = 0;
-    h = fnv(h, &g, sizeof g);
-    h = fnv(h, plan->lut_bytes, sizeof plan->lut_bytes);
-    for (int p = 0; p < plan->pass_count; p++) {
-        const atmo_plan_pass *pass = &plan->passes[p];
-        if (pass->follows_view)
+    for (const atmo_gpu_field *p = f->params; p && p->size; p++)
+        h = fnv(h, (const char *)&plan->gpu + p->offset, p->size);
+    for (int i = 0; i < plan->buffer_count; i++) {
+        const atmo_plan_buffer *b = &plan->buffers[i];
+        if (b->feature != feature)
             continue;
-        h = fnv(h, pass->kernel, strlen(pass->kernel));
+        uint64_t bytes = b->bytes;
+        h = fnv_str(h, b->name);
+        h = fnv_str(h, b->type);
+        h = fnv(h, &bytes, sizeof bytes);
+        if (b->host_data)
+            h = fnv(h, b->host_data, b->bytes);
+    }
+    for (int i = 0; i < plan->pass_count; i++) {
+        const atmo_plan_pass *pass = &plan->passes[i];
+        if (pass->feature != feature)
+            continue;
         int dims[4] = {pass->width, pass->height, pass->depth, pass->arg};
+        h = fnv_str(h, pass->kernel);
         h = fnv(h, dims, sizeof dims);
     }
-    for (int u = 0; u < plan->upload_count; u++)
-        h = fnv(h, plan->uploads[u].data, plan->uploads[u].bytes);
+    for (const char *const *need = f->needs; need && *need; need++) {
+        int j = feature_index(plan, *need);
+        unsigned long long k = j >= 0 ? atmo_product_key(plan, j, device, sources) : 0;
+        h = fnv(h, &k, sizeof k);
+    }
     return h;
 }
 
-static void lut_path(const atmo_plan *plan, char *path, size_t size, int *ok)
+/* The feature owns a buffer that holds one camera and sun (e.g. fast's sky-view LUT). */
+static int follows_view(const atmo_plan *plan, int feature)
 {
-    char dir[1024];
-    *ok = plan->cache_luts && atmo_cache_dir(dir, sizeof dir) == 0;
-    if (*ok)
-        snprintf(path, size, "%s/luts-%016llx.bin", dir, lut_key(plan));
+    for (int i = 0; i < plan->buffer_count; i++)
+        if (plan->buffers[i].feature == feature && plan->buffers[i].follows_view)
+            return 1;
+    return 0;
 }
 
-/* Fill the LUT buffers from a cache file; 0 on success. */
-static int lut_load(atmo_cl *cl, const atmo_plan *plan, const char *path,
-                      cl_mem luts[ATMO_PLAN_LUTS])
+/* A feature's buffers can be cached: it has passes and none of its buffers follows the view. */
+static int cacheable(const atmo_plan *plan, int feature)
+{
+    int passes = 0, data = 0;
+    for (int i = 0; i < plan->pass_count; i++)
+        passes += plan->passes[i].feature == feature;
+    for (int i = 0; i < plan->buffer_count; i++)
+        if (plan->buffers[i].feature == feature)
+            data += plan->buffers[i].bytes > 0;
+    return passes > 0 && data > 0 && !follows_view(plan, feature) && plan->features[feature]->sources != NULL;
+}
+
+/* The feature's buffers in plan order (indices into plan->buffers); returns their count. */
+static int feature_buffers(const atmo_plan *plan, int feature, int out[ATMO_PLAN_MAX_BUFFERS])
+{
+    int n = 0;
+    for (int i = 0; i < plan->buffer_count; i++)
+        if (plan->buffers[i].feature == feature && plan->buffers[i].bytes > 0)
+            out[n++] = i;
+    return n;
+}
+
+/* Fill a feature's buffers from its cache file: 0 loaded, 1 no file, -1 damaged (why says
+ * what failed), -2 an OpenCL error. Nothing is written to a buffer unless all of it verifies. */
+static int cache_load(atmo_cl *cl, const atmo_plan *plan, int feature, unsigned long long key,
+                      const char *path, cl_mem buffers[], const char **why)
 {
     FILE *f = fopen(path, "rb");
     if (!f)
-        return -1;
-    char magic[sizeof ATMO_LUT_CACHE_MAGIC];
-    size_t bytes[ATMO_PLAN_LUTS];
-    int rc = fread(magic, sizeof magic, 1, f) == 1 && fread(bytes, sizeof bytes, 1, f) == 1 &&
-                     memcmp(magic, ATMO_LUT_CACHE_MAGIC, sizeof magic) == 0 &&
-                     memcmp(bytes, plan->lut_bytes, sizeof bytes) == 0
-                 ? 0
-                 : -1;
-    for (int i = 0; i < ATMO_PLAN_LUTS && rc == 0; i++) {
-        if (!bytes[i] || plan->lut_follows_view[i])
-            continue;
-        void *data = malloc(bytes[i]);
-        rc = data && fread(data, bytes[i], 1, f) == 1 &&
-                     clEnqueueWriteBuffer(cl->queue, luts[i], CL_TRUE, 0, bytes[i], data, 0,
-                                          NULL, NULL) == CL_SUCCESS
-                 ? 0
-                 : -1;
-        free(data);
+        return 1;
+    int idx[ATMO_PLAN_MAX_BUFFERS], n = feature_buffers(plan, feature, idx), rc = 0;
+    void *data[ATMO_PLAN_MAX_BUFFERS] = {NULL};
+    char magic[sizeof CACHE_MAGIC];
+    uint64_t file_key, sizes[ATMO_PLAN_MAX_BUFFERS], sum, want = FNV_BASIS;
+    uint32_t count;
+    *why = "";
+    if (fread(magic, sizeof magic, 1, f) != 1 || memcmp(magic, CACHE_MAGIC, sizeof magic) != 0)
+        *why = "not a cache file", rc = -1;
+    else if (fread(&file_key, sizeof file_key, 1, f) != 1 || file_key != key)
+        *why = "its key does not match its name", rc = -1;
+    else if (fread(&count, sizeof count, 1, f) != 1 || count != (uint32_t)n ||
+             fread(sizes, sizeof sizes[0], (size_t)n, f) != (size_t)n)
+        *why = "wrong number of buffers", rc = -1;
+    for (int i = 0; i < n && rc == 0; i++) {
+        if (sizes[i] != plan->buffers[idx[i]].bytes) {
+            *why = "wrong buffer size", rc = -1;
+            break;
+        }
+        data[i] = malloc(sizes[i]);
+        if (!data[i] || fread(data[i], sizes[i], 1, f) != 1)
+            *why = data[i] ? "truncated" : "out of memory", rc = -1;
+        else
+            want = fnv(want, data[i], sizes[i]);
     }
+    if (rc == 0 && (fread(&sum, sizeof sum, 1, f) != 1 || sum != want))
+        *why = "checksum mismatch", rc = -1;
+    if (rc == 0 && fgetc(f) != EOF)
+        *why = "trailing bytes", rc = -1;
+    for (int i = 0; i < n && rc == 0; i++)
+        if (clEnqueueWriteBuffer(cl->queue, buffers[idx[i]], CL_TRUE, 0, sizes[i], data[i], 0,
+                                 NULL, NULL) != CL_SUCCESS)
+            rc = -2;
+    for (int i = 0; i < n; i++)
+        free(data[i]);
     fclose(f);
     return rc;
 }
 
-/* Store the LUT buffers; a failure only costs the next run a precompute. */
-static void lut_store(atmo_cl *cl, const atmo_plan *plan, const char *path,
-                        cl_mem luts[ATMO_PLAN_LUTS])
+/* Store a feature's buffers; a failure only costs the next run a precompute. */
+static void cache_store(atmo_cl *cl, const atmo_plan *plan, int feature, unsigned long long key,
+                        const char *path, cl_mem buffers[])
 {
+    int idx[ATMO_PLAN_MAX_BUFFERS], n = feature_buffers(plan, feature, idx);
     char tmp[ATMO_TMP_PATH_MAX];
     FILE *f = atmo_atomic_open(path, tmp, NULL);
     if (!f)
         return;
-    int ok = fwrite(ATMO_LUT_CACHE_MAGIC, sizeof ATMO_LUT_CACHE_MAGIC, 1, f) == 1 &&
-             fwrite(plan->lut_bytes, sizeof plan->lut_bytes, 1, f) == 1;
-    for (int i = 0; i < ATMO_PLAN_LUTS && ok; i++) {
-        if (!plan->lut_bytes[i] || plan->lut_follows_view[i])
-            continue;
-        void *data = malloc(plan->lut_bytes[i]);
+    uint64_t file_key = key, sizes[ATMO_PLAN_MAX_BUFFERS], sum = FNV_BASIS;
+    uint32_t count = (uint32_t)n;
+    for (int i = 0; i < n; i++)
+        sizes[i] = plan->buffers[idx[i]].bytes;
+    int ok = fwrite(CACHE_MAGIC, sizeof CACHE_MAGIC, 1, f) == 1 &&
+             fwrite(&file_key, sizeof file_key, 1, f) == 1 &&
+             fwrite(&count, sizeof count, 1, f) == 1 &&
+             fwrite(sizes, sizeof sizes[0], (size_t)n, f) == (size_t)n;
+    for (int i = 0; i < n && ok; i++) {
+        void *data = malloc(sizes[i]);
         ok = data &&
-             clEnqueueReadBuffer(cl->queue, luts[i], CL_TRUE, 0, plan->lut_bytes[i], data, 0,
-                                 NULL, NULL) == CL_SUCCESS &&
-             fwrite(data, plan->lut_bytes[i], 1, f) == 1;
+             clEnqueueReadBuffer(cl->queue, buffers[idx[i]], CL_TRUE, 0, sizes[i], data, 0, NULL,
+                                 NULL) == CL_SUCCESS &&
+             fwrite(data, sizes[i], 1, f) == 1;
+        if (ok)
+            sum = fnv(sum, data, sizes[i]);
         free(data);
     }
-    if (ok)
+    if (ok && fwrite(&sum, sizeof sum, 1, f) == 1)
         atmo_atomic_commit(f, tmp, path, NULL);
     else
         atmo_atomic_abort(f, tmp);
 }
 
-/* One pass: kernel(scene, lut0..lut3, arg) over its padded global size. */
-static int run_pass(atmo_cl *cl, cl_program program, const atmo_plan_pass *pass, cl_mem scene,
-                    cl_mem luts[ATMO_PLAN_LUTS], atmo_err *e)
+static int run_pass(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_mem scene,
+                    cl_mem buffers[], const atmo_plan_pass *pass, atmo_err *e)
 {
     cl_int err;
     cl_kernel k = clCreateKernel(program, pass->kernel, &err);
     if (err != CL_SUCCESS)
         return atmo_cl_fail(e, "clCreateKernel(precompute)", err);
+    int rc = ATMO_OK;
+    int next = 0;
     err = clSetKernelArg(k, 0, sizeof scene, &scene);
-    for (int i = 0; i < ATMO_PLAN_LUTS && err == CL_SUCCESS; i++)
-        err = clSetKernelArg(k, 1 + i, sizeof luts[i], &luts[i]);
-    if (err == CL_SUCCESS)
-        err = clSetKernelArg(k, 1 + ATMO_PLAN_LUTS, sizeof pass->arg, &pass->arg);
-    int three_d = pass->depth > 1;
-    size_t local[3] = {three_d ? 4 : 8, three_d ? 4 : 8, three_d ? 4 : 1};
-    size_t global[3] = {pad_to(pass->width, local[0]), pad_to(pass->height, local[1]),
-                        pad_to(pass->depth, local[2])};
-    if (err == CL_SUCCESS)
+    if (err != CL_SUCCESS)
+        rc = atmo_cl_fail(e, "clSetKernelArg(precompute)", err);
+    else if ((next = atmo_bind_buffers(k, 1, plan, buffers, e)) < 0)
+        rc = ATMO_ERR_RUNTIME;
+    else if ((err = clSetKernelArg(k, (cl_uint)next, sizeof pass->arg, &pass->arg)) != CL_SUCCESS)
+        rc = atmo_cl_fail(e, "clSetKernelArg(precompute)", err);
+    if (!rc) {
+        int three_d = pass->depth > 1;
+        size_t local[3] = {three_d ? 4 : 8, three_d ? 4 : 8, three_d ? 4 : 1};
+        size_t global[3] = {pad_to(pass->width, local[0]), pad_to(pass->height, local[1]),
+                            pad_to(pass->depth, local[2])};
         err = clEnqueueNDRangeKernel(cl->queue, k, three_d ? 3 : 2, NULL, global, local, 0, NULL,
                                      NULL);
+        if (err != CL_SUCCESS)
+            rc = atmo_cl_fail(e, pass->kernel, err);
+    }
     clReleaseKernel(k);
-    if (err != CL_SUCCESS)
-        return atmo_cl_fail(e, pass->kernel, err);
-    return ATMO_OK;
+    return rc;
+}
+
+int atmo_bind_buffers(cl_kernel k, int first_arg, const atmo_plan *plan,
+                      cl_mem buffers[ATMO_PLAN_MAX_BUFFERS], atmo_err *e)
+{
+    for (int i = 0; i < plan->buffer_count; i++) {
+        cl_int err = clSetKernelArg(k, (cl_uint)(first_arg + i), sizeof buffers[i], &buffers[i]);
+        if (err != CL_SUCCESS) {
+            atmo_cl_fail(e, "clSetKernelArg(buffer)", err);
+            return -1;
+        }
+    }
+    return first_arg + plan->buffer_count;
+}
+
+void atmo_release_buffers(cl_mem buffers[ATMO_PLAN_MAX_BUFFERS])
+{
+    for (int i = ATMO_PLAN_MAX_BUFFERS - 1; i >= 0; i--)
+        if (buffers[i]) {
+            clReleaseMemObject(buffers[i]);
+            buffers[i] = NULL;
+        }
 }
 
 int atmo_precompute(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_mem scene,
-                    cl_mem luts[ATMO_PLAN_LUTS], atmo_precompute_info *info, atmo_err *e)
+                    cl_mem buffers[ATMO_PLAN_MAX_BUFFERS], atmo_precompute_info *info,
+                    atmo_err *e)
 {
     double t0 = now_seconds();
     cl_int err;
-    char path[1200];
-    int cacheable;
-    info->cache_hit = 0;
-    for (int i = 0; i < ATMO_PLAN_LUTS; i++) {
-        size_t bytes = plan->lut_bytes[i] ? plan->lut_bytes[i] : 16;
-        luts[i] = clCreateBuffer(cl->context, CL_MEM_READ_WRITE, bytes, NULL, &err);
+    int rc, cacheables = 0;
+    char dir[1024];
+    int use_cache = plan->cache_luts && atmo_cache_dir(dir, sizeof dir) == 0;
+    atmo_device_identity device = {cl->device_name, cl->device_vendor, cl->driver_version};
+    memset(info, 0, sizeof *info);
+    for (int i = 0; i < ATMO_PLAN_MAX_BUFFERS; i++)
+        buffers[i] = NULL;
+    for (int i = 0; i < plan->buffer_count; i++) {
+        const atmo_plan_buffer *b = &plan->buffers[i];
+        buffers[i] = clCreateBuffer(cl->context, CL_MEM_READ_WRITE, b->bytes ? b->bytes : 16, NULL,
+                                    &err);
         if (err != CL_SUCCESS)
-            return atmo_cl_fail(e, "clCreateBuffer(LUT)", err);
-    }
-    lut_path(plan, path, sizeof path, &cacheable);
-    info->cache_hit = cacheable && lut_load(cl, plan, path, luts) == 0;
-    for (int u = 0; u < plan->upload_count && !info->cache_hit; u++) {
-        const atmo_plan_upload *up = &plan->uploads[u];
-        err = clEnqueueWriteBuffer(cl->queue, luts[up->lut], CL_FALSE, up->offset, up->bytes,
-                                   up->data, 0, NULL, NULL);
-        if (err != CL_SUCCESS)
+            return atmo_cl_fail(e, "clCreateBuffer(buffer)", err);
+        if (b->host_data && (err = clEnqueueWriteBuffer(cl->queue, buffers[i], CL_FALSE, 0,
+                                                        b->bytes, b->host_data, 0, NULL,
+                                                        NULL)) != CL_SUCCESS)
             return atmo_cl_fail(e, "clEnqueueWriteBuffer(table)", err);
     }
-    for (int p = 0; p < plan->pass_count; p++) {
-        const atmo_plan_pass *pass = &plan->passes[p];
-        if (info->cache_hit && !pass->follows_view)
-            continue;
-        int rc = run_pass(cl, program, pass, scene, luts, e);
-        if (rc)
-            return rc;
+    for (int f = 0; f < plan->feature_count; f++) {
+        int cached = use_cache && cacheable(plan, f), damaged = 0;
+        unsigned long long key = 0;
+        char path[1200];
+        cacheables += cacheable(plan, f);
+        if (cached) {
+            const char *why;
+            key = atmo_product_key(plan, f, &device, atmo_kernel_sources);
+            snprintf(path, sizeof path, "%s/%s-%016llx.bin", dir, plan->features[f]->name, key);
+            int loaded = cache_load(cl, plan, f, key, path, buffers, &why);
+            if (loaded == -2)
+                return atmo_fail(e, ATMO_ERR_RUNTIME, "clEnqueueWriteBuffer(cached %s) failed",
+                                 plan->features[f]->name);
+            if (loaded == 0) {
+                info->loaded++;
+                continue;
+            }
+            if (loaded == -1) {
+                fprintf(stderr, "atmo: cache file %s is damaged (%s); recomputing it\n", path,
+                        why);
+                info->damaged++;
+                damaged = 1;
+            }
+        }
+        double tf = now_seconds();
+        for (int p = 0; p < plan->pass_count; p++)
+            if (plan->passes[p].feature == f &&
+                (rc = run_pass(cl, program, plan, scene, buffers, &plan->passes[p], e)))
+                return rc;
+        if ((err = clFinish(cl->queue)) != CL_SUCCESS)
+            return atmo_cl_fail(e, "clFinish(precompute)", err);
+        info->computed += cacheable(plan, f);
+        if (cached && (damaged || plan->cache_luts == 2 ||
+                       now_seconds() - tf > ATMO_LUT_CACHE_MIN_SECONDS))
+            cache_store(cl, plan, f, key, path, buffers);
     }
     err = clFinish(cl->queue);
     if (err != CL_SUCCESS)
         return atmo_cl_fail(e, "clFinish(precompute)", err);
+    info->cache_hit = cacheables > 0 && info->loaded == cacheables;
     info->seconds = now_seconds() - t0;
-    if (cacheable && !info->cache_hit &&
-        (info->seconds > ATMO_LUT_CACHE_MIN_SECONDS || plan->cache_luts == 2))
-        lut_store(cl, plan, path, luts);
     return ATMO_OK;
 }
 
 int atmo_precompute_view(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_mem scene,
-                         cl_mem luts[ATMO_PLAN_LUTS], double *seconds, atmo_err *e)
+                         cl_mem buffers[ATMO_PLAN_MAX_BUFFERS], double *seconds, atmo_err *e)
 {
     double t0 = now_seconds();
     for (int p = 0; p < plan->pass_count; p++) {
-        int rc = plan->passes[p].follows_view
-                     ? run_pass(cl, program, &plan->passes[p], scene, luts, e)
+        int rc = follows_view(plan, plan->passes[p].feature)
+                     ? run_pass(cl, program, plan, scene, buffers, &plan->passes[p], e)
                      : ATMO_OK;
         if (rc)
             return rc;

@@ -22,7 +22,7 @@ struct atmo_session {
     int cl_open;
     cl_program program;
     cl_kernel render;
-    cl_mem scene, luts[ATMO_PLAN_LUTS];
+    cl_mem scene, buffers[ATMO_PLAN_MAX_BUFFERS]; /* the plan's named buffers, in plan order */
     cl_mem accum, accum_sq, nonfinite; /* created at the first step or read */
     atmo_plan plan;
     atmo_render_settings settings;
@@ -88,19 +88,14 @@ static void report_progress(atmo_session *s, int target, int finished)
 
 int atmo_session_bind(const atmo_session *s, cl_kernel k, cl_uint *arg, atmo_err *e)
 {
-    cl_int err = clSetKernelArg(k, (*arg)++, sizeof s->scene, &s->scene);
-    for (int i = 0; i < ATMO_PLAN_LUTS && err == CL_SUCCESS; i++)
-        err = clSetKernelArg(k, (*arg)++, sizeof s->luts[i], &s->luts[i]);
-    return err == CL_SUCCESS ? ATMO_OK : atmo_cl_fail(e, "clSetKernelArg(scene and LUTs)", err);
-}
-
-static void release_luts(atmo_session *s)
-{
-    for (int i = ATMO_PLAN_LUTS - 1; i >= 0; i--) {
-        if (s->luts[i])
-            clReleaseMemObject(s->luts[i]);
-        s->luts[i] = NULL;
-    }
+    cl_int err = clSetKernelArg(k, *arg, sizeof s->scene, &s->scene);
+    if (err != CL_SUCCESS)
+        return atmo_cl_fail(e, "clSetKernelArg(scene)", err);
+    int next = atmo_bind_buffers(k, (int)*arg + 1, &s->plan, (cl_mem *)s->buffers, e);
+    if (next < 0)
+        return ATMO_ERR_RUNTIME;
+    *arg = (cl_uint)next;
+    return ATMO_OK;
 }
 
 /* Upload the plan's scene struct, then every precompute pass (LUTs from the cache if keyed). */
@@ -110,9 +105,9 @@ static int precompute_all(atmo_session *s, atmo_err *e)
                                       &s->plan.gpu, 0, NULL, NULL);
     if (err != CL_SUCCESS)
         return atmo_cl_fail(e, "clEnqueueWriteBuffer(scene)", err);
-    release_luts(s);
+    atmo_release_buffers(s->buffers);
     atmo_precompute_info pi;
-    int rc = atmo_precompute(&s->cl, s->program, &s->plan, s->scene, s->luts, &pi, e);
+    int rc = atmo_precompute(&s->cl, s->program, &s->plan, s->scene, s->buffers, &pi, e);
     if (rc)
         return rc;
     s->info.seconds_precompute += pi.seconds;
@@ -193,7 +188,7 @@ int atmo_session_open(atmo_session **out, const atmo_plan *plan, const atmo_rend
     s->info.seconds_device = now_seconds() - t0;
 
     atmo_cl_build_options bo = {plan->fragments, plan->fragment_count, plan->defines,
-                                rs->dump_dir, rs->use_kernel_cache, NULL};
+                                rs->dump_dir, rs->use_kernel_cache, NULL, plan->prelude};
     atmo_cl_build_info bi;
     if ((rc = atmo_cl_build(&s->cl, &bo, &s->program, &bi, e)))
         goto cleanup;
@@ -228,7 +223,7 @@ void atmo_session_close(atmo_session *s)
         clReleaseMemObject(s->accum_sq);
     if (s->accum)
         clReleaseMemObject(s->accum);
-    release_luts(s);
+    atmo_release_buffers(s->buffers);
     if (s->scene)
         clReleaseMemObject(s->scene);
     if (s->render)
@@ -245,7 +240,7 @@ void atmo_session_close(atmo_session *s)
 static int launch(atmo_session *s, const atmo_tile *t, atmo_err *e)
 {
     cl_uint begin = (cl_uint)t->sample_begin, count = (cl_uint)t->sample_count;
-    cl_uint arg = 1 + ATMO_PLAN_LUTS + 3;
+    cl_uint arg = 1 + (cl_uint)s->plan.buffer_count + 3;
     cl_int err = clSetKernelArg(s->render, arg++, sizeof(int), &t->x);
     if (err == CL_SUCCESS)
         err = clSetKernelArg(s->render, arg++, sizeof(int), &t->y);
@@ -312,7 +307,8 @@ int atmo_session_step(atmo_session *s, const atmo_step *step, atmo_step_status *
 static int check_program(const atmo_session *s, const atmo_plan *p, atmo_err *e)
 {
     int same = p->fragment_count == s->plan.fragment_count &&
-               strcmp(p->defines, s->plan.defines) == 0 && p->width == s->plan.width &&
+               strcmp(p->defines, s->plan.defines) == 0 &&
+               strcmp(p->prelude, s->plan.prelude) == 0 && p->width == s->plan.width &&
                p->height == s->plan.height;
     for (int i = 0; same && i < p->fragment_count; i++)
         same = strcmp(p->fragments[i], s->plan.fragments[i]) == 0;
@@ -332,9 +328,12 @@ int atmo_session_set_view(atmo_session *s, const atmo_plan *plan, atmo_err *e)
     atmo_gpu_scene g = plan->gpu;
     g.camera = s->plan.gpu.camera;
     g.sun_direction = s->plan.gpu.sun_direction;
-    g.observer = s->plan.gpu.observer;
-    if (memcmp(&g, &s->plan.gpu, sizeof g) != 0 || plan->pass_count != s->plan.pass_count ||
-        memcmp(plan->lut_bytes, s->plan.lut_bytes, sizeof plan->lut_bytes) != 0)
+    g.cloud.observer = s->plan.gpu.cloud.observer;
+    int same = memcmp(&g, &s->plan.gpu, sizeof g) == 0 && plan->pass_count == s->plan.pass_count &&
+               plan->buffer_count == s->plan.buffer_count;
+    for (int i = 0; same && i < plan->buffer_count; i++)
+        same = plan->buffers[i].bytes == s->plan.buffers[i].bytes;
+    if (!same)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "the new plan changes more than the camera and the sun; use "
                          "atmo_session_set_scene for it");
@@ -344,7 +343,7 @@ int atmo_session_set_view(atmo_session *s, const atmo_plan *plan, atmo_err *e)
     if (err != CL_SUCCESS)
         return atmo_cl_fail(e, "clEnqueueWriteBuffer(scene)", err);
     double seconds;
-    if ((rc = atmo_precompute_view(&s->cl, s->program, &s->plan, s->scene, s->luts, &seconds, e)))
+    if ((rc = atmo_precompute_view(&s->cl, s->program, &s->plan, s->scene, s->buffers, &seconds, e)))
         return rc;
     s->info.seconds_precompute += seconds;
     return s->accum ? restart(s, e) : ATMO_OK;

@@ -16,7 +16,7 @@
 #ifndef ATMO_ATMOSPHERE_H
 #define ATMO_ATMOSPHERE_H
 
-enum { ATMO_PHASE_CORNETTE_SHANKS = 0, ATMO_PHASE_HENYEY_GREENSTEIN = 1 };
+#include "atmo/gpu_enums.h"
 
 typedef struct atmo_atmosphere {
     double wavelengths_nm[3];
@@ -27,7 +27,7 @@ typedef struct atmo_atmosphere {
     double mie_extinction_per_m[3];
     double mie_scale_height_m;
     double mie_g;
-    int mie_phase; /* ATMO_PHASE_* */
+    int mie_phase; /* ATMO_PHASE_* (gpu_enums.h) */
     double ozone_absorption_per_m[3]; /* at the peak of the tent */
     double ozone_bottom_m, ozone_peak_m, ozone_top_m;
     double ground_albedo[3];

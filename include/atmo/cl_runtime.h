@@ -24,6 +24,7 @@ typedef struct atmo_cl {
     cl_command_queue queue;
     char platform_name[256];
     char device_name[256];
+    char device_vendor[256];
     char driver_version[128];
     char device_version[128];
     cl_device_type type;
@@ -40,6 +41,8 @@ typedef struct atmo_cl_build_options {
     const char *dump_dir;         /* --dump-kernels DIR, or NULL */
     int use_cache;                /* 0 with --no-kernel-cache */
     const char *extra_source;     /* appended after the fragments (tests' probe kernels), or NULL */
+    const char *prelude;          /* generated source before the fragments (the plan's buffer
+                                     lists, atmo/plan.h), or NULL */
 } atmo_cl_build_options;
 
 typedef struct atmo_cl_build_info {
@@ -62,8 +65,10 @@ void atmo_cl_close(atmo_cl *cl);
 int atmo_cl_build(atmo_cl *cl, const atmo_cl_build_options *o, cl_program *program,
                   atmo_cl_build_info *info, atmo_err *e);
 
-/* The assembled source (malloc'd), as the build sees it; extra (may be NULL) goes last. */
-char *atmo_cl_assemble(const char *const *fragments, int count, const char *extra, atmo_err *e);
+/* The assembled source (malloc'd), as the build sees it; prelude (may be NULL) goes first,
+ * extra (may be NULL) last. */
+char *atmo_cl_assemble(const char *prelude, const char *const *fragments, int count,
+                       const char *extra, atmo_err *e);
 
 /* Cache directory (created if missing); returns 0 and fills dir, or -1. */
 int atmo_cache_dir(char *dir, size_t size);

@@ -1,75 +1,88 @@
 /* plan.h — from a validated scene to what the device needs.
  *
- * The plan decides which kernels exist (only those the scene needs are assembled), the sizes of
- * the LUTs, and fills the float structs of gpu_types.h from the scene's double-precision values:
- * the atmosphere at the render wavelengths, the camera basis and its distance to the planet
- * centre (computed in double, so planet-scale coordinates never reach a kernel), the sun
- * direction, and the factors that turn radiance into the output quantity. */
+ * The plan assembles the features the scene contains from the registry (atmo/features.h): their
+ * kernel fragments in registry order, their -D flags, their named buffers and their precompute
+ * passes, and fills the typed GPU structs of gpu_types.h from the scene's double-precision
+ * values: the atmosphere at the render wavelengths, the camera basis and its distance to the
+ * planet centre (computed in double, so planet-scale coordinates never reach a kernel), the sun
+ * direction, and the factors that turn radiance into the output quantity.
+ *
+ * Buffers are named: the plan generates, in `prelude` (source placed before the fragments),
+ *   #define ATMO_LUT_PARAMS      ATMO_GLOBAL const T0 *name0, ATMO_GLOBAL const T1 *name1, ...
+ *   #define ATMO_LUT_OUT_PARAMS  ATMO_GLOBAL T0 *name0, ATMO_GLOBAL T1 *name1, ...
+ *   #define ATMO_LUT_ARGS        name0, name1, ...
+ * for the buffers of the assembled features in plan order, so every sky kernel takes
+ * (scene, <the named buffers>, its own args), every precompute kernel (scene, <the named
+ * buffers>, int arg), and a method's code refers to its buffers by name. The host binds them
+ * from the plan's buffer list in the same order (atmo_bind_buffers, atmo/render.h). */
 #ifndef ATMO_PLAN_H
 #define ATMO_PLAN_H
+#include <stddef.h>
 #include "atmo/atmosphere.h"
 #include "atmo/gpu_types.h"
 #include "atmo/scene.h"
 #include "atmo/status.h"
 
-#define ATMO_PLAN_MAX_FRAGMENTS 24
+#define ATMO_PLAN_MAX_FRAGMENTS 32
 #define ATMO_PLAN_MAX_PASSES 64
-#define ATMO_PLAN_LUTS 4 /* LUT buffers every sky kernel gets (kernels/atmosphere/sky_method.h) */
+#define ATMO_PLAN_MAX_BUFFERS 8
+#define ATMO_PLAN_MAX_FEATURES 12
 
-/* One precompute launch: kernel(scene, lut0..lut3, arg) over width x height x depth items. */
+/* A named device buffer. bytes == 0: the feature declares it but this scene needs no data in it
+ * (e.g. the sky-view LUT of a camera above the atmosphere); a 16-byte placeholder is bound,
+ * since OpenCL has no empty buffers. */
+typedef struct atmo_plan_buffer {
+    const char *name;      /* the kernels' parameter name, e.g. "ms_lut" */
+    const char *type;      /* element type in the kernels, e.g. "float4" */
+    size_t bytes;
+    int follows_view;      /* holds one camera and sun: recomputed per view, never cached */
+    const void *host_data; /* a host table copied in before the passes (bytes long), or NULL;
+                              owned by the plan's creator, must outlive the render */
+    int feature;           /* index in plan->features of the feature that owns it */
+} atmo_plan_buffer;
+
+/* One precompute launch: kernel(scene, <buffers>, arg) over width x height x depth items; it
+ * writes buffers of its feature (and reads those of the features the registry row needs). */
 typedef struct atmo_plan_pass {
     const char *kernel;
     int width, height, depth;
     int arg;
-    int follows_view; /* writes a LUT that holds one camera and sun: runs even on a cache hit */
+    int feature;           /* index in plan->features */
 } atmo_plan_pass;
 
-/* Host data copied into a LUT buffer before the passes run (e.g. a phase table computed on
- * the host), at a byte offset: features that need tables place them after the method's data in
- * buffer 0, behind the transmittance LUT, and find them there by an offset in the scene. */
-typedef struct atmo_plan_upload {
-    int lut;            /* buffer index 0..ATMO_PLAN_LUTS-1 */
-    size_t offset;      /* bytes */
-    size_t bytes;
-    const void *data;   /* owned by the plan's creator; must outlive the render */
-} atmo_plan_upload;
-
-#define ATMO_PLAN_MAX_UPLOADS 4
+struct atmo_feature;
 
 typedef struct atmo_plan {
     atmo_gpu_scene gpu;
     atmo_atmosphere atmosphere;
     const char *method;            /* the atmosphere method's name, for reports */
+    const struct atmo_feature *features[ATMO_PLAN_MAX_FEATURES]; /* in registry order */
+    int feature_count;
     const char *fragments[ATMO_PLAN_MAX_FRAGMENTS];
     int fragment_count;
     char defines[256];
-    size_t lut_bytes[ATMO_PLAN_LUTS]; /* 0: unused (a dummy is bound) */
+    char prelude[1024];            /* generated: the buffer parameter and argument lists */
+    atmo_plan_buffer buffers[ATMO_PLAN_MAX_BUFFERS];
+    int buffer_count;
     atmo_plan_pass passes[ATMO_PLAN_MAX_PASSES];
     int pass_count;
-    atmo_plan_upload uploads[ATMO_PLAN_MAX_UPLOADS];
-    int upload_count;
-    int cache_luts;                /* disk cache of LUTs: 0 off, 1 those that took > 0.5 s, 2 all */
-    int lut_follows_view[ATMO_PLAN_LUTS]; /* buffer holds one camera and sun: never cached */
+    int cache_luts;                /* disk cache of precomputed buffers: 0 off, 1 those whose
+                                      passes took > 0.5 s, 2 all */
     int width, height, samples;
 } atmo_plan;
 
 int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 
-/* A method's part of the plan: it appends its kernel fragments (the headers that define
- * sky_radiance and the .cl files of its precompute kernels), sets lut_bytes[1..3], the
- * gpu.lut_dims / method_int / method_float it uses, and appends its precompute passes (after the
- * transmittance LUT's, which every method gets first). */
-typedef struct atmo_plan_method {
-    const char *name;
-    int (*plan)(const atmo_scene *s, atmo_plan *p, atmo_err *e);
-    int luts_follow_view; /* 1 if its LUTs hold one camera and sun (probes of other rays are
-                             then only valid for that sun); 0 if they serve any ray */
-} atmo_plan_method;
-extern const atmo_plan_method atmo_plan_methods[]; /* in ATMO_METHOD_* order */
-const char *atmo_plan_available_methods(void);
-int atmo_plan_add_fragments(atmo_plan *p, const char *const *names, int count, atmo_err *e);
+/* For a feature's plan function (features.h): declare a buffer or a pass of the feature being
+ * planned (the last one in p->features). */
+int atmo_plan_add_buffer(atmo_plan *p, const char *name, const char *type, size_t bytes,
+                         int follows_view, const void *host_data, atmo_err *e);
 int atmo_plan_add_pass(atmo_plan *p, const char *kernel, int width, int height, int depth, int arg,
                        atmo_err *e);
+/* The buffer with this name, or NULL. */
+atmo_plan_buffer *atmo_plan_buffer_find(atmo_plan *p, const char *name);
+/* Its index in p->buffers (the order of ATMO_LUT_PARAMS), or -1. */
+int atmo_plan_buffer_index(const atmo_plan *p, const char *name);
 
 /* Unit vector towards the sun for zenith and azimuth in degrees (scene.h's convention). */
 void atmo_sun_direction(double zenith_deg, double azimuth_deg, double out[3]);

@@ -1,5 +1,5 @@
 /* plan_cloud.h — the plan's part for the homogeneous cloud shell and the observer sphere
- * (kernels/media/cloud_shell.h; host/plan_cloud.c). */
+ * (kernels/media/cloud_shell.h; host/plan/plan_cloud.c). */
 #ifndef ATMO_PLAN_CLOUD_H
 #define ATMO_PLAN_CLOUD_H
 #include "atmo/plan.h"
@@ -8,9 +8,9 @@
 #define ATMO_CLOUD_STEPS 32
 
 /* When the scene enables the cloud or the observer: checks that the method is single or march,
- * builds (or loads from the cache) the Mie tables at the render wavelengths, uploads them behind
- * the transmittance LUT, fills the gpu scene's cloud fields, inserts kernels/media/cloud_shell.h before
- * the method's fragment and defines ATMO_CLOUD. Does nothing otherwise. */
+ * builds (or loads from the cache) the Mie tables at the render wavelengths into the buffer
+ * cloud_phase_table and fills gpu.cloud (feature "cloud" of features.c, which is planned only
+ * when the scene has a cloud or an observer). */
 int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 
 #endif

@@ -4,8 +4,8 @@
 #define ATMO_PLAN_REFERENCE_H
 #include "atmo/plan.h"
 
-/* Appends the method's fragment and sets method_int[0] = reference.min_order and
- * method_int[1] = reference.max_order (0 = all orders). No LUTs or passes of its own. */
+/* Sets gpu.reference from reference.min_order and reference.max_order (0 = all orders). No
+ * buffers or passes of its own. */
 int atmo_plan_reference(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 
 #endif

@@ -8,6 +8,7 @@
 #ifndef ATMO_RENDER_H
 #define ATMO_RENDER_H
 #include "atmo/cl_runtime.h"
+#include "atmo/embedded.h"
 #include "atmo/plan.h"
 #include "atmo/session.h"
 #include "atmo/status.h"
@@ -32,18 +33,50 @@ void atmo_render_result_free(atmo_render_result *r);
 /* Fill result's device names, cache flags, timings, launches and sample range from a session. */
 void atmo_render_result_from_session(const atmo_session *s, atmo_render_result *result);
 
-/* Allocate the plan's LUT buffers (a 16-byte dummy for each unused one) and run its precompute
- * passes in order, waiting for the last. On failure, luts[] holds what was allocated: the
- * caller releases the non-NULL ones either way. */
+/* Precomputed buffers (host/render/precompute.c).
+ *
+ * atmo_precompute allocates the plan's named buffers (buffers[i] for plan->buffers[i]; a 16-byte
+ * placeholder for an empty one), copies the host tables in and runs the passes feature by
+ * feature, waiting for the last. With plan->cache_luts, a feature's buffers come from the disk
+ * cache when a file with its key is there and verifies, and are stored after they are computed
+ * (mode 1: when its passes took more than 0.5 s; mode 2: always). Buffers that follow the view
+ * are never cached; their passes run every time. On failure, buffers[] holds what was
+ * allocated: the caller releases the non-NULL ones either way (atmo_release_buffers). */
 typedef struct atmo_precompute_info {
     double seconds;
-    int cache_hit; /* the LUTs came from the disk cache (plan->cache_luts) */
+    int cache_hit;  /* every cacheable feature's buffers came from the disk cache */
+    int loaded;     /* features whose buffers came from the cache */
+    int computed;   /* cacheable features whose passes ran */
+    int damaged;    /* cache files that failed verification (recomputed and rewritten) */
 } atmo_precompute_info;
 int atmo_precompute(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_mem scene,
-                    cl_mem luts[ATMO_PLAN_LUTS], atmo_precompute_info *info, atmo_err *e);
-/* Rerun only the passes that follow the view (follows_view) into the allocated luts[], after
+                    cl_mem buffers[ATMO_PLAN_MAX_BUFFERS], atmo_precompute_info *info,
+                    atmo_err *e);
+void atmo_release_buffers(cl_mem buffers[ATMO_PLAN_MAX_BUFFERS]);
+/* Rerun only the passes of the features whose buffers follow the view into buffers[], after
  * the scene struct got another camera or sun; waits for the last. */
 int atmo_precompute_view(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_mem scene,
-                         cl_mem luts[ATMO_PLAN_LUTS], double *seconds, atmo_err *e);
+                         cl_mem buffers[ATMO_PLAN_MAX_BUFFERS], double *seconds, atmo_err *e);
+
+/* Bind the plan's buffers, in plan order, as arguments first_arg, first_arg + 1, ... of k (the
+ * ATMO_LUT_PARAMS of the kernel's signature); returns the index of the next argument, or -1
+ * with e set. */
+int atmo_bind_buffers(cl_kernel k, int first_arg, const atmo_plan *plan,
+                      cl_mem buffers[ATMO_PLAN_MAX_BUFFERS], atmo_err *e);
+
+/* Who computes a cached product: a cache file is only reused on the same device and driver. */
+typedef struct atmo_device_identity {
+    const char *name, *vendor, *driver;
+} atmo_device_identity;
+
+/* The cache key of the buffers of plan->features[feature]: a 64-bit FNV-1a hash of exactly its
+ * own inputs: the registry row's name, the text of its sources (looked up in `sources`, the
+ * embedded kernel table or a test's copy of it) and its -D flags, the fields of the GPU scene
+ * its passes read (row->params), its buffers' names and sizes and host tables, its passes, the
+ * keys of the features it needs, and the device identity. Not the camera, the sun, the view
+ * steps, the output factors or any other fragment's text. */
+unsigned long long atmo_product_key(const atmo_plan *plan, int feature,
+                                    const atmo_device_identity *device,
+                                    const struct atmo_embedded_file *sources);
 
 #endif

@@ -11,9 +11,9 @@
 #ifndef ATMO_SCENE_H
 #define ATMO_SCENE_H
 #include <stddef.h>
+#include "atmo/gpu_enums.h"
 #include "atmo/status.h"
 
-enum { ATMO_CAMERA_PERSPECTIVE = 0, ATMO_CAMERA_PANORAMA = 1 };
 enum { ATMO_QUANTITY_RADIANCE = 0, ATMO_QUANTITY_LUMINANCE = 1 };
 enum {
     ATMO_TONEMAP_NONE = 0,
@@ -26,14 +26,6 @@ enum {
     ATMO_TONEMAP_LOTTES,
 };
 enum { ATMO_TRANSFER_SRGB = 0, ATMO_TRANSFER_GAMMA22 = 1 };
-/* Atmosphere methods (issue 4): the order is that of the registry's names. */
-enum {
-    ATMO_METHOD_SINGLE = 0, /* single scattering only, ray marched */
-    ATMO_METHOD_MARCH,      /* ray-marched single scattering + a multiple-scattering term */
-    ATMO_METHOD_FAST,       /* per-frame LUTs (Hillaire 2020 style) */
-    ATMO_METHOD_LUT,        /* precomputed 4-D scattering LUTs (Bruneton 2017 style) */
-    ATMO_METHOD_REFERENCE,  /* Monte Carlo volumetric path tracer, all orders: the oracle */
-};
 
 typedef struct atmo_scene {
     struct {
@@ -62,7 +54,7 @@ typedef struct atmo_scene {
         double mie_albedo;           /* single-scattering albedo */
         double mie_scale_height_m;
         double mie_g;
-        int mie_phase;               /* ATMO_PHASE_* of atmosphere.h */
+        int mie_phase;               /* ATMO_PHASE_* (gpu_enums.h) */
         int method;                  /* ATMO_METHOD_* */
         int lut_orders;              /* method lut: scattering orders precomputed */
         int lut_r_size, lut_mu_size, lut_mu_s_size, lut_nu_size; /* method lut: 4-D LUT size */
@@ -103,7 +95,6 @@ typedef struct atmo_scene {
         double radius_m;
     } observer;
 } atmo_scene;
-enum { ATMO_CLOUD_PHASE_MIE = 0, ATMO_CLOUD_PHASE_HG, ATMO_CLOUD_PHASE_JENDERSIE_DEON };
 
 typedef enum { ATMO_PARAM_INT, ATMO_PARAM_FLOAT, ATMO_PARAM_VEC3, ATMO_PARAM_ENUM, ATMO_PARAM_BOOL }
     atmo_param_type;

@@ -1,13 +1,13 @@
 /* fast_luts.cl — the per-frame LUTs of method "fast" (method_fast.h): the sky-view LUT around
- * the camera, into buffer b, in three planes of w x h texels: single scattering without its
- * phase functions, Rayleigh (0) and Mie (1), and the rest (2: multiple scattering and the
- * ground), sky_integrate_parts' parts. Needs the transmittance and Psi_ms LUTs (passes before
+ * the camera, into the buffer sky_view_lut, in three planes of w x h texels: single scattering
+ * without its phase functions, Rayleigh (0) and Mie (1), and the rest (2: multiple scattering and
+ * the ground), sky_integrate_parts' parts. Needs the transmittance and Psi_ms LUTs (passes before
  * it). */
 
 __kernel void sky_view_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PARAMS, int arg)
 {
     int i = get_global_id(0), j = get_global_id(1);
-    int w = scene->lut_dims[1][0], h = scene->lut_dims[1][1];
+    int w = scene->sky_view.width, h = scene->sky_view.height;
     if (i >= w || j >= h)
         return;
     float mu, cos_phi;
@@ -16,12 +16,12 @@ __kernel void sky_view_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PA
     float nu = atmo_clamp_cos(mu * mu_s + atmo_safe_sqrt((1.0f - mu * mu) * (1.0f - mu_s * mu_s)) *
                                               cos_phi);
     float3 single_r, single_m, rest, sun, view_t;
-    sky_integrate_parts(scene, lut_transmittance, lut_a, scene->lut_dims[0][0],
-                        scene->lut_dims[0][1], 1, scene->camera.local_up.w, mu, mu_s, nu,
-                        INFINITY, scene->method_int[3], 0.5f, &single_r, &single_m, &rest, &sun,
+    sky_integrate_parts(scene, transmittance_lut, ms_lut, scene->ms.width,
+                        scene->ms.height, 1, scene->camera.local_up.w, mu, mu_s, nu,
+                        INFINITY, scene->sky_view.steps, 0.5f, &single_r, &single_m, &rest, &sun,
                         &view_t);
     int idx = j * w + i, n = w * h;
-    lut_b[idx] = (float4)(single_r, 0.0f);
-    lut_b[n + idx] = (float4)(single_m, 0.0f);
-    lut_b[2 * n + idx] = (float4)(rest, 0.0f);
+    sky_view_lut[idx] = (float4)(single_r, 0.0f);
+    sky_view_lut[n + idx] = (float4)(single_m, 0.0f);
+    sky_view_lut[2 * n + idx] = (float4)(rest, 0.0f);
 }

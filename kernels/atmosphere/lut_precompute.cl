@@ -81,13 +81,13 @@ int lut_this_texel(__global const atmo_gpu_atmosphere *a, __global const int *di
 __kernel void lut_single(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, int arg)
 {
     __global const atmo_gpu_atmosphere *a = &s->atmosphere;
-    __global const int *dims = s->lut_dims[0];
+    __global const int *dims = s->lut.dims;
     int x = get_global_id(0), z = get_global_id(2), n_mu_s = dims[1], idx, ground;
     float r, mu, mu_s, nu;
     if (!lut_this_texel(a, dims, &idx, &r, &mu, &mu_s, &nu, &ground))
         return;
     int N = LUT_TEXELS(dims);
-    int n = s->method_int[LUT_INT_STEPS];
+    int n = s->lut.steps;
     float dt = lut_ray_length(a, r, mu, ground) / (float)n;
     float3 beta_r = a->rayleigh_scattering.xyz, beta_m = a->mie_scattering.xyz;
     float3 T = (float3)(1.0f), S_r = (float3)(0.0f), S_m = (float3)(0.0f);
@@ -103,26 +103,27 @@ __kernel void lut_single(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, 
                          a->ozone_absorption.xyz * atmosphere_ozone_tent(a, h);
         float3 e = exp(-sigma_t * dt);
         float3 lit = T * lut_weights(sigma_t, dt, e) *
-                     atmosphere_sun_transmittance(a, lut_transmittance, s->transmittance_width,
+                     atmosphere_sun_transmittance(a, transmittance_lut, s->transmittance_width,
                                                   s->transmittance_height, r_t, mu_s_t);
         S_r += lit * rayleigh;
         S_m += lit * mie;
         T *= e;
     }
     float3 E = a->solar_irradiance.xyz;
-    lut_a[idx] = (float4)(E * beta_r * S_r, 0.0f);
-    lut_a[N + idx] = (float4)(0.0f); /* multiple scattering: orders >= 2 add to it */
-    lut_b[idx] = (float4)(E * beta_m * S_m, 0.0f);
-    lut_b[LUT_DENSITY_SUM(dims) + idx] = (float4)(0.0f); /* orders >= 2 add to it */
-    if (get_global_id(1) == 0 && x < n_mu_s) /* once per (r, mu_s): clear the total indirect irradiance */
-        lut_b[N + z * n_mu_s + x] = (float4)(0.0f);
+    scattering_rayleigh[idx] = (float4)(E * beta_r * S_r, 0.0f);
+    scattering_rayleigh[N + idx] = (float4)(0.0f); /* multiple scattering: orders >= 2 add to it */
+    scattering_mie[idx] = (float4)(E * beta_m * S_m, 0.0f);
+    scattering_mie[LUT_DENSITY_SUM(dims) + idx] = (float4)(0.0f); /* orders >= 2 add to it */
+    /* once per (r, mu_s): clear the total indirect irradiance */
+    if (get_global_id(1) == 0 && x < n_mu_s)
+        scattering_mie[N + z * n_mu_s + x] = (float4)(0.0f);
 }
 
 __kernel void lut_grid(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, int k)
 {
     __global const atmo_gpu_atmosphere *a = &s->atmosphere;
-    __global const int *dims = s->lut_dims[0];
-    int rings = s->method_int[LUT_INT_RINGS], G = rings * rings;
+    __global const int *dims = s->lut.dims;
+    int rings = s->lut.rings, G = rings * rings;
     int g = get_global_id(0), i_mu_s = get_global_id(1), i_r = get_global_id(2);
     if (g >= G || i_mu_s >= dims[1] || i_r >= dims[3])
         return;
@@ -134,52 +135,53 @@ __kernel void lut_grid(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, in
     int ground = geometry_ray_hits_ground(r, mu, a->bottom_radius);
     float3 L;
     if (k == 1)
-        L = lut_scattering_lookup(a, lut_a, dims, r, mu, mu_s, nu, ground) * phase_rayleigh(nu) +
-            lut_scattering_lookup(a, lut_b, dims, r, mu, mu_s, nu, ground) *
+        L = lut_scattering_lookup(a, scattering_rayleigh, dims, r, mu, mu_s, nu, ground) *
+                phase_rayleigh(nu) +
+            lut_scattering_lookup(a, scattering_mie, dims, r, mu, mu_s, nu, ground) *
                 sky_mie_phase(a, nu);
     else
-        L = lut_scattering_lookup(a, lut_c, dims, r, mu, mu_s, nu, ground);
+        L = lut_scattering_lookup(a, scattering_scratch, dims, r, mu, mu_s, nu, ground);
     if (ground) {
         float d = geometry_distance_to_bottom(r, mu, a->bottom_radius);
         float mu_s_g = atmo_clamp_cos((r * mu_s + d * nu) / a->bottom_radius);
         float3 E;
         if (k == 1)
             E = a->solar_irradiance.xyz * fmax(mu_s_g, 0.0f) *
-                atmosphere_sun_transmittance(a, lut_transmittance, s->transmittance_width,
+                atmosphere_sun_transmittance(a, transmittance_lut, s->transmittance_width,
                                              s->transmittance_height, a->bottom_radius, mu_s_g);
         else
-            E = lut_irradiance_lookup(a, lut_c + LUT_DELTA_IRRADIANCE(dims, G), dims,
+            E = lut_irradiance_lookup(a, scattering_scratch + LUT_DELTA_IRRADIANCE(dims, G), dims,
                                       a->bottom_radius, mu_s_g);
-        L += lut_transmittance_to_ground(s, lut_transmittance, r, mu, d) *
+        L += lut_transmittance_to_ground(s, transmittance_lut, r, mu, d) *
              a->ground_albedo.xyz * E / ATMO_PI;
     }
-    lut_c[2 * N + (i_r * dims[1] + i_mu_s) * G + g] = (float4)(L, 0.0f);
+    scattering_scratch[2 * N + (i_r * dims[1] + i_mu_s) * G + g] = (float4)(L, 0.0f);
     if (i_mu_s == 0 && i_r == 0)
-        lut_c[LUT_DIRECTIONS(dims, G) + g] = (float4)(dir, domega);
+        scattering_scratch[LUT_DIRECTIONS(dims, G) + g] = (float4)(dir, domega);
 }
 
 __kernel void lut_irradiance(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, int k)
 {
-    __global const int *dims = s->lut_dims[0];
-    int rings = s->method_int[LUT_INT_RINGS], G = rings * rings;
+    __global const int *dims = s->lut.dims;
+    int rings = s->lut.rings, G = rings * rings;
     int i_mu_s = get_global_id(0), i_r = get_global_id(1);
     if (i_mu_s >= dims[1] || i_r >= dims[3])
         return;
     int N = LUT_TEXELS(dims), cell = i_r * dims[1] + i_mu_s;
-    __global const float4 *grid = lut_c + 2 * N + cell * G;
+    __global const float4 *grid = scattering_scratch + 2 * N + cell * G;
     float3 E = (float3)(0.0f);
-    __global const float4 *dirs = lut_c + LUT_DIRECTIONS(dims, G);
+    __global const float4 *dirs = scattering_scratch + LUT_DIRECTIONS(dims, G);
     for (int g = 0; g < G / 2; g++) /* the upper hemisphere: the first rings/2 rings */
         E += grid[g].xyz * (2.0f * dirs[g].z * dirs[g].w); /* 2: the mirror half */
-    lut_c[LUT_DELTA_IRRADIANCE(dims, G) + cell] = (float4)(E, 0.0f);
-    lut_b[N + cell] += (float4)(E, 0.0f);
+    scattering_scratch[LUT_DELTA_IRRADIANCE(dims, G) + cell] = (float4)(E, 0.0f);
+    scattering_mie[N + cell] += (float4)(E, 0.0f);
 }
 
 __kernel void lut_density(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, int n)
 {
     __global const atmo_gpu_atmosphere *a = &s->atmosphere;
-    __global const int *dims = s->lut_dims[0];
-    int rings = s->method_int[LUT_INT_RINGS], G = rings * rings;
+    __global const int *dims = s->lut.dims;
+    int rings = s->lut.rings, G = rings * rings;
     int x = get_global_id(0), z = get_global_id(2), n_mu_s = dims[1], idx, ground;
     float r, mu, mu_s, nu;
     if (!lut_this_texel(a, dims, &idx, &r, &mu, &mu_s, &nu, &ground))
@@ -192,9 +194,9 @@ __kernel void lut_density(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS,
     float h = fmax(r - a->bottom_radius, 0.0f);
     float3 beta_r = a->rayleigh_scattering.xyz * exp(-h / a->rayleigh_scale_height);
     float3 beta_m = a->mie_scattering.xyz * exp(-h / a->mie_scale_height);
-    __global const float4 *grid = lut_c + 2 * N + (z * n_mu_s + x % n_mu_s) * G;
+    __global const float4 *grid = scattering_scratch + 2 * N + (z * n_mu_s + x % n_mu_s) * G;
     float3 J = (float3)(0.0f);
-    __global const float4 *dirs = lut_c + LUT_DIRECTIONS(dims, G);
+    __global const float4 *dirs = scattering_scratch + LUT_DIRECTIONS(dims, G);
     for (int g = 0; g < G; g++) {
         float4 dir = dirs[g];
         float c1 = vx * dir.x + vy * dir.y + mu * dir.z;
@@ -203,20 +205,20 @@ __kernel void lut_density(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS,
         float p_m = sky_mie_phase(a, c1) + sky_mie_phase(a, c2);
         J += grid[g].xyz * ((beta_r * p_r + beta_m * p_m) * dir.w);
     }
-    lut_c[N + idx] = (float4)(J, 0.0f);
-    lut_b[LUT_DENSITY_SUM(dims) + idx] += (float4)(J, 0.0f);
+    scattering_scratch[N + idx] = (float4)(J, 0.0f);
+    scattering_mie[LUT_DENSITY_SUM(dims) + idx] += (float4)(J, 0.0f);
 }
 
 __kernel void lut_multiple(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, int order)
 {
     __global const atmo_gpu_atmosphere *a = &s->atmosphere;
-    __global const int *dims = s->lut_dims[0];
+    __global const int *dims = s->lut.dims;
     int idx, ground;
     float r, mu, mu_s, nu;
     if (!lut_this_texel(a, dims, &idx, &r, &mu, &mu_s, &nu, &ground))
         return;
     int N = LUT_TEXELS(dims);
-    int n = s->method_int[LUT_INT_STEPS];
+    int n = s->lut.steps;
     float dt = lut_ray_length(a, r, mu, ground) / (float)n;
     float3 T = (float3)(1.0f), L = (float3)(0.0f);
     for (int i = 0; i < n; i++) {
@@ -226,11 +228,12 @@ __kernel void lut_multiple(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS
         float mu_t = atmo_clamp_cos((r * mu + t) / r_t);
         float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
         float3 sigma_t = lut_mean_extinction(a, h, mu_t, dt);
-        float3 J = lut_scattering_lookup(a, lut_c + N, dims, r_t, mu_t, mu_s_t, nu, ground);
+        float3 J =
+            lut_scattering_lookup(a, scattering_scratch + N, dims, r_t, mu_t, mu_s_t, nu, ground);
         float3 e = exp(-sigma_t * dt);
         L += T * J * lut_weights(sigma_t, dt, e);
         T *= e;
     }
-    lut_c[idx] = (float4)(L, 0.0f);
-    lut_a[N + idx] += (float4)(L, 0.0f);
+    scattering_scratch[idx] = (float4)(L, 0.0f);
+    scattering_rayleigh[N + idx] += (float4)(L, 0.0f);
 }

@@ -4,9 +4,9 @@
  * The camera's radius r_c and sun cosine mu_s,c are fixed for a frame, so the sky seen from
  * the camera is a function of two angles only: the view zenith angle theta and the azimuth phi
  * from the sun (the sky is symmetric about the sun's vertical plane, so phi in [0, pi]). The
- * sky-view LUT (buffer b, s->lut_dims[1][0] = W columns of phi, s->lut_dims[1][1] = 2 n rows)
- * holds the march of ms_lut.h (single scattering + sigma_s Psi_ms, the lit ground, no sun disc)
- * with s->method_int[3] segments (growing from the camera, sky_single.h) at their midpoints
+ * sky-view LUT (buffer sky_view_lut, s->sky_view.width = W columns of phi, s->sky_view.height = 2 n
+ * rows) holds the march of ms_lut.h (single scattering + sigma_s Psi_ms, the lit ground, no sun
+ * disc) with s->sky_view.steps segments (growing from the camera, sky_single.h) at their midpoints
  * (equal segments missed 2 % of the aerosols' steep density near the ground), in three planes
  * (fast_luts.cl): the view-sun cosine nu is constant along a straight ray, so the phase
  * functions factor out of single scattering, and the LUT holds its Rayleigh and Mie integrals
@@ -76,7 +76,7 @@ ATMO_FN vec3 fast_sky_view_lookup(ATMO_GLOBAL const atmo_gpu_scene *s,
                                   ATMO_GLOBAL const float4 *lut, float mu, float mu_s, float nu,
                                   int hits_ground)
 {
-    int width = s->lut_dims[1][0], n = s->lut_dims[1][1] / 2, plane = 2 * n * width;
+    int width = s->sky_view.width, n = s->sky_view.height / 2, plane = 2 * n * width;
     float theta_h = fast_horizon_zenith(&s->atmosphere, s->camera.local_up.w);
     float theta = acosf(atmo_clamp_cos(mu));
     float x = hits_ground
@@ -113,19 +113,19 @@ ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     float r_c = s->camera.local_up.w;
-    int from_camera = s->lut_dims[1][0] > 0 && fabsf(r - r_c) <= 1e-6f * r_c &&
+    int from_camera = s->sky_view.width > 0 && fabsf(r - r_c) <= 1e-6f * r_c &&
                       fabsf(mu_s - fast_camera_mu_s(s)) <= 1e-6f;
     if (!from_camera) {
         float jitter = rng_uniform(s->seed, pixel, sample, ATMO_RNG_METHOD_DIM);
-        march_integrate(s, lut_transmittance, lut_a, s->lut_dims[0][0], s->lut_dims[0][1], r,
+        march_integrate(s, transmittance_lut, ms_lut, s->ms.width, s->ms.height, r,
                         mu, mu_s, nu, s->view_steps, jitter, sky, sun);
         return;
     }
     int hits_ground = geometry_ray_hits_ground(r, mu, a->bottom_radius);
-    *sky = fast_sky_view_lookup(s, lut_b, mu, mu_s, nu, hits_ground);
+    *sky = fast_sky_view_lookup(s, sky_view_lut, mu, mu_s, nu, hits_ground);
     *sun = v3(0.0f, 0.0f, 0.0f);
     if (!hits_ground && nu >= s->sun_direction.w) {
-        vec3 to_space = atmosphere_transmittance_to_top(a, lut_transmittance,
+        vec3 to_space = atmosphere_transmittance_to_top(a, transmittance_lut,
                                                         s->transmittance_width,
                                                         s->transmittance_height, r, mu);
         *sun = v3_mul(atmosphere_sun_disc_radiance(a, s->sun_direction.w), to_space);
@@ -141,7 +141,7 @@ ATMO_FN void sky_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, f
                          vec3 *transmittance)
 {
     float jitter = rng_uniform(s->seed, pixel, sample, ATMO_RNG_METHOD_DIM);
-    march_segment(s, lut_transmittance, lut_a, s->lut_dims[0][0], s->lut_dims[0][1], r, mu, mu_s,
+    march_segment(s, transmittance_lut, ms_lut, s->ms.width, s->ms.height, r, mu, mu_s,
                   nu, d, s->view_steps, jitter, inscatter, transmittance);
 }
 

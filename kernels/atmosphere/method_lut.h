@@ -14,16 +14,16 @@
  * transmittance to space. sky_radiance is deterministic (no random numbers); sky_segment, the
  * aerial perspective to a point (below), marches with a random offset per sample.
  *
- * Knobs (scene keys -> atmo_gpu_scene, host/plan_lut.c):
- *   lut.nu_size, lut.mu_s_size, lut.mu_size, lut.r_size -> lut_dims[0] = {nu, mu_s, mu, r}
+ * Knobs (scene keys -> atmo_gpu_lut, host/plan/plan_lut.c):
+ *   lut.nu_size, lut.mu_s_size, lut.mu_size, lut.r_size -> lut.dims = {nu, mu_s, mu, r}
  *     (defaults 8, 32, 128, 32; mu even: half ground rays, half sky rays)
- *   lut.steps -> method_int[0]: segments per texel ray (default 64)
- *   lut.sphere_samples -> method_int[1]: zenith rings of the sphere grid (even, default 32:
+ *   lut.steps -> lut.steps: segments per texel ray (default 64)
+ *   lut.sphere_samples -> lut.rings: zenith rings of the sphere grid (even, default 32:
  *     with 16 the sky at the ground came out up to 2.3 % darker than the Monte Carlo reference
  *     for sun zenith <= 80 deg, with 32 within 1.7 %; normalising the phase functions over
  *     the grid did not help, the horizon's bright band in the incoming light is what needs
  *     the rings)
- *   lut.orders -> method_int[2]: scattering orders (default 7: in blue with the sun on the
+ *   lut.orders -> lut.orders: scattering orders (default 7: in blue with the sun on the
  *     horizon, where orders fall slowest, order 8 would add at most 0.06 %,
  *     tests/test_lut_method.c). */
 #ifndef ATMO_METHOD_LUT_H
@@ -41,20 +41,22 @@
 
 /* The three tables at (r, mu, mu_s, nu), phase functions applied: S_R p_R + S_M p_M + M, for a
  * ray on the `ground` side of the horizon. */
-ATMO_FN vec3 lut_scattered(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *lut_a,
-                             ATMO_GLOBAL const float4 *lut_b, float r, float mu, float mu_s,
-                             float nu, int ground)
+ATMO_FN vec3 lut_scattered(ATMO_GLOBAL const atmo_gpu_scene *s,
+                           ATMO_GLOBAL const float4 *scattering_rayleigh,
+                           ATMO_GLOBAL const float4 *scattering_mie, float r, float mu, float mu_s,
+                           float nu, int ground)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    ATMO_GLOBAL const int *dims = s->lut_dims[0];
+    ATMO_GLOBAL const int *dims = s->lut.dims;
     float p_nu = lut_nu_position(nu, dims[0]), p_mu_s = lut_mu_s_position(a, mu_s, dims[1]);
     float p_mu = lut_mu_position(a, r, mu, ground, dims[2]), p_r = lut_r_position(a, r, dims[3]);
-    vec3 rayleigh = lut_scattering_fetch(lut_a, dims, p_nu, p_mu_s, p_mu, p_r);
-    vec3 mie = lut_scattering_fetch(lut_b, dims, p_nu, p_mu_s, p_mu, p_r);
-    vec3 multiple = lut_scattering_fetch(lut_a + LUT_TEXELS(dims), dims, p_nu, p_mu_s, p_mu, p_r);
-    return v3_add(v3_add(v3_scale(rayleigh, phase_rayleigh(nu)),
-                         v3_scale(mie, sky_mie_phase(a, nu))),
-                  multiple);
+    vec3 rayleigh = lut_scattering_fetch(scattering_rayleigh, dims, p_nu, p_mu_s, p_mu, p_r);
+    vec3 mie = lut_scattering_fetch(scattering_mie, dims, p_nu, p_mu_s, p_mu, p_r);
+    vec3 multiple =
+        lut_scattering_fetch(scattering_rayleigh + LUT_TEXELS(dims), dims, p_nu, p_mu_s, p_mu, p_r);
+    return v3_add(
+        v3_add(v3_scale(rayleigh, phase_rayleigh(nu)), v3_scale(mie, sky_mie_phase(a, nu))),
+        multiple);
 }
 
 /* The sky along a ray from inside the atmosphere (r, mu already entered): the tables and, for a
@@ -64,23 +66,23 @@ ATMO_FN vec3 lut_sky(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float
                        float mu_s, float nu, int ground, vec3 *view_t)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    ATMO_GLOBAL const int *dims = s->lut_dims[0];
+    ATMO_GLOBAL const int *dims = s->lut.dims;
     int tw = s->transmittance_width, th = s->transmittance_height;
-    (void)lut_c; /* scratch of the precompute */
-    vec3 L = lut_scattered(s, lut_a, lut_b, r, mu, mu_s, nu, ground);
+    (void)scattering_scratch; /* scratch of the precompute */
+    vec3 L = lut_scattered(s, scattering_rayleigh, scattering_mie, r, mu, mu_s, nu, ground);
     if (!ground) {
-        *view_t = atmosphere_transmittance_to_top(a, lut_transmittance, tw, th, r, mu);
+        *view_t = atmosphere_transmittance_to_top(a, transmittance_lut, tw, th, r, mu);
         return L;
     }
     float d = geometry_distance_to_bottom(r, mu, a->bottom_radius);
     float mu_s_g = atmo_clamp_cos((r * mu_s + d * nu) / a->bottom_radius);
     vec3 direct = v3_scale(v3_mul(v3_from4(a->solar_irradiance),
-                                  atmosphere_sun_transmittance(a, lut_transmittance, tw, th,
+                                  atmosphere_sun_transmittance(a, transmittance_lut, tw, th,
                                                                a->bottom_radius, mu_s_g)),
                            fmaxf(mu_s_g, 0.0f));
-    vec3 indirect = lut_irradiance_lookup(a, lut_b + LUT_TEXELS(dims), dims, a->bottom_radius,
-                                          mu_s_g);
-    *view_t = lut_transmittance_to_ground(s, lut_transmittance, r, mu, d);
+    vec3 indirect =
+        lut_irradiance_lookup(a, scattering_mie + LUT_TEXELS(dims), dims, a->bottom_radius, mu_s_g);
+    *view_t = lut_transmittance_to_ground(s, transmittance_lut, r, mu, d);
     return v3_add(L, v3_mul(v3_mul(*view_t, v3_from4(a->ground_albedo)),
                             v3_scale(v3_add(direct, indirect), 1.0f / ATMO_PI)));
 }
@@ -113,21 +115,23 @@ ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
 }
 
 /* sky_single.h's hooks (-DATMO_LUT_J): the density of orders >= 2 and the sky's ground
- * irradiance, read from buffer b. */
-ATMO_FN vec3 lut_ms_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *lut_b,
-                           float r, float mu, float mu_s, float nu, int ground)
+ * irradiance, read from the buffer scattering_mie. */
+ATMO_FN vec3 lut_ms_source(ATMO_GLOBAL const atmo_gpu_scene *s,
+                           ATMO_GLOBAL const float4 *scattering_mie, float r, float mu, float mu_s,
+                           float nu, int ground)
 {
-    ATMO_GLOBAL const int *dims = s->lut_dims[0];
-    return lut_scattering_lookup(&s->atmosphere, lut_b + LUT_DENSITY_SUM(dims), dims, r,
+    ATMO_GLOBAL const int *dims = s->lut.dims;
+    return lut_scattering_lookup(&s->atmosphere, scattering_mie + LUT_DENSITY_SUM(dims), dims, r,
                                  atmo_clamp_cos(mu), mu_s, nu, ground);
 }
 
 ATMO_FN vec3 lut_ms_ground_irradiance(ATMO_GLOBAL const atmo_gpu_scene *s,
-                                      ATMO_GLOBAL const float4 *lut_b, float mu_s)
+                                      ATMO_GLOBAL const float4 *scattering_mie, float mu_s)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    ATMO_GLOBAL const int *dims = s->lut_dims[0];
-    return lut_irradiance_lookup(a, lut_b + LUT_TEXELS(dims), dims, a->bottom_radius, mu_s);
+    ATMO_GLOBAL const int *dims = s->lut.dims;
+    return lut_irradiance_lookup(a, scattering_mie + LUT_TEXELS(dims), dims, a->bottom_radius,
+                                 mu_s);
 }
 
 /* The segment [0, d]: a segment that reaches the ground or the top is the whole ray, from the
@@ -176,8 +180,8 @@ ATMO_FN void sky_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, f
     }
     vec3 sun;
     float jitter = rng_uniform(s->seed, pixel, sample, ATMO_RNG_METHOD_DIM);
-    sky_integrate(s, lut_transmittance, lut_b, 0, 0, 1, r, mu, mu_s, nu, d, s->view_steps, jitter,
-                  inscatter, &sun, transmittance);
+    sky_integrate(s, transmittance_lut, scattering_mie, 0, 0, 1, r, mu, mu_s, nu, d, s->view_steps,
+                  jitter, inscatter, &sun, transmittance);
 }
 
 #endif

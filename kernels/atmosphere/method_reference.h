@@ -33,7 +33,8 @@
  *
  * Orders: order n is light that scattered (in the air or on the ground) n times; order 1 is
  * single scattering plus the directly lit ground. Knobs (plan_reference.c):
- *   method_int[0] = reference.min_order (>= 1), method_int[1] = reference.max_order (0 = all);
+ *   s->reference.min_order = reference.min_order (>= 1), s->reference.max_order =
+ *   reference.max_order (0 = all);
  * only light of orders min..max is counted.
  * Aerial perspective (sky_segment): the camera ray ends at a black surface at distance d, later
  * segments of the path do not; the weight W at its end estimates T(0, d). On that cut segment
@@ -127,7 +128,7 @@ ATMO_FN vec3 reference_sunlight(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float 
 
 ATMO_FN float reference_mie_phase(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float nu)
 {
-    return a->mie_phase == 1 ? phase_henyey_greenstein(nu, a->mie_g)
+    return a->mie_phase == ATMO_PHASE_HENYEY_GREENSTEIN ? phase_henyey_greenstein(nu, a->mie_g)
                              : phase_cornette_shanks(nu, a->mie_g);
 }
 
@@ -150,7 +151,7 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, float r, float
                                vec3 *sun, vec3 *view_t)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    int min_order = s->method_int[0], max_order = s->method_int[1];
+    int min_order = s->reference.min_order, max_order = s->reference.max_order;
     reference_rng g = {s->seed, pixel, sample, ATMO_RNG_METHOD_DIM};
     vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
     vec3 albedo = v3_from4(a->ground_albedo);
@@ -247,8 +248,9 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, float r, float
             pos = v3_add(pos, v3_scale(dir, t_hit));
             float u1 = reference_uniform(&g), phi = 2.0f * ATMO_PI * reference_uniform(&g);
             float c = !chose_mie ? phase_draine_sample(0.0f, 1.0f, u1)
-                      : a->mie_phase == 1 ? phase_henyey_greenstein_sample(a->mie_g, u1)
-                                          : phase_cornette_shanks_sample(a->mie_g, u1);
+                      : a->mie_phase == ATMO_PHASE_HENYEY_GREENSTEIN
+                          ? phase_henyey_greenstein_sample(a->mie_g, u1)
+                          : phase_cornette_shanks_sample(a->mie_g, u1);
             dir = reference_rotate(dir, c, phi);
             w = ws;
         } else {
@@ -276,7 +278,7 @@ ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
                           vec3 *sun)
 {
     vec3 view_t;
-    (void)lut_transmittance, (void)lut_a, (void)lut_b, (void)lut_c; /* nothing precomputed */
+    (void)transmittance_lut; /* nothing precomputed */
     reference_trace(s, r, mu, mu_s, nu, INFINITY, pixel, sample, sky, sun, &view_t);
 }
 
@@ -287,7 +289,7 @@ ATMO_FN void sky_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, f
                          vec3 *transmittance)
 {
     vec3 sun;
-    (void)lut_transmittance, (void)lut_a, (void)lut_b, (void)lut_c; /* nothing precomputed */
+    (void)transmittance_lut; /* nothing precomputed */
     reference_trace(s, r, mu, mu_s, nu, d, pixel, sample, inscatter, &sun, transmittance);
 }
 

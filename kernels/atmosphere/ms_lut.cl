@@ -1,29 +1,30 @@
-/* ms_lut.cl — fills the multiple-scattering transfer LUT Psi_ms (ms_lut.h) into LUT buffer a.
+/* ms_lut.cl — fills the multiple-scattering transfer LUT Psi_ms (ms_lut.h) into the buffer
+ * ms_lut.
  *
- * Size s->lut_dims[0][0] (mu_s) x s->lut_dims[0][1] (altitude); quadrature knobs from
- * s->method_int: [0] cosine bands, [1] azimuths over [0, pi] (half in the gathering passes),
- * [2] segments per direction; s->method_float[0]: share of the order-3 anisotropy given to
- * orders >= 4; [1], [2]: the aerosol phase function's Legendre coefficients g_1, g_2
- * (ms_lut.h). Fourteen planes of w x h texels (ms_lut.h): 0 Psi and f_ms, 1-5 the anisotropy
- * D_uu, D_ss, D_us, b_u, b_s (final after the third pass), 6 the source of the third pass and
- * 7-11 its anisotropy, 12 the sky irradiance of the ground, 13 scratch (f_ms, then E_1 + E_2 /
- * (1 - f)). Each pass writes only planes that no texel of the same pass reads from another
- * texel. Needs the transmittance LUT, so its passes run after transmittance_lut. */
+ * Size s->ms.width (mu_s) x s->ms.height (altitude); quadrature knobs (atmo_gpu_ms_lut):
+ * directions_mu cosine bands, directions_phi azimuths over [0, pi] (half in the gathering
+ * passes), steps segments per direction; higher_anisotropy: share of the order-3 anisotropy
+ * given to orders >= 4; g1, g2: the aerosol phase function's Legendre coefficients (ms_lut.h).
+ * Fourteen planes of w x h texels (ms_lut.h): 0 Psi and f_ms, 1-5 the anisotropy D_uu, D_ss, D_us,
+ * b_u, b_s (final after the third pass), 6 the source of the third pass and 7-11 its anisotropy, 12
+ * the sky irradiance of the ground, 13 scratch (f_ms, then E_1 + E_2 / (1 - f)). Each pass writes
+ * only planes that no texel of the same pass reads from another texel. Needs the transmittance LUT,
+ * so its passes run after transmittance_lut. */
 
-#define MS_PLANE(k) (lut_a + (k) * scene->lut_dims[0][0] * scene->lut_dims[0][1])
+#define MS_PLANE(k) (ms_lut + (k) * scene->ms.width * scene->ms.height)
 
 /* Azimuths of the gathering passes: half of pass 1's. The gathered light has no aureole, and
  * the n-point midpoint rule over [0, pi] integrates its azimuthal harmonics exactly up to
  * cos((2n - 1) phi) (measured with 4 instead of 8: the sky changes by 1.2e-5 relative, the
  * precompute takes 35 % less time). */
-#define MS_GATHER_PHI (scene->method_int[1] > 1 ? scene->method_int[1] / 2 : 1)
+#define MS_GATHER_PHI (scene->ms.directions_phi > 1 ? scene->ms.directions_phi / 2 : 1)
 
 /* The texel of this work item: its (r, mu_s) and index in a plane, or -1 outside the LUT
  * (the global size is padded). */
 int ms_this_texel(__global const atmo_gpu_scene *scene, float *r, float *mu_s)
 {
     int i = get_global_id(0), j = get_global_id(1);
-    int w = scene->lut_dims[0][0], h = scene->lut_dims[0][1];
+    int w = scene->ms.width, h = scene->ms.height;
     if (i >= w || j >= h)
         return -1;
     ms_lut_r_mu_s(&scene->atmosphere, i, j, w, h, r, mu_s);
@@ -39,8 +40,8 @@ __kernel void ms_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PARAMS, 
     if (idx < 0)
         return;
     float4 dev[7];
-    MS_PLANE(0)[idx] = ms_lut_texel(scene, lut_transmittance, r, mu_s, scene->method_int[0],
-                                    scene->method_int[1], scene->method_int[2], dev);
+    MS_PLANE(0)[idx] = ms_lut_texel(scene, transmittance_lut, r, mu_s, scene->ms.directions_mu,
+                                    scene->ms.directions_phi, scene->ms.steps, dev);
     for (int k = 0; k < 5; k++)
         MS_PLANE(k + 1)[idx] = dev[k];
     MS_PLANE(13)[idx] = dev[5];
@@ -58,12 +59,12 @@ __kernel void ms_lut_order3(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_P
     int idx = ms_this_texel(scene, &r, &mu_s);
     if (idx < 0)
         return;
-    int w = scene->lut_dims[0][0], h = scene->lut_dims[0][1];
+    int w = scene->ms.width, h = scene->ms.height;
     float4 dev[6];
     float3 s3 = ms_lut_gather(scene, MS_PLANE(0), MS_PLANE(1), MS_PLANE(12), w, h, r, mu_s,
-                              scene->method_int[0], MS_GATHER_PHI, scene->method_int[2], dev);
+                              scene->ms.directions_mu, MS_GATHER_PHI, scene->ms.steps, dev);
     float3 f = MS_PLANE(13)[idx].xyz, series = 1.0f / (1.0f - f);
-    float3 gain = 1.0f + scene->method_float[0] * f * series;
+    float3 gain = 1.0f + scene->ms.higher_anisotropy * f * series;
     MS_PLANE(6)[idx] = (float4)(MS_PLANE(0)[idx].xyz + s3 * series, 0.0f);
     for (int k = 0; k < 5; k++)
         MS_PLANE(k + 7)[idx] = (float4)(MS_PLANE(k + 1)[idx].xyz + dev[k].xyz * gain, 0.0f);
@@ -79,10 +80,10 @@ __kernel void ms_lut_second(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_P
     int idx = ms_this_texel(scene, &r, &mu_s);
     if (idx < 0)
         return;
-    int w = scene->lut_dims[0][0], h = scene->lut_dims[0][1];
+    int w = scene->ms.width, h = scene->ms.height;
     float4 dev[6];
     float3 higher = ms_lut_gather(scene, MS_PLANE(6), MS_PLANE(7), MS_PLANE(13), w, h, r, mu_s,
-                                  scene->method_int[0], MS_GATHER_PHI, scene->method_int[2], dev);
+                                  scene->ms.directions_mu, MS_GATHER_PHI, scene->ms.steps, dev);
     MS_PLANE(0)[idx] = (float4)(MS_PLANE(0)[idx].xyz + higher, MS_PLANE(0)[idx].w);
     for (int k = 0; k < 5; k++)
         MS_PLANE(k + 1)[idx] += (float4)(dev[k].xyz, 0.0f);

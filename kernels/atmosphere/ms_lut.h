@@ -54,7 +54,7 @@
  * (l >= 3), a_0 = <L> = Psi. A phase function p convolves the l-th harmonic by its Legendre
  * coefficient g_l = 2 pi int p(x) P_l(x) dx (Funk-Hecke): Rayleigh's g_1 = 0, g_2 = 1/10 give the
  * D term above exactly; the aerosols' (Cornette-Shanks g = 0.8: g_1 = 0.844, g_2 = 0.710,
- * computed by the plan into method_float[1..2]) give, truncated at l = 2,
+ * computed by the plan into s->ms.g1, g2) give, truncated at l = 2,
  *     J_ms = sigma_R (Psi + v^T D v) + sigma_M (Psi + 3 g_1 b.v + 10 g_2 v^T D v)
  * with v the direction the camera looks along (light arriving from v scatters forward into it);
  * each part is kept >= 0. The truncation keeps the sky/ground and sun/anti-sun asymmetries and
@@ -74,7 +74,7 @@
  * same way as L_1''s. Pass 2 gathers order 3 exactly from order 2 (L_2, A_2, the ground lit by
  * the first-order sky E_1 = 4 pi <L_1' max(mu, 0)>): S_3, A_3, E_2. Pass 3 gathers orders >= 3
  * from the series over the gathered order 3, Psi_src = L_2 + S_3 / (1 - f), A_src = A_2 + A_3 (1
- * + k f / (1 - f)) (k = method_float[0]: orders >= 4 shaped like order 3), E = E_1 + E_2 /
+ * + k f / (1 - f)) (k = ms.higher_anisotropy: orders >= 4 shaped like order 3), E = E_1 + E_2 /
  * (1 - f): Psi = L_2 + <G>, A = A_2 + A_G. Orders >= 4 keep part of the local series' error
  * (measured: 5-10 % low in blue, ~0.5 % of the sky at the horizon). Planes of the LUT (each
  * width x height; ms_lut.cl): 0 Psi (xyz), f of channel y (w); 1-5 D_uu, D_ss, D_us, b_u, b_s;
@@ -164,7 +164,7 @@ ATMO_FN float4 ms_float4(vec3 v, float w)
  * direction a camera looks along, so light arriving from v scatters forward into it) with Psi
  * in the plane `psi_plane` and the anisotropy in the five consecutive planes from `aniso`
  * (D_uu, D_ss, D_us, b_u, b_s; each width x height); v in the frame (up, sun-ward horizontal,
- * across); g_1, g_2 = s->method_float[1], [2]; each part is kept >= 0. */
+ * across); g_1, g_2 = s->ms.g1, [2]; each part is kept >= 0. */
 ATMO_FN vec3 ms_lut_source_planes(ATMO_GLOBAL const atmo_gpu_scene *s,
                                     ATMO_GLOBAL const float4 *psi_plane,
                                     ATMO_GLOBAL const float4 *aniso, int width, int height,
@@ -190,8 +190,8 @@ ATMO_FN vec3 ms_lut_source_planes(ATMO_GLOBAL const atmo_gpu_scene *s,
                      v3_scale(d_us, 2.0f * mu * v_s));
     vec3 c1 = v3_add(v3_scale(b_u, mu), v3_scale(b_s, v_s));
     vec3 l_r = v3_add(psi, c2);
-    vec3 l_m = v3_add(psi, v3_add(v3_scale(c1, 3.0f * s->method_float[1]),
-                                  v3_scale(c2, 10.0f * s->method_float[2])));
+    vec3 l_m = v3_add(psi, v3_add(v3_scale(c1, 3.0f * s->ms.g1),
+                                  v3_scale(c2, 10.0f * s->ms.g2)));
     vec3 j_r = v3_mul(sigma_r, v3(fmaxf(l_r.x, 0.0f), fmaxf(l_r.y, 0.0f), fmaxf(l_r.z, 0.0f)));
     vec3 j_m = v3_mul(sigma_m, v3(fmaxf(l_m.x, 0.0f), fmaxf(l_m.y, 0.0f), fmaxf(l_m.z, 0.0f)));
     return v3_add(j_r, j_m);

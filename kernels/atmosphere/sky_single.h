@@ -45,7 +45,7 @@ ATMO_FN float sky_segment_weight(float sigma, float dt)
 
 ATMO_FN float sky_mie_phase(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float nu)
 {
-    return a->mie_phase == 1 ? phase_henyey_greenstein(nu, a->mie_g)
+    return a->mie_phase == ATMO_PHASE_HENYEY_GREENSTEIN ? phase_henyey_greenstein(nu, a->mie_g)
                              : phase_cornette_shanks(nu, a->mie_g);
 }
 
@@ -61,13 +61,14 @@ ATMO_FN vec3 ms_lut_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL cons
 #endif
 
 #ifdef ATMO_LUT_J
-/* method lut: the density J of orders >= 2 toward the ray (the table at lut_b + N + I, with
- * `ground` the ray's side of the horizon) and the sky's irradiance on the ground, from its
+/* method lut: the density J of orders >= 2 toward the ray (the table at scattering_mie + N + I,
+ * with `ground` the ray's side of the horizon) and the sky's irradiance on the ground, from its
  * tables; defined in kernels/atmosphere/method_lut.h (after this file) */
-ATMO_FN vec3 lut_ms_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *lut_b,
-                           float r, float mu, float mu_s, float nu, int ground);
+ATMO_FN vec3 lut_ms_source(ATMO_GLOBAL const atmo_gpu_scene *s,
+                           ATMO_GLOBAL const float4 *scattering_mie, float r, float mu, float mu_s,
+                           float nu, int ground);
 ATMO_FN vec3 lut_ms_ground_irradiance(ATMO_GLOBAL const atmo_gpu_scene *s,
-                                      ATMO_GLOBAL const float4 *lut_b, float mu_s);
+                                      ATMO_GLOBAL const float4 *scattering_mie, float mu_s);
 #endif
 
 /* The shadow hook: visibility of the sun (0..1) from the sample at distance t along the view
@@ -79,13 +80,13 @@ ATMO_FN float march_sun_visibility(ATMO_GLOBAL const atmo_gpu_scene *s, float r_
 }
 
 /* The integral above along (r, mu) with sun cosine mu_s and view-sun cosine nu up to distance
- * t_max (INFINITY for the whole ray), n segments with sample offset `jitter`, in parts: nu is constant along a straight ray, so the phase
- * functions factor out of single scattering, L = p_R(nu) *single_r + p_M(nu) *single_m + *rest,
- * with single_r = int T sigma_R E T_sun V dt and single_m likewise for Mie; *rest holds the lit
- * ground and, with use_ms, a multiple-scattering source at each sample and the ground lit by
- * the sky too: method march's (-DATMO_MS_LUT: ms_lut.h, from the LUT `ms` of ms_w x ms_h) or
- * method lut's (-DATMO_LUT_J: its tables, `ms` = its buffer b). *sun = the sun disc's radiance
- * where the ray sees it, *view_t = T(0, d). */
+ * t_max (INFINITY for the whole ray), n segments with sample offset `jitter`, in parts: nu is
+ * constant along a straight ray, so the phase functions factor out of single scattering, L =
+ * p_R(nu) *single_r + p_M(nu) *single_m + *rest, with single_r = int T sigma_R E T_sun V dt and
+ * single_m likewise for Mie; *rest holds the lit ground and, with use_ms, a multiple-scattering
+ * source at each sample and the ground lit by the sky too: method march's (-DATMO_MS_LUT: ms_lut.h,
+ * from the LUT `ms` of ms_w x ms_h) or method lut's (-DATMO_LUT_J: its tables, `ms` = its buffer
+ * scattering_mie). *sun = the sun disc's radiance where the ray sees it, *view_t = T(0, d). */
 ATMO_FN void sky_integrate_parts(ATMO_GLOBAL const atmo_gpu_scene *s,
                                  ATMO_GLOBAL const float4 *transmittance,
                                  ATMO_GLOBAL const float4 *ms, int ms_w, int ms_h, int use_ms,

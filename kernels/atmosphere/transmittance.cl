@@ -18,5 +18,5 @@ __kernel void transmittance_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_O
     atmosphere_transmittance_r_mu(&scene->atmosphere, ((float)i + 0.5f) / (float)w,
                                   ((float)j + 0.5f) / (float)h, w, h, &r, &mu);
     vec3 tau = atmosphere_optical_depth_to_top(&scene->atmosphere, r, mu, TRANSMITTANCE_STEPS);
-    lut_transmittance[j * w + i] = (float4)(tau, 0.0f);
+    transmittance_lut[j * w + i] = (float4)(tau, 0.0f);
 }

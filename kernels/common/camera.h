@@ -18,7 +18,7 @@
 ATMO_FN vec3 camera_ray(ATMO_GLOBAL const atmo_gpu_camera *c, float x, float y)
 {
     float w = (float)c->width, h = (float)c->height;
-    if (c->kind == ATMO_GPU_CAMERA_PANORAMA) {
+    if (c->kind == ATMO_CAMERA_PANORAMA) {
         float phi = 2.0f * ATMO_PI * (x / w - 0.5f);
         float theta = ATMO_PI * (0.5f - y / h);
         /* the host sets forward/right horizontal and up = +Y for panoramas (pitch ignored) */

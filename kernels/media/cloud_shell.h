@@ -1,12 +1,14 @@
 /* cloud_shell.h — a homogeneous cloud or fog layer between two altitudes (a spherical shell, so
  * the atmosphere stays spherically symmetric), an observer sphere that shadows it (Brocken
  * spectre), and the view-ray integrator of methods "single" and "march" when a scene has them
- * (compiled only under -DATMO_CLOUD).
+ * (feature "cloud" of the plan's registry: assembled, with -DATMO_CLOUD for the methods, only
+ * when the scene has a cloud or an observer).
  *
  * Medium: extinction sigma (1/m, per wavelength) = (sigma_ext / LWC) x LWC of a droplet size
  * distribution, albedo omega and a phase function p (per steradian): the 4pi-normalised Mie table
- * P(theta) / 4pi of the distribution (host/plan_cloud.c builds it with mie_table_get, rows
- * float4 (P_680, P_550, P_440, theta) ascending in theta, interpolated linearly here), or
+ * P(theta) / 4pi of the distribution (host/plan/plan_cloud.c builds it with mie_table_get into
+ * the buffer cloud_phase_table, rows float4 (P_680, P_550, P_440, theta) ascending in theta,
+ * interpolated linearly here), or
  * Henyey-Greenstein with the table's g, or Jendersie & d'Eon 2023 for the effective diameter.
  *
  * View ray (cloud_integrate): the ray is cut at the shell's spheres (at most two cloud segments)
@@ -16,7 +18,7 @@
  * chord toward the sun, analytic: exp(-sigma l_sun)) and by the observer's shadow. The multiple
  * scattering term sigma_s Psi_ms of method march (ms_lut.h) is multiplied by the same cloud
  * transmittance: a documented approximation that darkens the haze under a thick deck. Each
- * cloud segment is integrated with `cloud_steps` steps equal in optical depth, up to
+ * cloud segment is integrated with `s->cloud.steps` steps equal in optical depth, up to
  * CLOUD_TAU_CUT (beyond it the view transmittance is below 1e-5), so a cloud of optical
  * thickness 10-1000 is resolved where it is seen. Within a step the sun's path length in the
  * shell is taken as linear in t, from l_0 to l_1, so with x(s) = a sigma l(s) + sigma_v s the
@@ -34,7 +36,7 @@
  * decks reflect 0.6-0.8) while the glory and fog bow of octave 0 keep their contrast; the
  * approximation is not energy conserving and has no diffuse light under the deck.
  *
- * Observer: a sphere whose centre (s->observer.xyz) is given in the camera's sun frame
+ * Observer: a sphere whose centre (s->cloud.observer.xyz) is given in the camera's sun frame
  * (y = local up at the camera, x = horizontal toward the sun's azimuth, z = y cross x...
  * any sign: the centre has z = 0). sky_radiance knows a view direction only up to its mirror
  * image in the vertical plane through the sun, which contains the sphere, so the direction
@@ -98,20 +100,20 @@ ATMO_FN float cloud_shell_chord(float R, float base, float top, float h, float r
 }
 
 /* The cloud's phase function per steradian at view-sun cosine nu, one value per wavelength. */
-ATMO_FN vec3 cloud_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *lut0,
+ATMO_FN vec3 cloud_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *table,
                          float nu)
 {
-    if (s->cloud_phase == 1)
-        return v3(phase_henyey_greenstein(nu, s->cloud_g.x),
-                  phase_henyey_greenstein(nu, s->cloud_g.y),
-                  phase_henyey_greenstein(nu, s->cloud_g.z));
-    if (s->cloud_phase == 2) {
-        float p = phase_jendersie_deon(nu, phase_jendersie_deon_params(s->cloud_g.w));
+    if (s->cloud.phase == ATMO_CLOUD_PHASE_HG)
+        return v3(phase_henyey_greenstein(nu, s->cloud.g.x),
+                  phase_henyey_greenstein(nu, s->cloud.g.y),
+                  phase_henyey_greenstein(nu, s->cloud.g.z));
+    if (s->cloud.phase == ATMO_CLOUD_PHASE_JENDERSIE_DEON) {
+        float p = phase_jendersie_deon(nu, phase_jendersie_deon_params(s->cloud.diameter_um));
         return v3(p, p, p);
     }
     /* the light turns from -sun to -view: the scattering angle's cosine is nu */
-    ATMO_GLOBAL const float4 *rows = lut0 + s->cloud_table_offset;
-    int n = s->cloud_table_size;
+    ATMO_GLOBAL const float4 *rows = table;
+    int n = s->cloud.table_size;
     float theta = acosf(atmo_clamp_cos(nu));
     int lo = 0, hi = n - 1; /* rows[lo].w <= theta <= rows[hi].w */
     while (hi - lo > 1) {
@@ -206,7 +208,7 @@ ATMO_FN vec3 cloud_sun_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s,
     float r_t = geometry_radius_at(ray.r, ray.mu, t);
     float h = geometry_altitude_at(ray.r, ray.mu, t, R);
     float mu_s_t = atmo_clamp_cos((ray.r * ray.mu_s + t * ray.nu) / r_t);
-    *chord = cloud_shell_chord(R, s->cloud_extinction.w, s->cloud_albedo.w, h, r_t, mu_s_t);
+    *chord = cloud_shell_chord(R, s->cloud.base_m, s->cloud.top_m, h, r_t, mu_s_t);
     return atmosphere_sun_transmittance(a, lut0, s->transmittance_width,
                                         s->transmittance_height, r_t, mu_s_t);
 }
@@ -220,7 +222,7 @@ ATMO_FN void cloud_atmosphere_segment(ATMO_GLOBAL const atmo_gpu_scene *s,
                                         float jitter, vec3 *L, vec3 *T)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    vec3 E = v3_from4(a->solar_irradiance), sigma_c = v3_from4(s->cloud_extinction);
+    vec3 E = v3_from4(a->solar_irradiance), sigma_c = v3_from4(s->cloud.extinction);
     vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
     float p_r = phase_rayleigh(ray.nu), p_m = sky_mie_phase(a, ray.nu);
     float dt = (t1 - t0) / (float)n;
@@ -229,7 +231,7 @@ ATMO_FN void cloud_atmosphere_segment(ATMO_GLOBAL const atmo_gpu_scene *s,
         float h = geometry_altitude_at(ray.r, ray.mu, t, a->bottom_radius);
         float rho_r = expf(-h / a->rayleigh_scale_height), rho_m = expf(-h / a->mie_scale_height);
         vec3 sun_t = cloud_sun_transmittance(s, lut0, ray, t, &chord);
-        if (cloud_observer_blocks(s->observer, v3_scale(ray.dir, t), ray.sun_dir))
+        if (cloud_observer_blocks(s->cloud.observer, v3_scale(ray.dir, t), ray.sun_dir))
             sun_t = v3(0.0f, 0.0f, 0.0f);
         vec3 cloud_t = v3_exp(v3_scale(sigma_c, -chord));
         vec3 sigma_t = atmosphere_extinction(a, h);
@@ -252,18 +254,19 @@ ATMO_FN void cloud_atmosphere_segment(ATMO_GLOBAL const atmo_gpu_scene *s,
 /* One cloud segment [t0, t1]: steps equal in optical depth (channel y), octaves of multiple
  * scattering, the atmosphere's extinction (taken at the segment's middle) on top. */
 ATMO_FN void cloud_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *lut0,
+                           ATMO_GLOBAL const float4 *table,
                              cloud_ray ray, float t0, float t1, float jitter, vec3 *L, vec3 *T)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     vec3 E = v3_from4(a->solar_irradiance);
-    vec3 sigma = v3_from4(s->cloud_extinction), albedo = v3_from4(s->cloud_albedo);
+    vec3 sigma = v3_from4(s->cloud.extinction), albedo = v3_from4(s->cloud.albedo);
     vec3 sigma_v = v3_add(sigma, atmosphere_extinction(
                                      a, geometry_altitude_at(ray.r, ray.mu, 0.5f * (t0 + t1),
                                                              a->bottom_radius)));
     float len = fminf(t1 - t0, CLOUD_TAU_CUT / sigma.y);
-    int n = s->cloud_steps;
+    int n = s->cloud.steps;
     float dt = len / (float)n;
-    vec3 p0 = cloud_phase(s, lut0, ray.nu);
+    vec3 p0 = cloud_phase(s, table, ray.nu);
     vec3 k_src = v3_mul(v3_mul(sigma, albedo), E);
     float chord0, chord1;
     vec3 sun0 = cloud_sun_transmittance(s, lut0, ray, t0, &chord0);
@@ -271,16 +274,16 @@ ATMO_FN void cloud_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL cons
         float ta = t0 + (float)j * dt;
         vec3 sun1 = cloud_sun_transmittance(s, lut0, ray, ta + dt, &chord1);
         /* the observer's shadow is sharp: test it at a jittered point of the step */
-        vec3 sun_t = cloud_observer_blocks(s->observer, v3_scale(ray.dir, ta + jitter * dt),
+        vec3 sun_t = cloud_observer_blocks(s->cloud.observer, v3_scale(ray.dir, ta + jitter * dt),
                                            ray.sun_dir)
                          ? v3(0.0f, 0.0f, 0.0f)
                          : sun0;
         float sa = 1.0f, sb = 1.0f, sc = 1.0f;
         for (int i = 0; i < ATMO_CLOUD_OCTAVES; i++) {
             vec3 p = i == 0 ? p0
-                            : v3(phase_henyey_greenstein(ray.nu, s->cloud_g.x * sc),
-                                 phase_henyey_greenstein(ray.nu, s->cloud_g.y * sc),
-                                 phase_henyey_greenstein(ray.nu, s->cloud_g.z * sc));
+                            : v3(phase_henyey_greenstein(ray.nu, s->cloud.g.x * sc),
+                                 phase_henyey_greenstein(ray.nu, s->cloud.g.y * sc),
+                                 phase_henyey_greenstein(ray.nu, s->cloud.g.z * sc));
             vec3 sig_sun = v3_scale(sigma, sa);
             vec3 source = v3_scale(v3_mul(v3_mul(k_src, p), sun_t), sb);
             vec3 x0 = v3_scale(sig_sun, chord0);
@@ -301,9 +304,11 @@ ATMO_FN void cloud_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL cons
 
 /* Sky radiance along (r, mu, mu_s, nu) through the atmosphere, the cloud shell and past the
  * observer, up to a black surface at distance t_max (INFINITY: none), as sky_integrate
- * (sky_single.h) with the same outputs; ms (ms_w x ms_h) is the Psi_ms LUT of method march,
- * used when use_ms (and when ms_lut.h is compiled in). */
+ * (sky_single.h) with the same outputs; lut0 is the transmittance LUT, table the droplets'
+ * phase table (cloud_phase_table), ms (ms_w x ms_h) the Psi_ms LUT of method march, used when
+ * use_ms (and when ms_lut.h is compiled in). */
 ATMO_FN void cloud_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *lut0,
+                             ATMO_GLOBAL const float4 *table,
                              ATMO_GLOBAL const float4 *ms, int ms_w, int ms_h, int use_ms, float r,
                              float mu, float mu_s, float nu, float t_max, int n, float jitter,
                              vec3 *sky, vec3 *sun, vec3 *view_t)
@@ -338,7 +343,7 @@ ATMO_FN void cloud_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL co
                       tg0 > 0.0f;
     if (hits_ground)
         t_end = tg0;
-    float t_obs = cloud_observer_hit(s->observer, ray.dir);
+    float t_obs = cloud_observer_hit(s->cloud.observer, ray.dir);
     int hits_observer = t_obs >= 0.0f && t_obs < t_end;
     if (hits_observer)
         t_end = t_obs, hits_ground = 0;
@@ -349,7 +354,7 @@ ATMO_FN void cloud_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL co
         return;
 
     /* the cloud segments: inside the top sphere and outside the base sphere */
-    float base = s->cloud_extinction.w, top = s->cloud_albedo.w;
+    float base = s->cloud.base_m, top = s->cloud.top_m;
     float c_lo[2], c_hi[2], o0, o1, i0, i1;
     int nc = 0;
     if (cloud_sphere_roots(r * mu, (h_cam - top) * (r + R + top), &o0, &o1)) {
@@ -379,26 +384,27 @@ ATMO_FN void cloud_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL co
                                        steps < 1 ? 1 : steps, jitter, &L, &T);
         }
         if (k < nc) {
-            cloud_segment(s, lut0, ray, c_lo[k], c_hi[k], jitter, &L, &T);
+            cloud_segment(s, lut0, table, ray, c_lo[k], c_hi[k], jitter, &L, &T);
             prev = c_hi[k];
         }
     }
 
     if (hits_observer) {
         vec3 p = v3_scale(ray.dir, t_end);
-        vec3 normal = v3_normalize(v3_sub(p, v3(s->observer.x, s->observer.y, s->observer.z)));
+        vec3 normal = v3_normalize(
+            v3_sub(p, v3(s->cloud.observer.x, s->cloud.observer.y, s->cloud.observer.z)));
         /* lit like the camera's surroundings (the sphere is small); its own shadow test
          * would block it, so the cloud's chord is taken at the camera */
         float chord = cloud_shell_chord(R, base, top, h_cam, r, mu_s);
         vec3 sun_t = v3_mul(atmosphere_sun_transmittance(a, lut0, tw, th, r, mu_s),
-                            v3_exp(v3_scale(v3_from4(s->cloud_extinction), -chord)));
+                            v3_exp(v3_scale(v3_from4(s->cloud.extinction), -chord)));
         float cos_i = fmaxf(v3_dot(normal, ray.sun_dir), 0.0f);
         L = v3_add(L, v3_mul(T, v3_scale(v3_mul(E, sun_t), CLOUD_OBSERVER_ALBEDO * cos_i /
                                                                ATMO_PI)));
     } else if (hits_ground) {
         float mu_s_g = atmo_clamp_cos((r * mu_s + t_end * nu) / R);
         vec3 sun_t = v3_mul(atmosphere_sun_transmittance(a, lut0, tw, th, R, mu_s_g),
-                            v3_exp(v3_scale(v3_from4(s->cloud_extinction),
+                            v3_exp(v3_scale(v3_from4(s->cloud.extinction),
                                             -cloud_shell_chord(R, base, top, 0.0f, R, mu_s_g))));
         vec3 irradiance = v3_scale(v3_mul(E, sun_t), fmaxf(mu_s_g, 0.0f));
         L = v3_add(L, v3_mul(T, v3_scale(v3_mul(v3_from4(a->ground_albedo), irradiance),
@@ -410,7 +416,7 @@ ATMO_FN void cloud_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL co
         vec3 to_space = atmosphere_transmittance_to_top(a, lut0, tw, th, r0, mu0);
         vec3 cloud_t = v3(1.0f, 1.0f, 1.0f);
         for (int k = 0; k < nc; k++)
-            cloud_t = v3_mul(cloud_t, v3_exp(v3_scale(v3_from4(s->cloud_extinction),
+            cloud_t = v3_mul(cloud_t, v3_exp(v3_scale(v3_from4(s->cloud.extinction),
                                                       -(c_hi[k] - c_lo[k]))));
         *sun = v3_mul(v3_mul(sun_disc, to_space), cloud_t);
     }

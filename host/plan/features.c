@@ -1,0 +1,152 @@
+/* features.c — the feature registry (atmo/features.h): one row per feature, in the order their
+ * fragments are assembled. */
+#include <stdio.h>
+#include <string.h>
+#include "atmo/features.h"
+#include "atmo/plan_cloud.h"
+#include "atmo/plan_fast.h"
+#include "atmo/plan_lut.h"
+#include "atmo/plan_march.h"
+#include "atmo/plan_reference.h"
+
+static int always(const atmo_scene *s) { return s != NULL; }
+static int sky_integrator(const atmo_scene *s)
+{
+    return s->atmosphere.method != ATMO_METHOD_REFERENCE;
+}
+static int ms_methods(const atmo_scene *s)
+{
+    return s->atmosphere.method == ATMO_METHOD_MARCH || s->atmosphere.method == ATMO_METHOD_FAST;
+}
+static int cloud_shell(const atmo_scene *s) { return s->cloud.enabled || s->observer.enabled; }
+static int is_single(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_SINGLE; }
+static int is_march(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_MARCH; }
+static int is_fast(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_FAST; }
+static int is_lut(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_LUT; }
+static int is_reference(const atmo_scene *s)
+{
+    return s->atmosphere.method == ATMO_METHOD_REFERENCE;
+}
+
+/* The transmittance LUT, which every method gets first. */
+static int plan_atmosphere(const atmo_scene *s, atmo_plan *p, atmo_err *e)
+{
+    (void)s;
+    int w = p->gpu.transmittance_width, h = p->gpu.transmittance_height;
+    int rc = atmo_plan_add_buffer(p, "transmittance_lut", "float4",
+                                  sizeof(float4) * (size_t)w * (size_t)h, 0, NULL, e);
+    return rc ? rc : atmo_plan_add_pass(p, "transmittance_lut", w, h, 1, 0, e);
+}
+
+/* The headers every kernel is compiled with: the shared GPU structs (each feature's in its own
+ * header, before the scene struct that holds them), math, the atmosphere, the camera. */
+static const char *const atmosphere_fragments[] = {
+    "kernels/common/compat.h",        "include/atmo/gpu_enums.h",
+    "include/atmo/gpu_atmosphere.h",  "include/atmo/gpu_ms_lut.h",
+    "include/atmo/gpu_sky_view.h",    "include/atmo/gpu_lut.h",
+    "include/atmo/gpu_reference.h",   "include/atmo/gpu_cloud.h",
+    "include/atmo/gpu_types.h",       "kernels/common/rng.h",
+    "kernels/common/geometry.h",      "kernels/common/phase.h",
+    "kernels/atmosphere/atmosphere.h", "kernels/common/camera.h",
+    "kernels/atmosphere/sky_method.h", "kernels/atmosphere/transmittance.cl",
+    NULL};
+static const atmo_gpu_field atmosphere_params[] = {ATMO_GPU_FIELD(atmosphere),
+                                                   ATMO_GPU_FIELD(transmittance_width),
+                                                   ATMO_GPU_FIELD(transmittance_height),
+                                                   {0, 0}};
+static const char *const atmosphere_sources[] = {
+    "kernels/common/compat.h",       "include/atmo/gpu_enums.h",
+    "include/atmo/gpu_atmosphere.h", "include/atmo/gpu_types.h",
+    "kernels/common/geometry.h",     "kernels/atmosphere/atmosphere.h",
+    "kernels/atmosphere/transmittance.cl", NULL};
+
+static const char *const sky_single_fragments[] = {"kernels/atmosphere/sky_single.h", NULL};
+
+static const char *const ms_lut_fragments[] = {"kernels/atmosphere/ms_lut.h",
+                                               "kernels/atmosphere/ms_lut.cl", NULL};
+static const atmo_gpu_field ms_lut_params[] = {ATMO_GPU_FIELD(atmosphere), ATMO_GPU_FIELD(ms),
+                                               {0, 0}};
+static const char *const ms_lut_sources[] = {
+    "kernels/common/compat.h",        "include/atmo/gpu_enums.h",
+    "include/atmo/gpu_atmosphere.h",  "include/atmo/gpu_ms_lut.h",
+    "include/atmo/gpu_types.h",       "kernels/common/geometry.h",
+    "kernels/common/phase.h",         "kernels/atmosphere/atmosphere.h",
+    "kernels/atmosphere/sky_single.h", "kernels/atmosphere/ms_lut.h",
+    "kernels/atmosphere/ms_lut.cl",   NULL};
+
+static const char *const lut_fragments[] = {"kernels/atmosphere/lut_scattering.h",
+                                            "kernels/atmosphere/method_lut.h",
+                                            "kernels/atmosphere/lut_precompute.cl", NULL};
+static const atmo_gpu_field lut_params[] = {ATMO_GPU_FIELD(atmosphere), ATMO_GPU_FIELD(lut),
+                                            {0, 0}};
+static const char *const lut_sources[] = {
+    "kernels/common/compat.h",           "include/atmo/gpu_enums.h",
+    "include/atmo/gpu_atmosphere.h",     "include/atmo/gpu_lut.h",
+    "include/atmo/gpu_types.h",          "kernels/common/rng.h",
+    "kernels/common/geometry.h",         "kernels/common/phase.h",
+    "kernels/atmosphere/atmosphere.h",   "kernels/atmosphere/sky_method.h",
+    "kernels/atmosphere/sky_single.h",   "kernels/atmosphere/lut_scattering.h",
+    "kernels/atmosphere/method_lut.h",   "kernels/atmosphere/lut_precompute.cl",
+    NULL};
+
+static const char *const needs_transmittance[] = {"atmosphere", NULL};
+static const char *const cloud_fragments[] = {"kernels/media/cloud_shell.h", NULL};
+static const char *const single_fragments[] = {"kernels/atmosphere/method_single.h", NULL};
+static const char *const march_fragments[] = {"kernels/atmosphere/method_march.h", NULL};
+static const char *const fast_fragments[] = {"kernels/atmosphere/method_fast.h",
+                                             "kernels/atmosphere/fast_luts.cl", NULL};
+static const char *const reference_fragments[] = {"kernels/atmosphere/method_reference.h", NULL};
+static const char *const render_fragments[] = {"kernels/render/sky.cl", NULL};
+
+const atmo_feature atmo_features[] = {
+    {"atmosphere", -1, always, atmosphere_fragments, "", atmosphere_params, atmosphere_sources,
+     NULL, plan_atmosphere, 0},
+    /* the view-ray integrator of single, march, fast and lut */
+    {"sky_single", -1, sky_integrator, sky_single_fragments, "", NULL, NULL, NULL, NULL, 0},
+    /* Psi_ms, shared by march and fast; the flag compiles sky_single.h's terms in */
+    {"ms_lut", -1, ms_methods, ms_lut_fragments, "-DATMO_MS_LUT", ms_lut_params, ms_lut_sources,
+     needs_transmittance, atmo_plan_ms_lut, 0},
+    /* the flag gives sky_single.h the density of orders >= 2 for aerial perspective */
+    {"lut", ATMO_METHOD_LUT, is_lut, lut_fragments, "-DATMO_LUT_J", lut_params, lut_sources,
+     needs_transmittance, atmo_plan_lut, 0},
+    /* a medium: before the methods that integrate it */
+    {"cloud", -1, cloud_shell, cloud_fragments, "-DATMO_CLOUD", NULL, NULL, NULL,
+     atmo_plan_cloud, 0},
+    {"single", ATMO_METHOD_SINGLE, is_single, single_fragments, "", NULL, NULL, NULL, NULL, 0},
+    {"march", ATMO_METHOD_MARCH, is_march, march_fragments, "", NULL, NULL, NULL, NULL, 0},
+    /* the sky-view LUT follows the view: never cached, so no key */
+    {"fast", ATMO_METHOD_FAST, is_fast, fast_fragments, "", NULL, NULL, NULL, atmo_plan_fast,
+     1},
+    {"reference", ATMO_METHOD_REFERENCE, is_reference, reference_fragments, "", NULL, NULL, NULL,
+     atmo_plan_reference, 0},
+    /* the kernels that render with whichever method was assembled */
+    {"render", -1, always, render_fragments, "", NULL, NULL, NULL, NULL, 0},
+};
+const int atmo_feature_count = (int)(sizeof atmo_features / sizeof atmo_features[0]);
+
+const atmo_feature *atmo_feature_find(const char *name)
+{
+    for (int i = 0; i < atmo_feature_count; i++)
+        if (strcmp(atmo_features[i].name, name) == 0)
+            return &atmo_features[i];
+    return NULL;
+}
+
+const atmo_feature *atmo_feature_method(int method)
+{
+    for (int i = 0; i < atmo_feature_count; i++)
+        if (atmo_features[i].method == method && method >= 0)
+            return &atmo_features[i];
+    return NULL;
+}
+
+const char *atmo_plan_available_methods(void)
+{
+    static char list[128];
+    list[0] = 0;
+    for (int m = 0; m <= ATMO_METHOD_REFERENCE; m++)
+        if (atmo_feature_method(m))
+            snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", list[0] ? ", " : "",
+                     atmo_feature_method(m)->name);
+    return list;
+}

@@ -1,0 +1,27 @@
+/* gpu_enums.h — the choices that host and kernels both name, in one header both compilers read.
+ *
+ * Scene parameters store these values, the plan copies them into the GPU structs, and the
+ * kernels compare against the same names, so no choice is a bare number on either side. */
+#ifndef ATMO_GPU_ENUMS_H
+#define ATMO_GPU_ENUMS_H
+
+/* camera.kind: a pinhole, or an equirectangular panorama of the full sphere */
+enum { ATMO_CAMERA_PERSPECTIVE = 0, ATMO_CAMERA_PANORAMA = 1 };
+
+/* atmosphere.mie_phase: the aerosol phase function */
+enum { ATMO_PHASE_CORNETTE_SHANKS = 0, ATMO_PHASE_HENYEY_GREENSTEIN = 1 };
+
+/* cloud.phase: the droplets' phase function (the Mie table, Henyey-Greenstein with the table's
+ * g, or Jendersie and d'Eon's fit for the effective diameter) */
+enum { ATMO_CLOUD_PHASE_MIE = 0, ATMO_CLOUD_PHASE_HG, ATMO_CLOUD_PHASE_JENDERSIE_DEON };
+
+/* atmosphere.method, in the order of the scene registry's names */
+enum {
+    ATMO_METHOD_SINGLE = 0, /* single scattering only, ray marched */
+    ATMO_METHOD_MARCH,      /* ray-marched single scattering + a multiple-scattering term */
+    ATMO_METHOD_FAST,       /* per-frame LUTs (Hillaire 2020 style) */
+    ATMO_METHOD_LUT,        /* precomputed 4-D scattering LUTs (Bruneton 2017 style) */
+    ATMO_METHOD_REFERENCE,  /* Monte Carlo volumetric path tracer, all orders: the oracle */
+};
+
+#endif

@@ -1,0 +1,166 @@
+/* test_features — the feature registry (host/plan/features.c) and what a plan assembles from it.
+ * labels: unit
+ *
+ * Oracle: the registry's contract (atmo/features.h, DESIGN "models no more than a scene
+ * needs"), written out per method:
+ *  1. every fragment and source a row names is embedded (a misspelt source would silently drop
+ *     out of a cache key);
+ *  2. each method's plan has exactly its named buffers, in registry order, its -D flags, and
+ *     none of the fragments of features it does not contain; the generated parameter and
+ *     argument lists name the buffers in that order;
+ *  3. a cloud shell adds its fragment after the integrators it extends and before the method
+ *     that calls it, its flag, and its phase table as a buffer of its own with host data; a
+ *     sky-only scene's assembled source holds no cloud code (sizes printed: what the shell
+ *     costs to compile). */
+#include <stdlib.h>
+#include <string.h>
+#include "atmo/cl_runtime.h"
+#include "atmo/embedded.h"
+#include "atmo/features.h"
+#include "testlib.h"
+#include "testscene.h"
+
+static int fragment_at(const atmo_plan *p, const char *name)
+{
+    for (int i = 0; i < p->fragment_count; i++)
+        if (strcmp(p->fragments[i], name) == 0)
+            return i;
+    return -1;
+}
+
+static void test_registry_files(void)
+{
+    for (int i = 0; i < atmo_feature_count; i++) {
+        const atmo_feature *f = &atmo_features[i];
+        for (const char *const *s = f->fragments; *s; s++)
+            CHECK(atmo_embedded_find(atmo_kernel_sources, *s) != NULL);
+        for (const char *const *s = f->sources; s && *s; s++)
+            CHECK(atmo_embedded_find(atmo_kernel_sources, *s) != NULL);
+        for (const char *const *n = f->needs; n && *n; n++)
+            CHECK(atmo_feature_find(*n) != NULL);
+        CHECK((f->params == NULL) == (f->sources == NULL));
+    }
+}
+
+/* The plan's buffers are exactly `names` (NULL-terminated) and its prelude lists them. */
+static void check_buffers(const atmo_plan *p, const char *const *names)
+{
+    char params[512] = "#define ATMO_LUT_PARAMS", args[256] = "#define ATMO_LUT_ARGS";
+    int n = 0;
+    for (; names[n]; n++) {
+        CHECK(n < p->buffer_count && strcmp(p->buffers[n].name, names[n]) == 0);
+        snprintf(params + strlen(params), sizeof params - strlen(params),
+                 "%s ATMO_GLOBAL const float4 *%s", n ? "," : "", names[n]);
+        snprintf(args + strlen(args), sizeof args - strlen(args), "%s %s", n ? "," : "",
+                 names[n]);
+    }
+    CHECK(p->buffer_count == n);
+    CHECK(strstr(p->prelude, params) != NULL);
+    CHECK(strstr(p->prelude, args) != NULL);
+}
+
+typedef struct method_case {
+    const char *method;
+    const char *buffers[5];
+    const char *defines;
+    const char *own;  /* the method's entry fragment */
+    int integrator;   /* has sky_single.h */
+} method_case;
+
+static void test_methods(void)
+{
+    static const method_case cases[] = {
+        {"single", {"transmittance_lut", NULL}, "", "kernels/atmosphere/method_single.h", 1},
+        {"march", {"transmittance_lut", "ms_lut", NULL}, "-DATMO_MS_LUT",
+         "kernels/atmosphere/method_march.h", 1},
+        {"fast", {"transmittance_lut", "ms_lut", "sky_view_lut", NULL}, "-DATMO_MS_LUT",
+         "kernels/atmosphere/method_fast.h", 1},
+        {"lut",
+         {"transmittance_lut", "scattering_rayleigh", "scattering_mie", "scattering_scratch",
+          NULL},
+         "-DATMO_LUT_J", "kernels/atmosphere/method_lut.h", 1},
+        {"reference", {"transmittance_lut", NULL}, "", "kernels/atmosphere/method_reference.h", 0},
+    };
+    static const char *const entries[] = {
+        "kernels/atmosphere/method_single.h", "kernels/atmosphere/method_march.h",
+        "kernels/atmosphere/method_fast.h", "kernels/atmosphere/method_lut.h",
+        "kernels/atmosphere/method_reference.h"};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        const method_case *m = &cases[c];
+        atmo_plan p;
+        test_sky_plan(m->method, 0.0, 30.0, &p);
+        check_buffers(&p, m->buffers);
+        CHECK(strcmp(p.defines, m->defines) == 0);
+        CHECK(strcmp(p.method, m->method) == 0);
+        for (int i = 0; i < 5; i++)
+            CHECK((fragment_at(&p, entries[i]) >= 0) == (strcmp(entries[i], m->own) == 0));
+        CHECK((fragment_at(&p, "kernels/atmosphere/sky_single.h") >= 0) == m->integrator);
+        CHECK(fragment_at(&p, "kernels/media/cloud_shell.h") < 0);
+        /* common headers first, the render kernels last */
+        CHECK(fragment_at(&p, "kernels/common/compat.h") == 0);
+        CHECK(fragment_at(&p, "kernels/render/sky.cl") == p.fragment_count - 1);
+        /* passes: the transmittance LUT's first, each pass owned by a planned feature */
+        CHECK(p.pass_count >= 1 && strcmp(p.passes[0].kernel, "transmittance_lut") == 0);
+        for (int i = 0; i < p.pass_count; i++)
+            CHECK(p.passes[i].feature >= 0 && p.passes[i].feature < p.feature_count);
+        int view = atmo_plan_buffer_index(&p, "sky_view_lut");
+        CHECK(view < 0 || p.buffers[view].follows_view);
+    }
+}
+
+static size_t source_size(const atmo_plan *p, const char *needle, int *has)
+{
+    atmo_err e;
+    char *src = atmo_cl_assemble(p->prelude, p->fragments, p->fragment_count, NULL, &e);
+    CHECK(src != NULL);
+    size_t n = src ? strlen(src) : 0;
+    *has = src && strstr(src, needle) != NULL;
+    free(src);
+    return n;
+}
+
+static void test_cloud(void)
+{
+    atmo_scene s;
+    atmo_plan sky, cloud, observer;
+    test_scene_preset(&s, "sky-noon");
+    test_scene_set(&s, "atmosphere.method=march");
+    test_plan(&s, &sky);
+    test_scene_set(&s, "cloud.enabled=true");
+    test_plan(&s, &cloud);
+    static const char *const with_table[] = {"transmittance_lut", "ms_lut", "cloud_phase_table",
+                                             NULL};
+    check_buffers(&cloud, with_table);
+    CHECK(strcmp(cloud.defines, "-DATMO_MS_LUT -DATMO_CLOUD") == 0);
+    int shell = fragment_at(&cloud, "kernels/media/cloud_shell.h");
+    CHECK(shell > fragment_at(&cloud, "kernels/atmosphere/ms_lut.h"));
+    CHECK(shell > fragment_at(&cloud, "kernels/atmosphere/sky_single.h"));
+    CHECK(shell < fragment_at(&cloud, "kernels/atmosphere/method_march.h"));
+    const atmo_plan_buffer *table = atmo_plan_buffer_find(&cloud, "cloud_phase_table");
+    CHECK(table->host_data != NULL && cloud.gpu.cloud.table_size > 1 &&
+          table->bytes == sizeof(float4) * (size_t)cloud.gpu.cloud.table_size);
+    CHECK(cloud.gpu.cloud.top_m > cloud.gpu.cloud.base_m);
+
+    test_scene_set(&s, "cloud.enabled=false");
+    test_scene_set(&s, "observer.enabled=true");
+    test_scene_set(&s, "atmosphere.method=single");
+    test_plan(&s, &observer);
+    table = atmo_plan_buffer_find(&observer, "cloud_phase_table");
+    CHECK(table && table->bytes == sizeof(float4) && observer.gpu.cloud.table_size == 0);
+    CHECK(observer.gpu.cloud.observer.w > 0.0f);
+
+    int sky_has, cloud_has;
+    size_t n_sky = source_size(&sky, "ATMO_FN void cloud_integrate(", &sky_has);
+    size_t n_cloud = source_size(&cloud, "ATMO_FN void cloud_integrate(", &cloud_has);
+    CHECK(!sky_has && cloud_has && n_cloud > n_sky);
+    printf("march: assembled source %zu bytes sky-only, %zu with the cloud shell (+%zu)\n", n_sky,
+           n_cloud, n_cloud - n_sky);
+}
+
+int main(void)
+{
+    test_registry_files();
+    test_methods();
+    test_cloud();
+    return test_finish();
+}
