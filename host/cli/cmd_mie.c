@@ -247,7 +247,8 @@ int cmd_mie(int argc, char **argv)
                 memcpy(P, t.P, sizeof *t.P * (size_t)n_grid);
             mie_table_free(&t);
         }
-        if (angles && (rc = mie_dsd_integrate(&dsd, lambda[w], n, k, 0.0, n_out, mu, P, &b, &e)))
+        if (angles && (rc = mie_dsd_integrate(&dsd, lambda[w], n, k, 0.0, opt.tolerance, n_out, mu, P,
+                                         &b, &e)))
             goto done;
         mie_efficiencies q = {0};
         if (dsd.kind == MIE_DSD_MONO &&
