@@ -130,7 +130,7 @@ typedef struct mie_bulk {
 #define MIE_DSD_MIN_DX 0.002
 #define MIE_DSD_MAX_INTERVALS 4000000
 #define MIE_DSD_TOLERANCE 1.0e-3
-#define MIE_DSD_COALBEDO_TOLERANCE 0.05 /* relative change of 1 - omega_0 per halving */
+#define MIE_DSD_COALBEDO_TOLERANCE 0.10 /* relative change of 1 - omega_0 per halving */
 int mie_dsd_integrate(const mie_dsd *d, double wavelength_nm, double n, double k, double max_dx,
                       double tolerance, int n_mu, const double *mu, double *P, mie_bulk *out,
                       atmo_err *e);
