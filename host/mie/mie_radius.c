@@ -13,14 +13,19 @@
  * each further level adds the midpoints (halving the step, reusing every node). After level L
  * the relative change of P from level L-1, over up to MIE_DSD_CHECK_ANGLES of the angles,
  *   rms = sqrt(mean (P_L / P_{L-1} - 1)^2),   max = max |P_L / P_{L-1} - 1|,
- * estimates the error of P_{L-1}; it stops when rms <= tol, max <= 5 tol, Q_ext and g changed
- * by <= tol and the co-albedo 1 - omega_0 by <= MIE_DSD_COALBEDO_TOLERANCE, and returns P_L,
+ * estimates the error of P_{L-1}; it stops, once the step is <= MIE_DSD_COARSEST_DX (1/64),
+ * when rms <= tol, max <= 5 tol, Q_ext and g changed by <= tol and the co-albedo 1 - omega_0
+ * by <= MIE_DSD_COALBEDO_TOLERANCE, and returns P_L,
  * whose error is smaller than that estimate (the halved step resolves more of the ripples;
  * measured against step 0.005: 1.6e-4 - 6.9e-4 RMS for the presets). tol defaults to
  * MIE_DSD_TOLERANCE; mie_bulk records the step and the estimate. The angles checked are every
  * (n_mu / MIE_DSD_CHECK_ANGLES)-th of those asked for, so a table's fine zones near 0 and 180 deg
  * (corona, glory) weigh in proportion to their share of the grid. A step given explicitly
  * (max_dx > 0) is used as a fixed rule, one level.
+ * Why a coarsest step: two coarse steps can under-sample the same structure and agree by chance.
+ * Backscatter collects partial-wave resonances with weight pi_n(-1) ~ n^2, and for thesis-disperse
+ * drops at 550 nm the steps 0.125 and 0.0625 agree to 8e-4 RMS over 170-180 deg while both are
+ * 4 % off at 180 deg; from 1/64 on, every preset, wavelength and distribution tried passed.
  * Sums: per sphere the coefficients a_n, b_n go into the quadratic forms of mie_gram.c (cost
  * ~2 N^2 per radius, independent of the number of angles) when the angles outnumber N / 3 and
  * N <= MIE_GRAM_MAX_TERMS; otherwise S1, S2 are summed at each angle (mie_sphere). Radii go in
@@ -331,8 +336,8 @@ int mie_dsd_integrate(const mie_dsd *d, double wavelength_nm, double n, double k
             double da = fabs((tot.ext - tot.sca) / (prev.ext - prev.sca) * prev.ext / tot.ext - 1.0);
             est_rms = n_chk > 0 ? sqrt(s2 / n_chk) : 0.0;
             est_max = mx;
-            if (est_rms <= tol && est_max <= 5.0 * tol && dq <= tol && dg <= tol &&
-                !(da > MIE_DSD_COALBEDO_TOLERANCE))
+            if (step <= MIE_DSD_COARSEST_DX * (1.0 + 1e-9) && est_rms <= tol && est_max <= 5.0 * tol &&
+                dq <= tol && dg <= tol && !(da > MIE_DSD_COALBEDO_TOLERANCE))
                 break;
         }
         /* the next level would add `intervals` midpoints at half the step */

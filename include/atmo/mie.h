@@ -120,14 +120,15 @@ typedef struct mie_bulk {
 
 /* Integrate over radius (host/mie_radius.c). max_dx > 0: the trapezoid rule with size-parameter
  * steps <= max_dx (and >= 200 nodes), one pass. max_dx == 0: the converged rule, which halves the
- * step from MIE_DSD_START_DX until P changes by at most `tolerance` RMS over angle and 5 x
- * tolerance at every angle, Q_ext and g by `tolerance` and the co-albedo by
- * MIE_DSD_COALBEDO_TOLERANCE (tolerance 0 = MIE_DSD_TOLERANCE), or the step reaches
- * MIE_DSD_MIN_DX. Against a converged integral (step 0.005) the default table is within 1e-3
- * RMS and 5e-3 at every angle. When n_mu > 0, also the 4pi-normalised effective phase function at the cosines
- * mu (sizes weighted by scattering cross-section) into P. */
+ * step from MIE_DSD_START_DX, to at least MIE_DSD_COARSEST_DX, until P changes by at most
+ * `tolerance` RMS over angle and 5 x tolerance at every angle, Q_ext and g by `tolerance` and the
+ * co-albedo by MIE_DSD_COALBEDO_TOLERANCE (tolerance 0 = MIE_DSD_TOLERANCE), or the step reaches
+ * MIE_DSD_MIN_DX. Against a converged integral (step 0.005) the default table is within 1e-3 RMS
+ * and 5e-3 at every angle. When n_mu > 0, also the 4pi-normalised effective phase function at the
+ * cosines mu (sizes weighted by scattering cross-section) into P. */
 #define MIE_DSD_START_DX 0.125
 #define MIE_DSD_MIN_DX 0.002
+#define MIE_DSD_COARSEST_DX (1.0 / 64.0) /* the converged rule's final step is at most this */
 #define MIE_DSD_MAX_INTERVALS 4000000
 #define MIE_DSD_TOLERANCE 1.0e-3
 #define MIE_DSD_COALBEDO_TOLERANCE 0.10 /* relative change of 1 - omega_0 per halving */
