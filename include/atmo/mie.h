@@ -14,9 +14,10 @@
  *   - Radii in micrometres, wavelengths in nanometres at this API (as at the CLI); sigma per
  *     liquid water content in m^2 per gram (sigma_ext [1/m] = value * LWC [g/m^3]).
  *
- * Methods (details at the top of host/mie.c, mie_dsd.c, mie_table.c): Wiscombe's term count,
- * D_n(mx) by downward recurrence started from Lentz's continued fraction, Wiscombe's small-sphere
- * series for |m| x <= 0.1; valid for 1e-6 <= x <= 2e4. */
+ * Methods (details at the top of host/mie/mie.c, mie_dsd.c, mie_radius.c, mie_gram.c,
+ * mie_table.c): Wiscombe's term count, D_n(mx) by downward recurrence started from Lentz's
+ * continued fraction, Wiscombe's small-sphere series for |m| x <= 0.1; valid for
+ * 1e-6 <= x <= 2e4. Size integrals refined until converged, summed as quadratic forms. */
 #ifndef ATMO_MIE_H
 #define ATMO_MIE_H
 #include <complex.h>
