@@ -50,6 +50,14 @@ int main(void)
     CHECK(mie_table_get(&d, 650.0, 1.331, 1e-8, &opt2, 1, &t2, &hit, &e) == ATMO_OK && hit == 0);
     CHECK(t2.P[0] < ref.P[0]); /* the sun disc flattens the forward peak: really another table */
     mie_table_free(&t2);
+    mie_table_options opt3 = opt;
+    opt3.tolerance = 5e-4; /* the accuracy target is part of the key */
+    CHECK(mie_table_get(&d, 650.0, 1.331, 1e-8, &opt3, 1, &t2, &hit, &e) == ATMO_OK && hit == 0);
+    mie_table_free(&t2);
+    opt3.tolerance = MIE_DSD_TOLERANCE; /* the default spelled out is the same table */
+    CHECK(mie_table_get(&d, 650.0, 1.331, 1e-8, &opt3, 1, &t2, &hit, &e) == ATMO_OK && hit == 1);
+    CHECK(same_table(&t2, &ref));
+    mie_table_free(&t2);
     mie_dsd d2 = d;
     d2.v_eff = 0.11;
     CHECK(mie_table_get(&d2, 650.0, 1.331, 1e-8, &opt, 1, &t2, &hit, &e) == ATMO_OK && hit == 0);

@@ -11,6 +11,8 @@
 # CSV (the oracle is the first, computed, run); --no-cache must agree too. Chart: an SVG with one
 # path per wavelength exists; without gnuplot on PATH, exit 1 with one line naming gnuplot and no
 # file. Bench: the CSVs have one row per phase option and per table setting, all numbers finite.
+# Radius rule: --tolerance T stops with its own change estimate <= T RMS and 5 T at most (what
+# the rule promises) at a finer step than a fixed --radius-step, which reports no estimate.
 set -u
 atmo=$1
 tmp=$(mktemp -d)
@@ -53,6 +55,20 @@ cmp -s "$tmp/out.txt" "$tmp/out2.txt" || { echo "bulk output from the cache diff
 "$atmo" mie --dsd stratus --wavelength-nm 550 --wavelength-nm 440 --table "$tmp/t3.csv" --no-cache \
     >/dev/null && cmp -s "$tmp/t.csv" "$tmp/t3.csv" || { echo "--no-cache table differs"; fail=1; }
 
+# the radius rule: the converged rule stops at an estimate within --tolerance; a fixed step has none
+"$atmo" mie --dsd stratus --wavelength-nm 550 --angles-deg 140,180 --tolerance 3e-3 --json \
+    >"$tmp/tol.json" || { echo "--tolerance run failed"; fail=1; }
+"$atmo" mie --dsd stratus --wavelength-nm 550 --angles-deg 140,180 --radius-step 0.25 --json \
+    >"$tmp/step.json" || { echo "--radius-step run failed"; fail=1; }
+python3 - "$tmp/tol.json" "$tmp/step.json" <<'PY' || fail=1
+import json, sys
+t = json.load(open(sys.argv[1]))["results"][0]
+s = json.load(open(sys.argv[2]))["results"][0]
+assert 0 <= t["error_estimate_rms"] <= 3e-3 and t["error_estimate_max"] <= 1.5e-2, t
+assert t["radius_step_dx"] <= 0.0625 and t["n_radii"] > s["n_radii"], (t["radius_step_dx"], s["n_radii"])
+assert "error_estimate_rms" not in s and abs(s["radius_step_dx"] - 0.25) < 1e-3, s["radius_step_dx"]
+PY
+
 # chart
 if command -v gnuplot >/dev/null; then
     "$atmo" mie --dsd stratus --wavelength-nm 550 --wavelength-nm 440 --chart "$tmp/c.svg" >/dev/null \
@@ -86,7 +102,9 @@ if command -v gnuplot >/dev/null; then grep -q '</svg>' "$tmp/bench/mie.svg" || 
 for args in "--dsd nope --wavelength-nm 550" "--radius-um 10" "--radius-um -1 --wavelength-nm 550" \
             "--radius-um 10 --wavelength-nm 550 --index 1.33-0.1i" \
             "--radius-um 10 --wavelength-nm 550 --angles-deg 0,200" \
-            "--radius-um 10 --dsd fog --wavelength-nm 550" "--radius-um 10 --wavelength-nm 550 --bogus 1"; do
+            "--radius-um 10 --dsd fog --wavelength-nm 550" "--radius-um 10 --wavelength-nm 550 --bogus 1" \
+            "--dsd fog --wavelength-nm 550 --tolerance 0" \
+            "--dsd fog --wavelength-nm 550 --tolerance 1e-3 --radius-step 0.5"; do
     "$atmo" mie $args >"$tmp/o" 2>"$tmp/e"
     rc=$?
     if [ $rc -ne 2 ] || [ "$(wc -l <"$tmp/e")" -ne 1 ]; then

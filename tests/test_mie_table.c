@@ -64,7 +64,7 @@ static double argmax_deg(const mie_dsd *d, double a, double b, double step)
         mu[i] = cos((a + i * step) * PI / 180.0);
     mie_bulk bulk;
     atmo_err e;
-    CHECK(mie_dsd_integrate(d, 550.0, 1.3359, 2.5e-9, 0.0, n, mu, P, &bulk, &e) == ATMO_OK);
+    CHECK(mie_dsd_integrate(d, 550.0, 1.3359, 2.5e-9, 0.0, 0.0, n, mu, P, &bulk, &e) == ATMO_OK);
     int best = 0;
     for (int i = 1; i < n; i++)
         if (P[i] > P[best])
@@ -118,7 +118,7 @@ static void test_glory(void)
         mu[i] = cos((170.0 + 10.0 * i / (N - 1)) * PI / 180.0);
     mie_bulk b;
     atmo_err e;
-    CHECK(mie_dsd_integrate(&d, 550.0, 1.3359, 2.5e-9, 0.0, N, mu, P, &b, &e) == ATMO_OK);
+    CHECK(mie_dsd_integrate(&d, 550.0, 1.3359, 2.5e-9, 0.0, 0.0, N, mu, P, &b, &e) == ATMO_OK);
     double maxima[32];
     int m = 0;
     for (int i = 1; i < N - 1 && m < 32; i++)

@@ -19,12 +19,15 @@
  * Cost: ns per call to evaluate (phase at a varying cosine) and to sample (a varying u1, u2),
  * measured on the HOST (one core, the float build of kernels/common/phase.h), 2e6 calls each; the
  * relative costs carry over to kernels, the absolute ones do not.
- * Table builds: cumulus at 550 nm for radius steps dx and angle grids, seconds on the host (one
- * core), error = RMS over 0-180 deg (0.01 deg steps) of P / P_ref - 1 against the finest setting.
+ * Table builds: cumulus at 550 nm on the default angle grid for the radius rules: fixed
+ * size-parameter steps 0.5 (the former default), 0.1 and 0.03, the converged rule at its default
+ * tolerance 1e-3 and at 3e-4, against the converged integral (fixed step 0.005, the last row).
+ * Time: wall and CPU seconds of the build on the host (two threads); error = RMS over 0-180 deg
+ * (0.01 deg steps) of P / P_ref - 1, and its largest value.
  * Outputs: DIR/mie.csv (method, settings, errors per range, eval_ns, sample_ns), DIR/mie_table.csv
- * (settings, n_angles, n_radii, seconds, error) and DIR/mie.svg (gnuplot: error in each range
- * against eval cost, and table error against build time). --quick: fewer table settings, coarse
- * grids, for tests. */
+ * (settings, n_angles, n_radii, dx, seconds, cpu_seconds, error, error_max) and DIR/mie.svg
+ * (gnuplot: error in each range against eval cost, and table error against build CPU time).
+ * --quick: two table settings on a coarse uniform grid, for tests. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -52,12 +55,14 @@ typedef struct bench_mie_option {
     double err[BENCH_MIE_NRANGES], eval_ns, sample_ns;
 } bench_mie_option;
 
-static double bench_now(void)
+static double bench_clock(clockid_t id)
 {
     struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
+    clock_gettime(id, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
+
+static double bench_now(void) { return bench_clock(CLOCK_MONOTONIC); }
 
 static float bench_mie_eval(const bench_mie_option *o, float nu)
 {
@@ -83,18 +88,23 @@ static float bench_mie_sample(const bench_mie_option *o, float u1, float u2)
     }
 }
 
-/* RMS of f(theta) / P_ref(theta) - 1 over [lo, hi] every 0.01 deg; f = option or table */
+/* RMS (and largest, into *mx unless NULL) of f(theta) / P_ref(theta) - 1 over [lo, hi] every
+ * 0.01 deg; f = option or table */
 static double bench_mie_error(const mie_table *ref, const bench_mie_option *o,
-                                const mie_table *other, double lo, double hi)
+                                const mie_table *other, double lo, double hi, double *mx)
 {
     int n = (int)lround((hi - lo) / 0.01);
     double sum = 0.0;
+    if (mx)
+        *mx = 0.0;
     for (int i = 0; i <= n; i++) {
         double th = lo + (hi - lo) * i / n, pr = mie_table_eval(ref, th);
         double p = other ? mie_table_eval(other, th)
                          : 4.0 * 3.14159265358979323846 *
                                (double)bench_mie_eval(o, (float)cos(th * 3.14159265358979323846 / 180.0));
         sum += (p / pr - 1.0) * (p / pr - 1.0);
+        if (mx)
+            *mx = fmax(*mx, fabs(p / pr - 1.0));
     }
     return sqrt(sum / (n + 1));
 }
@@ -149,9 +159,9 @@ static const char bench_mie_plot[] =
     "set datafile separator ','\nset logscale xy\nset grid\nset key off\n"
     "set multiplot layout 2,3 title \"%s\" noenhanced\n"
     "%s"
-    "set title 'table build (cumulus 550 nm)'\nset xlabel 'seconds (host)'\n"
-    "set ylabel 'RMS rel. error vs finest'\n"
-    "plot '%s' using 4:5 every ::1 with points pt 7, '' using 4:5:1 every ::1 with labels "
+    "set title 'table build (cumulus 550 nm)'\nset xlabel 'CPU seconds (host, 2 threads)'\n"
+    "set ylabel 'RMS rel. error vs step 0.005'\n"
+    "plot '%s' using 6:7 every ::1 with points pt 7, '' using 6:7:1 every ::1 with labels "
     "offset 0,0.8 font ',7' noenhanced\n"
     "unset multiplot\n";
 
@@ -159,7 +169,7 @@ int bench_mie(const char *dir, int quick, atmo_err *e)
 {
     mie_dsd d;
     mie_table ref = {0}, coarse = {0};
-    mie_table builds[4] = {{0}};
+    mie_table builds[6] = {{0}};
     bench_mie_option opt[8];
     int nopt = 0, rc;
     double n, k;
@@ -245,36 +255,36 @@ int bench_mie(const char *dir, int quick, atmo_err *e)
     for (int i = 0; i < nopt; i++) {
         for (int r = 0; r < BENCH_MIE_NRANGES; r++)
             opt[i].err[r] = bench_mie_error(&ref, &opt[i], NULL, bench_mie_range[r][0],
-                                              bench_mie_range[r][1]);
+                                              bench_mie_range[r][1], NULL);
         bench_mie_cost(&opt[i], quick ? BENCH_MIE_CALLS / 20 : BENCH_MIE_CALLS);
         fprintf(stderr, "bench mie: %-16s %-30s errors %.2e %.2e %.2e %.2e all %.2e  eval %.1f ns  "
                 "sample %.1f ns\n", opt[i].method, opt[i].settings, opt[i].err[0], opt[i].err[1],
                 opt[i].err[2], opt[i].err[3], opt[i].err[4], opt[i].eval_ns, opt[i].sample_ns);
     }
 
-    /* table builds: the last setting is the finest and the reference for the others */
+    /* table builds: the last setting is the reference for the others */
     static const mie_table_options full[] = {
-        {.uniform = 1, .coarse_step_deg = 1.0, .max_dx = 0.5},
-        {.max_dx = 0.5},
-        {.max_dx = 0.1},
-        {.max_dx = 0.03}};
+        {.max_dx = 0.5}, {.max_dx = 0.1}, {.max_dx = 0.03}, {.tolerance = 0.0},
+        {.tolerance = 3e-4}, {.max_dx = 0.005}};
     static const mie_table_options fast[] = {
         {.uniform = 1, .coarse_step_deg = 2.0, .max_dx = 0.5},
-        {.uniform = 1, .coarse_step_deg = 0.5, .max_dx = 0.25}};
+        {.uniform = 1, .coarse_step_deg = 2.0, .max_dx = 0.05}};
     const mie_table_options *set = quick ? fast : full;
-    int nset = quick ? 2 : 4;
-    double secs[4], errs[4];
+    int nset = quick ? 2 : 6;
+    double secs[6], cpus[6], errs[6], maxs[6];
     for (int i = 0; i < nset; i++) {
-        double t0 = bench_now();
+        double t0 = bench_now(), c0 = bench_clock(CLOCK_PROCESS_CPUTIME_ID);
         if ((rc = mie_table_build(&d, 550.0, n, k, &set[i], &builds[i], e)))
             goto done;
         secs[i] = bench_now() - t0;
-        fprintf(stderr, "bench mie: table dx %.2f %s: %d angles, %d radii, %.3f s\n", set[i].max_dx,
-                set[i].uniform ? "uniform" : "default grid", builds[i].n, builds[i].bulk.n_radii,
-                secs[i]);
+        cpus[i] = bench_clock(CLOCK_PROCESS_CPUTIME_ID) - c0;
+        fprintf(stderr, "bench mie: table %s %g: %d angles, %d radii (dx %.4f), %.3f s, %.3f s CPU\n",
+                set[i].max_dx > 0.0 ? "fixed step" : "tolerance",
+                set[i].max_dx > 0.0 ? set[i].max_dx : (set[i].tolerance > 0.0 ? set[i].tolerance : MIE_DSD_TOLERANCE),
+                builds[i].n, builds[i].bulk.n_radii, builds[i].bulk.dx, secs[i], cpus[i]);
     }
     for (int i = 0; i < nset; i++)
-        errs[i] = bench_mie_error(&builds[nset - 1], NULL, &builds[i], 0.0, 180.0);
+        errs[i] = bench_mie_error(&builds[nset - 1], NULL, &builds[i], 0.0, 180.0, &maxs[i]);
 
     char csv[4200], csv2[4200], svg[4200], tmp[ATMO_TMP_PATH_MAX];
     snprintf(csv, sizeof csv, "%s/mie.csv", dir);
@@ -301,12 +311,18 @@ int bench_mie(const char *dir, int quick, atmo_err *e)
         rc = ATMO_ERR_RUNTIME;
         goto done;
     }
-    fprintf(f, "settings,n_angles,n_radii,seconds,error\n");
-    for (int i = 0; i < nset; i++)
-        fprintf(f, "dx=%.2f %s,%d,%d,%.4f,%.4e\n", set[i].max_dx,
-                set[i].uniform ? (set[i].coarse_step_deg >= 1.0 ? "uniform-1+deg" : "uniform")
-                               : "default-grid",
-                builds[i].n, builds[i].bulk.n_radii, secs[i], i == nset - 1 ? 0.0 : errs[i]);
+    fprintf(f, "settings,n_angles,n_radii,dx,seconds,cpu_seconds,error,error_max\n");
+    for (int i = 0; i < nset; i++) {
+        char label[64];
+        if (set[i].max_dx > 0.0)
+            snprintf(label, sizeof label, "%sdx=%g", i == nset - 1 ? "reference " : "", set[i].max_dx);
+        else
+            snprintf(label, sizeof label, "tol=%g", set[i].tolerance > 0.0 ? set[i].tolerance
+                                                                           : MIE_DSD_TOLERANCE);
+        fprintf(f, "%s%s,%d,%d,%.5f,%.4f,%.4f,%.4e,%.4e\n", label, set[i].uniform ? " uniform-grid" : "",
+                builds[i].n, builds[i].bulk.n_radii, builds[i].bulk.dx, secs[i], cpus[i],
+                i == nset - 1 ? 0.0 : errs[i], i == nset - 1 ? 0.0 : maxs[i]);
+    }
     if ((rc = atmo_atomic_commit(f, tmp, csv2, e)))
         goto done;
 
@@ -346,7 +362,7 @@ done:
         free(opt[i].P);
         free(opt[i].cdf);
     }
-    for (int i = 0; i < 4; i++)
+    for (int i = 0; i < 6; i++)
         mie_table_free(&builds[i]);
     mie_table_free(&coarse);
     mie_table_free(&ref);

@@ -38,6 +38,19 @@ int mie_nterms(double x)
     return nt < 1 ? 1 : nt;
 }
 
+/* p / q by Smith's (1962) algorithm: no overflow of |q|^2, and no call into the run-time
+ * library's Annex G division (which dominated the cost of the coefficients) */
+static inline double complex mie_div(double complex p, double complex q)
+{
+    double a = creal(p), b = cimag(p), c = creal(q), d = cimag(q);
+    if (fabs(c) >= fabs(d)) {
+        double r = d / c, t = 1.0 / (c + d * r);
+        return CMPLX((a + b * r) * t, (b - a * r) * t);
+    }
+    double r = c / d, t = 1.0 / (c * r + d);
+    return CMPLX((a * r + b) * t, (b * r - a) * t);
+}
+
 /* J_{v-1}(z)/J_v(z) with v = N + 1/2 by the modified Lentz algorithm. */
 static double complex mie_lentz_ratio(double complex z, int N)
 {
@@ -70,9 +83,10 @@ static void mie_log_derivative(double complex z, int count, int nstop, mie_dn_st
 {
     double az = cabs(z);
     if (start == MIE_DN_LENTZ) {
-        d[count] = -count / z + mie_lentz_ratio(z, count);
+        double complex zi = mie_div(1.0, z);
+        d[count] = -count * zi + mie_lentz_ratio(z, count);
         for (int n = count; n > 1; n--)
-            d[n - 1] = n / z - 1.0 / (d[n] + n / z);
+            d[n - 1] = n * zi - mie_div(1.0, d[n] + n * zi);
         return;
     }
     int top = start == MIE_DN_ZERO_FAR ? (int)ceil(az + 10.0 * cbrt(az)) : (int)ceil(az);
@@ -139,7 +153,7 @@ int mie_coefficients(double x, double n, double k, mie_dn_start start, int count
         mie_small(x, n - MIE_I * k, a, b, count);
         return ATMO_OK;
     }
-    double complex m = n + MIE_I * k, z = m * x;
+    double complex m = n + MIE_I * k, z = m * x, mi = mie_div(1.0, m);
     double complex *d = malloc(sizeof *d * (size_t)(count + 1));
     if (!d)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for %d Mie terms", count);
@@ -151,9 +165,9 @@ int mie_coefficients(double x, double n, double k, mie_dn_start start, int count
         double f = (2.0 * i - 1.0) / x;
         double psi = f * psi1 - psi0, chi = f * chi1 - chi0;
         double complex xi = psi - MIE_I * chi;
-        double complex ta = d[i] / m + i / x, tb = m * d[i] + i / x;
-        double complex an = (ta * psi - psi1) / (ta * xi - xi1);
-        double complex bn = (tb * psi - psi1) / (tb * xi - xi1);
+        double complex ta = d[i] * mi + i / x, tb = m * d[i] + i / x;
+        double complex an = mie_div(ta * psi - psi1, ta * xi - xi1);
+        double complex bn = mie_div(tb * psi - psi1, tb * xi - xi1);
         a[i - 1] = conj(an);
         b[i - 1] = conj(bn);
         psi0 = psi1;
@@ -201,25 +215,21 @@ static int mie_amplitudes(int N, const double complex *a, const double complex *
     return ATMO_OK;
 }
 
-int mie_sphere(double x, double n, double k, mie_dn_start start, int n_mu, const double *mu,
-               double complex *s1, double complex *s2, mie_efficiencies *q, atmo_err *e)
+int mie_sphere_nterms(double x, double n, double k)
 {
-    int rc = mie_check(x, n, k, e);
-    if (rc)
-        return rc;
     /* Wiscombe's count plus x^(1/3): at x = 1e4 partial-wave resonances just past Wiscombe's
      * count still move S(180) by 4e-6 relative (MIEV0 case 11); Q and g are unchanged. */
-    int N = mie_small_sphere(x, n, k) ? 2 : mie_nterms(x) + (int)ceil(cbrt(x));
-    /* one extra zero term so the g sum can read a_{N+1} */
-    double complex *a = calloc((size_t)(N + 1), sizeof *a);
-    double complex *b = calloc((size_t)(N + 1), sizeof *b);
-    if (!a || !b) {
-        rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for %d Mie terms", N);
-        goto cleanup;
-    }
-    rc = mie_coefficients(x, n, k, start, N, a, b, e);
+    return mie_small_sphere(x, n, k) ? 2 : mie_nterms(x) + (int)ceil(cbrt(x));
+}
+
+int mie_sphere_coefficients(double x, double n, double k, mie_dn_start start, double complex *a,
+                            double complex *b, mie_efficiencies *q, atmo_err *e)
+{
+    int N = mie_sphere_nterms(x, n, k);
+    int rc = mie_coefficients(x, n, k, start, N, a, b, e);
     if (rc)
-        goto cleanup;
+        return rc;
+    a[N] = b[N] = 0.0; /* the g sum reads a_{N+1} */
     double sext = 0.0, ssca = 0.0, sg = 0.0;
     double complex sback = 0.0;
     for (int i = 1; i <= N; i++) {
@@ -238,6 +248,25 @@ int mie_sphere(double x, double n, double k, mie_dn_start start, int n_mu, const
     q->qback = (creal(sback) * creal(sback) + cimag(sback) * cimag(sback)) / x2;
     q->g = ssca > 0.0 ? 2.0 * sg / ssca : 0.0;
     q->nterms = N;
+    return ATMO_OK;
+}
+
+int mie_sphere(double x, double n, double k, mie_dn_start start, int n_mu, const double *mu,
+               double complex *s1, double complex *s2, mie_efficiencies *q, atmo_err *e)
+{
+    int rc = mie_check(x, n, k, e);
+    if (rc)
+        return rc;
+    int N = mie_sphere_nterms(x, n, k);
+    double complex *a = malloc(sizeof *a * (size_t)(N + 1));
+    double complex *b = malloc(sizeof *b * (size_t)(N + 1));
+    if (!a || !b) {
+        rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for %d Mie terms", N);
+        goto cleanup;
+    }
+    rc = mie_sphere_coefficients(x, n, k, start, a, b, q, e);
+    if (rc)
+        goto cleanup;
     if (n_mu > 0) {
         rc = mie_amplitudes(N, a, b, n_mu, mu, s1, s2, e);
         if (rc)

@@ -20,7 +20,7 @@
 #include "atmo/fileio.h"
 #include "atmo/mie.h"
 
-#define MIE_TABLE_CACHE_VERSION 1
+#define MIE_TABLE_CACHE_VERSION 2
 #define MIE_CACHE_KEY_MAX 1024
 
 static unsigned long long mie_fnv1a(const char *s)
@@ -39,11 +39,12 @@ static void mie_cache_key(const mie_dsd *d, double wavelength_nm, double n, doub
              "atmo-mie-table v%d bulk%zu\n"
              "dsd %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n"
              "lambda_nm %.17g index %.17g %.17g\n"
-             "grid %.17g %.17g %.17g %d sun %.17g dx %.17g\n",
+             "grid %.17g %.17g %.17g %d sun %.17g dx %.17g tol %.17g\n",
              MIE_TABLE_CACHE_VERSION, sizeof(mie_bulk), (int)d->kind, d->radius_um, d->r_eff_um,
              d->v_eff, d->r_g_um, d->sigma_g, d->alpha, d->b, d->gamma, d->r_max_um,
              wavelength_nm, n, k, o.fine_step_deg, o.fine_zone_deg, o.coarse_step_deg, o.uniform,
-             o.sun_radius_deg, o.max_dx);
+             o.sun_radius_deg, o.max_dx,
+             o.max_dx > 0.0 ? 0.0 : (o.tolerance > 0.0 ? o.tolerance : MIE_DSD_TOLERANCE));
 }
 
 /* Read a table whose key text is `key`; 0 on success, -1 on any mismatch or short file. */

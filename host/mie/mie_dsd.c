@@ -1,4 +1,4 @@
-/* mie_dsd.c — droplet size distributions and their bulk optical properties.
+/* mie_dsd.c — droplet size distributions: presets, parsing, densities and the radius range.
  *
  * Distributions (unnormalised number density n(r), r in um):
  *   gamma (Hansen 1971):      n ~ r^((1-3b)/b) exp(-r/(a b)),  a = r_eff, b = v_eff (0 < b < 1/2)
@@ -6,25 +6,14 @@
  *                             r_eff = r_g e^(2.5 s^2), v_eff = e^(s^2) - 1
  *   modified gamma (Deirmendjian 1969): n ~ r^alpha exp(-b r^gamma)
  *   monodisperse:             one radius.
- * Bulk properties (Hansen & Travis 1974), with <.> the average over n(r):
- *   sigma_ext / LWC = <C_ext> / (rho_w (4/3) pi <r^3>),  rho_w = 1e6 g/m^3;
- *   g = <C_sca g> / <C_sca>; r_eff = <r^3>/<r^2>; v_eff = <(r - r_eff)^2 r^2> / (r_eff^2 <r^2>);
- *   P(theta) = 4 pi <dC_sca/dOmega> / <C_sca>,  dC_sca/dOmega = (|S1|^2 + |S2|^2) / (2 k^2):
- *   sizes weighted by scattering cross-section.
- * Radius integration: the distribution is cut where the tails hold MIE_DSD_TAIL (1e-7) of <r^2>
- * below and of <r^3> above (found on a fine grid in ln r), then integrated by the trapezoid rule
- * on a uniform radius grid with size-parameter step <= 0.5 by default (mie.md: coarser steps bias
- * the glory by several %; see mie.h for when to go finer) and at least 200 nodes (to resolve narrow distributions). The results describe
- * the cut distribution; the dropped 2e-7 is far below every other error here. */
-#include <float.h>
+ * Range: the distribution is cut where the tails hold MIE_DSD_TAIL (1e-7) of <r^2> below and of
+ * <r^3> above (found on a fine grid in ln r); the integrals over it are in mie_radius.c. The
+ * results describe the cut distribution; the dropped 2e-7 is far below every other error. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/mie.h"
 
-#define MIE_PI 3.14159265358979323846
-#define MIE_RHO_WATER_G_PER_M3 1.0e6
-#define MIE_DSD_MIN_NODES 200
 /* grid in ln r for finding the cut-offs: 0.002 resolves sigma_g >= 1.01 with 5 nodes per s */
 #define MIE_DSD_LN_STEP 0.002
 #define MIE_DSD_R_LO_UM 1e-3
@@ -223,85 +212,5 @@ int mie_dsd_range(const mie_dsd *d, double *r_min_um, double *r_max_um, atmo_err
 cleanup:
     free(c2);
     free(c3);
-    return rc;
-}
-
-int mie_dsd_integrate(const mie_dsd *d, double wavelength_nm, double n, double k, double max_dx,
-                      int n_mu, const double *mu, double *P, mie_bulk *out, atmo_err *e)
-{
-    double r0, r1;
-    int rc = mie_dsd_range(d, &r0, &r1, e);
-    if (rc)
-        return rc;
-    if (!(wavelength_nm >= 100.0 && wavelength_nm <= 1e5))
-        return atmo_fail(e, ATMO_ERR_USAGE, "wavelength %g nm is outside 100-100000 nm",
-                         wavelength_nm);
-    double kw = 2.0 * MIE_PI / (wavelength_nm * 1e-3); /* wavenumber, 1/um */
-    if (max_dx <= 0.0)
-        max_dx = MIE_DSD_MAX_DX;
-    int nodes = 1;
-    if (d->kind != MIE_DSD_MONO) {
-        nodes = (int)ceil(kw * (r1 - r0) / max_dx) + 1;
-        if (nodes < MIE_DSD_MIN_NODES)
-            nodes = MIE_DSD_MIN_NODES;
-    }
-    double complex *s1 = NULL, *s2 = NULL;
-    double *acc = NULL;
-    if (n_mu > 0) {
-        s1 = malloc(sizeof *s1 * (size_t)n_mu);
-        s2 = malloc(sizeof *s2 * (size_t)n_mu);
-        acc = calloc((size_t)n_mu, sizeof *acc);
-        if (!s1 || !s2 || !acc) {
-            rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for %d angles", n_mu);
-            goto cleanup;
-        }
-    }
-    double sum_ext = 0.0, sum_sca = 0.0, sum_back = 0.0, sum_g = 0.0, sum_area = 0.0;
-    double m2 = 0.0, m3 = 0.0, m4 = 0.0;
-    double h = nodes > 1 ? (r1 - r0) / (nodes - 1) : 0.0;
-    for (int i = 0; i < nodes; i++) {
-        double r = r0 + i * h;
-        double w = nodes > 1 ? mie_dsd_density(d, r) * h * (i == 0 || i == nodes - 1 ? 0.5 : 1.0) : 1.0;
-        if (!(w > 0.0))
-            continue;
-        mie_efficiencies q;
-        rc = mie_sphere(kw * r, n, k, MIE_DN_LENTZ, n_mu, mu, s1, s2, &q, e);
-        if (rc)
-            goto cleanup;
-        double area = MIE_PI * r * r;
-        sum_ext += w * q.qext * area;
-        sum_sca += w * q.qsca * area;
-        sum_back += w * q.qback * area;
-        sum_g += w * q.qsca * area * q.g;
-        sum_area += w * area;
-        m2 += w * r * r, m3 += w * r * r * r, m4 += w * r * r * r * r;
-        for (int j = 0; j < n_mu; j++) {
-            double i1 = creal(s1[j]) * creal(s1[j]) + cimag(s1[j]) * cimag(s1[j]);
-            double i2 = creal(s2[j]) * creal(s2[j]) + cimag(s2[j]) * cimag(s2[j]);
-            acc[j] += w * 0.5 * (i1 + i2);
-        }
-    }
-    mie_bulk b = {0};
-    b.wavelength_nm = wavelength_nm, b.n = n, b.k = k;
-    b.qext = sum_ext / sum_area;
-    b.qsca = sum_sca / sum_area;
-    b.qback = sum_back / sum_area;
-    b.albedo = sum_sca / sum_ext;
-    b.g = sum_g / sum_sca;
-    /* um^2 / um^3 = 1e6 per m */
-    double vol = MIE_RHO_WATER_G_PER_M3 * 4.0 / 3.0 * MIE_PI * m3;
-    b.sigma_ext_per_lwc = sum_ext / vol * 1e6;
-    b.sigma_sca_per_lwc = sum_sca / vol * 1e6;
-    b.r_eff_um = m3 / m2;
-    b.v_eff = (m4 - 2.0 * b.r_eff_um * m3 + b.r_eff_um * b.r_eff_um * m2) / (b.r_eff_um * b.r_eff_um * m2);
-    b.x_max = kw * r1;
-    b.n_radii = nodes;
-    for (int j = 0; j < n_mu; j++)
-        P[j] = 4.0 * MIE_PI * acc[j] / (kw * kw) / sum_sca;
-    *out = b;
-cleanup:
-    free(s1);
-    free(s2);
-    free(acc);
     return rc;
 }

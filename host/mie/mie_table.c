@@ -144,8 +144,8 @@ int mie_table_build(const mie_dsd *d, double wavelength_nm, double n, double k,
     for (int i = 0; i < t->n; i++)
         t->mu[i] = cos(t->theta_deg[i] * MIE_DEG);
     t->mu[0] = 1.0, t->mu[t->n - 1] = -1.0;
-    rc = mie_dsd_integrate(d, wavelength_nm, n, k, opt ? opt->max_dx : 0.0, t->n, t->mu, t->P,
-                           &t->bulk, e);
+    rc = mie_dsd_integrate(d, wavelength_nm, n, k, opt ? opt->max_dx : 0.0,
+                           opt ? opt->tolerance : 0.0, t->n, t->mu, t->P, &t->bulk, e);
     if (rc)
         goto fail;
     if (opt && opt->sun_radius_deg > 0.0) {

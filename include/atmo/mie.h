@@ -14,9 +14,10 @@
  *   - Radii in micrometres, wavelengths in nanometres at this API (as at the CLI); sigma per
  *     liquid water content in m^2 per gram (sigma_ext [1/m] = value * LWC [g/m^3]).
  *
- * Methods (details at the top of host/mie.c, mie_dsd.c, mie_table.c): Wiscombe's term count,
- * D_n(mx) by downward recurrence started from Lentz's continued fraction, Wiscombe's small-sphere
- * series for |m| x <= 0.1; valid for 1e-6 <= x <= 2e4. */
+ * Methods (details at the top of host/mie/mie.c, mie_dsd.c, mie_radius.c, mie_gram.c,
+ * mie_table.c): Wiscombe's term count, D_n(mx) by downward recurrence started from Lentz's
+ * continued fraction, Wiscombe's small-sphere series for |m| x <= 0.1; valid for
+ * 1e-6 <= x <= 2e4. Size integrals refined until converged, summed as quadratic forms. */
 #ifndef ATMO_MIE_H
 #define ATMO_MIE_H
 #include <complex.h>
@@ -48,6 +49,14 @@ int mie_nterms(double x);
  * non-zero) when |m| x <= 0.1. */
 int mie_coefficients(double x, double n, double k, mie_dn_start start, int count,
                      double complex *a, double complex *b, atmo_err *e);
+
+/* The number of terms N that mie_sphere sums at x: Wiscombe's count plus x^(1/3). */
+int mie_sphere_nterms(double x, double n, double k);
+
+/* The N = mie_sphere_nterms(x, n, k) coefficients a_n, b_n into a[0..N-1], b[0..N-1] (a and b
+ * hold N + 1 entries; a[N] = b[N] = 0) and the efficiencies from them. */
+int mie_sphere_coefficients(double x, double n, double k, mie_dn_start start, double complex *a,
+                            double complex *b, mie_efficiencies *q, atmo_err *e);
 
 /* Efficiencies, and amplitudes S1(mu_i), S2(mu_i) for n_mu cosines (s1, s2 may be NULL when
  * n_mu == 0). */
@@ -105,16 +114,28 @@ typedef struct mie_bulk {
     double r_eff_um, v_eff;                      /* of the integrated (cut) distribution */
     double x_max;                                /* largest size parameter integrated */
     int n_radii;                                 /* quadrature nodes in radius */
+    double dx;                                   /* final size-parameter step */
+    double err_rms, err_max; /* converged rule: change of P in the last halving (RMS over the
+                                checked angles, largest); -1 for a fixed step */
 } mie_bulk;
 
-/* Integrate over radius with size-parameter steps <= max_dx (0 = MIE_DSD_MAX_DX; at least 200
- * nodes, trapezoid in r). When n_mu > 0, also the 4pi-normalised effective phase function at
- * the cosines mu (sizes weighted by scattering cross-section) into P.
- * Step 0.5 (mie.md's ceiling) leaves resonance-sampling noise of ~0.01 in high Legendre
- * coefficients (beta_100 of cloud C.1); 0.03 brings all of C.1 within 0.002. */
-#define MIE_DSD_MAX_DX 0.5
+/* Integrate over radius (host/mie_radius.c). max_dx > 0: the trapezoid rule with size-parameter
+ * steps <= max_dx (and >= 200 nodes), one pass. max_dx == 0: the converged rule, which halves the
+ * step from MIE_DSD_START_DX, to at least MIE_DSD_COARSEST_DX, until P changes by at most
+ * `tolerance` RMS over angle and 5 x tolerance at every angle, Q_ext and g by `tolerance` and the
+ * co-albedo by MIE_DSD_COALBEDO_TOLERANCE (tolerance 0 = MIE_DSD_TOLERANCE), or the step reaches
+ * MIE_DSD_MIN_DX. Against a converged integral (step 0.005) the default table is within 1e-3 RMS
+ * and 5e-3 at every angle. When n_mu > 0, also the 4pi-normalised effective phase function at the
+ * cosines mu (sizes weighted by scattering cross-section) into P. */
+#define MIE_DSD_START_DX 0.125
+#define MIE_DSD_MIN_DX 0.002
+#define MIE_DSD_COARSEST_DX (1.0 / 64.0) /* the converged rule's final step is at most this */
+#define MIE_DSD_MAX_INTERVALS 4000000
+#define MIE_DSD_TOLERANCE 1.0e-3
+#define MIE_DSD_COALBEDO_TOLERANCE 0.10 /* relative change of 1 - omega_0 per halving */
 int mie_dsd_integrate(const mie_dsd *d, double wavelength_nm, double n, double k, double max_dx,
-                      int n_mu, const double *mu, double *P, mie_bulk *out, atmo_err *e);
+                      double tolerance, int n_mu, const double *mu, double *P, mie_bulk *out,
+                      atmo_err *e);
 
 /* ---- phase tables (host/mie_table.c) --------------------------------------------------------- */
 
@@ -124,7 +145,8 @@ typedef struct mie_table_options {
     double coarse_step_deg; /* step elsewhere; 0 = 0.1 */
     int uniform;            /* 1: coarse_step_deg everywhere (for tests showing it fails) */
     double sun_radius_deg;  /* > 0: convolve with a uniform solar disc of this angular radius */
-    double max_dx;          /* size-parameter step of the radius integral; 0 = MIE_DSD_MAX_DX */
+    double max_dx;          /* fixed size-parameter step of the radius integral; 0 = converged */
+    double tolerance;       /* converged rule's RMS target; 0 = MIE_DSD_TOLERANCE */
 } mie_table_options;
 
 typedef struct mie_table {
