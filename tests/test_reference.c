@@ -46,8 +46,8 @@ static const char probe_src[] =
     "                      __global float4 *out, uint n, uint per_ray) {\n"
     "  uint i = get_global_id(0); if (i >= n) return;\n"
     "  float4 q = rays[i / per_ray];\n"
-    "  reference_rng g = {s->seed, i, 0u, ATMO_RNG_METHOD_DIM};\n"
-    "  out[i] = (float4)(reference_transmittance(&s->atmosphere, q.x, q.y, &g), 0.0f);\n"
+    "  rng_stream g = sky_probe_stream(s, i, 0u);\n"
+    "  out[i] = (float4)(reference_transmittance(s, q.x, q.y, &g), 0.0f);\n"
     "}\n";
 
 typedef struct ctx {

@@ -2,6 +2,7 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include "atmo/colour.h"
 #include "atmo/plan.h"
@@ -102,8 +103,8 @@ static void fill_camera(const atmo_scene *s, const atmo_atmosphere *a, atmo_gpu_
 /* Method "single": single scattering only (kernels/atmosphere/method_single.h); no LUTs of its own. */
 static int plan_single(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 {
-    static const char *const fragments[] = {"kernels/atmosphere/sky_single.h", "kernels/atmosphere/method_single.h"};
-    return atmo_plan_add_fragments(p, fragments, 2, e);
+    static const char *const fragments[] = {"kernels/atmosphere/method_single.h"};
+    return atmo_plan_add_fragments(p, fragments, 1, e);
 }
 
 /* Methods in ATMO_METHOD_* order; NULL: not implemented yet. */
@@ -128,7 +129,7 @@ const char *atmo_plan_available_methods(void)
 
 int atmo_plan_add_fragments(atmo_plan *p, const char *const *names, int count, atmo_err *e)
 {
-    if (p->fragment_count + count + 2 > ATMO_PLAN_MAX_FRAGMENTS)
+    if (p->fragment_count + count + 3 > ATMO_PLAN_MAX_FRAGMENTS)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "too many kernel fragments (a build bug)");
     for (int i = 0; i < count; i++)
         p->fragments[p->fragment_count++] = names[i];
@@ -143,6 +144,13 @@ int atmo_plan_add_pass(atmo_plan *p, const char *kernel, int width, int height, 
     atmo_plan_pass pass = {kernel, width, height, depth, arg, 0};
     p->passes[p->pass_count++] = pass;
     return ATMO_OK;
+}
+
+void atmo_plan_free(atmo_plan *p)
+{
+    for (int i = 0; i < p->upload_count; i++)
+        free(p->uploads[i].owned);
+    memset(p, 0, sizeof *p);
 }
 
 int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e)
@@ -172,11 +180,16 @@ int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     g->transmittance_height = s->render.transmittance_height;
     g->seed = (uint)s->image.seed;
 
-    /* common fragments, then the method's, then the kernels that use them */
+    /* common fragments and the medium integrator (a cloud shell inserts its modules before
+     * kernels/media/media.h), then the method's, then the kernels that use them */
     static const char *const common[] = {
-        "kernels/common/compat.h",   "include/atmo/gpu_types.h", "kernels/common/rng.h",
-        "kernels/common/geometry.h", "kernels/common/phase.h",          "kernels/atmosphere/atmosphere.h",
-        "kernels/common/camera.h",   "kernels/atmosphere/sky_method.h",
+        "kernels/common/compat.h",       "include/atmo/gpu_types.h",
+        "kernels/common/rng.h",          "kernels/common/geometry.h",
+        "kernels/common/phase.h",        "kernels/atmosphere/atmosphere.h",
+        "kernels/common/camera.h",       "kernels/atmosphere/sky_method.h",
+        "kernels/media/ray.h",           "kernels/media/media.h",
+        "kernels/media/visibility.h",    "kernels/media/medium.h",
+        "kernels/media/tracking.h",
     };
     for (size_t i = 0; i < sizeof common / sizeof common[0]; i++)
         p->fragments[p->fragment_count++] = common[i];
@@ -193,6 +206,7 @@ int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e)
                          atmo_plan_available_methods());
     if ((rc = m->plan(s, p, e)) || (rc = atmo_plan_cloud(s, p, e)))
         return rc;
+    p->fragments[p->fragment_count++] = "kernels/atmosphere/sky_cosines.h";
     p->fragments[p->fragment_count++] = "kernels/atmosphere/transmittance.cl";
     p->fragments[p->fragment_count++] = "kernels/render/sky.cl";
     p->width = s->image.width;

@@ -7,8 +7,9 @@
 
 int atmo_plan_lut(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 {
-    static const char *const fragments[] = {"kernels/atmosphere/sky_single.h", "kernels/atmosphere/lut_scattering.h",
-                                            "kernels/atmosphere/method_lut.h", "kernels/atmosphere/lut_precompute.cl"};
+    static const char *const fragments[] = {"kernels/atmosphere/lut_scattering.h",
+                                            "kernels/atmosphere/method_lut.h",
+                                            "kernels/atmosphere/lut_precompute.cl"};
     int rc;
     int n_nu = s->atmosphere.lut_nu_size, n_mu_s = s->atmosphere.lut_mu_s_size;
     int n_mu = s->atmosphere.lut_mu_size, n_r = s->atmosphere.lut_r_size;
@@ -22,9 +23,9 @@ int atmo_plan_lut(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     if (2 + 4 * (orders - 1) > ATMO_PLAN_MAX_PASSES - p->pass_count)
         return atmo_fail(e, ATMO_ERR_USAGE, "lut.orders=%d is too many passes; use at most %d",
                          orders, (ATMO_PLAN_MAX_PASSES - p->pass_count - 2) / 4 + 1);
-    if ((rc = atmo_plan_add_fragments(p, fragments, 4, e)))
+    if ((rc = atmo_plan_add_fragments(p, fragments, 3, e)))
         return rc;
-    size_t used = strlen(p->defines); /* sky_single.h's march takes the density of orders >= 2 */
+    size_t used = strlen(p->defines); /* the medium integrator's march takes the density of orders >= 2 */
     snprintf(p->defines + used, sizeof p->defines - used, "%s-DATMO_LUT_J", used ? " " : "");
     int *dims = p->gpu.lut_dims[0];
     dims[0] = n_nu, dims[1] = n_mu_s, dims[2] = n_mu, dims[3] = n_r;

@@ -30,12 +30,12 @@ static void mie_legendre(const atmo_gpu_atmosphere *a, float *g1, float *g2)
 
 int atmo_plan_ms_lut(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 {
-    static const char *const fragments[] = {"kernels/atmosphere/sky_single.h", "kernels/atmosphere/ms_lut.h",
+    static const char *const fragments[] = {"kernels/atmosphere/ms_lut.h",
                                             "kernels/atmosphere/ms_lut.cl"};
-    int rc = atmo_plan_add_fragments(p, fragments, 3, e);
+    int rc = atmo_plan_add_fragments(p, fragments, 2, e);
     if (rc)
         return rc;
-    /* sky_single.h's integrator compiles the multiple-scattering terms in */
+    /* the medium integrator (kernels/media/medium.h) compiles the Psi_ms source in */
     size_t used = strlen(p->defines);
     snprintf(p->defines + used, sizeof p->defines - used, "%s-DATMO_MS_LUT", used ? " " : "");
     p->gpu.lut_dims[0][0] = ATMO_MS_LUT_WIDTH;

@@ -155,7 +155,9 @@ int atmo_spectral_render(const atmo_scene *s, int cache_luts, const atmo_render_
         if ((rc = atmo_plan_make(&st, &plan, e)))
             goto cleanup;
         plan.cache_luts = cache_luts;
-        if ((rc = atmo_render(&plan, rs, &r, e)))
+        rc = atmo_render(&plan, rs, &r, e);
+        atmo_plan_free(&plan);
+        if (rc)
             goto cleanup;
         if (r.interrupted) {
             rc = atmo_fail(e, ATMO_ERR_RUNTIME,

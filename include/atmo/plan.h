@@ -12,7 +12,7 @@
 #include "atmo/scene.h"
 #include "atmo/status.h"
 
-#define ATMO_PLAN_MAX_FRAGMENTS 24
+#define ATMO_PLAN_MAX_FRAGMENTS 32
 #define ATMO_PLAN_MAX_PASSES 64
 #define ATMO_PLAN_LUTS 4 /* LUT buffers every sky kernel gets (kernels/atmosphere/sky_method.h) */
 
@@ -31,7 +31,8 @@ typedef struct atmo_plan_upload {
     int lut;            /* buffer index 0..ATMO_PLAN_LUTS-1 */
     size_t offset;      /* bytes */
     size_t bytes;
-    const void *data;   /* owned by the plan's creator; must outlive the render */
+    const void *data;   /* must outlive the render */
+    void *owned;        /* data when the plan owns it (atmo_plan_free releases it), else NULL */
 } atmo_plan_upload;
 
 #define ATMO_PLAN_MAX_UPLOADS 4
@@ -54,6 +55,10 @@ typedef struct atmo_plan {
 } atmo_plan;
 
 int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e);
+
+/* Releases what the plan owns (its uploads' host tables); the plan is empty afterwards. Safe on
+ * a plan that atmo_plan_make failed on or that owns nothing. */
+void atmo_plan_free(atmo_plan *p);
 
 /* A method's part of the plan: it appends its kernel fragments (the headers that define
  * sky_radiance and the .cl files of its precompute kernels), sets lut_bytes[1..3], the

@@ -58,7 +58,7 @@
  *   a: [0, N) single Rayleigh S_R      [N, 2N) orders 2..N summed (phase included)
  *   b: [0, N) single Mie S_M           [N, N + I) indirect ground irradiance, orders 1..N-1
  *      [N + I, 2N + I) the density J of orders 2..N summed (radiance per metre, phase
- *      included), for aerial perspective (method_lut.h's sky_segment)
+ *      included), for aerial perspective (method_lut.h's sky_trace over a segment)
  *   c: [0, N) delta scattering (order n)  [N, 2N) density J_n  [2N, 2N + I G) sphere grid
  *      [2N + I G, 2N + I G + I) delta irradiance (order n - 1)
  *      [2N + I G + I, 2N + I G + I + G) the grid's directions (xyz) and solid angles (w), so
