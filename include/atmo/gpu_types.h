@@ -56,7 +56,7 @@ typedef struct atmo_gpu_scene {
     float4 cloud_extinction; /* xyz: sigma_ext (1/m); w: altitude of the shell's base (m) */
     float4 cloud_albedo;     /* xyz: single-scattering albedo; w: altitude of its top (m) */
     float4 cloud_g;          /* xyz: asymmetry g of the table; w: Jendersie-d'Eon diameter (um) */
-    float4 observer;         /* xyz: centre in the camera's sun frame (m); w: radius (0: none) */
+    float4 observer;         /* xyz: centre, camera-relative in the world axes (m); w: radius */
     int cloud_phase;         /* ATMO_CLOUD_PHASE_* of scene.h */
     int cloud_table_offset;  /* float4 index of the phase table's first row in LUT buffer 0 */
     int cloud_table_size;    /* rows of the phase table (theta ascending) */

@@ -6,7 +6,8 @@
  * from the sun (the sky is symmetric about the sun's vertical plane, so phi in [0, pi]). The
  * sky-view LUT (buffer b, s->lut_dims[1][0] = W columns of phi, s->lut_dims[1][1] = 2 n rows)
  * holds the march of ms_lut.h (single scattering + sigma_s Psi_ms, the lit ground, no sun disc)
- * with s->method_int[3] segments (growing from the camera, kernels/media/medium.h) at their midpoints
+ * with s->method_int[3] segments (growing from the camera, kernels/media/medium.h) at their
+ * midpoints
  * (equal segments missed 2 % of the aerosols' steep density near the ground), in three planes
  * (fast_luts.cl): the view-sun cosine nu is constant along a straight ray, so the phase
  * functions factor out of single scattering, and the LUT holds its Rayleigh and Mie integrals
@@ -29,8 +30,9 @@
  * segment ending at a surface fall back to the march with one random offset per sample, like
  * method "march". The view transmittance of a whole ray comes from the transmittance LUT: to
  * the top, or for a ray that hits the ground at distance d the ratio T(R, -mu_g) / T(r, -mu)
- * of the reversed rays (mu_g = (r mu + d) / R; Bruneton 2017, GetTransmittance). The sun disc is added
- * apart from the LUT: E T(r, mu) / Omega_sun when the ray sees the sun's disc and not the ground.
+ * of the reversed rays (mu_g = (r mu + d) / R; Bruneton 2017, GetTransmittance). The sun disc
+ * is added apart from the LUT: E T(r, mu) / Omega_sun when the ray sees the sun's disc and not
+ * the ground.
  * The sky-view LUT's inputs (r_c, mu_s,c) are those sky.cl computes for every pixel. */
 #ifndef ATMO_METHOD_FAST_H
 #define ATMO_METHOD_FAST_H

@@ -111,8 +111,8 @@ ATMO_FN void lut_whole_ray(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
         *sun = v3_mul(atmosphere_sun_disc_radiance(a, s->sun_direction.w), *view_t);
 }
 
-/* The medium integrator's multiple-scattering source (medium.h, -DATMO_LUT_J): the density of orders >= 2 and the sky's ground
- * irradiance, read from buffer b. */
+/* The medium integrator's multiple-scattering source (medium.h, -DATMO_LUT_J): the density of
+ * orders >= 2 and the sky's ground irradiance, read from buffer b. */
 ATMO_FN vec3 lut_ms_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *lut_b,
                            float r, float mu, float mu_s, float nu, int ground)
 {

@@ -39,8 +39,8 @@
  * per-sample offset, the sun-disc and ground terms of method single), with, at each sample,
  *     J = [sigma_R p_R(nu) + sigma_M p_M(nu)] E T_sun V + J_ms
  * where V is the sun's visibility from the visibility sources (kernels/media/visibility.h) and
- * J_ms = (sigma_R + sigma_M) Psi_ms(h, mu_s) for isotropic light, plus the anisotropic terms below (ms_lut_source). With Psi = 0 the sum is the single-scattering sum
- * term for term. The ground seen by the view ray is lit by the sun and by the sky (E_sky, below).
+ * J_ms = (sigma_R + sigma_M) Psi_ms(h, mu_s) for isotropic light, plus the anisotropic terms
+ * below (ms_lut_source). With Psi = 0 the sum is the single-scattering sum term for term. The ground seen by the view ray is lit by the sun and by the sky (E_sky, below).
  *
  * Rayleigh anisotropy of the second order. For the Rayleigh phase p_R = 3/(16 pi)(1 + (v.w)^2)
  * the second order toward v is exact from three moments of L_1': int L_1'(w) p_R(v.w) dw =

@@ -10,8 +10,8 @@
  * `nonfinite`. The sample's stage-0 random stream (rng.h) places it in the pixel (the camera's
  * CAMERA_RNG_DIMS numbers) and goes on to the method's sky_trace along the camera-relative ray.
  *
- * sky_probe: the mean of `samples` samples of sky_radiance (sky_cosines.h) for a list of rays given as
- * (r, mu, mu_s, nu), for `atmo radiance` and the tests; ray i uses pixel index i.
+ * sky_probe: the mean of `samples` samples of sky_radiance (sky_cosines.h) for a list of rays
+ * given as (r, mu, mu_s, nu), for `atmo radiance` and the tests; ray i uses pixel index i.
  * sky_probe_segment: the same for sky_segment, ray i ending at distance[i] (m): the mean
  * in-scattered radiance in inscatter[i] and the mean transmittance in transmittance[i]. */
 
