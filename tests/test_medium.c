@@ -55,12 +55,12 @@ static const char probe_src[] =
     "  }\n"
     "  L[i] = (float4)(sl / 64.0f, 0.0f); T[i] = (float4)(st / 64.0f, 0.0f);\n"
     "}\n"
-    "__kernel void sun_visibility(__global const atmo_gpu_scene *s, __global const float4 *p,\n"
-    "                             __global float *v, uint n) {\n"
+    "__kernel void sun_visibility(__global const atmo_gpu_scene *s, ATMO_LUT_PARAMS,\n"
+    "                             __global const float4 *p, __global float *v, uint n) {\n"
     "  uint i = get_global_id(0); if (i >= n) return;\n"
     "  medium_ray m = medium_ray_make(s, p[i].xyz, (float3)(0.0f, 1.0f, 0.0f));\n"
     "  medium_point q = medium_ray_at(&m, 0.0f, s->atmosphere.bottom_radius);\n"
-    "  v[i] = visibility_sun(s, &q).x;\n"
+    "  v[i] = visibility_sun(s, ATMO_LUT_ARGS, &q).x;\n"
     "}\n";
 
 typedef struct segment {
@@ -245,10 +245,14 @@ static void visibility_tests(atmo_cl *cl)
     cl_kernel k = clCreateKernel(prog, "sun_visibility", &err);
     CHECK(err == CL_SUCCESS);
     cl_uint count = VIS_POINTS;
+    cl_mem luts[ATMO_PLAN_LUTS];
+    test_precompute(cl, prog, b_scene, &plan, luts);
     CHECK(clSetKernelArg(k, 0, sizeof b_scene, &b_scene) == CL_SUCCESS);
-    CHECK(clSetKernelArg(k, 1, sizeof b_p, &b_p) == CL_SUCCESS);
-    CHECK(clSetKernelArg(k, 2, sizeof b_v, &b_v) == CL_SUCCESS);
-    CHECK(clSetKernelArg(k, 3, sizeof count, &count) == CL_SUCCESS);
+    for (int i = 0; i < ATMO_PLAN_LUTS; i++)
+        CHECK(clSetKernelArg(k, (cl_uint)(1 + i), sizeof luts[i], &luts[i]) == CL_SUCCESS);
+    CHECK(clSetKernelArg(k, 5, sizeof b_p, &b_p) == CL_SUCCESS);
+    CHECK(clSetKernelArg(k, 6, sizeof b_v, &b_v) == CL_SUCCESS);
+    CHECK(clSetKernelArg(k, 7, sizeof count, &count) == CL_SUCCESS);
     test_cl_run_1d(cl, k, VIS_POINTS);
     static float v[VIS_POINTS];
     test_cl_read(cl, b_v, sizeof v, v);
@@ -271,6 +275,7 @@ static void visibility_tests(atmo_cl *cl)
     clReleaseKernel(k);
     clReleaseMemObject(b_v);
     clReleaseMemObject(b_p);
+    test_release_luts(luts);
     clReleaseMemObject(b_scene);
     clReleaseProgram(prog);
     atmo_plan_free(&plan);

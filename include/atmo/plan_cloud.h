@@ -9,8 +9,10 @@
 
 /* When the scene enables the cloud or the observer: checks that the method is single or march,
  * builds (or loads from the cache) the Mie tables at the render wavelengths, uploads them behind
- * the transmittance LUT, fills the gpu scene's cloud fields, inserts kernels/media/cloud_shell.h before
- * the method's fragment and defines ATMO_CLOUD. Does nothing otherwise. */
+ * the transmittance LUT (owned by the plan: atmo_plan_free), fills the gpu scene's cloud fields
+ * (the observer's centre camera-relative in the world's axes), inserts kernels/media/observer.h
+ * and kernels/media/cloud_shell.h before kernels/media/media.h and defines ATMO_CLOUD. Does
+ * nothing otherwise. */
 int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 
 #endif

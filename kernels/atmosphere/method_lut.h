@@ -78,7 +78,7 @@ ATMO_FN vec3 lut_sky(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float
     medium_point g; /* the ground point, for the visibility sources */
     g.p = v3(0.0f, 0.0f, 0.0f);
     g.r = a->bottom_radius, g.h = 0.0f, g.mu = mu, g.mu_s = mu_s_g;
-    vec3 direct = v3_scale(medium_sunlight(s, lut_transmittance, &g), fmaxf(mu_s_g, 0.0f));
+    vec3 direct = v3_scale(medium_sunlight(s, ATMO_LUT_ARGS, &g), fmaxf(mu_s_g, 0.0f));
     vec3 indirect = lut_irradiance_lookup(a, lut_b + LUT_TEXELS(dims), dims, a->bottom_radius,
                                           mu_s_g);
     *view_t = lut_transmittance_to_ground(s, lut_transmittance, r, mu, d);

@@ -109,8 +109,8 @@ ATMO_FN medium_point reference_point(ATMO_GLOBAL const atmo_gpu_atmosphere *a, v
 
 /* Transmittance along the whole ray from r along mu by ratio tracking (the ray must not hit the
  * ground); unbiased, each factor 1 - sigma_t / sigma_bar in [0, 1]. */
-ATMO_FN vec3 reference_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s, float r, float mu,
-                                     rng_stream *g)
+ATMO_FN vec3 reference_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                     float r, float mu, rng_stream *g)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     float d = geometry_distance_to_top(r, mu, a->top_radius);
@@ -119,20 +119,20 @@ ATMO_FN vec3 reference_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s, float 
     while (tracking_next(&w, g)) {
         medium_point q;
         q.h = geometry_altitude_at(r, mu, w.t, a->bottom_radius);
-        T = tracking_ratio(&w, T, media_at(s, &q).extinction);
+        T = tracking_ratio(&w, T, media_at(s, ATMO_LUT_ARGS, &q).extinction);
     }
     return T;
 }
 
 /* E T_sun at the point q (zero where a visibility source hides the sun: the planet). */
-ATMO_FN vec3 reference_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_point *q,
-                                rng_stream *g)
+ATMO_FN vec3 reference_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                const medium_point *q, rng_stream *g)
 {
-    vec3 vis = visibility_sun(s, q);
+    vec3 vis = visibility_sun(s, ATMO_LUT_ARGS, q);
     if (vis.x <= 0.0f && vis.y <= 0.0f && vis.z <= 0.0f)
         return v3(0.0f, 0.0f, 0.0f);
     return v3_mul(v3_mul(v3_from4(s->atmosphere.solar_irradiance), vis),
-                  reference_transmittance(s, q->r, q->mu_s, g));
+                  reference_transmittance(s, ATMO_LUT_ARGS, q->r, q->mu_s, g));
 }
 
 /* A unit vector at cosine c to the unit vector n, with azimuth phi around it. */
@@ -211,9 +211,9 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
         while (tracking_next(&walk, g)) {
             float t = walk.t;
             medium_point q = reference_point(a, pos, dir, camera, r0, mu0, mus0, nu0, t);
-            media_sample ms = media_at(s, &q);
+            media_sample ms = media_at(s, ATMO_LUT_ARGS, &q);
             if (count) {
-                vec3 sun_light = reference_sunlight(s, &q, g);
+                vec3 sun_light = reference_sunlight(s, ATMO_LUT_ARGS, &q, g);
                 vec3 scat = v3_mul(ms.scattering[0], phase[0]);
                 for (int k = 1; k < MEDIA_COMPONENTS; k++)
                     scat = v3_add(scat, v3_mul(ms.scattering[k], phase[k]));
@@ -232,7 +232,7 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
             q.r = a->bottom_radius;
             q.h = 0.0f;
             q.mu_s = atmo_clamp_cos((r0 * mus0 + d * nu0) / a->bottom_radius);
-            vec3 sun_light = reference_sunlight(s, &q, g);
+            vec3 sun_light = reference_sunlight(s, ATMO_LUT_ARGS, &q, g);
             L = v3_add(L, v3_mul(v3_mul(W, albedo),
                                  v3_scale(sun_light, fmaxf(q.mu_s, 0.0f) / ATMO_PI)));
         }

@@ -54,7 +54,7 @@
 #define CLOUD_TAU_CUT 11.5f  /* view optical depth integrated per interval (e^-11.5 = 1e-5) */
 
 /* The planet's and the observer's shadow at a point (visibility.h, after this file). */
-ATMO_FN float visibility_sun_occluders(ATMO_GLOBAL const atmo_gpu_scene *s,
+ATMO_FN float visibility_sun_occluders(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                        const medium_point *q);
 
 /* The shell's base and top altitudes (m). */
@@ -189,10 +189,11 @@ ATMO_FN vec3 cloud_air_sun_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s,
  * multiple scattering, the air's extinction (at the interval's middle) on top. Adds the light
  * to *L with the running view transmittance *T, and multiplies *shell_t by the shell's own
  * transmittance over the interval. */
-ATMO_FN void cloud_shell_interval(ATMO_GLOBAL const atmo_gpu_scene *s,
-                                  ATMO_GLOBAL const float4 *lut0, const medium_ray *m, float t0,
-                                  float t1, float jitter, vec3 *L, vec3 *T, vec3 *shell_t)
+ATMO_FN void cloud_shell_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                  const medium_ray *m, float t0, float t1, float jitter, vec3 *L,
+                                  vec3 *T, vec3 *shell_t)
 {
+    ATMO_GLOBAL const float4 *lut0 = lut_transmittance;
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     vec3 E = v3_from4(a->solar_irradiance);
     vec3 sigma = v3_from4(s->cloud_extinction), albedo = v3_from4(s->cloud_albedo);
@@ -211,7 +212,7 @@ ATMO_FN void cloud_shell_interval(ATMO_GLOBAL const atmo_gpu_scene *s,
         vec3 sun1 = cloud_air_sun_transmittance(s, lut0, m, ta + dt, &chord1);
         /* the occluders' shadows are sharp: asked at a jittered point of the step */
         medium_point q = medium_ray_at(m, ta + jitter * dt, a->bottom_radius);
-        vec3 sun_t = v3_scale(sun0, visibility_sun_occluders(s, &q));
+        vec3 sun_t = v3_scale(sun0, visibility_sun_occluders(s, ATMO_LUT_ARGS, &q));
         float sa = 1.0f, sb = 1.0f, sc = 1.0f;
         for (int i = 0; i < ATMO_CLOUD_OCTAVES; i++) {
             vec3 p = i == 0 ? p0

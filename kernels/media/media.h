@@ -47,8 +47,9 @@ ATMO_FN float media_mie_phase(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float nu
                              : phase_cornette_shanks(nu, a->mie_g);
 }
 
-/* The media at a point. */
-ATMO_FN media_sample media_at(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_point *q)
+/* The media at a point (the buffers hold what a medium needs of them: a density grid). */
+ATMO_FN media_sample media_at(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                              const medium_point *q)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     media_sample m;
@@ -101,7 +102,7 @@ ATMO_FN void media_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS
                             vec3 *T, vec3 *medium_t)
 {
 #ifdef ATMO_CLOUD
-    cloud_shell_interval(s, lut_transmittance, m, t0, t1, jitter, L, T, medium_t);
+    cloud_shell_interval(s, ATMO_LUT_ARGS, m, t0, t1, jitter, L, T, medium_t);
 #endif
 }
 

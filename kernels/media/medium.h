@@ -116,14 +116,14 @@ typedef struct medium_result {
 } medium_result;
 
 /* The sunlight arriving at a point: E T_sun V. */
-ATMO_FN vec3 medium_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s,
-                             ATMO_GLOBAL const float4 *transmittance, const medium_point *q)
+ATMO_FN vec3 medium_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                             const medium_point *q)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    vec3 vis = visibility_sun(s, q);
+    vec3 vis = visibility_sun(s, ATMO_LUT_ARGS, q);
     if (vis.x <= 0.0f && vis.y <= 0.0f && vis.z <= 0.0f)
         return v3(0.0f, 0.0f, 0.0f);
-    vec3 to_sun = atmosphere_transmittance_to_top(a, transmittance, s->transmittance_width,
+    vec3 to_sun = atmosphere_transmittance_to_top(a, lut_transmittance, s->transmittance_width,
                                                   s->transmittance_height, q->r, q->mu_s);
     return v3_mul(v3_from4(a->solar_irradiance), v3_mul(to_sun, vis));
 }
@@ -134,8 +134,8 @@ ATMO_FN void medium_piece(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                           medium_result *out, vec3 *T)
 {
     medium_point q = medium_ray_at(m, t, s->atmosphere.bottom_radius);
-    media_sample ms = media_at(s, &q);
-    vec3 sun_e = medium_sunlight(s, lut_transmittance, &q);
+    media_sample ms = media_at(s, ATMO_LUT_ARGS, &q);
+    vec3 sun_e = medium_sunlight(s, ATMO_LUT_ARGS, &q);
     vec3 w = v3(medium_segment_weight(ms.extinction.x, dt),
                 medium_segment_weight(ms.extinction.y, dt),
                 medium_segment_weight(ms.extinction.z, dt));
@@ -233,7 +233,7 @@ ATMO_FN void medium_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
         g.h = 0.0f;
         g.mu = atmo_clamp_cos((m.r * m.mu + d) / a->bottom_radius);
         g.mu_s = atmo_clamp_cos((m.r * m.mu_s + d * m.nu) / a->bottom_radius);
-        vec3 irradiance = v3_scale(medium_sunlight(s, lut_transmittance, &g), fmaxf(g.mu_s, 0.0f));
+        vec3 irradiance = v3_scale(medium_sunlight(s, ATMO_LUT_ARGS, &g), fmaxf(g.mu_s, 0.0f));
         if (use_ms) /* plus the sky's */
             irradiance = v3_add(irradiance, medium_ms_ground_irradiance(s, ATMO_LUT_ARGS, g.mu_s));
         out->rest = v3_add(out->rest, v3_mul(T, v3_scale(v3_mul(v3_from4(a->ground_albedo),

@@ -9,7 +9,8 @@
  * transmittance along the sun's chord through it (cloud_shell.h). Terrain (a heightmap march
  * toward the sun) and the fBm clouds (ratio tracking toward the sun) plug in here.
  * visibility_sun_occluders is the product of the opaque sources (0 or 1), visibility_sun adds
- * the shadowing media (per wavelength, 0..1). The atmosphere's own transmittance toward the
+ * the shadowing media (per wavelength, 0..1); both get the buffers, where a source keeps its
+ * data (a heightmap, a density grid). The atmosphere's own transmittance toward the
  * sun is not a visibility: the integrator takes it from the transmittance LUT, the Monte Carlo
  * reference tracks it. */
 #ifndef ATMO_MEDIA_VISIBILITY_H
@@ -32,7 +33,7 @@ ATMO_FN float visibility_planet(ATMO_GLOBAL const atmo_gpu_atmosphere *a, const 
     return geometry_ray_hits_ground(q->r, q->mu_s, a->bottom_radius) ? 0.0f : 1.0f;
 }
 
-ATMO_FN float visibility_sun_occluders(ATMO_GLOBAL const atmo_gpu_scene *s,
+ATMO_FN float visibility_sun_occluders(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                        const medium_point *q)
 {
     float v = visibility_planet(&s->atmosphere, q);
@@ -43,9 +44,10 @@ ATMO_FN float visibility_sun_occluders(ATMO_GLOBAL const atmo_gpu_scene *s,
     return v;
 }
 
-ATMO_FN vec3 visibility_sun(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_point *q)
+ATMO_FN vec3 visibility_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                            const medium_point *q)
 {
-    float v = visibility_sun_occluders(s, q);
+    float v = visibility_sun_occluders(s, ATMO_LUT_ARGS, q);
     vec3 vis = v3(v, v, v);
 #ifdef ATMO_CLOUD
     if (v > 0.0f)
