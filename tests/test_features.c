@@ -64,22 +64,21 @@ typedef struct method_case {
     const char *buffers[5];
     const char *defines;
     const char *own;  /* the method's entry fragment */
-    int integrator;   /* has sky_single.h */
 } method_case;
 
 static void test_methods(void)
 {
     static const method_case cases[] = {
-        {"single", {"transmittance_lut", NULL}, "", "kernels/atmosphere/method_single.h", 1},
+        {"single", {"transmittance_lut", NULL}, "", "kernels/atmosphere/method_single.h"},
         {"march", {"transmittance_lut", "ms_lut", NULL}, "-DATMO_MS_LUT",
-         "kernels/atmosphere/method_march.h", 1},
+         "kernels/atmosphere/method_march.h"},
         {"fast", {"transmittance_lut", "ms_lut", "sky_view_lut", NULL}, "-DATMO_MS_LUT",
-         "kernels/atmosphere/method_fast.h", 1},
+         "kernels/atmosphere/method_fast.h"},
         {"lut",
          {"transmittance_lut", "scattering_rayleigh", "scattering_mie", "scattering_scratch",
           NULL},
-         "-DATMO_LUT_J", "kernels/atmosphere/method_lut.h", 1},
-        {"reference", {"transmittance_lut", NULL}, "", "kernels/atmosphere/method_reference.h", 0},
+         "-DATMO_LUT_J", "kernels/atmosphere/method_lut.h"},
+        {"reference", {"transmittance_lut", NULL}, "", "kernels/atmosphere/method_reference.h"},
     };
     static const char *const entries[] = {
         "kernels/atmosphere/method_single.h", "kernels/atmosphere/method_march.h",
@@ -94,7 +93,9 @@ static void test_methods(void)
         CHECK(strcmp(p.method, m->method) == 0);
         for (int i = 0; i < 5; i++)
             CHECK((fragment_at(&p, entries[i]) >= 0) == (strcmp(entries[i], m->own) == 0));
-        CHECK((fragment_at(&p, "kernels/atmosphere/sky_single.h") >= 0) == m->integrator);
+        /* every method integrates the same media: the medium integrator comes before it */
+        CHECK(fragment_at(&p, "kernels/media/medium.h") >= 0 &&
+              fragment_at(&p, "kernels/media/medium.h") < fragment_at(&p, m->own));
         CHECK(fragment_at(&p, "kernels/media/cloud_shell.h") < 0);
         /* common headers first, the render kernels last */
         CHECK(fragment_at(&p, "kernels/common/compat.h") == 0);
@@ -128,13 +129,14 @@ static void test_cloud(void)
     test_plan(&s, &sky);
     test_scene_set(&s, "cloud.enabled=true");
     test_plan(&s, &cloud);
-    static const char *const with_table[] = {"transmittance_lut", "ms_lut", "cloud_phase_table",
+    static const char *const with_table[] = {"transmittance_lut", "cloud_phase_table", "ms_lut",
                                              NULL};
     check_buffers(&cloud, with_table);
-    CHECK(strcmp(cloud.defines, "-DATMO_MS_LUT -DATMO_CLOUD") == 0);
+    CHECK(strcmp(cloud.defines, "-DATMO_CLOUD -DATMO_MS_LUT") == 0);
     int shell = fragment_at(&cloud, "kernels/media/cloud_shell.h");
-    CHECK(shell > fragment_at(&cloud, "kernels/atmosphere/ms_lut.h"));
-    CHECK(shell > fragment_at(&cloud, "kernels/atmosphere/sky_single.h"));
+    /* a medium module: after the ray it takes, before the composition of the media */
+    CHECK(shell > fragment_at(&cloud, "kernels/media/ray.h"));
+    CHECK(shell < fragment_at(&cloud, "kernels/media/media.h"));
     CHECK(shell < fragment_at(&cloud, "kernels/atmosphere/method_march.h"));
     const atmo_plan_buffer *table = atmo_plan_buffer_find(&cloud, "cloud_phase_table");
     CHECK(table->host_data != NULL && cloud.gpu.cloud.table_size > 1 &&
@@ -150,8 +152,8 @@ static void test_cloud(void)
     CHECK(observer.gpu.cloud.observer.w > 0.0f);
 
     int sky_has, cloud_has;
-    size_t n_sky = source_size(&sky, "ATMO_FN void cloud_integrate(", &sky_has);
-    size_t n_cloud = source_size(&cloud, "ATMO_FN void cloud_integrate(", &cloud_has);
+    size_t n_sky = source_size(&sky, "ATMO_FN void cloud_shell_interval(", &sky_has);
+    size_t n_cloud = source_size(&cloud, "ATMO_FN void cloud_shell_interval(", &cloud_has);
     CHECK(!sky_has && cloud_has && n_cloud > n_sky);
     printf("march: assembled source %zu bytes sky-only, %zu with the cloud shell (+%zu)\n", n_sky,
            n_cloud, n_cloud - n_sky);

@@ -42,12 +42,13 @@ static const char probe_src[] =
     "  sky_radiance(s, ATMO_LUT_ARGS, q.x, q.y, q.z, q.w, i, 0u, &a, &b);\n"
     "  sky[i] = (float4)(a, 0.0f); sun[i] = (float4)(b, 0.0f);\n"
     "}\n"
-    "__kernel void probe_t(__global const atmo_gpu_scene *s, __global const float4 *rays,\n"
+    "__kernel void probe_t(__global const atmo_gpu_scene *s, ATMO_LUT_PARAMS,\n"
+    "                      __global const float4 *rays,\n"
     "                      __global float4 *out, uint n, uint per_ray) {\n"
     "  uint i = get_global_id(0); if (i >= n) return;\n"
     "  float4 q = rays[i / per_ray];\n"
-    "  reference_rng g = {s->seed, i, 0u, ATMO_RNG_METHOD_DIM};\n"
-    "  out[i] = (float4)(reference_transmittance(&s->atmosphere, q.x, q.y, &g), 0.0f);\n"
+    "  rng_stream g = sky_probe_stream(s, i, 0u);\n"
+    "  out[i] = (float4)(reference_transmittance(s, ATMO_LUT_ARGS, q.x, q.y, &g), 0.0f);\n"
     "}\n";
 
 typedef struct ctx {
@@ -95,10 +96,11 @@ static void run_transmittance(ctx *c, const atmo_plan *p, const float4 *rays, in
     cl_kernel k = clCreateKernel(c->prog, "probe_t", &err);
     cl_uint count = (cl_uint)n, per = (cl_uint)per_ray;
     clSetKernelArg(k, 0, sizeof c->scene, &c->scene);
-    clSetKernelArg(k, 1, sizeof b_rays, &b_rays);
-    clSetKernelArg(k, 2, sizeof b_out, &b_out);
-    clSetKernelArg(k, 3, sizeof count, &count);
-    clSetKernelArg(k, 4, sizeof per, &per);
+    int a = test_bind_buffers(k, c->luts);
+    clSetKernelArg(k, a, sizeof b_rays, &b_rays);
+    clSetKernelArg(k, a + 1, sizeof b_out, &b_out);
+    clSetKernelArg(k, a + 2, sizeof count, &count);
+    clSetKernelArg(k, a + 3, sizeof per, &per);
     test_cl_run_1d(&c->cl, k, n);
     test_cl_read(&c->cl, b_out, sizeof(float4) * n, out);
     clReleaseKernel(k);

@@ -140,7 +140,7 @@ int cmd_radiance(int argc, char **argv)
 {
     atmo_err e = {{0}};
     atmo_scene scene;
-    atmo_plan plan;
+    atmo_plan plan = {0};
     atmo_probe probe = {0};
     int rc = ATMO_OK, json = 0, irradiance = 0, samples = 0, n_views = 0;
     int have_altitude = 0, have_sun = 0, have_distance = 0;
@@ -388,6 +388,7 @@ cleanup_se:
     free(se);
 cleanup:
     atmo_probe_close(&probe);
+    atmo_plan_free(&plan);
     free(mean);
     free(rays);
     if (rc)

@@ -320,6 +320,8 @@ int cmd_render(int argc, char **argv)
     rc = spectral ? atmo_spectral_render(&scene, lut_cache, &rs, &res, &e)
                   : atmo_render(&plan, &rs, &res, &e);
     sigaction(SIGINT, &old, NULL);
+    if (!spectral)
+        atmo_plan_free(&plan);
     if (rc)
         goto runtime_error;
     if (res.interrupted)

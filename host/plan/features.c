@@ -10,10 +10,6 @@
 #include "atmo/plan_reference.h"
 
 static int always(const atmo_scene *s) { return s != NULL; }
-static int sky_integrator(const atmo_scene *s)
-{
-    return s->atmosphere.method != ATMO_METHOD_REFERENCE;
-}
 static int ms_methods(const atmo_scene *s)
 {
     return s->atmosphere.method == ATMO_METHOD_MARCH || s->atmosphere.method == ATMO_METHOD_FAST;
@@ -39,7 +35,8 @@ static int plan_atmosphere(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 }
 
 /* The headers every kernel is compiled with: the shared GPU structs (each feature's in its own
- * header, before the scene struct that holds them), math, the atmosphere, the camera. */
+ * header, before the scene struct that holds them), math, the atmosphere, the camera, the
+ * camera-relative ray that the media and the integrator take. */
 static const char *const atmosphere_fragments[] = {
     "kernels/common/compat.h",        "include/atmo/gpu_enums.h",
     "include/atmo/gpu_atmosphere.h",  "include/atmo/gpu_ms_lut.h",
@@ -48,8 +45,8 @@ static const char *const atmosphere_fragments[] = {
     "include/atmo/gpu_types.h",       "kernels/common/rng.h",
     "kernels/common/geometry.h",      "kernels/common/phase.h",
     "kernels/atmosphere/atmosphere.h", "kernels/common/camera.h",
-    "kernels/atmosphere/sky_method.h", "kernels/atmosphere/transmittance.cl",
-    NULL};
+    "kernels/atmosphere/sky_method.h", "kernels/media/ray.h",
+    "kernels/atmosphere/transmittance.cl", NULL};
 static const atmo_gpu_field atmosphere_params[] = {ATMO_GPU_FIELD(atmosphere),
                                                    ATMO_GPU_FIELD(transmittance_width),
                                                    ATMO_GPU_FIELD(transmittance_height),
@@ -60,7 +57,14 @@ static const char *const atmosphere_sources[] = {
     "kernels/common/geometry.h",     "kernels/atmosphere/atmosphere.h",
     "kernels/atmosphere/transmittance.cl", NULL};
 
-static const char *const sky_single_fragments[] = {"kernels/atmosphere/sky_single.h", NULL};
+/* The media, the visibility sources and the one medium integrator over them (media.h composes
+ * the media modules planned before it, e.g. the cloud shell), and the Monte Carlo walk. */
+static const char *const medium_fragments[] = {"kernels/media/media.h", "kernels/media/visibility.h",
+                                               "kernels/media/medium.h",
+                                               "kernels/media/tracking.h", NULL};
+#define MEDIUM_SOURCES                                                                             \
+    "kernels/media/ray.h", "kernels/media/media.h", "kernels/media/visibility.h",                  \
+        "kernels/media/observer.h", "kernels/media/medium.h"
 
 static const char *const ms_lut_fragments[] = {"kernels/atmosphere/ms_lut.h",
                                                "kernels/atmosphere/ms_lut.cl", NULL};
@@ -71,8 +75,9 @@ static const char *const ms_lut_sources[] = {
     "include/atmo/gpu_atmosphere.h",  "include/atmo/gpu_ms_lut.h",
     "include/atmo/gpu_types.h",       "kernels/common/geometry.h",
     "kernels/common/phase.h",         "kernels/atmosphere/atmosphere.h",
-    "kernels/atmosphere/sky_single.h", "kernels/atmosphere/ms_lut.h",
-    "kernels/atmosphere/ms_lut.cl",   NULL};
+    "kernels/atmosphere/sky_method.h", MEDIUM_SOURCES,
+    "kernels/atmosphere/ms_lut.h",    "kernels/atmosphere/ms_lut.cl",
+    NULL};
 
 static const char *const lut_fragments[] = {"kernels/atmosphere/lut_scattering.h",
                                             "kernels/atmosphere/method_lut.h",
@@ -85,33 +90,35 @@ static const char *const lut_sources[] = {
     "include/atmo/gpu_types.h",          "kernels/common/rng.h",
     "kernels/common/geometry.h",         "kernels/common/phase.h",
     "kernels/atmosphere/atmosphere.h",   "kernels/atmosphere/sky_method.h",
-    "kernels/atmosphere/sky_single.h",   "kernels/atmosphere/lut_scattering.h",
+    MEDIUM_SOURCES,                       "kernels/atmosphere/lut_scattering.h",
     "kernels/atmosphere/method_lut.h",   "kernels/atmosphere/lut_precompute.cl",
     NULL};
 
 static const char *const needs_transmittance[] = {"atmosphere", NULL};
-static const char *const cloud_fragments[] = {"kernels/media/cloud_shell.h", NULL};
+static const char *const cloud_fragments[] = {"kernels/media/observer.h",
+                                              "kernels/media/cloud_shell.h", NULL};
 static const char *const single_fragments[] = {"kernels/atmosphere/method_single.h", NULL};
 static const char *const march_fragments[] = {"kernels/atmosphere/method_march.h", NULL};
 static const char *const fast_fragments[] = {"kernels/atmosphere/method_fast.h",
                                              "kernels/atmosphere/fast_luts.cl", NULL};
 static const char *const reference_fragments[] = {"kernels/atmosphere/method_reference.h", NULL};
-static const char *const render_fragments[] = {"kernels/render/sky.cl", NULL};
+static const char *const render_fragments[] = {"kernels/atmosphere/sky_cosines.h",
+                                               "kernels/render/sky.cl", NULL};
 
 const atmo_feature atmo_features[] = {
     {"atmosphere", -1, always, atmosphere_fragments, "", atmosphere_params, atmosphere_sources,
      NULL, plan_atmosphere, 0},
-    /* the view-ray integrator of single, march, fast and lut */
-    {"sky_single", -1, sky_integrator, sky_single_fragments, "", NULL, NULL, NULL, NULL, 0},
-    /* Psi_ms, shared by march and fast; the flag compiles sky_single.h's terms in */
-    {"ms_lut", -1, ms_methods, ms_lut_fragments, "-DATMO_MS_LUT", ms_lut_params, ms_lut_sources,
-     needs_transmittance, atmo_plan_ms_lut, 0},
-    /* the flag gives sky_single.h the density of orders >= 2 for aerial perspective */
-    {"lut", ATMO_METHOD_LUT, is_lut, lut_fragments, "-DATMO_LUT_J", lut_params, lut_sources,
-     needs_transmittance, atmo_plan_lut, 0},
-    /* a medium: before the methods that integrate it */
+    /* a medium and a visibility source: before the composition of the media */
     {"cloud", -1, cloud_shell, cloud_fragments, "-DATMO_CLOUD", NULL, NULL, NULL,
      atmo_plan_cloud, 0},
+    /* the medium integrator of single, march, fast and lut; the media of the reference */
+    {"medium", -1, always, medium_fragments, "", NULL, NULL, NULL, NULL, 0},
+    /* Psi_ms, shared by march and fast; the flag compiles the integrator's Psi_ms source in */
+    {"ms_lut", -1, ms_methods, ms_lut_fragments, "-DATMO_MS_LUT", ms_lut_params, ms_lut_sources,
+     needs_transmittance, atmo_plan_ms_lut, 0},
+    /* the flag gives the integrator the density of orders >= 2 for aerial perspective */
+    {"lut", ATMO_METHOD_LUT, is_lut, lut_fragments, "-DATMO_LUT_J", lut_params, lut_sources,
+     needs_transmittance, atmo_plan_lut, 0},
     {"single", ATMO_METHOD_SINGLE, is_single, single_fragments, "", NULL, NULL, NULL, NULL, 0},
     {"march", ATMO_METHOD_MARCH, is_march, march_fragments, "", NULL, NULL, NULL, NULL, 0},
     /* the sky-view LUT follows the view: never cached, so no key */

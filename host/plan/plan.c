@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include "atmo/colour.h"
 #include "atmo/features.h"
@@ -192,10 +193,38 @@ static int make_prelude(atmo_plan *p, atmo_err *e)
     return rc;
 }
 
+void atmo_plan_free(atmo_plan *p)
+{
+    for (int i = 0; i < p->owned_count; i++)
+        free(p->owned[i]);
+    memset(p, 0, sizeof *p);
+}
+
+int atmo_plan_own(atmo_plan *p, void *block, atmo_err *e)
+{
+    if (p->owned_count == ATMO_PLAN_MAX_OWNED) {
+        free(block);
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "too many host tables in the plan (a build bug)");
+    }
+    p->owned[p->owned_count++] = block;
+    return ATMO_OK;
+}
+
+static int plan_features(const atmo_scene *s, atmo_plan *p, atmo_err *e);
+
 int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 {
-    int rc;
     memset(p, 0, sizeof *p);
+    int rc = plan_features(s, p, e);
+    if (rc)
+        atmo_plan_free(p);
+    return rc;
+}
+
+/* atmo_plan_make's work: the shared structs, then each wanted feature in registry order. */
+static int plan_features(const atmo_scene *s, atmo_plan *p, atmo_err *e)
+{
+    int rc;
     if ((rc = atmo_scene_validate(s, e)) || (rc = atmo_atmosphere_from_scene(s, &p->atmosphere, e)))
         return rc;
     atmo_gpu_scene *g = &p->gpu;

@@ -6,11 +6,15 @@
  * have their own angle grids (finer for the shorter wavelength, where x is larger); they are
  * resampled by linear interpolation onto the grid of the longest one and packed as float4 rows
  * (P_0, P_1, P_2, theta in radians) into the buffer cloud_phase_table (a host table: copied to
- * the device before the passes; one zero row when the scene has an observer but no cloud).
+ * the device before the passes; one zero row when the scene has an observer but no cloud); the
+ * plan owns the packed rows (atmo_plan_free releases them).
  *
- * The packed rows must outlive the render (plan.h's host_data); the plan has no destructor, so they
- * are kept for the life of the process in a small list keyed by their parameters, which also
- * spares re-packing when a program plans the same cloud twice. */
+ * The observer's centre is placed camera-relative in the world's axes, as the kernels' 3-D
+ * visibility sources take it (kernels/media/observer.h): distance_m horizontally from the
+ * camera away from the sun's azimuth and height_m along the camera's local vertical,
+ *     c = -distance e_s + height up,  e_s = the horizontal unit vector toward the sun
+ * (with the sun at the zenith, the horizontal axis medium_ray_from_cosines takes, so a probe's
+ * frame and the observer agree). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,15 +22,29 @@
 #include "atmo/mie.h"
 #include "atmo/plan_cloud.h"
 
-typedef struct cloud_rows {
-    struct cloud_rows *next;
-    char dsd[32];
-    double wavelengths_nm[3], sun_radius_deg;
-    int count;
-    float4 *rows;
-} cloud_rows;
-
-static cloud_rows *cloud_rows_kept;
+/* The observer's centre (see the top of the file) from the float camera frame the kernels see. */
+static float4 observer_centre(const atmo_scene *s, const atmo_gpu_scene *g)
+{
+    double up[3] = {g->camera.local_up.x, g->camera.local_up.y, g->camera.local_up.z}, sun[3];
+    double sun_f[3] = {g->sun_direction.x, g->sun_direction.y, g->sun_direction.z};
+    double k = up[0] * sun_f[0] + up[1] * sun_f[1] + up[2] * sun_f[2], len = 0.0;
+    for (int i = 0; i < 3; i++)
+        sun[i] = sun_f[i] - k * up[i], len += sun[i] * sun[i];
+    if (len < 1e-12) { /* the sun at the zenith: up x (x or z axis), as the kernels take it */
+        double axis[3] = {fabs(up[0]) < 0.6 ? 1.0 : 0.0, 0.0, fabs(up[0]) < 0.6 ? 0.0 : 1.0};
+        sun[0] = up[1] * axis[2] - up[2] * axis[1];
+        sun[1] = up[2] * axis[0] - up[0] * axis[2];
+        sun[2] = up[0] * axis[1] - up[1] * axis[0];
+        len = sun[0] * sun[0] + sun[1] * sun[1] + sun[2] * sun[2];
+    }
+    len = sqrt(len);
+    float4 o;
+    o.x = (float)(-s->observer.distance_m * sun[0] / len + s->observer.height_m * up[0]);
+    o.y = (float)(-s->observer.distance_m * sun[1] / len + s->observer.height_m * up[1]);
+    o.z = (float)(-s->observer.distance_m * sun[2] / len + s->observer.height_m * up[2]);
+    o.w = (float)s->observer.radius_m;
+    return o;
+}
 
 static int pack_tables(const mie_table t[3], float4 **out, int *count, atmo_err *e)
 {
@@ -66,20 +84,12 @@ int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     atmo_gpu_cloud *g = &p->gpu.cloud;
     g->steps = ATMO_CLOUD_STEPS;
     g->phase = s->cloud.phase;
-    if (s->observer.enabled) {
-        float4 o = {(float)-s->observer.distance_m, (float)s->observer.height_m, 0.0f,
-                    (float)s->observer.radius_m};
-        g->observer = o;
-    }
+    if (s->observer.enabled)
+        g->observer = observer_centre(s, &p->gpu);
 
     if (s->cloud.enabled) {
         const char *dsd_name = atmo_param_find("cloud.dsd")->names[s->cloud.dsd];
         double sun_radius = s->cloud.sun_disc ? s->sun.angular_radius_deg : 0.0;
-        cloud_rows *kept = cloud_rows_kept;
-        while (kept && !(strcmp(kept->dsd, dsd_name) == 0 && kept->sun_radius_deg == sun_radius &&
-                         memcmp(kept->wavelengths_nm, s->render.wavelengths_nm,
-                                sizeof kept->wavelengths_nm) == 0))
-            kept = kept->next;
         mie_dsd d;
         if (mie_dsd_preset(dsd_name, &d))
             return atmo_fail(e, ATMO_ERR_RUNTIME, "cloud.dsd=%s is not a Mie preset (a build bug)",
@@ -102,24 +112,15 @@ int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e)
         g->diameter_um = (float)fmin(fmax(diameter_um, 5.0), 50.0);
         g->base_m = (float)s->cloud.bottom_m;
         g->top_m = (float)s->cloud.top_m;
-        if (!kept) {
-            if (!(kept = calloc(1, sizeof *kept))) {
-                rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory planning the cloud");
-                goto cleanup;
-            }
-            if ((rc = pack_tables(t, &kept->rows, &kept->count, e))) {
-                free(kept);
-                goto cleanup;
-            }
-            snprintf(kept->dsd, sizeof kept->dsd, "%s", dsd_name);
-            memcpy(kept->wavelengths_nm, s->render.wavelengths_nm, sizeof kept->wavelengths_nm);
-            kept->sun_radius_deg = sun_radius;
-            kept->next = cloud_rows_kept;
-            cloud_rows_kept = kept;
-        }
+        float4 *rows = NULL;
+        int count = 0;
+        if ((rc = pack_tables(t, &rows, &count, e)))
+            goto cleanup;
+        if ((rc = atmo_plan_own(p, rows, e)))
+            goto cleanup;
         rc = atmo_plan_add_buffer(p, "cloud_phase_table", "float4",
-                                  sizeof(float4) * (size_t)kept->count, 0, kept->rows, e);
-        g->table_size = kept->count;
+                                  sizeof(float4) * (size_t)count, 0, rows, e);
+        g->table_size = count;
     } else {
         /* observer only: an empty shell at the ground; the table is one zero row, never read */
         static const float4 zero_row;

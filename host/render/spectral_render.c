@@ -170,7 +170,10 @@ int atmo_spectral_render(const atmo_scene *s, int cache_luts, const atmo_render_
         }
         atmo_step step = {plan.samples, 0.0, NULL, NULL, rs->cancel};
         atmo_step_status status;
-        if (rc || (rc = atmo_session_step(session, &step, &status, e)))
+        if (!rc) /* the precompute has copied the plan's host tables to the device */
+            rc = atmo_session_step(session, &step, &status, e);
+        atmo_plan_free(&plan);
+        if (rc)
             goto cleanup;
         if (!status.complete) {
             rc = atmo_fail(e, ATMO_ERR_RUNTIME,

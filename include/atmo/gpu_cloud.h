@@ -12,7 +12,7 @@ typedef struct atmo_gpu_cloud {
     float4 extinction;   /* sigma_ext, 1/m */
     float4 albedo;       /* single-scattering albedo */
     float4 g;            /* asymmetry g of the Mie table */
-    float4 observer;     /* xyz: centre in the camera's sun frame (m); w: radius (0: none) */
+    float4 observer;     /* xyz: centre, camera-relative in the world axes (m); w: radius (0: none) */
     float base_m;        /* altitude of the shell's base, m */
     float top_m;         /* altitude of its top, m */
     float diameter_um;   /* effective droplet diameter for Jendersie-d'Eon's fit (5..50 um) */

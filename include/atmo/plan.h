@@ -27,6 +27,7 @@
 #define ATMO_PLAN_MAX_PASSES 64
 #define ATMO_PLAN_MAX_BUFFERS 8
 #define ATMO_PLAN_MAX_FEATURES 12
+#define ATMO_PLAN_MAX_OWNED 4
 
 /* A named device buffer. bytes == 0: the feature declares it but this scene needs no data in it
  * (e.g. the sky-view LUT of a camera above the atmosphere); a 16-byte placeholder is bound,
@@ -37,7 +38,7 @@ typedef struct atmo_plan_buffer {
     size_t bytes;
     int follows_view;      /* holds one camera and sun: recomputed per view, never cached */
     const void *host_data; /* a host table copied in before the passes (bytes long), or NULL;
-                              owned by the plan's creator, must outlive the render */
+                              static or owned by the plan (atmo_plan_own) */
     int feature;           /* index in plan->features of the feature that owns it */
 } atmo_plan_buffer;
 
@@ -68,10 +69,19 @@ typedef struct atmo_plan {
     int pass_count;
     int cache_luts;                /* disk cache of precomputed buffers: 0 off, 1 those whose
                                       passes took > 0.5 s, 2 all */
+    void *owned[ATMO_PLAN_MAX_OWNED]; /* heap blocks the host tables live in (atmo_plan_own) */
+    int owned_count;
     int width, height, samples;
 } atmo_plan;
 
+/* Plan a validated scene. On failure nothing is left to release; on success the caller
+ * releases the plan with atmo_plan_free once no session or probe opened with it is left. */
 int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e);
+/* Release what the plan owns (its host tables) and zero it. */
+void atmo_plan_free(atmo_plan *p);
+/* For a feature's plan function: the plan takes the heap block (malloc'd) that a host table
+ * lives in and frees it in atmo_plan_free; on failure the block is freed at once. */
+int atmo_plan_own(atmo_plan *p, void *block, atmo_err *e);
 
 /* For a feature's plan function (features.h): declare a buffer or a pass of the feature being
  * planned (the last one in p->features). */

@@ -1,8 +1,8 @@
 /* fast_luts.cl — the per-frame LUTs of method "fast" (method_fast.h): the sky-view LUT around
- * the camera, into the buffer sky_view_lut, in three planes of w x h texels: single scattering
- * without its phase functions, Rayleigh (0) and Mie (1), and the rest (2: multiple scattering and
- * the ground), sky_integrate_parts' parts. Needs the transmittance and Psi_ms LUTs (passes before
- * it). */
+ * the camera, into buffer b, in three planes of w x h texels: single scattering without its
+ * phase functions, Rayleigh (0) and Mie (1), and the rest (2: multiple scattering and the
+ * ground): the parts of the medium integrator's result (kernels/media/medium.h). Needs the
+ * transmittance and Psi_ms LUTs (passes before it). */
 
 __kernel void sky_view_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PARAMS, int arg)
 {
@@ -15,13 +15,12 @@ __kernel void sky_view_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PA
     float mu_s = fast_camera_mu_s(scene);
     float nu = atmo_clamp_cos(mu * mu_s + atmo_safe_sqrt((1.0f - mu * mu) * (1.0f - mu_s * mu_s)) *
                                               cos_phi);
-    float3 single_r, single_m, rest, sun, view_t;
-    sky_integrate_parts(scene, transmittance_lut, ms_lut, scene->ms.width,
-                        scene->ms.height, 1, scene->camera.local_up.w, mu, mu_s, nu,
-                        INFINITY, scene->sky_view.steps, 0.5f, &single_r, &single_m, &rest, &sun,
-                        &view_t);
+    medium_ray m = medium_ray_from_cosines(scene, scene->camera.local_up.w, mu, mu_s, nu);
+    medium_result res;
+    medium_integrate(scene, ATMO_LUT_ARGS, &m, 0.0f, INFINITY, scene->sky_view.steps, 0.5f, 1,
+                     &res);
     int idx = j * w + i, n = w * h;
-    sky_view_lut[idx] = (float4)(single_r, 0.0f);
-    sky_view_lut[n + idx] = (float4)(single_m, 0.0f);
-    sky_view_lut[2 * n + idx] = (float4)(rest, 0.0f);
+    sky_view_lut[idx] = (float4)(res.single[MEDIA_RAYLEIGH], 0.0f);
+    sky_view_lut[n + idx] = (float4)(res.single[MEDIA_MIE], 0.0f);
+    sky_view_lut[2 * n + idx] = (float4)(res.rest, 0.0f);
 }

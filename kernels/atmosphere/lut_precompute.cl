@@ -135,10 +135,9 @@ __kernel void lut_grid(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, in
     int ground = geometry_ray_hits_ground(r, mu, a->bottom_radius);
     float3 L;
     if (k == 1)
-        L = lut_scattering_lookup(a, scattering_rayleigh, dims, r, mu, mu_s, nu, ground) *
-                phase_rayleigh(nu) +
+        L = lut_scattering_lookup(a, scattering_rayleigh, dims, r, mu, mu_s, nu, ground) * phase_rayleigh(nu) +
             lut_scattering_lookup(a, scattering_mie, dims, r, mu, mu_s, nu, ground) *
-                sky_mie_phase(a, nu);
+                media_mie_phase(a, nu);
     else
         L = lut_scattering_lookup(a, scattering_scratch, dims, r, mu, mu_s, nu, ground);
     if (ground) {
@@ -202,7 +201,7 @@ __kernel void lut_density(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS,
         float c1 = vx * dir.x + vy * dir.y + mu * dir.z;
         float c2 = vx * dir.x - vy * dir.y + mu * dir.z; /* the mirror direction */
         float p_r = phase_rayleigh(c1) + phase_rayleigh(c2);
-        float p_m = sky_mie_phase(a, c1) + sky_mie_phase(a, c2);
+        float p_m = media_mie_phase(a, c1) + media_mie_phase(a, c2);
         J += grid[g].xyz * ((beta_r * p_r + beta_m * p_m) * dir.w);
     }
     scattering_scratch[N + idx] = (float4)(J, 0.0f);

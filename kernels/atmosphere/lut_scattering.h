@@ -55,17 +55,16 @@
 
 /* Where the method's tables sit in its buffers, in float4 elements (method_lut.h), with
  * N = LUT_TEXELS (one 4-D table), I = n_r n_mu_s (one irradiance table), G = rings^2 (grid):
- *   scattering_rayleigh: [0, N) single Rayleigh S_R   [N, 2N) orders 2..N summed (phase
- *      included)
- *   scattering_mie: [0, N) single Mie S_M   [N, N + I) indirect ground irradiance, orders
- *      1..N-1   [N + I, 2N + I) the density J of orders 2..N summed (radiance per metre, phase
- *      included), for aerial perspective (method_lut.h's sky_segment)
- *   scattering_scratch: [0, N) delta scattering (order n)   [N, 2N) density J_n
- *      [2N, 2N + I G) sphere grid   [2N + I G, 2N + I G + I) delta irradiance (order n - 1)
+ *   a: [0, N) single Rayleigh S_R      [N, 2N) orders 2..N summed (phase included)
+ *   b: [0, N) single Mie S_M           [N, N + I) indirect ground irradiance, orders 1..N-1
+ *      [N + I, 2N + I) the density J of orders 2..N summed (radiance per metre, phase
+ *      included), for aerial perspective (method_lut.h's sky_trace over a segment)
+ *   c: [0, N) delta scattering (order n)  [N, 2N) density J_n  [2N, 2N + I G) sphere grid
+ *      [2N + I G, 2N + I G + I) delta irradiance (order n - 1)
  *      [2N + I G + I, 2N + I G + I + G) the grid's directions (xyz) and solid angles (w), so
  *      the density pass reads them instead of evaluating four trigonometric functions each
- * atmo_gpu_lut: steps segments per texel ray, rings of the grid, orders (for reports; the plan
- * lists the passes). */
+ * lut.steps: segments per texel ray; [LUT_INT_RINGS]: rings of the grid;
+ * [LUT_INT_ORDERS]: the number of orders (for reports; the plan lists the passes). */
 #define LUT_TEXELS(dims) ((dims)[0] * (dims)[1] * (dims)[2] * (dims)[3])
 #define LUT_IRRADIANCE_TEXELS(dims) ((dims)[1] * (dims)[3])
 #define LUT_DELTA_IRRADIANCE(dims, G) (2 * LUT_TEXELS(dims) + LUT_IRRADIANCE_TEXELS(dims) * (G))

@@ -4,9 +4,10 @@
  * The camera's radius r_c and sun cosine mu_s,c are fixed for a frame, so the sky seen from
  * the camera is a function of two angles only: the view zenith angle theta and the azimuth phi
  * from the sun (the sky is symmetric about the sun's vertical plane, so phi in [0, pi]). The
- * sky-view LUT (buffer sky_view_lut, s->sky_view.width = W columns of phi, s->sky_view.height = 2 n
- * rows) holds the march of ms_lut.h (single scattering + sigma_s Psi_ms, the lit ground, no sun
- * disc) with s->sky_view.steps segments (growing from the camera, sky_single.h) at their midpoints
+ * sky-view LUT (buffer b, s->sky_view.width = W columns of phi, s->sky_view.height = 2 n rows)
+ * holds the march of ms_lut.h (single scattering + sigma_s Psi_ms, the lit ground, no sun disc)
+ * with s->sky_view.steps segments (growing from the camera, kernels/media/medium.h) at their
+ * midpoints
  * (equal segments missed 2 % of the aerosols' steep density near the ground), in three planes
  * (fast_luts.cl): the view-sun cosine nu is constant along a straight ray, so the phase
  * functions factor out of single scattering, and the LUT holds its Rayleigh and Mie integrals
@@ -24,10 +25,14 @@
  * smeared over a texel (the horizon band of a single mapping). Lookups are bilinear, written here
  * (DESIGN.md: LUTs in plain buffers).
  *
- * sky_radiance: rays from the camera's (r_c, mu_s,c) read the LUT; any other ray (a camera above
- * the atmosphere, where the plan builds no sky-view LUT, or a probe from elsewhere) falls back
- * to the march with one random offset per sample, like method "march". The sun disc is added
- * apart from the LUT: E T(r, mu) / Omega_sun when the ray sees the sun's disc and not the ground.
+ * sky_trace: rays from the camera's (r_c, mu_s,c) read the LUT; any other ray (a camera above
+ * the atmosphere, where the plan builds no sky-view LUT, or a probe from elsewhere) and every
+ * segment ending at a surface fall back to the march with one random offset per sample, like
+ * method "march". The view transmittance of a whole ray comes from the transmittance LUT: to
+ * the top, or for a ray that hits the ground at distance d the ratio T(R, -mu_g) / T(r, -mu)
+ * of the reversed rays (mu_g = (r mu + d) / R; Bruneton 2017, GetTransmittance). The sun disc
+ * is added apart from the LUT: E T(r, mu) / Omega_sun when the ray sees the sun's disc and not
+ * the ground.
  * The sky-view LUT's inputs (r_c, mu_s,c) are those sky.cl computes for every pixel. */
 #ifndef ATMO_METHOD_FAST_H
 #define ATMO_METHOD_FAST_H
@@ -36,6 +41,7 @@
 #include "common/rng.h"
 #include "atmosphere/sky_method.h"
 #include "atmosphere/ms_lut.h"
+#include "media/medium.h"
 #endif
 
 /* The camera's sun cosine, computed as sky.cl computes it. */
@@ -95,7 +101,7 @@ ATMO_FN vec3 fast_sky_view_lookup(ATMO_GLOBAL const atmo_gpu_scene *s,
     int i01 = (row0 + y1) * width + x0, i11 = (row0 + y1) * width + x1;
     float w00 = (1.0f - fx) * (1.0f - fy), w10 = fx * (1.0f - fy);
     float w01 = (1.0f - fx) * fy, w11 = fx * fy;
-    float weight[3] = {phase_rayleigh(nu), sky_mie_phase(&s->atmosphere, nu), 1.0f};
+    float weight[3] = {phase_rayleigh(nu), media_mie_phase(&s->atmosphere, nu), 1.0f};
     vec3 sum = v3(0.0f, 0.0f, 0.0f);
     for (int k = 0; k < 3; k++) {
         ATMO_GLOBAL const float4 *p = lut + k * plane;
@@ -107,42 +113,36 @@ ATMO_FN vec3 fast_sky_view_lookup(ATMO_GLOBAL const atmo_gpu_scene *s,
     return sum;
 }
 
-ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float r,
-                          float mu, float mu_s, float nu, uint pixel, uint sample, vec3 *sky,
-                          vec3 *sun)
+/* The method's ray (sky_method.h): the camera's rays over their whole length from the LUT,
+ * any other ray and every segment by the march (march_trace). */
+ATMO_FN void sky_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, const medium_ray *m,
+                       float t_max, rng_stream *g, vec3 *sky, vec3 *sun, vec3 *view_t)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     float r_c = s->camera.local_up.w;
-    int from_camera = s->sky_view.width > 0 && fabsf(r - r_c) <= 1e-6f * r_c &&
-                      fabsf(mu_s - fast_camera_mu_s(s)) <= 1e-6f;
-    if (!from_camera) {
-        float jitter = rng_uniform(s->seed, pixel, sample, ATMO_RNG_METHOD_DIM);
-        march_integrate(s, transmittance_lut, ms_lut, s->ms.width, s->ms.height, r,
-                        mu, mu_s, nu, s->view_steps, jitter, sky, sun);
+    int from_camera = s->sky_view.width > 0 && fabsf(m->r - r_c) <= 1e-6f * r_c &&
+                      fabsf(m->mu_s - fast_camera_mu_s(s)) <= 1e-6f;
+    if (!from_camera || t_max < INFINITY) {
+        march_trace(s, ATMO_LUT_ARGS, m, t_max, rng_next(g), sky, sun, view_t);
         return;
     }
-    int hits_ground = geometry_ray_hits_ground(r, mu, a->bottom_radius);
-    *sky = fast_sky_view_lookup(s, sky_view_lut, mu, mu_s, nu, hits_ground);
+    int hits_ground = geometry_ray_hits_ground(m->r, m->mu, a->bottom_radius);
+    *sky = fast_sky_view_lookup(s, sky_view_lut, m->mu, m->mu_s, m->nu, hits_ground);
     *sun = v3(0.0f, 0.0f, 0.0f);
-    if (!hits_ground && nu >= s->sun_direction.w) {
-        vec3 to_space = atmosphere_transmittance_to_top(a, transmittance_lut,
-                                                        s->transmittance_width,
-                                                        s->transmittance_height, r, mu);
-        *sun = v3_mul(atmosphere_sun_disc_radiance(a, s->sun_direction.w), to_space);
+    int tw = s->transmittance_width, th = s->transmittance_height;
+    if (hits_ground) {
+        float d = geometry_distance_to_bottom(m->r, m->mu, a->bottom_radius);
+        float mu_g = atmo_clamp_cos((m->r * m->mu + d) / a->bottom_radius);
+        vec3 up_g = atmosphere_transmittance_to_top(a, transmittance_lut, tw, th,
+                                                    a->bottom_radius, -mu_g);
+        vec3 up_c = atmosphere_transmittance_to_top(a, transmittance_lut, tw, th, m->r, -m->mu);
+        *view_t = v3(fminf(up_g.x / up_c.x, 1.0f), fminf(up_g.y / up_c.y, 1.0f),
+                     fminf(up_g.z / up_c.z, 1.0f));
+        return;
     }
-}
-
-/* The segment [0, d]: march's integrator with this method's Psi_ms LUT, the very march the
- * sky-view LUT tabulates, ended at d. (Hillaire's aerial-perspective volume, froxels in a
- * camera's frustum, would tabulate the same for a perspective view of surfaces; none is built
- * yet.) */
-ATMO_FN void sky_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float r, float mu,
-                         float mu_s, float nu, float d, uint pixel, uint sample, vec3 *inscatter,
-                         vec3 *transmittance)
-{
-    float jitter = rng_uniform(s->seed, pixel, sample, ATMO_RNG_METHOD_DIM);
-    march_segment(s, transmittance_lut, ms_lut, s->ms.width, s->ms.height, r, mu, mu_s,
-                  nu, d, s->view_steps, jitter, inscatter, transmittance);
+    *view_t = atmosphere_transmittance_to_top(a, transmittance_lut, tw, th, m->r, m->mu);
+    if (m->nu >= s->sun_direction.w)
+        *sun = v3_mul(atmosphere_sun_disc_radiance(a, s->sun_direction.w), *view_t);
 }
 
 #endif

@@ -11,19 +11,19 @@
  * applied here with the exact nu), M the sum of orders 2..N (phase included: unlike Bruneton,
  * who divides it by p_R, nothing is assumed about its angular shape), and E_ind the ground
  * irradiance of orders 1..N-1. The sun disc (returned apart) is E / Omega_sun times the
- * transmittance to space. sky_radiance is deterministic (no random numbers); sky_segment, the
+ * transmittance to space. The whole ray is deterministic (no random numbers); a segment, the
  * aerial perspective to a point (below), marches with a random offset per sample.
  *
- * Knobs (scene keys -> atmo_gpu_lut, host/plan/plan_lut.c):
- *   lut.nu_size, lut.mu_s_size, lut.mu_size, lut.r_size -> lut.dims = {nu, mu_s, mu, r}
+ * Knobs (scene keys -> atmo_gpu_scene, host/plan_lut.c):
+ *   lut.nu_size, lut.mu_s_size, lut.mu_size, lut.r_size -> lut_dims[0] = {nu, mu_s, mu, r}
  *     (defaults 8, 32, 128, 32; mu even: half ground rays, half sky rays)
- *   lut.steps -> lut.steps: segments per texel ray (default 64)
- *   lut.sphere_samples -> lut.rings: zenith rings of the sphere grid (even, default 32:
+ *   lut.steps -> method_int[0]: segments per texel ray (default 64)
+ *   lut.sphere_samples -> method_int[1]: zenith rings of the sphere grid (even, default 32:
  *     with 16 the sky at the ground came out up to 2.3 % darker than the Monte Carlo reference
  *     for sun zenith <= 80 deg, with 32 within 1.7 %; normalising the phase functions over
  *     the grid did not help, the horizon's bright band in the incoming light is what needs
  *     the rings)
- *   lut.orders -> lut.orders: scattering orders (default 7: in blue with the sun on the
+ *   lut.orders -> method_int[2]: scattering orders (default 7: in blue with the sun on the
  *     horizon, where orders fall slowest, order 8 would add at most 0.06 %,
  *     tests/test_lut_method.c). */
 #ifndef ATMO_METHOD_LUT_H
@@ -36,7 +36,8 @@
 #include "common/phase.h"
 #include "common/rng.h"
 #include "atmosphere/sky_method.h"
-#include "atmosphere/sky_single.h"
+#include "media/medium.h"
+#include "media/visibility.h"
 #endif
 
 /* The three tables at (r, mu, mu_s, nu), phase functions applied: S_R p_R + S_M p_M + M, for a
@@ -52,11 +53,10 @@ ATMO_FN vec3 lut_scattered(ATMO_GLOBAL const atmo_gpu_scene *s,
     float p_mu = lut_mu_position(a, r, mu, ground, dims[2]), p_r = lut_r_position(a, r, dims[3]);
     vec3 rayleigh = lut_scattering_fetch(scattering_rayleigh, dims, p_nu, p_mu_s, p_mu, p_r);
     vec3 mie = lut_scattering_fetch(scattering_mie, dims, p_nu, p_mu_s, p_mu, p_r);
-    vec3 multiple =
-        lut_scattering_fetch(scattering_rayleigh + LUT_TEXELS(dims), dims, p_nu, p_mu_s, p_mu, p_r);
-    return v3_add(
-        v3_add(v3_scale(rayleigh, phase_rayleigh(nu)), v3_scale(mie, sky_mie_phase(a, nu))),
-        multiple);
+    vec3 multiple = lut_scattering_fetch(scattering_rayleigh + LUT_TEXELS(dims), dims, p_nu, p_mu_s, p_mu, p_r);
+    return v3_add(v3_add(v3_scale(rayleigh, phase_rayleigh(nu)),
+                         v3_scale(mie, media_mie_phase(a, nu))),
+                  multiple);
 }
 
 /* The sky along a ray from inside the atmosphere (r, mu already entered): the tables and, for a
@@ -76,27 +76,26 @@ ATMO_FN vec3 lut_sky(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float
     }
     float d = geometry_distance_to_bottom(r, mu, a->bottom_radius);
     float mu_s_g = atmo_clamp_cos((r * mu_s + d * nu) / a->bottom_radius);
-    vec3 direct = v3_scale(v3_mul(v3_from4(a->solar_irradiance),
-                                  atmosphere_sun_transmittance(a, transmittance_lut, tw, th,
-                                                               a->bottom_radius, mu_s_g)),
-                           fmaxf(mu_s_g, 0.0f));
-    vec3 indirect =
-        lut_irradiance_lookup(a, scattering_mie + LUT_TEXELS(dims), dims, a->bottom_radius, mu_s_g);
+    medium_point g; /* the ground point, for the visibility sources */
+    g.p = v3(0.0f, 0.0f, 0.0f);
+    g.r = a->bottom_radius, g.h = 0.0f, g.mu = mu, g.mu_s = mu_s_g;
+    vec3 direct = v3_scale(medium_sunlight(s, ATMO_LUT_ARGS, &g), fmaxf(mu_s_g, 0.0f));
+    vec3 indirect = lut_irradiance_lookup(a, scattering_mie + LUT_TEXELS(dims), dims, a->bottom_radius,
+                                          mu_s_g);
     *view_t = lut_transmittance_to_ground(s, transmittance_lut, r, mu, d);
     return v3_add(L, v3_mul(v3_mul(*view_t, v3_from4(a->ground_albedo)),
                             v3_scale(v3_add(direct, indirect), 1.0f / ATMO_PI)));
 }
 
-ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float r,
-                          float mu, float mu_s, float nu, uint pixel, uint sample, vec3 *sky,
-                          vec3 *sun)
+/* The whole ray from the tables (deterministic: no random numbers). */
+ATMO_FN void lut_whole_ray(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float r, float mu,
+                           float mu_s, float nu, vec3 *sky, vec3 *sun, vec3 *view_t)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     *sky = v3(0.0f, 0.0f, 0.0f);
     *sun = v3(0.0f, 0.0f, 0.0f);
+    *view_t = v3(1.0f, 1.0f, 1.0f);
     int looks_at_sun = nu >= s->sun_direction.w;
-    (void)pixel;
-    (void)sample;
     mu = atmo_clamp_cos(mu);
     mu_s = atmo_clamp_cos(mu_s);
     nu = atmo_clamp_cos(nu);
@@ -108,17 +107,15 @@ ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
         return;
     }
     int ground = geometry_ray_hits_ground(r, mu, a->bottom_radius);
-    vec3 to_space;
-    *sky = lut_sky(s, ATMO_LUT_ARGS, r, mu, mu_s, nu, ground, &to_space);
+    *sky = lut_sky(s, ATMO_LUT_ARGS, r, mu, mu_s, nu, ground, view_t);
     if (!ground && looks_at_sun)
-        *sun = v3_mul(atmosphere_sun_disc_radiance(a, s->sun_direction.w), to_space);
+        *sun = v3_mul(atmosphere_sun_disc_radiance(a, s->sun_direction.w), *view_t);
 }
 
-/* sky_single.h's hooks (-DATMO_LUT_J): the density of orders >= 2 and the sky's ground
- * irradiance, read from the buffer scattering_mie. */
-ATMO_FN vec3 lut_ms_source(ATMO_GLOBAL const atmo_gpu_scene *s,
-                           ATMO_GLOBAL const float4 *scattering_mie, float r, float mu, float mu_s,
-                           float nu, int ground)
+/* The medium integrator's multiple-scattering source (medium.h, -DATMO_LUT_J): the density of
+ * orders >= 2 and the sky's ground irradiance, read from buffer b. */
+ATMO_FN vec3 lut_ms_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *scattering_mie,
+                           float r, float mu, float mu_s, float nu, int ground)
 {
     ATMO_GLOBAL const int *dims = s->lut.dims;
     return lut_scattering_lookup(&s->atmosphere, scattering_mie + LUT_DENSITY_SUM(dims), dims, r,
@@ -130,16 +127,16 @@ ATMO_FN vec3 lut_ms_ground_irradiance(ATMO_GLOBAL const atmo_gpu_scene *s,
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     ATMO_GLOBAL const int *dims = s->lut.dims;
-    return lut_irradiance_lookup(a, scattering_mie + LUT_TEXELS(dims), dims, a->bottom_radius,
-                                 mu_s);
+    return lut_irradiance_lookup(a, scattering_mie + LUT_TEXELS(dims), dims, a->bottom_radius, mu_s);
 }
 
-/* The segment [0, d]: a segment that reaches the ground or the top is the whole ray, from the
- * tables as in sky_radiance. A shorter one is marched: sky_single.h's integrator (single
- * scattering with the transmittance LUT) plus, at each sample, the stored density of orders
+/* The method's ray (sky_method.h): the whole ray from the tables (lut_whole_ray). A segment
+ * [0, d] that reaches the ground or the top is the whole ray too. A shorter one is marched: the
+ * medium integrator (kernels/media/medium.h: single scattering with the transmittance LUT)
+ * plus, at each sample, the stored density of orders
  * >= 2 (LUT_DENSITY_SUM) -- the integral that lut_multiple (lut_precompute.cl) evaluates over
  * whole texel rays, here stopped at d -- with s->view_steps segments and one random offset per
- * sample (dimension ATMO_RNG_METHOD_DIM), as methods single and march do.
+ * sample (the first number of the method's stream), as methods single and march do.
  * Why not Bruneton's two-lookup difference S(x, v) - T(x, y) S(y, v), y at distance d (both
  * lookups on the camera ray's side of the horizon): it subtracts the radiances of two whole
  * rays, so the lookups' interpolation error (a few tenths of a percent) is multiplied by
@@ -156,32 +153,37 @@ ATMO_FN vec3 lut_ms_ground_irradiance(ATMO_GLOBAL const atmo_gpu_scene *s,
  * (reduced tables; 2.1 % with the default ones), no step at the horizon larger than 1.03 times
  * its neighbours. It costs view_steps lookups of the density table and of the transmittance
  * LUT instead of six table lookups. */
-ATMO_FN void sky_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float r, float mu,
-                         float mu_s, float nu, float d, uint pixel, uint sample, vec3 *inscatter,
-                         vec3 *transmittance)
+ATMO_FN void sky_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, const medium_ray *m,
+                       float t_max, rng_stream *g, vec3 *sky, vec3 *sun, vec3 *view_t)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    *inscatter = v3(0.0f, 0.0f, 0.0f);
-    *transmittance = v3(1.0f, 1.0f, 1.0f);
-    mu = atmo_clamp_cos(mu);
-    mu_s = atmo_clamp_cos(mu_s);
-    nu = atmo_clamp_cos(nu);
-    r = fmaxf(r, a->bottom_radius);
-    float d_in = d - atmosphere_entry_distance(a, r, mu);
-    float r_in = r, mu_in = mu, mu_s_in = mu_s;
-    if (!atmosphere_enter(a, &r_in, &mu_in, &mu_s_in, nu) || d_in <= 0.0f)
+    if (!(t_max < INFINITY)) {
+        lut_whole_ray(s, ATMO_LUT_ARGS, m->r, m->mu, m->mu_s, m->nu, sky, sun, view_t);
+        return;
+    }
+    *sky = v3(0.0f, 0.0f, 0.0f);
+    *sun = v3(0.0f, 0.0f, 0.0f);
+    *view_t = v3(1.0f, 1.0f, 1.0f);
+    medium_ray c = *m;
+    c.mu = atmo_clamp_cos(c.mu);
+    c.mu_s = atmo_clamp_cos(c.mu_s);
+    c.nu = atmo_clamp_cos(c.nu);
+    c.r = fmaxf(c.r, a->bottom_radius);
+    float d_in = t_max - atmosphere_entry_distance(a, c.r, c.mu);
+    float r_in = c.r, mu_in = c.mu, mu_s_in = c.mu_s;
+    if (!atmosphere_enter(a, &r_in, &mu_in, &mu_s_in, c.nu) || d_in <= 0.0f)
         return;
     int ground = geometry_ray_hits_ground(r_in, mu_in, a->bottom_radius);
     float d_end = ground ? geometry_distance_to_bottom(r_in, mu_in, a->bottom_radius)
                          : geometry_distance_to_top(r_in, mu_in, a->top_radius);
     if (d_in >= d_end) {
-        *inscatter = lut_sky(s, ATMO_LUT_ARGS, r_in, mu_in, mu_s_in, nu, ground, transmittance);
+        *sky = lut_sky(s, ATMO_LUT_ARGS, r_in, mu_in, mu_s_in, c.nu, ground, view_t);
         return;
     }
-    vec3 sun;
-    float jitter = rng_uniform(s->seed, pixel, sample, ATMO_RNG_METHOD_DIM);
-    sky_integrate(s, transmittance_lut, scattering_mie, 0, 0, 1, r, mu, mu_s, nu, d, s->view_steps,
-                  jitter, inscatter, &sun, transmittance);
+    medium_result res;
+    medium_integrate(s, ATMO_LUT_ARGS, &c, 0.0f, t_max, s->view_steps, rng_next(g), 1, &res);
+    *sky = medium_radiance(s, ATMO_LUT_ARGS, &res, c.nu);
+    *view_t = res.view_t;
 }
 
 #endif

@@ -43,7 +43,12 @@
  * paths would see no tentative point there: over tests/test_aerial.c's 1 km rays the relative
  * standard error of 65536 samples was 1.7-8.9 % (median 4 %), with 4 points 0.2-6 % (median
  * 1.5 %), for about 1.5 times the time (10 s -> 16 s for its 108 rays, all distances).
- * Random numbers: rng_uniform(seed, pixel, sample, d), d counting up from ATMO_RNG_METHOD_DIM.
+ * Interfaces: the coefficients come from media_at (media.h), the planet's shadow from
+ * visibility_sun (visibility.h) at each point, the walk from tracking.h. The path lives in its
+ * own planet-centred frame (camera at (0, r, 0)); the points it hands the visibility sources
+ * are camera-relative in that frame, which is the world's only up to a rotation about the
+ * vertical, so the plan refuses the observer (a 3-D source) with this method.
+ * Random numbers: the caller's rng stream (rng.h), one number per draw in order.
  * Units: radiance W m^-2 sr^-1 nm^-1, lengths m, coefficients 1/m. */
 #ifndef ATMO_METHOD_REFERENCE_H
 #define ATMO_METHOD_REFERENCE_H
@@ -54,28 +59,15 @@
 #include "common/phase.h"
 #include "common/rng.h"
 #include "atmosphere/sky_method.h"
+#include "media/media.h"
+#include "media/ray.h"
+#include "media/tracking.h"
+#include "media/visibility.h"
 #include "atmo/gpu_types.h"
 #endif
 
 #define REFERENCE_ROULETTE_ORDER 4
 #define REFERENCE_SEGMENT_POINTS 4.0f
-
-typedef struct reference_rng {
-    uint seed, pixel, sample, dim;
-} reference_rng;
-
-ATMO_FN float reference_uniform(reference_rng *g)
-{
-    return rng_uniform(g->seed, g->pixel, g->sample, g->dim++);
-}
-
-/* Exponential step of rate sigma_bar; 1 - u lies in (0, 1], so the log is finite. */
-ATMO_FN float reference_step(reference_rng *g, float sigma_bar)
-{
-    return -logf(1.0f - reference_uniform(g)) / sigma_bar;
-}
-
-ATMO_FN float reference_max3(vec3 v) { return fmaxf(v.x, fmaxf(v.y, v.z)); }
 
 /* Lowest altitude along the ray from r along mu up to distance d (the ray's end). */
 ATMO_FN float reference_min_altitude(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r,
@@ -99,37 +91,49 @@ ATMO_FN float reference_majorant(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float
                                         expf(-h / a->rayleigh_scale_height)),
                                v3_scale(v3_from4(a->mie_extinction), expf(-h / a->mie_scale_height))),
                         v3_scale(v3_from4(a->ozone_absorption), ozone));
-    return fmaxf(reference_max3(bound), 1e-12f) * 1.001f;
+    return fmaxf(tracking_max3(bound), 1e-12f) * 1.001f;
+}
+
+/* A point at distance t along the ray from the point pos (planet-centred, radius r) along
+ * dir, with the ray's cosines mu, mu_s, nu there; `camera` = the camera's planet-centred
+ * position (for the camera-relative p). */
+ATMO_FN medium_point reference_point(ATMO_GLOBAL const atmo_gpu_atmosphere *a, vec3 pos,
+                                     vec3 dir, vec3 camera, float r, float mu, float mu_s,
+                                     float nu, float t)
+{
+    medium_ray m;
+    m.origin = v3_sub(pos, camera);
+    m.dir = dir;
+    m.r = r, m.mu = mu, m.mu_s = mu_s, m.nu = nu;
+    return medium_ray_at(&m, t, a->bottom_radius);
 }
 
 /* Transmittance along the whole ray from r along mu by ratio tracking (the ray must not hit the
  * ground); unbiased, each factor 1 - sigma_t / sigma_bar in [0, 1]. */
-ATMO_FN vec3 reference_transmittance(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r, float mu,
-                                     reference_rng *g)
+ATMO_FN vec3 reference_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                     float r, float mu, rng_stream *g)
 {
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     float d = geometry_distance_to_top(r, mu, a->top_radius);
-    float sigma_bar = reference_majorant(a, reference_min_altitude(a, r, mu, d));
+    tracking_walk w = tracking_begin(d, reference_majorant(a, reference_min_altitude(a, r, mu, d)));
     vec3 T = v3(1.0f, 1.0f, 1.0f);
-    for (float t = reference_step(g, sigma_bar); t < d; t += reference_step(g, sigma_bar)) {
-        vec3 sigma_t = atmosphere_extinction(a, geometry_altitude_at(r, mu, t, a->bottom_radius));
-        T = v3_mul(T, v3_sub(v3(1.0f, 1.0f, 1.0f), v3_scale(sigma_t, 1.0f / sigma_bar)));
+    while (tracking_next(&w, g)) {
+        medium_point q;
+        q.h = geometry_altitude_at(r, mu, w.t, a->bottom_radius);
+        T = tracking_ratio(&w, T, media_at(s, ATMO_LUT_ARGS, &q).extinction);
     }
     return T;
 }
 
-/* E T_sun at radius r with sun cosine mu_s (zero in the planet's shadow). */
-ATMO_FN vec3 reference_sunlight(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r, float mu_s,
-                                  reference_rng *g)
+/* E T_sun at the point q (zero where a visibility source hides the sun: the planet). */
+ATMO_FN vec3 reference_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                const medium_point *q, rng_stream *g)
 {
-    if (geometry_ray_hits_ground(r, mu_s, a->bottom_radius))
+    vec3 vis = visibility_sun(s, ATMO_LUT_ARGS, q);
+    if (vis.x <= 0.0f && vis.y <= 0.0f && vis.z <= 0.0f)
         return v3(0.0f, 0.0f, 0.0f);
-    return v3_mul(v3_from4(a->solar_irradiance), reference_transmittance(a, r, mu_s, g));
-}
-
-ATMO_FN float reference_mie_phase(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float nu)
-{
-    return a->mie_phase == ATMO_PHASE_HENYEY_GREENSTEIN ? phase_henyey_greenstein(nu, a->mie_g)
-                             : phase_cornette_shanks(nu, a->mie_g);
+    return v3_mul(v3_mul(v3_from4(s->atmosphere.solar_irradiance), vis),
+                  reference_transmittance(s, ATMO_LUT_ARGS, q->r, q->mu_s, g));
 }
 
 /* A unit vector at cosine c to the unit vector n, with azimuth phi around it. */
@@ -143,17 +147,17 @@ ATMO_FN vec3 reference_rotate(vec3 n, float c, float phi)
                                v3_add(v3_scale(b1, s * cosf(phi)), v3_scale(b2, s * sinf(phi)))));
 }
 
-/* One path from the camera along (r, mu, mu_s, nu); the camera ray ends at a black surface at
- * distance t_max (INFINITY: none), later segments of the path do not. view_t gets the ratio-
- * tracking weight at the camera ray's end, an unbiased estimate of T(0, min(t_max, end)). */
-ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, float r, float mu, float mu_s,
-                               float nu, float t_max, uint pixel, uint sample, vec3 *sky,
-                               vec3 *sun, vec3 *view_t)
+/* One path from the camera along the ray m (its cosines; the path's frame is its own); the
+ * camera ray ends at a black surface at distance t_max (INFINITY: none), later segments of the
+ * path do not. view_t gets the ratio-tracking weight at the camera ray's end, an unbiased
+ * estimate of T(0, min(t_max, end)). */
+ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                             const medium_ray *m, float t_max, rng_stream *g, vec3 *sky,
+                             vec3 *sun, vec3 *view_t)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     int min_order = s->reference.min_order, max_order = s->reference.max_order;
-    reference_rng g = {s->seed, pixel, sample, ATMO_RNG_METHOD_DIM};
-    vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
+    float r = m->r, mu = m->mu, mu_s = m->mu_s, nu = m->nu;
     vec3 albedo = v3_from4(a->ground_albedo);
     vec3 one = v3(1.0f, 1.0f, 1.0f);
     *sky = v3(0.0f, 0.0f, 0.0f);
@@ -162,6 +166,7 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, float r, float
     int looks_at_sun = nu >= s->sun_direction.w;
 
     t_max -= atmosphere_entry_distance(a, r, mu);
+    float r_cam = r;
     if (!atmosphere_enter(a, &r, &mu, &mu_s, nu)) { /* the ray misses the atmosphere */
         if (looks_at_sun)
             *sun = atmosphere_sun_disc_radiance(a, s->sun_direction.w);
@@ -175,8 +180,9 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, float r, float
     s_x = clamp(s_x, -1.0f, 1.0f);
     vec3 to_sun = v3_normalize(v3(s_x, mu_s, atmo_safe_sqrt(1.0f - mu_s * mu_s - s_x * s_x)));
 
-    vec3 pos = v3(0.0f, r, 0.0f); /* planet-centred */
-    vec3 w = one;                 /* path throughput */
+    vec3 camera = v3(0.0f, r_cam, 0.0f); /* planet-centred, in the path's frame */
+    vec3 pos = v3(0.0f, r, 0.0f);
+    vec3 w = one;                        /* path throughput */
     vec3 L = v3(0.0f, 0.0f, 0.0f);
     for (int order = 0;; order++) {
         /* the segment from pos along dir, with `order` scattering events behind it */
@@ -196,46 +202,40 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, float r, float
         int count = order + 1 >= min_order; /* light reaching the camera through this segment's
                                                next-event estimates has order + 1 events */
         int more = max_order == 0 || order + 1 < max_order;
-        float p_r = phase_rayleigh(nu0), p_m = reference_mie_phase(a, nu0);
+        vec3 phase[MEDIA_COMPONENTS];
+        for (int k = 0; k < MEDIA_COMPONENTS; k++)
+            phase[k] = media_phase(s, ATMO_LUT_ARGS, k, nu0);
         vec3 W = w, ws = w;
-        int collided = 0, chose_mie = 0;
+        int collided = 0, chosen = 0;
         float t_hit = 0.0f;
-        for (float t = reference_step(&g, sigma_bar); t < d; t += reference_step(&g, sigma_bar)) {
-            float h = geometry_altitude_at(r0, mu0, t, a->bottom_radius);
-            vec3 sigma_r = v3_scale(beta_r, expf(-h / a->rayleigh_scale_height));
-            vec3 sigma_m = v3_scale(beta_m, expf(-h / a->mie_scale_height));
-            vec3 sigma_t = atmosphere_extinction(a, h);
+        tracking_walk walk = tracking_begin(d, sigma_bar);
+        while (tracking_next(&walk, g)) {
+            float t = walk.t;
+            medium_point q = reference_point(a, pos, dir, camera, r0, mu0, mus0, nu0, t);
+            media_sample ms = media_at(s, ATMO_LUT_ARGS, &q);
             if (count) {
-                float r_t = geometry_radius_at(r0, mu0, t);
-                float mu_s_t = atmo_clamp_cos((r0 * mus0 + t * nu0) / r_t);
-                vec3 sun_light = reference_sunlight(a, r_t, mu_s_t, &g);
-                vec3 scat = v3_add(v3_scale(sigma_r, p_r), v3_scale(sigma_m, p_m));
+                vec3 sun_light = reference_sunlight(s, ATMO_LUT_ARGS, &q, g);
+                vec3 scat = v3_mul(ms.scattering[0], phase[0]);
+                for (int k = 1; k < MEDIA_COMPONENTS; k++)
+                    scat = v3_add(scat, v3_mul(ms.scattering[k], phase[k]));
                 L = v3_add(L, v3_mul(v3_mul(W, scat), v3_scale(sun_light, 1.0f / sigma_bar)));
             }
             if (more && !collided) {
-                vec3 sigma_n = v3_sub(v3(sigma_bar, sigma_bar, sigma_bar), sigma_t);
-                float q_r = reference_max3(v3_mul(ws, sigma_r));
-                float q_m = reference_max3(v3_mul(ws, sigma_m));
-                float q_n = reference_max3(v3_mul(ws, sigma_n));
-                float q = q_r + q_m + q_n; /* q_n > 0 while ws > 0: sigma_bar > sigma_t */
-                float u = reference_uniform(&g) * q;
-                if (u < q_r) {
-                    ws = v3_scale(v3_mul(ws, sigma_r), q / (q_r * sigma_bar));
-                    collided = 1, t_hit = t;
-                } else if (u < q_r + q_m) {
-                    ws = v3_scale(v3_mul(ws, sigma_m), q / (q_m * sigma_bar));
-                    collided = 1, chose_mie = 1, t_hit = t;
-                } else {
-                    ws = v3_scale(v3_mul(ws, sigma_n), q / (q_n * sigma_bar));
-                }
+                int k = tracking_spectral_pick(&walk, g, &ws, ms.scattering, MEDIA_COMPONENTS,
+                                               ms.extinction);
+                if (k >= 0)
+                    collided = 1, chosen = k, t_hit = t;
             }
-            W = v3_mul(W, v3_sub(one, v3_scale(sigma_t, 1.0f / sigma_bar)));
+            W = tracking_ratio(&walk, W, ms.extinction);
         }
         if (ground && count) { /* the directly lit ground, seen through the segment */
-            float mu_s_g = atmo_clamp_cos((r0 * mus0 + d * nu0) / a->bottom_radius);
-            vec3 sun_light = reference_sunlight(a, a->bottom_radius, mu_s_g, &g);
+            medium_point q = reference_point(a, pos, dir, camera, r0, mu0, mus0, nu0, d);
+            q.r = a->bottom_radius;
+            q.h = 0.0f;
+            q.mu_s = atmo_clamp_cos((r0 * mus0 + d * nu0) / a->bottom_radius);
+            vec3 sun_light = reference_sunlight(s, ATMO_LUT_ARGS, &q, g);
             L = v3_add(L, v3_mul(v3_mul(W, albedo),
-                                 v3_scale(sun_light, fmaxf(mu_s_g, 0.0f) / ATMO_PI)));
+                                 v3_scale(sun_light, fmaxf(q.mu_s, 0.0f) / ATMO_PI)));
         }
         if (order == 0)
             *view_t = W;
@@ -246,26 +246,25 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, float r, float
         /* the next vertex: a scattering in the air or a reflection on the ground */
         if (collided) {
             pos = v3_add(pos, v3_scale(dir, t_hit));
-            float u1 = reference_uniform(&g), phi = 2.0f * ATMO_PI * reference_uniform(&g);
-            float c = !chose_mie ? phase_draine_sample(0.0f, 1.0f, u1)
-                      : a->mie_phase == ATMO_PHASE_HENYEY_GREENSTEIN
-                          ? phase_henyey_greenstein_sample(a->mie_g, u1)
-                          : phase_cornette_shanks_sample(a->mie_g, u1);
+            float u1 = rng_next(g), phi = 2.0f * ATMO_PI * rng_next(g);
+            float c = chosen == MEDIA_RAYLEIGH ? phase_draine_sample(0.0f, 1.0f, u1)
+                      : a->mie_phase == ATMO_PHASE_HENYEY_GREENSTEIN      ? phase_henyey_greenstein_sample(a->mie_g, u1)
+                                               : phase_cornette_shanks_sample(a->mie_g, u1);
             dir = reference_rotate(dir, c, phi);
             w = ws;
         } else {
             pos = v3_add(pos, v3_scale(dir, d));
             vec3 n = v3_normalize(pos);
             pos = v3_scale(n, a->bottom_radius);
-            float u1 = reference_uniform(&g), phi = 2.0f * ATMO_PI * reference_uniform(&g);
+            float u1 = rng_next(g), phi = 2.0f * ATMO_PI * rng_next(g);
             dir = reference_rotate(n, sqrtf(u1), phi); /* cosine-weighted: pdf cos / pi */
             w = v3_mul(ws, albedo);
-            if (reference_max3(w) <= 0.0f) /* a black ground ends the path */
+            if (tracking_max3(w) <= 0.0f) /* a black ground ends the path */
                 break;
         }
         if (order + 1 >= REFERENCE_ROULETTE_ORDER) {
-            float keep = fminf(0.95f, reference_max3(w));
-            if (reference_uniform(&g) >= keep)
+            float keep = fminf(0.95f, tracking_max3(w));
+            if (rng_next(g) >= keep)
                 break;
             w = v3_scale(w, 1.0f / keep);
         }
@@ -273,24 +272,11 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, float r, float
     *sky = L;
 }
 
-ATMO_FN void sky_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float r,
-                          float mu, float mu_s, float nu, uint pixel, uint sample, vec3 *sky,
-                          vec3 *sun)
+/* The method's ray (sky_method.h): nothing precomputed. */
+ATMO_FN void sky_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, const medium_ray *m,
+                       float t_max, rng_stream *g, vec3 *sky, vec3 *sun, vec3 *view_t)
 {
-    vec3 view_t;
-    (void)transmittance_lut; /* nothing precomputed */
-    reference_trace(s, r, mu, mu_s, nu, INFINITY, pixel, sample, sky, sun, &view_t);
-}
-
-/* The segment [0, d]: the camera ray stops at a black (absorbing) surface at d; the light that
- * scattered before d arrives with all its orders, whatever paths it took beyond d. */
-ATMO_FN void sky_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float r, float mu,
-                         float mu_s, float nu, float d, uint pixel, uint sample, vec3 *inscatter,
-                         vec3 *transmittance)
-{
-    vec3 sun;
-    (void)transmittance_lut; /* nothing precomputed */
-    reference_trace(s, r, mu, mu_s, nu, d, pixel, sample, inscatter, &sun, transmittance);
+    reference_trace(s, ATMO_LUT_ARGS, m, t_max, g, sky, sun, view_t);
 }
 
 #endif

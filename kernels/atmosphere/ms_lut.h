@@ -30,18 +30,17 @@
  * (a grid in the sun's frame, tried to resolve the aerosol peak, cut that step diagonally and
  * was 10 % off a finer grid at the ground). Each direction is marched with n_steps segments
  * growing as (i/n)^2 from x, each integrated exactly for constant coefficients as in
- * sky_single.h. LUT: x_mu = (1 + sign(mu_s) sqrt|mu_s|) / 2 along the width, x_h = h / (top -
+ * medium.h. LUT: x_mu = (1 + sign(mu_s) sqrt|mu_s|) / 2 along the width, x_h = h / (top -
  * bottom) along the height, texel centres at x = 0 and 1 (atmosphere_texcoord_from_unit);
  * xyz = Psi (W m^-2 sr^-1 nm^-1, with the solar irradiance E folded in), w = f_ms of the
  * middle channel.
  *
- * March (march_integrate): single scattering as in sky_single.h (same segments, same per-sample
- * offset, same sun-disc and ground terms), with, at each sample,
+ * March (march_trace): the medium integrator (kernels/media/medium.h: the segments, the
+ * per-sample offset, the sun-disc and ground terms of method single), with, at each sample,
  *     J = [sigma_R p_R(nu) + sigma_M p_M(nu)] E T_sun V + J_ms
- * where V = march_sun_visibility(...) is the shadow hook (terrain and clouds will plug into it;
- * 1 for now) and J_ms = (sigma_R + sigma_M) Psi_ms(h, mu_s) for isotropic light, plus the
- * anisotropic terms below (ms_lut_source). With Psi = 0 the sum is the single-scattering sum
- * term for term. The ground seen by the view ray is lit by the sun and by the sky (E_sky, below).
+ * where V is the sun's visibility from the visibility sources (kernels/media/visibility.h) and
+ * J_ms = (sigma_R + sigma_M) Psi_ms(h, mu_s) for isotropic light, plus the anisotropic terms
+ * below (ms_lut_source). With Psi = 0 the sum is the single-scattering sum term for term. The ground seen by the view ray is lit by the sun and by the sky (E_sky, below).
  *
  * Rayleigh anisotropy of the second order. For the Rayleigh phase p_R = 3/(16 pi)(1 + (v.w)^2)
  * the second order toward v is exact from three moments of L_1': int L_1'(w) p_R(v.w) dw =
@@ -91,7 +90,7 @@
  *   + anisotropic source in the gather, D of orders >= 3
  *     from G's moments:                                   -2.3 %  /  -3.4 % (blue)
  *   + order 3 gathered exactly, series over it:           -2.1 %  /  -1.9 % (green / red)
- *   + growing segments (sky_single.h):                    -1.8 %  /  -1.7 % (blue)
+ *   + growing segments (medium.h):                        -1.8 %  /  -1.7 % (blue)
  *   + Mie anisotropy (kept):                              -1.3 %  /  -1.2 % (blue / red)
  * The old grid's twilight error had hidden the model's; 4x the directions and 3x the segments
  * change these by < 0.3 %. What is left: the aureole in the aerosols' part of orders >= 2 and
@@ -104,13 +103,13 @@
 #include "common/geometry.h"
 #include "common/phase.h"
 #ifndef ATMO_MS_LUT
-#define ATMO_MS_LUT /* the host build of this header: sky_single.h gets the terms too */
+#define ATMO_MS_LUT /* the host build of this header: medium.h gets the terms too */
 #endif
-#include "atmosphere/sky_single.h"
+#include "media/medium.h"
 #include "atmo/gpu_types.h"
 #endif
-#ifndef ATMO_SKY_INTEGRATE_HAS_MS
-#error "sky_single.h was compiled without ATMO_MS_LUT: build method march with -DATMO_MS_LUT"
+#ifndef ATMO_MS_LUT
+#error "medium.h was compiled without ATMO_MS_LUT: build methods march and fast with -DATMO_MS_LUT"
 #endif
 
 /* mu_s -> x in [0, 1]: x = (1 + sign(mu_s) sqrt|mu_s|) / 2, so texels crowd toward the
@@ -295,7 +294,7 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
             float phi = ATMO_PI * ((float)l + 0.5f) / (float)n_phi;
             float nu = atmo_clamp_cos(mu * mu_s + sin_v * sin_s * cosf(phi));
             vec3 L1 = v3(0.0f, 0.0f, 0.0f), f1 = v3(0.0f, 0.0f, 0.0f);
-            float p_r = phase_rayleigh(nu), p_m = sky_mie_phase(a, nu);
+            float p_r = phase_rayleigh(nu), p_m = media_mie_phase(a, nu);
             vec3 T = v3(1.0f, 1.0f, 1.0f);
             for (int i = 0; i < n_steps; i++) {
                 /* segments grow as (i/n)^2: short near x, where the density changes
@@ -313,9 +312,9 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
                 vec3 scattering = v3_add(v3_scale(beta_r, rho_r * p_r),
                                          v3_scale(beta_m, rho_m * p_m));
                 vec3 sun_t = atmosphere_sun_transmittance(a, transmittance, tw, th, r_t, mu_s_t);
-                vec3 w = v3(sky_segment_weight(sigma_t.x, dt),
-                            sky_segment_weight(sigma_t.y, dt),
-                            sky_segment_weight(sigma_t.z, dt));
+                vec3 w = v3(medium_segment_weight(sigma_t.x, dt),
+                            medium_segment_weight(sigma_t.y, dt),
+                            medium_segment_weight(sigma_t.z, dt));
                 vec3 Tw = v3_mul(T, w);
                 L1 = v3_add(L1, v3_mul(Tw, v3_mul(v3_mul(scattering, E), sun_t)));
                 f1 = v3_add(f1, v3_mul(Tw, sigma_s));
@@ -382,9 +381,9 @@ ATMO_FN vec3 ms_lut_gather(ATMO_GLOBAL const atmo_gpu_scene *s,
                 vec3 sigma_t = atmosphere_extinction(a, h);
                 vec3 sigma_r = v3_scale(beta_r, expf(-h / a->rayleigh_scale_height));
                 vec3 sigma_m = v3_scale(beta_m, expf(-h / a->mie_scale_height));
-                vec3 w = v3(sky_segment_weight(sigma_t.x, dt),
-                            sky_segment_weight(sigma_t.y, dt),
-                            sky_segment_weight(sigma_t.z, dt));
+                vec3 w = v3(medium_segment_weight(sigma_t.x, dt),
+                            medium_segment_weight(sigma_t.y, dt),
+                            medium_segment_weight(sigma_t.z, dt));
                 vec3 j = ms_lut_source_planes(s, psi_src, aniso_src, width, height, r_t,
                                                 (r * mu + t) / r_t, mu_s_t, nu, sigma_r,
                                                 sigma_m);
@@ -404,28 +403,18 @@ ATMO_FN vec3 ms_lut_gather(ATMO_GLOBAL const atmo_gpu_scene *s,
     return sum;
 }
 
-/* Single scattering plus sigma_s Psi_ms from the LUT `ms` (ms_w x ms_h): sky_single.h's
- * integrator with the multiple-scattering terms, n segments with sample offset `jitter`. */
-ATMO_FN void march_integrate(ATMO_GLOBAL const atmo_gpu_scene *s,
-                             ATMO_GLOBAL const float4 *transmittance, ATMO_GLOBAL const float4 *ms,
-                             int ms_w, int ms_h, float r, float mu, float mu_s, float nu, int n,
-                             float jitter, vec3 *sky, vec3 *sun)
+/* Single scattering plus sigma_s Psi_ms: the medium integrator with this LUT's source
+ * (kernels/media/medium.h), s->view_steps segments with sample offset `jitter`, over [0, t_max]
+ * of the ray (sky_method.h's sky_trace). */
+ATMO_FN void march_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                         const medium_ray *m, float t_max, float jitter, vec3 *sky, vec3 *sun,
+                         vec3 *view_t)
 {
-    vec3 view_t;
-    sky_integrate(s, transmittance, ms, ms_w, ms_h, 1, r, mu, mu_s, nu, INFINITY, n, jitter, sky,
-                  sun, &view_t);
-}
-
-/* The same over the segment [0, d] of the ray (sky_method.h's sky_segment): in-scattered light
- * of all orders and T(0, d). */
-ATMO_FN void march_segment(ATMO_GLOBAL const atmo_gpu_scene *s,
-                           ATMO_GLOBAL const float4 *transmittance, ATMO_GLOBAL const float4 *ms,
-                           int ms_w, int ms_h, float r, float mu, float mu_s, float nu, float d,
-                           int n, float jitter, vec3 *inscatter, vec3 *view_t)
-{
-    vec3 sun;
-    sky_integrate(s, transmittance, ms, ms_w, ms_h, 1, r, mu, mu_s, nu, d, n, jitter, inscatter,
-                  &sun, view_t);
+    medium_result res;
+    medium_integrate(s, ATMO_LUT_ARGS, m, 0.0f, t_max, s->view_steps, jitter, 1, &res);
+    *sky = medium_radiance(s, ATMO_LUT_ARGS, &res, m->nu);
+    *sun = res.sun;
+    *view_t = res.view_t;
 }
 
 #endif

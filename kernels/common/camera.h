@@ -7,13 +7,17 @@
  * Panorama: equirectangular over the full sphere (the layout of environment maps): the column
  * gives the azimuth phi = 2 pi (u - 1/2) measured from the camera's horizontal forward towards its
  * right, the row the elevation theta = pi (1/2 - v) above the horizontal plane of the world (+Y),
- * so the image centre looks along the camera's yaw at the horizon, the top row at the zenith. */
+ * so the image centre looks along the camera's yaw at the horizon, the top row at the zenith.
+ * Random numbers: the camera draws the first CAMERA_RNG_DIMS numbers of a sample's stage-0 stream
+ * (rng.h), the sub-pixel offset (jx, jy); the primary ray's integrator continues that stream. */
 #ifndef ATMO_CAMERA_H
 #define ATMO_CAMERA_H
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
 #include "atmo/gpu_types.h"
 #endif
+
+#define CAMERA_RNG_DIMS 2u
 
 ATMO_FN vec3 camera_ray(ATMO_GLOBAL const atmo_gpu_camera *c, float x, float y)
 {

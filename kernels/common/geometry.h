@@ -52,4 +52,19 @@ ATMO_FN float geometry_altitude_at(float r, float mu, float t, float radius)
     return (t * (t + 2.0f * r * mu) + (r - radius) * (r + radius)) / (r_t + radius);
 }
 
+/* Roots t0 <= t1 of t^2 + 2 b t + c = 0 (a ray from a point at radius r with cosine mu against
+ * a sphere of radius R: b = r mu, c = r^2 - R^2, which the caller forms from an accurate
+ * altitude difference), without cancellation. 0 when the ray misses. */
+ATMO_FN int geometry_sphere_roots(float b, float c, float *t0, float *t1)
+{
+    float disc = b * b - c;
+    if (disc < 0.0f)
+        return 0;
+    float q = -(b + (b >= 0.0f ? sqrtf(disc) : -sqrtf(disc)));
+    float ta = q, tb = q != 0.0f ? c / q : 0.0f;
+    *t0 = fminf(ta, tb);
+    *t1 = fmaxf(ta, tb);
+    return 1;
+}
+
 #endif

@@ -8,11 +8,12 @@
  * Because the sums are built in the same order whatever the batches, and the random numbers
  * depend only on (seed, pixel, sample, dimension), the image is bitwise the same for any tile
  * size and any split of samples into launches. A non-finite sample (which should never happen)
- * is dropped and counted in `nonfinite`. Random dimensions 0 and 1 place the sample in the
- * pixel.
+ * is dropped and counted in `nonfinite`. The sample's stage-0 random stream (rng.h) places it
+ * in the pixel (the camera's CAMERA_RNG_DIMS numbers) and goes on to the method's sky_trace
+ * along the camera-relative ray.
  *
- * sky_probe: the mean of `samples` samples of sky_radiance for a list of rays given as
- * (r, mu, mu_s, nu), for `atmo radiance` and the tests; ray i uses pixel index i.
+ * sky_probe: the mean of `samples` samples of sky_radiance (sky_cosines.h) for a list of rays
+ * given as (r, mu, mu_s, nu), for `atmo radiance` and the tests; ray i uses pixel index i.
  * sky_probe_segment: the same for sky_segment, ray i ending at distance[i] (m): the mean
  * in-scattered radiance in inscatter[i] and the mean transmittance in transmittance[i]. */
 
@@ -27,19 +28,15 @@ __kernel void sky_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
     __global const atmo_gpu_camera *cam = &scene->camera;
     int x = tile_x + lx, y = tile_y + ly;
     uint pixel = (uint)(y * cam->width + x);
-    float3 up = cam->local_up.xyz;
-    float r = cam->local_up.w;
-    float3 sun_dir = scene->sun_direction.xyz;
-    float mu_s = dot(up, sun_dir);
     float4 sum = accum[pixel], sum_sq = accum_sq[pixel];
     for (uint k = 0; k < sample_count; k++) {
-        uint s = sample_begin + k;
-        float jx = rng_uniform(scene->seed, pixel, s, 0u);
-        float jy = rng_uniform(scene->seed, pixel, s, 1u);
-        float3 dir = camera_ray(cam, (float)x + jx, (float)y + jy);
-        float3 sky, sun;
-        sky_radiance(scene, ATMO_LUT_ARGS, r, dot(up, dir), mu_s, dot(dir, sun_dir), pixel, s,
-                     &sky, &sun);
+        rng_stream g = rng_stream_stage(scene->seed, pixel, sample_begin + k, 0u);
+        float jx = rng_next(&g);
+        float jy = rng_next(&g);
+        medium_ray ray =
+            medium_ray_from_camera(scene, camera_ray(cam, (float)x + jx, (float)y + jy));
+        float3 sky, sun, view_t;
+        sky_trace(scene, ATMO_LUT_ARGS, &ray, INFINITY, &g, &sky, &sun, &view_t);
         float3 L = sky * scene->sky_factor.xyz + sun * scene->sun_factor.xyz;
         if (any(isnan(L)) || any(isinf(L))) {
             atomic_inc(nonfinite);

@@ -1,0 +1,109 @@
+/* media.h — the participating media of the scene, composed in one place for the medium
+ * integrator (medium.h) and the Monte Carlo reference (method_reference.h, tracking.h).
+ *
+ * A medium gives, at a point of a ray (ray.h's medium_point), its extinction and the scattering
+ * coefficient of each of its components, whose phase functions media_phase evaluates; the sum
+ * over the media present is what media_at returns:
+ *     sigma_t(x) = sum_m sigma_t,m(x),  sigma_s,k(x) for the components k,  p_k(nu) per steradian
+ * The atmosphere is always present (atmosphere.h: Rayleigh and Mie scattering with their scale
+ * heights, ozone absorbing); the homogeneous cloud shell (cloud_shell.h) is added under
+ * -DATMO_CLOUD, the fBm clouds will be the next module here. A medium that needs its own
+ * stepping (the cloud shell's optical-depth steps) also supplies break points: the parts of a
+ * ray inside it (media_intervals), which the integrator integrates with that medium's stepping
+ * (media_interval) and marches the rest with media_at. Units: 1/m, per steradian. */
+#ifndef ATMO_MEDIA_H
+#define ATMO_MEDIA_H
+#ifndef __OPENCL_VERSION__
+#include "common/compat.h"
+#include "atmosphere/atmosphere.h"
+#include "common/phase.h"
+#include "atmosphere/sky_method.h"
+#include "media/ray.h"
+#ifdef ATMO_CLOUD
+#include "media/cloud_shell.h"
+#endif
+#include "atmo/gpu_types.h"
+#endif
+
+/* The scattering components (each with its own phase function). */
+#define MEDIA_RAYLEIGH 0
+#define MEDIA_MIE 1
+#ifdef ATMO_CLOUD
+#define MEDIA_CLOUD 2
+#define MEDIA_COMPONENTS 3
+#else
+#define MEDIA_COMPONENTS 2
+#endif
+#define MEDIA_MAX_INTERVALS 2 /* parts of one ray with their own stepping */
+
+typedef struct media_sample {
+    vec3 extinction;                   /* sigma_t, 1/m */
+    vec3 scattering[MEDIA_COMPONENTS]; /* sigma_s of each component, 1/m */
+} media_sample;
+
+ATMO_FN float media_mie_phase(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float nu)
+{
+    return a->mie_phase == ATMO_PHASE_HENYEY_GREENSTEIN ? phase_henyey_greenstein(nu, a->mie_g)
+                             : phase_cornette_shanks(nu, a->mie_g);
+}
+
+/* The media at a point (the buffers hold what a medium needs of them: a density grid). */
+ATMO_FN media_sample media_at(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                              const medium_point *q)
+{
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    media_sample m;
+    m.scattering[MEDIA_RAYLEIGH] =
+        v3_scale(v3_from4(a->rayleigh_scattering), expf(-q->h / a->rayleigh_scale_height));
+    m.scattering[MEDIA_MIE] =
+        v3_scale(v3_from4(a->mie_scattering), expf(-q->h / a->mie_scale_height));
+    m.extinction = atmosphere_extinction(a, q->h);
+#ifdef ATMO_CLOUD
+    vec3 cloud = cloud_shell_extinction(s, q->h);
+    m.scattering[MEDIA_CLOUD] = v3_mul(cloud, v3_from4(s->cloud.albedo));
+    m.extinction = v3_add(m.extinction, cloud);
+#endif
+    return m;
+}
+
+/* Phase function of component k for light turned by the angle whose cosine is -nu (nu: the
+ * cosine between the view direction and the sun), per steradian, per wavelength. */
+ATMO_FN vec3 media_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, int k, float nu)
+{
+    if (k == MEDIA_RAYLEIGH) {
+        float p = phase_rayleigh(nu);
+        return v3(p, p, p);
+    }
+#ifdef ATMO_CLOUD
+    if (k == MEDIA_CLOUD)
+        return cloud_phase(s, cloud_phase_table, nu);
+#endif
+    float p = media_mie_phase(&s->atmosphere, nu);
+    return v3(p, p, p);
+}
+
+/* The parts of [t_start, t_end] that a medium integrates with its own stepping, in order
+ * along the ray: returns their count (<= MEDIA_MAX_INTERVALS), their ends in lo[], hi[]. */
+ATMO_FN int media_intervals(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m,
+                            float t_start, float t_end, float *lo, float *hi)
+{
+#ifdef ATMO_CLOUD
+    return cloud_shell_intervals(s, m, t_start, t_end, lo, hi);
+#else
+    return 0;
+#endif
+}
+
+/* Interval [t0, t1] of media_intervals integrated by its medium: adds its light to *L with
+ * the running view transmittance *T, and multiplies *medium_t by the transmittance of the
+ * media other than the air over it (for the sun disc behind it). */
+ATMO_FN void media_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                            const medium_ray *m, float t0, float t1, float jitter, vec3 *L,
+                            vec3 *T, vec3 *medium_t)
+{
+#ifdef ATMO_CLOUD
+    cloud_shell_interval(s, ATMO_LUT_ARGS, m, t0, t1, jitter, L, T, medium_t);
+#endif
+}
+
+#endif
