@@ -104,10 +104,10 @@ static void test_white_point(void)
     for (int k = 0; k < 3; k++)
         CHECK_ABS(back[k], x[k], 1e-12);
     atmo_err e;
-    CHECK(atmo_spectral_check_bands(0, &e) == ATMO_OK);
-    CHECK(atmo_spectral_check_bands(15, &e) == ATMO_OK);
-    CHECK(atmo_spectral_check_bands(14, &e) == ATMO_ERR_USAGE);
-    CHECK(atmo_spectral_check_bands(471, &e) == ATMO_ERR_USAGE);
+    CHECK(atmo_scene_check_spectral_bands(0, &e) == ATMO_OK);
+    CHECK(atmo_scene_check_spectral_bands(15, &e) == ATMO_OK);
+    CHECK(atmo_scene_check_spectral_bands(14, &e) == ATMO_ERR_USAGE);
+    CHECK(atmo_scene_check_spectral_bands(471, &e) == ATMO_ERR_USAGE);
 }
 
 static void render(const atmo_scene *s, atmo_render_result *r)

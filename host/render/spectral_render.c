@@ -104,16 +104,6 @@ void atmo_linear_srgb_to_xyz(const double rgb[3], double xyz[3])
         xyz[r] = (inv[r][0] * rgb[0] + inv[r][1] * rgb[1] + inv[r][2] * rgb[2]) / det;
 }
 
-int atmo_spectral_check_bands(int bands, atmo_err *e)
-{
-    if (bands == 0 || (bands >= ATMO_SPECTRAL_MIN_BANDS && bands <= ATMO_SPECTRAL_MAX_BANDS))
-        return ATMO_OK;
-    return atmo_fail(e, ATMO_ERR_USAGE,
-                     "render.spectral_bands=%d: use 0 (3-wavelength mode) or %d to %d bands "
-                     "over 360-830 nm",
-                     bands, ATMO_SPECTRAL_MIN_BANDS, ATMO_SPECTRAL_MAX_BANDS);
-}
-
 int atmo_spectral_render(const atmo_scene *s, int cache_luts, const atmo_render_settings *rs,
                          atmo_render_result *result, atmo_err *e)
 {
@@ -122,7 +112,7 @@ int atmo_spectral_render(const atmo_scene *s, int cache_luts, const atmo_render_
     if (n == 0)
         return atmo_fail(e, ATMO_ERR_USAGE, "spectral render without render.spectral_bands; set "
                                             "it to 15 or more");
-    if ((rc = atmo_spectral_check_bands(n, e)))
+    if ((rc = atmo_scene_check_spectral_bands(n, e)))
         return rc;
     double centres[ATMO_SPECTRAL_MAX_BANDS] = {0}, rgb_w[ATMO_SPECTRAL_MAX_BANDS][3];
     double(*xyz_w)[3] = rgb_w; /* converted in place below */

@@ -18,9 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "atmo/atmosphere.h"
 #include "atmo/scene.h"
-#include "atmo/spectral_render.h"
 
 /* offsetof(atmo_scene, f), failing to compile when the field's size is not that of the row's
  * type (a row declared INT on a double field would otherwise write 4 bytes into 8). */
@@ -467,6 +465,16 @@ int atmo_scene_apply_preset(atmo_scene *s, const char *name, atmo_err *e)
     return ATMO_OK;
 }
 
+int atmo_scene_check_spectral_bands(int bands, atmo_err *e)
+{
+    if (bands == 0 || (bands >= ATMO_SPECTRAL_MIN_BANDS && bands <= ATMO_SPECTRAL_MAX_BANDS))
+        return ATMO_OK;
+    return atmo_fail(e, ATMO_ERR_USAGE,
+                     "render.spectral_bands=%d: use 0 (3-wavelength mode) or %d to %d bands "
+                     "over 360-830 nm",
+                     bands, ATMO_SPECTRAL_MIN_BANDS, ATMO_SPECTRAL_MAX_BANDS);
+}
+
 int atmo_scene_validate(const atmo_scene *s, atmo_err *e)
 {
     /* every value again, for scenes filled in by code rather than through atmo_scene_set */
@@ -483,7 +491,7 @@ int atmo_scene_validate(const atmo_scene *s, atmo_err *e)
         if (rc)
             return rc;
     }
-    int rc = atmo_spectral_check_bands(s->render.spectral_bands, e);
+    int rc = atmo_scene_check_spectral_bands(s->render.spectral_bands, e);
     if (rc)
         return rc;
     double bottom = s->atmosphere.bottom_radius_m, top = s->atmosphere.top_radius_m;

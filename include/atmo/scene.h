@@ -131,6 +131,12 @@ void atmo_param_get(const atmo_scene *s, const atmo_param *p, double v[3]);
 int atmo_param_store(atmo_scene *s, const atmo_param *p, const double v[3], const char *shown,
                      const char *where, atmo_err *e);
 
+/* The spectral mode's band counts (render.spectral_bands; host/render/spectral_render.c). */
+#define ATMO_SPECTRAL_MIN_BANDS 15
+#define ATMO_SPECTRAL_MAX_BANDS 470 /* 1 nm bands */
+/* Usage error unless bands is 0 or in [ATMO_SPECTRAL_MIN_BANDS, ATMO_SPECTRAL_MAX_BANDS]. */
+int atmo_scene_check_spectral_bands(int bands, atmo_err *e);
+
 void atmo_scene_defaults(atmo_scene *s);
 /* Set one parameter from text ("60", "1,2,3", "panorama", "true"); `where` names the source
  * for error messages ("--set", "scene.json"). Rejects unknown keys (suggesting the closest),

@@ -33,8 +33,6 @@
 #include "atmo/scene.h"
 #include "atmo/status.h"
 
-#define ATMO_SPECTRAL_MIN_BANDS 15
-#define ATMO_SPECTRAL_MAX_BANDS 470 /* 1 nm bands */
 #define ATMO_SPECTRAL_LAMBDA_MIN_NM 360.0
 #define ATMO_SPECTRAL_LAMBDA_MAX_NM 830.0
 
@@ -49,8 +47,6 @@ void atmo_spectral_xyz_weights(int n, const double *centres_nm, double (*w)[3]);
 void atmo_xyz_to_linear_srgb(const double xyz[3], double rgb[3]);
 void atmo_linear_srgb_to_xyz(const double rgb[3], double xyz[3]);
 
-/* Usage error unless bands is 0 or in [ATMO_SPECTRAL_MIN_BANDS, ATMO_SPECTRAL_MAX_BANDS]. */
-int atmo_spectral_check_bands(int bands, atmo_err *e);
 
 /* Render s in spectral mode with s->render.spectral_bands bands: the wavelengths are set to
  * successive triplets of band centres (the last triplet padded by repeating its last centre),
