@@ -4,7 +4,7 @@
  * The camera's radius r_c and sun cosine mu_s,c are fixed for a frame, so the sky seen from
  * the camera is a function of two angles only: the view zenith angle theta and the azimuth phi
  * from the sun (the sky is symmetric about the sun's vertical plane, so phi in [0, pi]). The
- * sky-view LUT (buffer b, s->sky_view.width = W columns of phi, s->sky_view.height = 2 n rows)
+ * sky-view LUT (buffer sky_view_lut, s->sky_view.width = W columns of phi, s->sky_view.height = 2 n rows)
  * holds the march of ms_lut.h (single scattering + sigma_s Psi_ms, the lit ground, no sun disc)
  * with s->sky_view.steps segments (growing from the camera, kernels/media/medium.h) at their
  * midpoints

@@ -14,16 +14,16 @@
  * transmittance to space. The whole ray is deterministic (no random numbers); a segment, the
  * aerial perspective to a point (below), marches with a random offset per sample.
  *
- * Knobs (scene keys -> atmo_gpu_scene, host/plan_lut.c):
- *   lut.nu_size, lut.mu_s_size, lut.mu_size, lut.r_size -> lut_dims[0] = {nu, mu_s, mu, r}
+ * Knobs (scene keys -> s->lut, include/atmo/gpu_lut.h, host/plan/plan_lut.c):
+ *   lut.nu_size, lut.mu_s_size, lut.mu_size, lut.r_size -> lut.dims = {nu, mu_s, mu, r}
  *     (defaults 8, 32, 128, 32; mu even: half ground rays, half sky rays)
- *   lut.steps -> method_int[0]: segments per texel ray (default 64)
- *   lut.sphere_samples -> method_int[1]: zenith rings of the sphere grid (even, default 32:
+ *   lut.steps -> lut.steps: segments per texel ray (default 64)
+ *   lut.sphere_samples -> lut.rings: zenith rings of the sphere grid (even, default 32:
  *     with 16 the sky at the ground came out up to 2.3 % darker than the Monte Carlo reference
  *     for sun zenith <= 80 deg, with 32 within 1.7 %; normalising the phase functions over
  *     the grid did not help, the horizon's bright band in the incoming light is what needs
  *     the rings)
- *   lut.orders -> method_int[2]: scattering orders (default 7: in blue with the sun on the
+ *   lut.orders -> lut.orders and the plan's passes: scattering orders (default 7: in blue with the sun on the
  *     horizon, where orders fall slowest, order 8 would add at most 0.06 %,
  *     tests/test_lut_method.c). */
 #ifndef ATMO_METHOD_LUT_H
@@ -113,7 +113,7 @@ ATMO_FN void lut_whole_ray(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
 }
 
 /* The medium integrator's multiple-scattering source (medium.h, -DATMO_LUT_J): the density of
- * orders >= 2 and the sky's ground irradiance, read from buffer b. */
+ * orders >= 2 and the sky's ground irradiance, read from buffer scattering_mie. */
 ATMO_FN vec3 lut_ms_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *scattering_mie,
                            float r, float mu, float mu_s, float nu, int ground)
 {
