@@ -4,8 +4,8 @@
  * (r, mu), and holds the optical depth tau to the top of the atmosphere by the midpoint rule
  * with TRANSMITTANCE_STEPS segments (error ~ 1/n^2). At 200 the LUT's worst error (8.8e-4
  * relative where T > 1e-2, tests/test_transmittance.c against the published table and the
- * double quadrature) is no longer the quadrature's but the interpolation's, so more steps
- * would cost without helping (measured choices: docs/notes/transmittance.md). */
+ * double quadrature) is the interpolation's, not the quadrature's, so more steps would cost
+ * without helping (measured choices: docs/notes/transmittance.md). */
 #define TRANSMITTANCE_STEPS 200
 
 __kernel void transmittance_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PARAMS,
