@@ -21,26 +21,26 @@
  *    where T > 1e-2): 1e-3 T.
  * 3. Single scattering over [0, d] (method single) against atmo_ref_single_scattering_to (plus
  *    atmo_ref_ground_radiance where d reaches the ground; double quadrature, 1e-9): within 1 %
- *    (issue 2's target for the single-scattering sky, which a segment meets with the same or
- *    shorter steps) + 4 SE. Sun zenith <= 80 deg, as in test_sky_single (a point sun's shadow
- *    boundary is a step the march places to one segment).
+ *    (the target for the single-scattering sky, test_sky_single's, which a segment meets with the
+ *    same or shorter steps) + 4 SE. Sun zenith <= 80 deg, as in test_sky_single (a point sun's
+ *    shadow boundary is a step the march places to one segment).
  * 4. The reference's black surface: orders 1 only (reference.max_order = 1) against the same
  *    double integral, a z-test |z| < 4 per ray and channel with its own SE (float bias ~1e-5,
  *    far below the SE). Cameras at the ground, 10 km and 100 km (above the atmosphere: d counts
  *    from the camera, the ray enters at the top).
  * 5. All orders against the stored Monte Carlo table tests/data/reference_segments.csv
  *    (tools/make_segment_table.py: the reference method, cameras at the ground and 10 km, sun
- *    zenith 0-90 deg, d = 1, 10, 100 km, standard error 0.3 % where 4 rounds got there, 0.74 %
- *    at worst; skipped, and said so, where the file is missing), each method's error within
- *    issue 4's target plus 3 standard errors (the table's and the method's combined): lut 2 %
- *    for sun zenith <= 80 deg and 5 % at 90 deg; march and fast 3 % and 5 % from 10 km.
- *    From the ground march and fast meet the daytime target (measured 2.7 %) but not the
- *    one with the sun on the horizon: their Psi_ms source (ms_lut.h: orders >= 2 with an
- *    approximate angular shape) is off by a few % in the air next to the ground at twilight,
- *    which a whole ray averages away (they meet the targets for the sky) but a 1-10 km segment
- *    does not: measured 5.3 % at 90 deg (14.5 % before the gathered order 3 and the Mie
- *    anisotropy of ms_lut.h); asserted here as a measured bound, 5.5 % + 3 SE, so that it
- *    cannot silently get worse -- not as a target met. (From 10 km: 0.85 % and 0.92 %.)
+ *    zenith 0-90 deg, d = 1, 10, 100 km, standard error 0.3 % where 4 rounds got there, 0.74 % at
+ *    worst; skipped, and said so, where the file is missing), each method's error within the
+ *    methods' accuracy target plus 3 standard errors (the table's and the method's combined): lut
+ *    2 % for sun zenith <= 80 deg and 5 % at 90 deg; march and fast 3 % and 5 % from 10 km. From
+ *    the ground march and fast meet the daytime target (measured 2.7 %) but not the one with the
+ *    sun on the horizon: their Psi_ms source (ms_lut.h: orders >= 2 with an approximate angular
+ *    shape) is off by a few % in the air next to the ground at twilight, which a whole ray
+ *    averages away (they meet the targets for the sky) but a 1-10 km segment does not: measured
+ *    5.3 % at 90 deg (how it got there: docs/notes/ms_lut.md); asserted here as a measured bound,
+ *    5.5 % + 3 SE, so that it cannot silently get worse -- not as a target met. (From 10 km:
+ *    0.85 % and 0.92 %.)
  * 6. The horizon: lut segments for views scanned across the horizon in 0.005 deg steps (+-0.3
  *    deg) from 1 km and 10 km with d = 10 and 50 km (segments that end in the air on both sides,
  *    so the radiance is continuous there), all with the same random offsets (pixel 0): every

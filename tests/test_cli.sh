@@ -4,8 +4,9 @@
 # image bit for bit; Ctrl-C writes the samples finished so far.
 # labels: cli render
 #
-# Oracle: the CLI contract of issue 2 (exit codes 0/1/2, one-line errors, atomic outputs) and the
-# readers of other projects: OpenEXR's exrheader for .exr, Python's json for the report.
+# Oracle: the CLI contract of DESIGN.md's "Errors" (exit codes 0/1/2, one-line errors, atomic
+# outputs) and the readers of other projects: OpenEXR's exrheader for .exr, Python's json for the
+# report.
 set -u
 atmo=$1
 work=$(mktemp -d)

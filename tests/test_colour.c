@@ -2,10 +2,10 @@
  * labels: unit
  *
  * Oracle: published values (shared/reference/atmosphere.md, reproduced independently in
- * shared/data/README.md): Bruneton's k_sky and k_sun at 680/550/440 nm, printed to 6 decimals
- * (the README's independent computation agrees to < 5e-7 absolute, i.e. < 1e-11 relative), so
- * they are checked to 1e-9 relative, well inside the task's 1e-6. The white point is printed to
- * 5 decimals: checked to half a unit of the last digit (5e-6). The sun's luminance at the top,
+ * shared/data/README.md): Bruneton's k_sky and k_sun at 680/550/440 nm, printed to 6 decimals (the
+ * README's independent computation agrees to < 5e-7 absolute, i.e. < 1e-11 relative), so they are
+ * checked to 1e-9 relative, well inside the 1e-6 required of them. The white point is printed to 5
+ * decimals: checked to half a unit of the last digit (5e-6). The sun's luminance at the top,
  * 1.930e9 cd/m^2 (4 digits), to half a unit (5e5). The luminance weights are BT.709's. */
 #include "atmo/colour.h"
 #include "atmo/spectral.h"

@@ -9,15 +9,13 @@
  *     midpoint segments. Rays: view zenith 2..88 deg (sky) and 92..178 deg (ground) at
  *     azimuths between the LUT's columns, sun zenith 0/30/60/80/90 deg, camera at the ground
  *     and at 10 km; the march with 256 segments and 128 samples (its relative standard error
- *     <= 0.11 %, from its 64 batches). Errors are relative to max(L, 1 % of the largest L of
- *     the run), since the ground seen at night is ~0. Measured worst |fast - march| (loaded
- *     PoCL run): 0.35 % on sky rays within 20 deg of the sun, 0.33 % on other sky rays, 0.46 %
- *     on ground rays (before the LUT stored single scattering without its phase functions and
- *     marched growing segments: 3.0 %, 0.9 %, 0.6 %: the aerosol peak is narrower than a LUT
- *     column, and equal midpoint segments missed 2 % of the aerosols' steep density near the
- *     ground). Bound, rounded up to 0.25 %: 0.5 % for each, plus 3 sigma of the march's
- *     error. The LUT path has no randomness: its standard error over the probe batches must
- *     be 0, which proves the rays took it (a fallback would be noisy).
+ *     <= 0.11 %, from its 64 batches). Errors are relative to max(L, 1 % of the largest L of the
+ *     run), since the ground seen at night is ~0. Measured worst |fast - march| (loaded PoCL run):
+ *     0.35 % on sky rays within 20 deg of the sun, 0.33 % on other sky rays, 0.46 % on ground rays
+ *     (the LUT's design choices measured: docs/notes/fast_method.md). Bound, rounded up to 0.25 %:
+ *     0.5 % for each, plus 3 sigma of the march's error. The LUT path has no randomness: its
+ *     standard error over the probe batches must be 0, which proves the rays took it (a fallback
+ *     would be noisy).
  *  2. Camera above the atmosphere (1000 km): the plan builds no sky-view LUT and every ray
  *     falls back to the march with the same random offsets: fast = march to float rounding
  *     (1e-6 relative).

@@ -8,10 +8,10 @@
  *  2. each method's plan has exactly its named buffers, in registry order, its -D flags, and
  *     none of the fragments of features it does not contain; the generated parameter and
  *     argument lists name the buffers in that order;
- *  3. a cloud shell adds its fragment after the integrators it extends and before the method
- *     that calls it, its flag, and its phase table as a buffer of its own with host data; a
- *     sky-only scene's assembled source holds no cloud code (sizes printed: what the shell
- *     costs to compile). */
+ *  3. a cloud shell adds its fragment after kernels/media/ray.h, whose rays it takes, and before
+ *     media.h, which composes it into the media, and the method, its flag, and its phase table as
+ *     a buffer of its own with host data; a sky-only scene's assembled source holds no cloud code
+ *     (sizes printed: what the shell costs to compile). */
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/cl_runtime.h"

@@ -3,8 +3,8 @@
  * the same size and field offsets in the OpenCL C compiler as on the host.
  * labels: kernel
  *
- * Oracle: the host compiler's sizeof/offsetof (which host/plan.c also pins with _Static_assert);
- * a probe kernel reports the device compiler's, and every pair must be equal. */
+ * Oracle: the host compiler's sizeof/offsetof (which host/plan/plan.c also pins with
+ * _Static_assert); a probe kernel reports the device compiler's, and every pair must be equal. */
 #include <stddef.h>
 #include "atmo/gpu_types.h"
 #include "testcl.h"

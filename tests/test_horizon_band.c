@@ -1,5 +1,5 @@
 /* test_horizon_band — no band at the horizon: scans of the view zenith across the horizon in
- * fine steps, every method (issue 4: "no band at the horizon (a test scans across it)").
+ * fine steps, every method.
  * labels: kernel slow
  *
  * Scans. View zenith across the true horizon (the ground's tangent, where the ground begins to
@@ -22,7 +22,7 @@
  * a LUT row mapping that folds) is a jump of many times the local step. The 1e-4 of L covers
  * float rounding (~1e-6 of L). The point sun's shadow edge crossing one of the 16 x 32 march
  * samples is a true step of a march with fixed offsets; with the sun at 88 deg away from the
- * view it stayed within the bound. Steps where both values are below 1e-9 W m^-2 sr^-1
+ * view it stays within the bound. Steps where both values are below 1e-9 W m^-2 sr^-1
  * nm^-1 (darker than a moonless night sky: the shadowed limb, where the march's multiple
  * scattering at ~1e-19 does jump by 3x) are not judged. fast reads its sky-view LUT of each
  * camera inside the atmosphere (asserted: no randomness on those rays) and falls back to the

@@ -13,10 +13,11 @@
  *    square root near the ground) and to 1e-3 texel in the mu and mu_s positions. The horizon
  *    is the last texel of each half; sun zenith 110 deg lies inside the mu_s axis.
  * 2. Order 1 against the host double reference (atmo_ref_single_scattering + the directly lit
- *    ground, accurate to 1e-9): within 1 % (the task's target) at texel centres and at points
- *    between texels, for sun zenith <= 80 deg. Rays whose sun visibility changes along them (the
- *    planet's shadow boundary, a step that a texel's midpoint rule cannot resolve) are left out
- *    here and covered by the NaN and horizon scans.
+ *    ground, accurate to 1e-9): within 1 % (the target for single scattering, as in
+ *    test_sky_single) at texel centres and at points between texels, for sun zenith <= 80 deg.
+ *    Rays whose sun visibility changes along them (the planet's shadow boundary, a step that a
+ *    texel's midpoint rule cannot resolve) are left out here and covered by the NaN and horizon
+ *    scans.
  * 3. Orders converge: the contribution of each order n >= 2 (the sky radiance after n orders
  *    minus after n - 1) is positive and smaller than the previous one, so the sum is monotone; the
  *    order whose contribution falls below 0.1 % in blue with the sun on the horizon is printed
@@ -31,8 +32,8 @@
  * 6. All orders (the default lut.orders, sphere grid and mu_s and nu sizes; r and mu halved)
  *    against the Monte Carlo table tests/data/reference_sky.csv (camera at the ground, 0.3 %
  *    standard error; skipped, and said so, where the file is missing): within 2 % + 3
- *    standard errors for sun zenith <= 80 deg, and 5 % + 3 standard errors at 90 deg (issue 4's
- *    targets). */
+ *    standard errors for sun zenith <= 80 deg, and 5 % + 3 standard errors at 90 deg (the
+ *    method's accuracy targets, as in test_reference_accuracy). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

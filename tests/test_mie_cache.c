@@ -1,4 +1,4 @@
-/* test_mie_cache.c — phase tables through the on-disk cache (host/mie_cache.c).
+/* test_mie_cache.c — phase tables through the on-disk cache (host/mie/mie_cache.c).
  * labels: unit
  *
  * Oracle: the table built directly (mie_table_build). A cache hit must give bitwise the same

@@ -11,7 +11,7 @@
  *     well inside the bound), on every 4th angle of the table grid and 130-150 deg every
  *     0.01 deg, for cumulus (gamma r_eff 10 um, v_eff 0.1) at 440, 550 and 680 nm. The default
  *     table must be within the stated bound of it: RMS over angle (weighted by d theta) of
- *     P / P_ref - 1 <= 1e-3 and every angle <= 5e-3. The old fixed step 0.5 must miss the RMS
+ *     P / P_ref - 1 <= 1e-3 and every angle <= 5e-3. A fixed step of 0.5 must miss the RMS
  *     bound (0.7-1.1 % measured), so the reference tells the rules apart.
  *   - Fog bow maximum at 550 nm on the 0.01 deg grid: the default rule's within 0.1 deg of the
  *     reference's.

@@ -3,16 +3,16 @@
  *
  * Oracles (all from ../shared/reference/mie.md):
  *   - Wiscombe's MIEV0 test cases (NCAR TN-140, 1979): Q_ext, Q_sca, g, S1, S2. Each value is
- *     compared within max(1e-6 relative, half a unit of its last printed digit) — the issue asks
- *     for 1e-6, and a value printed with fewer digits cannot be checked more tightly than its
- *     rounding. Amplitudes (complex) within 1e-6 |S| (printed to 7 significant digits, so the
+ *     compared within max(1e-6 relative, half a unit of its last printed digit) — the solver's
+ *     target is 1e-6, and a value printed with fewer digits cannot be checked more tightly than
+ *     its rounding. Amplitudes (complex) within 1e-6 |S| (printed to 7 significant digits, so the
  *     rounding of both parts together is at most 7.1e-7 |S|).
  *   - First coefficients a1, b1 from a high-precision computation, to 1e-9 absolute.
  *   - Bohren & Huffman's sample calculation (Appendix A), to half a unit of the printed digit.
  *   - The optical theorem Q_ext = 4/x^2 Re S(0) (an identity between two different sums; the
  *     sums have ~N terms of size <= 2n+1, so 1e-10 relative bounds their rounding).
  *   - The D_n start at x = 1000: zero started far enough agrees with Lentz to 1e-6 in S11(180),
- *     while the textbook BHMIE start does not (the issue's stability test). */
+ *     while the textbook BHMIE start does not (a test of the solver's stability). */
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/mie.h"

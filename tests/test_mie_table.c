@@ -3,7 +3,7 @@
  *
  * Oracles:
  *   - P is 4pi-normalised by construction (divided by the exact C_sca), so (1/2) integral
- *     P sin d theta on the grid measures the grid's quadrature error: issue's bound 1 +- 1e-4.
+ *     P sin d theta on the grid measures the grid's quadrature error: bound 1 +- 1e-4.
  *     g of the table against the cross-section-weighted g of the same radius sum: also 1e-4
  *     (same quadrature). A uniform 1 deg grid must miss by > 5 % (mie.md: 12 % at r_eff 10 um).
  *   - CDF: monotone, 0 and 1 at the ends.

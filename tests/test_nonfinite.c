@@ -1,6 +1,5 @@
 /* test_nonfinite — no NaN, no Inf and no negative radiance from any method, for cameras from
- * the ground to 1e8 m and every sun zenith from 0 to 180 deg (issue 4: "no NaN/Inf for any
- * altitude from 0 to 1e8 m and sun zenith from 0 to 180 deg").
+ * the ground to 1e8 m and every sun zenith from 0 to 180 deg.
  * labels: kernel slow
  *
  * Oracle: the closed set of valid values. Every sample of sky and sun radiance (not only the

@@ -5,17 +5,18 @@
 # Oracles: (1) the double-precision host reference (atmo_ref_single_scattering +
 # atmo_ref_ground_radiance, adaptive quadrature to 1e-9), evaluated for the default atmosphere,
 # camera at 1000 m, sun zenith 30 deg, at the float rays the CLI builds; the single-scattering
-# method through the CLI must match within 1 % (issue 2's target; 64 march segments, 64 jittered
-# samples). (2) Published direct irradiance at sun zenith 30 deg on the ground (atmosphere.md:
-# 1.189 / 1.360 / 1.211 W m^-2 nm^-1), within half a unit of the last printed digit plus 1e-4.
-# (3) The stored reference table tests/data/reference_sky.csv (tools/make_reference_table.py)
-# still describes the reference method: three of its rows re-run live with 65536 samples must
-# agree within |z| < 4, z using the live and the stored standard errors combined.
+# method through the CLI must match within 1 % (test_sky_single's target; 64 march segments, 64
+# jittered samples). (2) Published direct irradiance at sun zenith 30 deg on the ground
+# (atmosphere.md: 1.189 / 1.360 / 1.211 W m^-2 nm^-1), within half a unit of the last printed digit
+# plus 1e-4. (3) The stored reference table tests/data/reference_sky.csv
+# (tools/make_reference_table.py) still describes the reference method: three of its rows re-run
+# live with 65536 samples must agree within |z| < 4, z using the live and the stored standard
+# errors combined.
 # (4) Aerial perspective (--distance-m): a segment longer than every ray is the sky radiance,
 # the same numbers with the same seed; in-scattering only adds light along a ray and T only
 # falls, so for d = 1 km < 10 km < the whole ray the radiance rises and the transmittance falls
 # (test_aerial checks the values against the double and Monte Carlo references).
-# Shape: one text line per view; the JSON parses and has the keys of the issue; the reference
+# Shape: one text line per view; the JSON parses and has its documented keys; the reference
 # method reports standard errors. Bad input: exit status 2 and one line on stderr.
 set -u
 atmo=$1

@@ -8,22 +8,18 @@
  * Each method runs through its plan, precompute and the sky_probe kernel (atmo/probe.h) with
  * the camera at the ground (r = bottom radius), as `atmo radiance` does.
  *
- * Tolerance per view and channel: |L / L_ref - 1| <= bound + 3 sigma / L_ref, with sigma^2 the
- * sum of the table's and the method's squared standard errors (the method's from the spread of
- * its 64 probe batches: its march offsets are random). The bound is the issue 4 target (day:
+ * Tolerance per view and channel: |L / L_ref - 1| <= bound + 3 sigma / L_ref, with sigma^2 the sum
+ * of the table's and the method's squared standard errors (the method's from the spread of its 64
+ * probe batches: its march offsets are random). The bound is the methods' accuracy target (day:
  * sun zenith <= 80 deg; sun at the horizon: 90 deg): march and fast 3 % / 5 %, lut 2 % / 5 %;
- * every method gets tighter per-channel bounds from its measured errors (rounded up to
- * 0.5 %).
+ * every method gets tighter per-channel bounds from its measured errors (rounded up to 0.5 %).
  * Measured (loaded PoCL, 4096 samples for march; fast's LUT path is deterministic), worst
  * |error| in red/green/blue, day / sun at the horizon:
  *   march: 0.9/0.9/1.3 %  /  1.2/0.8/1.0 %
- *   fast:  0.8/0.9/1.3 %  /  1.1/0.8/1.2 %  (issue 4's stretch goal for fast, 2 %, is met)
+ *   fast:  0.8/0.9/1.3 %  /  1.1/0.8/1.2 %  (within fast's goal of 2 %)
  *   lut:   0.6/0.7/0.9 %  /  1.0/2.8/4.0 %  (default table sizes and 7 orders: its precompute
  *          takes 1-2 minutes of this test's time)
- * (before the Psi_ms changes listed in kernels/atmosphere/ms_lut.h, march and fast were 6-7 % off in blue
- * near the horizon and 7.6 % at the zenith with the sun at the horizon; before the gathered
- * order 3, the Mie anisotropy, growing segments and fast's phase-free sky-view LUT, march was
- * 2.1/1.9/2.9 % / 1.8/1.5/4.1 % and fast 2.8/2.2/3.3 % / 1.5/1.8/4.7 %.)
+ * (How march and fast got there: docs/notes/ms_lut.md, docs/notes/fast_method.md.)
  * The fast method's sky-view LUT belongs to the camera's sun, so it gets one plan per sun
  * zenith; march and lut take the sun from each ray and share one plan. */
 #include <math.h>
@@ -43,7 +39,7 @@ typedef struct ref_row {
 
 typedef struct method_case {
     const char *method;
-    double target[2];   /* issue 4: day (sun zenith <= 80 deg), sun at the horizon (90 deg) */
+    double target[2];   /* accuracy target: day (sun zenith <= 80 deg), horizon (90 deg) */
     double bound[2][3]; /* asserted worst |relative error| per channel (see the header) */
     int per_sun;        /* one plan per sun zenith (a LUT of the camera's sun) */
     int samples;        /* probe samples per view */

@@ -2,12 +2,15 @@
  * labels: unit
  *
  * Oracle: the specification itself. The defaults, ranges and enum names are written out again
- * here from the task's parameter list (independently of the registry table in scene.c), the
+ * here from the documented parameter list (independently of the registry table in scene.c), the
  * thesis presets are compared with the "direction to sun", position and rotation columns of
- * shared/reference/presets.md, and every rejection case of issue 2 item 7 must return
- * ATMO_ERR_USAGE with a one-line message naming the key. Tolerances: exact (==, memcmp) where a
- * value is stored or round-tripped, since nothing is computed; 1e-5 on the thesis sun vectors,
- * whose table entries carry 6 decimals (they are themselves normalised only to ~5e-7). */
+ * shared/reference/presets.md, and every rejection case of the validation (unknown keys, with a
+ * suggestion; missing, malformed or non-finite values; values out of range; vectors of the wrong
+ * length; unknown enum names; in JSON files also syntax errors, with their line, and values of the
+ * wrong type) must return ATMO_ERR_USAGE with a one-line message naming the key. Tolerances: exact
+ * (==, memcmp) where a value is stored or round-tripped, since nothing is computed; 1e-5 on the
+ * thesis sun vectors, whose table entries carry 6 decimals (they are themselves normalised only to
+ * ~5e-7). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

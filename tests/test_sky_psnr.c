@@ -1,19 +1,17 @@
 /* test_sky_psnr — images of the single-scattering kernel against the host double-precision
- * model, scored by PSNR against Bruneton's own thresholds (issue 4: "PoCL kernels against the
- * host double-precision model: PSNR above Bruneton's own thresholds (47 dB radiance, 40 dB
- * luminance, 35 dB sunset)").
+ * model, scored by PSNR against Bruneton's own thresholds (47 dB radiance, 40 dB luminance,
+ * 35 dB at sunset).
  * labels: kernel
  *
- * Oracle: atmo_ref_single_scattering + atmo_ref_ground_radiance (host/atmosphere_ref.c: single
- * scattering of the point sun and the directly lit ground, adaptive Gauss-Kronrod quadrature,
- * relative error < 1e-9), the model method `single` computes in float on the device (32 march
- * segments, the default render.view_steps; transmittance LUT 256 x 256). Images: 64 x 32
+ * Oracle: atmo_ref_single_scattering + atmo_ref_ground_radiance (host/atmosphere/atmosphere_ref.c:
+ * single scattering of the point sun and the directly lit ground, adaptive Gauss-Kronrod
+ * quadrature, relative error < 1e-9), the model method `single` computes in float on the device
+ * (32 march segments, the default render.view_steps; transmittance LUT 256 x 256). Images: 64 x 32
  * latitude-longitude panoramas (the whole sphere of directions, azimuth from the sun) from a
- * camera at the ground (1.7 m, the default camera) and at 10 km, sun zenith 65 deg (Bruneton's
- * day scene) and 88 deg (his sunset). Each kernel pixel is the mean of 256 samples (64
- * independent batches of 4, as a render draws them: the march offsets are random); the
- * noise-limited PSNR 10 log10(peak^2 / mean se^2) is printed to show that noise is far below
- * the thresholds.
+ * camera at the ground (1.7 m, the default camera) and at 10 km, sun zenith 65 deg (Bruneton's day
+ * scene) and 88 deg (his sunset). Each kernel pixel is the mean of 256 samples (64 independent
+ * batches of 4, as a render draws them: the march offsets are random); the noise-limited PSNR 10
+ * log10(peak^2 / mean se^2) is printed to show that noise is far below the thresholds.
  *
  * Two PSNRs per image:
  *  - Bruneton's (precomputed_atmospheric_scattering, atmosphere/reference/model_test.cc,

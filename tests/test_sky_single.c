@@ -5,7 +5,7 @@
  * adaptive double-precision quadrature accurate to 1e-6. The kernel integrand (the medium
  * integrator, kernels/media/medium.h, as method single configures it) is
  * run on the device for each ray with 64 segments and 64 stratified values of the per-sample
- * offset, averaged, as a render with 64 samples per pixel would. Target of issue 2: every
+ * offset, averaged, as a render with 64 samples per pixel would. Target: every
  * channel within 1 %. Rays: cameras at 1 m, 10 km and above the atmosphere; sun zenith 0..85 deg;
  * views from the zenith to just above the horizon toward, across and away from the sun, and
  * views down onto the ground. Rays within a degree of the planet's shadow boundary are left out

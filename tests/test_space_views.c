@@ -1,6 +1,6 @@
 /* test_space_views — a ray seen from space gives the radiance of the same ray started where it
- * enters the atmosphere, for every method (issue 4: "views from space and from inside the
- * atmosphere agree where they overlap").
+ * enters the atmosphere, for every method: views from space and from inside the atmosphere
+ * agree where they overlap.
  * labels: kernel slow
  *
  * Rays. Cameras at the altitude of the `space` preset (2000 km) and at 1e8 m (100 000 km). Each
@@ -52,18 +52,18 @@
  *        atmosphere the rays that graze the ground limb or pass through the air above it (view
  *        zenith ~90-99 deg) change brightness by a factor e over ~1 deg, while the sky rows
  *        there are up to ~0.9 deg apart and the ground rows start at the horizon.
- *    Measured (PoCL): texels within 1.5 % (0.4 % before the LUT stored single scattering
- *    without its phase functions, the difference being the emulation's); interpolation up to 4.4 % (sun zenith 30 deg),
+ *    Measured (PoCL): texels within 1.5 % (the emulation interpolates whole radiances, the LUT its
+ *    phase-free parts: docs/notes/fast_method.md); interpolation up to 4.4 % (sun zenith 30 deg),
  *    4.4 % (80 deg), 5.9 % (95 deg; a ray reaching the ground 100 m inside the limb). So fast
- *    disagrees by up to ~6 % on the limb between a camera just inside the top of the
- *    atmosphere (its LUT) and one above it (the march).
+ *    disagrees by up to ~6 % on the limb between a camera just inside the top of the atmosphere
+ *    (its LUT) and one above it (the march).
  *
  * Measured: single, march and lut agree within 0.4 of their rounding bounds (worst 7.6e-5,
  * 3.2e-4 and 1.8e-4 of L); reference: worst |z| 3.4, median standard error of a difference 3 %.
- * Before atmosphere_enter computed the discriminant from b (kernels/atmosphere/atmosphere.h), rays from
- * 1e8 m differed by up to 53 times these bounds (single 4.1 % of L on a ray grazing the top,
- * 1.1 % at the ground limb; march up to 9 %, lut 5 %); the reference's z-test, at 3 %
- * resolution, did not see it.
+ * These bounds hold because the entry's discriminant is formed from b
+ * (atmosphere_top_discriminant, kernels/atmosphere/atmosphere.h; the other form, measured:
+ * docs/notes/space_views.md); an error of the entry shows in the deterministic methods, far below
+ * the reference's 3 % resolution.
  */
 #include <math.h>
 #include <stdio.h>

@@ -7,8 +7,8 @@
  *    with piecewise cubics between band centres, a fourth-order rule, so its error must stay
  *    below the cubic remainder bound at 15 bands and fall ~16x from 15 to 30 bands;
  *  - colour.c's white point (the solar spectrum at 1 nm): the quadrature is exact for L = S, so
- *    the sun's spectrum sampled at the band centres must map to it within 1e-3 (the issue's
- *    check; measured to rounding);
+ *    the sun's spectrum sampled at the band centres must map to it within 1e-3 (measured
+ *    to rounding);
  *  - the sRGB/XYZ matrices: round trip to rounding;
  *  - Bruneton 2017's accuracy of his 3-wavelength luminance against a spectral render: his
  *    tests accept PSNR 40 dB for luminance with 3 wavelengths (shared/reference/atmosphere.md),

@@ -4,7 +4,7 @@
  * Oracles: (1) the published slant transmittances from sea level and from 10 km of
  * shared/reference/atmosphere.md (numerical integration with 4e5 Simpson intervals, six digits);
  * (2) the host double-precision quadrature atmo_ref_transmittance (1e-7 relative) on a grid of
- * altitudes and view angles covering the whole LUT. Target of issue 2: relative error <= 1e-3
+ * altitudes and view angles covering the whole LUT. Target: relative error <= 1e-3
  * wherever T > 1e-2 (below that the relative error of an absolute float error grows without
  * meaning; there we require an absolute error <= 1e-5). The default 256 x 64 LUT is used. */
 #include <math.h>

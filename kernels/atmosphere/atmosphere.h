@@ -5,12 +5,13 @@
  *   sigma_t(h) = beta_R e^{-h/H_R} + beta_M,t e^{-h/H_M} + beta_O tent(h)      [1/m]
  *   sigma_s(h) = beta_R e^{-h/H_R} (Rayleigh) and beta_M,s e^{-h/H_M} (Mie)
  *
- * Transmittance LUT (Bruneton 2017, "Transmittance" section): texel (u, v) holds the optical
- * depth tau(r, mu) from radius r to the top of the atmosphere along mu, for rays that do not hit
- * the ground; lookups interpolate tau and return exp(-tau). Interpolating tau rather than T
- * (which Bruneton stores) matters near the horizon: T is strongly convex there, so linear
- * interpolation of T overestimates it by up to 1 % at 256 x 64, while tau is nearly linear in
- * the texel coordinates (tests/test_transmittance.c measures both bounds). With H = sqrt(top^2 - bottom^2) and rho = sqrt(r^2 - bottom^2):
+ * Transmittance LUT (Bruneton 2017, "Transmittance" section): texel (u, v) holds the optical depth
+ * tau(r, mu) from radius r to the top of the atmosphere along mu, for rays that do not hit the
+ * ground; lookups interpolate tau and return exp(-tau). Interpolating tau rather than T (which
+ * Bruneton stores) matters near the horizon: T is strongly convex there, so linear interpolation
+ * of T overestimates it by up to 1 % at 256 x 64, while tau is nearly linear in the texel
+ * coordinates (tests/test_transmittance.c measures both bounds). With H = sqrt(top^2 - bottom^2)
+ * and rho = sqrt(r^2 - bottom^2):
  *     x_r  = rho / H,
  *     x_mu = (d - d_min) / (d_max - d_min),   d = distance to top, d_min = top - r, d_max = rho + H
  * so the horizon ray maps to x_mu = 1 for every r and the samples crowd where T changes fastest.
@@ -127,9 +128,10 @@ ATMO_FN vec3 atmosphere_sun_transmittance(ATMO_GLOBAL const atmo_gpu_atmosphere 
 /* The discriminant / 4 of |x + t v| = top for a camera above the atmosphere, written
  * top^2 - b^2 = (top - b)(top + b) with b = r sqrt((1 - mu)(1 + mu)) the ray's closest distance
  * to the planet centre, not (top - r)(top + r) + (r mu)^2: far from the planet (r = 1e8 m) the
- * two terms of the latter are ~1e16 m^2 and their float rounding (~4e9 m^2) moved the entry of
- * rays near the limb by ~300 m and made rays grazing the top 4 % too bright or dark
- * (tests/test_space_views.c); b carries ~3 float roundings, ~1 m. */
+ * two terms of the latter are ~1e16 m^2, and their float rounding (~4e9 m^2) would move the
+ * entry of rays near the limb by ~300 m, which rays grazing the top of the atmosphere see as
+ * a change of brightness; b carries ~3 float roundings, ~1 m (tests/test_space_views.c;
+ * measured choices: docs/notes/space_views.md). */
 ATMO_FN float atmosphere_top_discriminant(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r,
                                             float mu)
 {

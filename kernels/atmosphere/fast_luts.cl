@@ -1,7 +1,7 @@
 /* fast_luts.cl — the per-frame LUTs of method "fast" (method_fast.h): the sky-view LUT around
- * the camera, into buffer sky_view_lut, in three planes of w x h texels: single scattering without its
- * phase functions, Rayleigh (0) and Mie (1), and the rest (2: multiple scattering and the
- * ground): the parts of the medium integrator's result (kernels/media/medium.h). Needs the
+ * the camera, into the buffer sky_view_lut, in three planes of w x h texels: single scattering
+ * without its phase functions, Rayleigh (0) and Mie (1), and the rest (2: multiple scattering and
+ * the ground): the parts of the medium integrator's result (kernels/media/medium.h). Needs the
  * transmittance and Psi_ms LUTs (passes before it). */
 
 __kernel void sky_view_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PARAMS, int arg)

@@ -8,9 +8,8 @@
  * Each gets a texel position p in [0, n - 1] (texel centres at the ends of the range, so the
  * extreme values are stored exactly), following Bruneton 2017 ("Precomputed Atmospheric
  * Scattering: a New Implementation", section "Single scattering / precomputation"):
- *   r:    x_r = rho / H,  rho = sqrt(r^2 - R^2),  H = sqrt(R_top^2 - R^2). (Tried: a map linear
- *         in the altitude near the ground; at 32 texels it did worse between texels, 1.4 % against
- *         0.5 % for this one, tests/test_lut_method.c.)
+ *   r:    x_r = rho / H,  rho = sqrt(r^2 - R^2),  H = sqrt(R_top^2 - R^2) (Bruneton's map, more
+ *         accurate between texels than one linear in the altitude: docs/notes/lut_method.md).
  *   mu:   split in two halves so that no lookup interpolates between a ray that hits the ground
  *         and one that does not (the radiance jumps there):
  *           sky rays    (texels n/2 .. n-1): x = (d - d_min) / (d_max - d_min), d = distance to
@@ -53,18 +52,20 @@
 
 #define LUT_MU_S_MIN (-0.5f)
 
-/* Where the method's tables sit in its buffers, in float4 elements (method_lut.h), with
- * N = LUT_TEXELS (one 4-D table), I = n_r n_mu_s (one irradiance table), G = rings^2 (grid):
- *   a: [0, N) single Rayleigh S_R      [N, 2N) orders 2..N summed (phase included)
- *   b: [0, N) single Mie S_M           [N, N + I) indirect ground irradiance, orders 1..N-1
- *      [N + I, 2N + I) the density J of orders 2..N summed (radiance per metre, phase
+/* Where the method's tables sit in its buffers (named by the plan, host/plan/plan_lut.c), in
+ * float4 elements (method_lut.h), with N = LUT_TEXELS (one 4-D table), I = n_r n_mu_s (one
+ * irradiance table), G = lut.rings^2 (the sphere grid):
+ *   scattering_rayleigh: [0, N) single Rayleigh S_R   [N, 2N) orders 2..N summed (phase
+ *      included)
+ *   scattering_mie: [0, N) single Mie S_M   [N, N + I) indirect ground irradiance, orders
+ *      1..N-1   [N + I, 2N + I) the density J of orders 2..N summed (radiance per metre, phase
  *      included), for aerial perspective (method_lut.h's sky_trace over a segment)
- *   c: [0, N) delta scattering (order n)  [N, 2N) density J_n  [2N, 2N + I G) sphere grid
- *      [2N + I G, 2N + I G + I) delta irradiance (order n - 1)
+ *   scattering_scratch: [0, N) delta scattering (order n)  [N, 2N) density J_n
+ *      [2N, 2N + I G) sphere grid   [2N + I G, 2N + I G + I) delta irradiance (order n - 1)
  *      [2N + I G + I, 2N + I G + I + G) the grid's directions (xyz) and solid angles (w), so
  *      the density pass reads them instead of evaluating four trigonometric functions each
- * lut.steps: segments per texel ray; [LUT_INT_RINGS]: rings of the grid;
- * [LUT_INT_ORDERS]: the number of orders (for reports; the plan lists the passes). */
+ * The knobs are in s->lut (atmo_gpu_lut): dims, steps (segments per texel ray), rings (of the
+ * sphere grid) and orders (for reports; the plan lists the passes). */
 #define LUT_TEXELS(dims) ((dims)[0] * (dims)[1] * (dims)[2] * (dims)[3])
 #define LUT_IRRADIANCE_TEXELS(dims) ((dims)[1] * (dims)[3])
 #define LUT_DELTA_IRRADIANCE(dims, G) (2 * LUT_TEXELS(dims) + LUT_IRRADIANCE_TEXELS(dims) * (G))

@@ -4,18 +4,17 @@
  * The camera's radius r_c and sun cosine mu_s,c are fixed for a frame, so the sky seen from
  * the camera is a function of two angles only: the view zenith angle theta and the azimuth phi
  * from the sun (the sky is symmetric about the sun's vertical plane, so phi in [0, pi]). The
- * sky-view LUT (buffer sky_view_lut, s->sky_view.width = W columns of phi, s->sky_view.height = 2 n rows)
- * holds the march of ms_lut.h (single scattering + sigma_s Psi_ms, the lit ground, no sun disc)
- * with s->sky_view.steps segments (growing from the camera, kernels/media/medium.h) at their
- * midpoints
- * (equal segments missed 2 % of the aerosols' steep density near the ground), in three planes
- * (fast_luts.cl): the view-sun cosine nu is constant along a straight ray, so the phase
+ * sky-view LUT (buffer sky_view_lut, s->sky_view.width = W columns of phi, s->sky_view.height
+ * = 2 n rows) holds the march of ms_lut.h (single scattering + sigma_s Psi_ms, the lit ground,
+ * no sun disc) with s->sky_view.steps segments (growing from the camera, kernels/media/medium.h,
+ * so they resolve the aerosols' steep density near the ground) at their midpoints, in three
+ * planes (fast_luts.cl): the view-sun cosine nu is constant along a straight ray, so the phase
  * functions factor out of single scattering, and the LUT holds its Rayleigh and Mie integrals
  * without them, multiplied by p_R(nu) and p_M(nu) of each pixel's own ray at lookup; the third
  * plane holds the rest (multiple scattering, the ground). The aerosol peak around the sun,
  * narrower than a LUT column, then comes from the exact phase function instead of the
- * interpolation of texels (which was 3 % off the march within 20 deg of the sun). Each plane
- * has two halves of n rows:
+ * interpolation of texels (measured choices: docs/notes/fast_method.md). Each plane has two halves
+ * of n rows:
  *   rows 0 .. n-1 : rays that leave the atmosphere, x = 1 - sqrt(1 - theta / theta_h)
  *   rows n .. 2n-1: rays that hit the ground,       x = sqrt((theta - theta_h) / (pi - theta_h))
  * with theta_h = acos(-sqrt(r_c^2 - R^2) / r_c) the zenith angle of the horizon, texel centres

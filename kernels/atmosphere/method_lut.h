@@ -14,16 +14,15 @@
  * transmittance to space. The whole ray is deterministic (no random numbers); a segment, the
  * aerial perspective to a point (below), marches with a random offset per sample.
  *
- * Knobs (scene keys -> s->lut, include/atmo/gpu_lut.h, host/plan/plan_lut.c):
+ * Knobs (scene keys -> s->lut, atmo_gpu_lut; host/plan/plan_lut.c), and the buffers
+ * scattering_rayleigh, scattering_mie and scattering_scratch (layout in lut_scattering.h):
  *   lut.nu_size, lut.mu_s_size, lut.mu_size, lut.r_size -> lut.dims = {nu, mu_s, mu, r}
  *     (defaults 8, 32, 128, 32; mu even: half ground rays, half sky rays)
  *   lut.steps -> lut.steps: segments per texel ray (default 64)
- *   lut.sphere_samples -> lut.rings: zenith rings of the sphere grid (even, default 32:
- *     with 16 the sky at the ground came out up to 2.3 % darker than the Monte Carlo reference
- *     for sun zenith <= 80 deg, with 32 within 1.7 %; normalising the phase functions over
- *     the grid did not help, the horizon's bright band in the incoming light is what needs
- *     the rings)
- *   lut.orders -> lut.orders and the plan's passes: scattering orders (default 7: in blue with the sun on the
+ *   lut.sphere_samples -> lut.rings: zenith rings of the sphere grid (even, default 32: the
+ *     horizon's bright band in the incoming light is what needs the rings; measured choices:
+ *     docs/notes/lut_method.md)
+ *   lut.orders -> lut.orders: scattering orders (default 7: in blue with the sun on the
  *     horizon, where orders fall slowest, order 8 would add at most 0.06 %,
  *     tests/test_lut_method.c). */
 #ifndef ATMO_METHOD_LUT_H
@@ -113,7 +112,8 @@ ATMO_FN void lut_whole_ray(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
 }
 
 /* The medium integrator's multiple-scattering source (medium.h, -DATMO_LUT_J): the density of
- * orders >= 2 and the sky's ground irradiance, read from buffer scattering_mie. */
+ * orders >= 2 and the sky's ground irradiance, read from scattering_mie (LUT_DENSITY_SUM and
+ * LUT_TEXELS, lut_scattering.h). */
 ATMO_FN vec3 lut_ms_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *scattering_mie,
                            float r, float mu, float mu_s, float nu, int ground)
 {
@@ -140,19 +140,17 @@ ATMO_FN vec3 lut_ms_ground_irradiance(ATMO_GLOBAL const atmo_gpu_scene *s,
  * Why not Bruneton's two-lookup difference S(x, v) - T(x, y) S(y, v), y at distance d (both
  * lookups on the camera ray's side of the horizon): it subtracts the radiances of two whole
  * rays, so the lookups' interpolation error (a few tenths of a percent) is multiplied by
- * S(x) / L_segment, which near the horizon is about a hundred for 1 km. Measured against the
- * Monte Carlo table tests/data/reference_segments.csv: within 3.4 % for 10 and 100 km, but up
- * to 54 % off at 1 km with reduced tables (r 16, mu 64; tests/test_aerial.c) and 7 % with the
- * default ones (1 km, 5 degrees above the horizon toward a sun 10 degrees high); and a band at
- * the horizon, where a segment that ends in the air is continuous but the two halves of the mu
- * axis interpolate differently: steps 45 times their neighbours (0.4 % of the radiance from
- * 1 km up with d = 50 km). Interpolating across a narrow band of mu around the horizon
- * (Bruneton 2008) would address the band only: those 1 km rays lie 5 degrees above it. The
- * march has neither error: it reads the density, a local quantity continuous across the
- * horizon, never a difference; measured within 2.2 % of the table for sun zenith <= 80 deg
- * (reduced tables; 2.1 % with the default ones), no step at the horizon larger than 1.03 times
- * its neighbours. It costs view_steps lookups of the density table and of the transmittance
- * LUT instead of six table lookups. */
+ * S(x) / L_segment, which near the horizon is about a hundred for 1 km; and at the horizon,
+ * where a segment that ends in the air is continuous, the two halves of the mu axis
+ * interpolate differently, which makes a band. Interpolating across a narrow band of mu around
+ * the horizon (Bruneton 2008) would address the band only, not the short segments above it.
+ * The march has neither error: it reads the density, a local quantity continuous across the
+ * horizon, never a difference; measured within 2.2 % of the table
+ * tests/data/reference_segments.csv for sun zenith <= 80 deg (reduced tables; 2.1 % with the
+ * default ones), no step at the horizon larger than 1.03 times its neighbours
+ * (tests/test_aerial.c, which also checks that the difference still fails; its numbers:
+ * docs/notes/lut_method.md). It costs view_steps lookups of the density table and of the
+ * transmittance LUT instead of six table lookups. */
 ATMO_FN void sky_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, const medium_ray *m,
                        float t_max, rng_stream *g, vec3 *sky, vec3 *sun, vec3 *view_t)
 {

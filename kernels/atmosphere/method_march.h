@@ -3,8 +3,8 @@
  * medium integrator (kernels/media/medium.h) with the Psi_ms source, whose sun visibility per
  * sample gives light shafts and shadows.
  *
- * LUTs: buffer ms_lut = Psi_ms, its anisotropy and scratch (14 planes), s->ms.width x
- * s->ms.height the size of a plane (mu_s x altitude), filled by ms_lut.cl.
+ * LUT: the buffer ms_lut, Psi_ms, its anisotropy and scratch (14 planes), each plane
+ * s->ms.width x s->ms.height (mu_s x altitude), filled by ms_lut.cl.
  * Knobs: s->view_steps segments per view ray; one random offset of the segment samples per
  * sample (the first number of the method's stream), as method "single" draws, so both agree
  * exactly where Psi is zero. */

@@ -40,9 +40,9 @@
  * segments of the path do not; the weight W at its end estimates T(0, d). On that cut segment
  * the majorant is raised to at least REFERENCE_SEGMENT_POINTS / d (ratio and spectral tracking
  * stay unbiased for any majorant >= sigma_t): with sigma_bar d ~ 0.04 on a 1 km segment most
- * paths would see no tentative point there: over tests/test_aerial.c's 1 km rays the relative
- * standard error of 65536 samples was 1.7-8.9 % (median 4 %), with 4 points 0.2-6 % (median
- * 1.5 %), for about 1.5 times the time (10 s -> 16 s for its 108 rays, all distances).
+ * paths would see no tentative point there, and the few that do would carry the whole
+ * estimate; 4 points per segment cut its standard error about 2.7 times for about 1.5 times
+ * the time (measured on tests/test_aerial.c's rays: docs/notes/reference_segments.md).
  * Interfaces: the coefficients come from media_at (media.h), the planet's shadow from
  * visibility_sun (visibility.h) at each point, the walk from tracking.h. The path lives in its
  * own planet-centred frame (camera at (0, r, 0)); the points it hands the visibility sources

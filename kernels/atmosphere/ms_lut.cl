@@ -15,8 +15,8 @@
 
 /* Azimuths of the gathering passes: half of pass 1's. The gathered light has no aureole, and
  * the n-point midpoint rule over [0, pi] integrates its azimuthal harmonics exactly up to
- * cos((2n - 1) phi) (measured with 4 instead of 8: the sky changes by 1.2e-5 relative, the
- * precompute takes 35 % less time). */
+ * cos((2n - 1) phi), so half the azimuths change the sky by a few 1e-5 for a third less
+ * precompute time (measured: docs/notes/ms_lut.md). */
 #define MS_GATHER_PHI (scene->ms.directions_phi > 1 ? scene->ms.directions_phi / 2 : 1)
 
 /* The texel of this work item: its (r, mu_s) and index in a plane, or -1 outside the LUT

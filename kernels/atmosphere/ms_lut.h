@@ -23,24 +23,24 @@
  * 1 + cos^2 shape of Rayleigh's) evenly over the sphere. What stays approximate is the angular
  * shape of orders >= 2 at x.
  *
- * Quadrature: w on n_mu bands in cos(zenith) times n_phi azimuths over [0, pi] (the light
- * field is symmetric about the vertical plane through the sun); half the bands lie above the
- * horizon cosine mu_h = -sqrt(r^2 - R^2) / r and half below, so no band straddles the step
- * between sky and ground, each half crowding toward the horizon as the square of its index
- * (a grid in the sun's frame, tried to resolve the aerosol peak, cut that step diagonally and
- * was 10 % off a finer grid at the ground). Each direction is marched with n_steps segments
- * growing as (i/n)^2 from x, each integrated exactly for constant coefficients as in
- * medium.h. LUT: x_mu = (1 + sign(mu_s) sqrt|mu_s|) / 2 along the width, x_h = h / (top -
- * bottom) along the height, texel centres at x = 0 and 1 (atmosphere_texcoord_from_unit);
- * xyz = Psi (W m^-2 sr^-1 nm^-1, with the solar irradiance E folded in), w = f_ms of the
- * middle channel.
+ * Quadrature: w on n_mu bands in cos(zenith) times n_phi azimuths over [0, pi] (the light field is
+ * symmetric about the vertical plane through the sun); half the bands lie above the horizon cosine
+ * mu_h = -sqrt(r^2 - R^2) / r and half below, so no band straddles the step between sky and
+ * ground, each half crowding toward the horizon as the square of its index (the bands follow the
+ * local vertical, not the sun: a grid in the sun's frame would cut that step diagonally). Each
+ * direction is marched with n_steps segments growing as (i/n)^2 from x, each integrated exactly
+ * for constant coefficients as in medium.h. LUT: x_mu = (1 + sign(mu_s) sqrt|mu_s|) / 2 along the
+ * width, x_h = h / (top - bottom) along the height, texel centres at x = 0 and 1
+ * (atmosphere_texcoord_from_unit); xyz = Psi (W m^-2 sr^-1 nm^-1, with the solar irradiance E
+ * folded in), w = f_ms of the middle channel.
  *
  * March (march_trace): the medium integrator (kernels/media/medium.h: the segments, the
  * per-sample offset, the sun-disc and ground terms of method single), with, at each sample,
  *     J = [sigma_R p_R(nu) + sigma_M p_M(nu)] E T_sun V + J_ms
  * where V is the sun's visibility from the visibility sources (kernels/media/visibility.h) and
  * J_ms = (sigma_R + sigma_M) Psi_ms(h, mu_s) for isotropic light, plus the anisotropic terms
- * below (ms_lut_source). With Psi = 0 the sum is the single-scattering sum term for term. The ground seen by the view ray is lit by the sun and by the sky (E_sky, below).
+ * below (ms_lut_source). With Psi = 0 the sum is the single-scattering sum term for term. The
+ * ground seen by the view ray is lit by the sun and by the sky (E_sky, below).
  *
  * Rayleigh anisotropy of the second order. For the Rayleigh phase p_R = 3/(16 pi)(1 + (v.w)^2)
  * the second order toward v is exact from three moments of L_1': int L_1'(w) p_R(v.w) dw =
@@ -58,43 +58,29 @@
  * with v the direction the camera looks along (light arriving from v scatters forward into it);
  * each part is kept >= 0. The truncation keeps the sky/ground and sun/anti-sun asymmetries and
  * the horizon band of the light field but not the aureole, narrower than l = 2 resolves: red
- * order 2 is still ~20 % low toward a low sun (it was 30 % low, and 5-8 % high toward the zenith
- * with an isotropic Mie part).
- * Gathered higher orders (ms_lut_gather; kernels ms_lut_order3, ms_lut_second). Hillaire's
- * series f L_2 + f^2 L_2 + ... takes the higher orders at x from x's own L_2, which fails where
- * they come from elsewhere (into the Earth's shadow at twilight), leaves out the ground lit by
- * the sky, and, measured against the reference's per-order tallies, makes orders >= 4 20-45 %
- * too low even in daylight (f at x underestimates what the brighter air above and along the
- * horizon sends back). So orders are gathered where they are scattered: a gathering pass
- * computes, along the same directions and segments, the radiance G(w) arriving at x from a
- * source J_src of the form of J_ms (anisotropy included: light sent along the horizon and
- * forward by the aerosols counts it), plus T (rho / pi) E where w meets the ground; <G> is the
- * next order's source per unit sigma_s and the moments of G give its anisotropy A = (D, b) the
- * same way as L_1''s. Pass 2 gathers order 3 exactly from order 2 (L_2, A_2, the ground lit by
- * the first-order sky E_1 = 4 pi <L_1' max(mu, 0)>): S_3, A_3, E_2. Pass 3 gathers orders >= 3
- * from the series over the gathered order 3, Psi_src = L_2 + S_3 / (1 - f), A_src = A_2 + A_3 (1
- * + k f / (1 - f)) (k = ms.higher_anisotropy: orders >= 4 shaped like order 3), E = E_1 + E_2 /
- * (1 - f): Psi = L_2 + <G>, A = A_2 + A_G. Orders >= 4 keep part of the local series' error
- * (measured: 5-10 % low in blue, ~0.5 % of the sky at the horizon). Planes of the LUT (each
- * width x height; ms_lut.cl): 0 Psi (xyz), f of channel y (w); 1-5 D_uu, D_ss, D_us, b_u, b_s;
- * 12 E_sky (the ground's sky irradiance, all orders); 6-11 and 13 scratch of the passes.
- * Measured against the Monte Carlo reference (tests/data/reference_sky.csv, ground camera,
- * views 0..85 deg; worst error, sun zenith 0..80 deg / 90 deg; in blue up to the sixth line,
- * red and green within 2.2 % there; over all channels after it):
- *   isotropic Psi, uniform 32-point mu_s grid (before):   -6.5 %  /  +7.6 % (zenith, twilight)
- *   + sqrt mu_s mapping, 64 points, still isotropic:      -6.6 %  / -16.5 % (horizon, twilight)
- *   + Rayleigh anisotropy, k = 0:                         -5.7 %  / -13.7 %
- *   + Rayleigh anisotropy, k = 1 (kept):                  -5.6 %  / -12.4 %
- *   + second pass, gathered orders >= 3:                  -4.6 %  /  -7.0 %
- *   + ground lit by the sky:                              -2.9 %  /  -4.1 %
- *   + anisotropic source in the gather, D of orders >= 3
- *     from G's moments:                                   -2.3 %  /  -3.4 % (blue)
- *   + order 3 gathered exactly, series over it:           -2.1 %  /  -1.9 % (green / red)
- *   + growing segments (medium.h):                        -1.8 %  /  -1.7 % (blue)
- *   + Mie anisotropy (kept):                              -1.3 %  /  -1.2 % (blue / red)
- * The old grid's twilight error had hidden the model's; 4x the directions and 3x the segments
- * change these by < 0.3 %. What is left: the aureole in the aerosols' part of orders >= 2 and
- * the local series in orders >= 4 (both above). */
+ * order 2 is ~20 % low toward a low sun.
+ * Gathered higher orders (ms_lut_gather; kernels ms_lut_order3, ms_lut_second). Hillaire's series
+ * f L_2 + f^2 L_2 + ... takes the higher orders at x from x's own L_2, which fails where they come
+ * from elsewhere (into the Earth's shadow at twilight), leaves out the ground lit by the sky, and
+ * makes orders >= 4 too low even in daylight (f at x underestimates what the brighter air above
+ * and along the horizon sends back). So orders are gathered where they are scattered: a gathering
+ * pass computes, along the same directions and segments, the radiance G(w) arriving at x from a
+ * source J_src of the form of J_ms (anisotropy included: light sent along the horizon and forward
+ * by the aerosols counts it), plus T (rho / pi) E where w meets the ground; <G> is the next
+ * order's source per unit sigma_s and the moments of G give its anisotropy A = (D, b) the same way
+ * as L_1''s. Pass 2 gathers order 3 exactly from order 2 (L_2, A_2, the ground lit by the
+ * first-order sky E_1 = 4 pi <L_1' max(mu, 0)>): S_3, A_3, E_2. Pass 3 gathers orders >= 3 from
+ * the series over the gathered order 3, Psi_src = L_2 + S_3 / (1 - f), A_src = A_2 + A_3 (1 + k f
+ * / (1 - f)) (k = ms.higher_anisotropy: orders >= 4 shaped like order 3), E = E_1 + E_2 / (1 - f):
+ * Psi = L_2 + <G>, A = A_2 + A_G. Orders >= 4 keep part of the local series' error (measured:
+ * 5-10 % low in blue, ~0.5 % of the sky at the horizon). Planes of the LUT (each width x height;
+ * ms_lut.cl): 0 Psi (xyz), f of channel y (w); 1-5 D_uu, D_ss, D_us, b_u, b_s; 12 E_sky (the
+ * ground's sky irradiance, all orders); 6-11 and 13 scratch of the passes.
+ * Accuracy against the Monte Carlo reference (tests/data/reference_sky.csv, ground camera,
+ * views 0..85 deg): worst -1.3 % for sun zenith 0..80 deg (blue) and -1.2 % with the sun at the
+ * horizon (red); 4x the directions and 3x the segments change these by < 0.3 %. What is left:
+ * the aureole in the aerosols' part of orders >= 2 and the local series in orders >= 4 (both
+ * above). Measured choices, step by step: docs/notes/ms_lut.md. */
 #ifndef ATMO_MS_LUT_H
 #define ATMO_MS_LUT_H
 #ifndef __OPENCL_VERSION__

@@ -2,9 +2,10 @@
  *
  * Each texel (i, j) is placed at its centre u = (i + 0.5)/W, v = (j + 0.5)/H, mapped back to
  * (r, mu), and holds the optical depth tau to the top of the atmosphere by the midpoint rule
- * with TRANSMITTANCE_STEPS segments (error ~ 1/n^2). 200 is where the LUT's worst error stops
- * being the quadrature's (tests/test_transmittance.c against the published table and the double
- * quadrature: 9.7e-4 at 100 steps, 8.8e-4 at 200, 8.4e-4 at 500), at 2.5x less cost than 500. */
+ * with TRANSMITTANCE_STEPS segments (error ~ 1/n^2). At 200 the LUT's worst error (8.8e-4
+ * relative where T > 1e-2, tests/test_transmittance.c against the published table and the
+ * double quadrature) is the interpolation's, not the quadrature's, so more steps would cost
+ * without helping (measured choices: docs/notes/transmittance.md). */
 #define TRANSMITTANCE_STEPS 200
 
 __kernel void transmittance_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PARAMS,

@@ -59,8 +59,8 @@ ATMO_FN float phase_cornette_shanks(float nu, float g)
  *   two-term HG:     w HG(g1) + (1 - w) HG(g2), lobe chosen by u2.
  *   Jendersie & d'Eon 2023 fit for droplet diameter d (um, 5..50):
  *                    (1 - w_D) HG(g_HG) + w_D Draine(g_D, alpha), lobe chosen by u2.
- *   table:           CDF on the table's angle grid (host/mie_table.c), binary search, then linear
- *                    inversion in cos(theta) within the interval. */
+ *   table:           CDF on the table's angle grid (host/mie/mie_table.c), binary search, then
+ *                    linear inversion in cos(theta) within the interval. */
 
 ATMO_FN float phase_henyey_greenstein_sample(float g, float u1)
 {

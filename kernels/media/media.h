@@ -7,8 +7,8 @@
  *     sigma_t(x) = sum_m sigma_t,m(x),  sigma_s,k(x) for the components k,  p_k(nu) per steradian
  * The atmosphere is always present (atmosphere.h: Rayleigh and Mie scattering with their scale
  * heights, ozone absorbing); the homogeneous cloud shell (cloud_shell.h) is added under
- * -DATMO_CLOUD, the fBm clouds will be the next module here. A medium that needs its own
- * stepping (the cloud shell's optical-depth steps) also supplies break points: the parts of a
+ * -DATMO_CLOUD; another medium (the fBm clouds) is another module here. A medium that needs its
+ * own stepping (the cloud shell's optical-depth steps) also supplies break points: the parts of a
  * ray inside it (media_intervals), which the integrator integrates with that medium's stepping
  * (media_interval) and marches the rest with media_at. Units: 1/m, per steradian. */
 #ifndef ATMO_MEDIA_H

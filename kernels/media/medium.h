@@ -20,8 +20,9 @@
  * Stepping (pbrt-v4's SampleT_maj shape: one walk, one per-point evaluation). The ray is first
  * moved to where it enters the atmosphere (atmosphere_enter), then [0, d] is cut into n
  * segments growing as (i/n)^2 from the start, [d (i/n)^2, d ((i+1)/n)^2]: short where the
- * density changes fastest along rays that start low (measured against the double-precision
- * reference with 64 segments: 0.40 % worst with equal segments, 0.09 % with these). The media
+ * density changes fastest along rays that start low (worst 0.09 % against the double-precision
+ * reference with 64 segments, tests/test_sky_single.c; measured choices:
+ * docs/notes/medium.md). The media
  * add break points (media_intervals: the cloud shell's spheres): a part of the ray inside such
  * a medium is integrated with that medium's own stepping (media_interval: optical-depth steps
  * in the cloud) and the grid segments are clipped to the rest. In each segment or clipped piece

@@ -1,6 +1,6 @@
 /* tracking.h — free-flight sampling through a majorant: the walk that the Monte Carlo
- * estimators share (method reference today; delta tracking through the fBm clouds' majorant
- * grid next).
+ * estimators share (method reference's paths; delta tracking through a medium's majorant grid
+ * takes the same steps).
  *
  * Along a ray, tentative collisions form a homogeneous Poisson process of rate sigma_bar >=
  * sigma_t everywhere on it: steps -ln(1 - u) / sigma_bar (1 - u in (0, 1], so the log is

@@ -1,6 +1,6 @@
 /* tonemap.h — tone mapping operators and display transfer curves (host C and OpenCL C).
  *
- * The display pipeline of one pixel (atmo_post_pixel in host/post.c, and any kernel that
+ * The display pipeline of one pixel (atmo_post_pixel in host/image/post.c, and any kernel that
  * previews an image) is
  *     linear value x  ->  x / white balance  ->  x * exposure  ->  tone map  ->  clamp [0, 1]
  *                     ->  transfer curve (sRGB or gamma 2.2)  ->  display value in [0, 1].
