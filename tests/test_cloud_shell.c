@@ -10,9 +10,9 @@
  *     <= 3 km a ray crosses it, it departs from a plane by d^2 / (2R) <= 0.7 m of a 200 m slab,
  *     and the sun's slant path changes by as little, so the closed form holds to ~3e-3; the
  *     optical-depth steps integrate exactly for a slab, so the tolerance is 5e-3.
- *  2. (PoCL, preset glory) the fog bow and the first glory ring in a radiance profile around
- *     the antisolar point at fixed view zenith lie where the uploaded Mie table (550 nm) has
- *     its maxima, within 0.5 degrees (the profile's 0.1-degree step plus the shift of a
+ *  2. (PoCL, preset glory; its cloud with stratus drops for the glory) the fog bow and the first
+ *     glory ring in a radiance profile around the antisolar point at fixed view zenith lie where
+ *     the uploaded Mie table (550 nm) has its maxima, within 0.5 degrees (the profile's 0.1-degree step plus the shift of a
  *     maximum by the smooth multiple-scattering octaves' slope);
  *  3. (PoCL, preset brocken) a ray toward where the observer's shadow axis meets the fog top
  *     is at most 0.3 of a ray 3 shadow radii away (geometry: the entry point's distance from
@@ -140,26 +140,23 @@ static double argmax(const double *f, double step, double lo, double hi)
 #define STEP 0.1
 #define NTH 1800
 
-static void glory_tests(atmo_cl *cl)
+/* The radiance profile L (550 nm) around the antisolar point at its view zenith, 125..180 deg
+ * from the sun, and the plan's Mie table P (550 nm) at the same angles, interpolated as the
+ * kernel does. */
+static void antisolar_profile(atmo_cl *cl, const atmo_scene *scene, double *L, double *P)
 {
-    atmo_scene scene;
     atmo_plan plan;
-    test_scene_preset(&scene, "glory");
-    test_plan(&scene, &plan);
+    test_plan(scene, &plan);
     cl_program prog = build_plan(cl, &plan);
     const float4 *rows = atmo_plan_buffer_find(&plan, "cloud_phase_table")->host_data;
     int nrows = plan.gpu.cloud.table_size;
-    double mu_s = cos(scene.sun.zenith_deg * M_PI / 180), sin_s = sqrt(1 - mu_s * mu_s);
-    double mu = -mu_s, sin_v = sin_s; /* view zenith of the antisolar point */
+    double mu_s = cos(scene->sun.zenith_deg * M_PI / 180), mu = -mu_s;
     static float4 rays[NTH], out[NTH];
-    static double L[NTH], P[NTH];
     int first = (int)(125.0 / STEP);
     for (int i = 0; i < NTH; i++) {
         double th = fmin(i * STEP, 179.95);
         float4 q = {plan.gpu.camera.local_up.w, (float)mu, (float)mu_s, (float)cos(th * M_PI / 180)};
         rays[i] = q;
-        (void)sin_v;
-        /* the table at theta, interpolated as the kernel does */
         double t = th * M_PI / 180;
         int j = 0;
         while (j < nrows - 2 && rows[j + 1].w <= t)
@@ -168,15 +165,38 @@ static void glory_tests(atmo_cl *cl)
         P[i] = rows[j].y + f * (rows[j + 1].y - rows[j].y);
     }
     probe_rays(cl, prog, &plan, rays + first, NTH - first, 2, out + first);
-    for (int i = first; i < NTH; i++)
-        L[i] = out[i].y;
+    for (int i = 0; i < NTH; i++)
+        L[i] = i >= first ? out[i].y : 0.0;
+    clReleaseProgram(prog);
+    atmo_plan_free(&plan);
+}
+
+static void glory_tests(atmo_cl *cl)
+{
+    atmo_scene scene;
+    atmo_plan plan;
+    static double L[NTH], P[NTH];
+    /* the fog bow: preset glory (thesis-disperse drops) */
+    test_scene_preset(&scene, "glory");
+    antisolar_profile(cl, &scene, L, P);
     double bow_p = argmax(P, STEP, 130, 160), bow_l = argmax(L, STEP, 130, 160);
+    /* the glory ring: that distribution's table rises steadily toward 180 deg once the sun's
+     * disc smooths it (its one ring lies within 1 deg of the antisolar point), so the ring is
+     * taken from stratus drops, whose first ring peaks near 177.5 deg at 550 nm; the maximum
+     * must lie inside the window, not at its edge */
+    test_scene_set(&scene, "cloud.dsd=stratus");
+    antisolar_profile(cl, &scene, L, P);
     double gl_p = argmax(P, STEP, 172, 179), gl_l = argmax(L, STEP, 172, 179);
-    printf("fog bow: table %.1f deg, render %.1f deg; glory ring: table %.1f, render %.1f\n",
+    printf("fog bow (glory preset): table %.1f deg, render %.1f deg; first glory ring (stratus): "
+           "table %.1f, render %.1f\n",
            bow_p, bow_l, gl_p, gl_l);
     CHECK_ABS(bow_l, bow_p, 0.5);
+    CHECK(gl_p > 172.0 + STEP && gl_p < 179.0 - STEP);
     CHECK_ABS(gl_l, gl_p, 0.5);
 
+    test_scene_preset(&scene, "glory");
+    test_plan(&scene, &plan);
+    cl_program prog = build_plan(cl, &plan);
     /* no NaN or Inf: camera below, inside, above the cloud, above the atmosphere */
     const float heights[] = {1.7f, 999.0f, 1500.0f, 2000.5f, 3000.0f, 7e4f, 1e7f};
     static float4 sweep[7 * 41 * 3];
