@@ -205,14 +205,14 @@ int cmd_mie(int argc, char **argv)
                        "one --wavelength-nm; see atmo mie --help");
         goto done;
     }
+    if ((table_path && (rc = output_paths_add(&files, "--table", table_path, &e))) ||
+        (chart_path && (rc = output_paths_add(&files, "--chart", chart_path, &e))))
+        goto done;
     if (chart_path && !mie_gnuplot_available()) {
         rc = atmo_fail(&e, ATMO_ERR_RUNTIME, "--chart needs gnuplot, which is not on PATH; install "
                        "gnuplot-nox (setup.sh does) or leave out --chart");
         goto done;
     }
-    if ((table_path && (rc = output_paths_add(&files, "--table", table_path, &e))) ||
-        (chart_path && (rc = output_paths_add(&files, "--chart", chart_path, &e))))
-        goto done;
 
     /* one grid for all wavelengths, fine enough for the shortest */
     double r0, r1, lmin = lambda[0];
