@@ -13,7 +13,7 @@
  * Sign convention: the index is n + ik with k >= 0 absorbing; S1, S2 are in MIEV0's convention
  * (m = n - ik), the complex conjugates of Bohren & Huffman's. --chart draws log P against theta
  * per wavelength with the corona, fog bow and glory ranges shaded (gnuplot, host/mie_plot.c;
- * checked for before any work). Tables on the grid come from the on-disk cache when built before
+ * checked for before any work, like the --table and --chart paths: output_paths.h). Tables on the grid come from the on-disk cache when built before
  * with the same parameters (host/mie_cache.c; --no-cache rebuilds and does not store).
  * The radius integral of a distribution is refined until it has converged to --tolerance
  * (host/mie/mie_radius.c); --radius-step fixes the step instead. */
@@ -25,6 +25,7 @@
 #include "atmo/fileio.h"
 #include "atmo/mie.h"
 #include "commands.h"
+#include "output_paths.h"
 
 #define MIE_CLI_MAX_WAVELENGTHS 64
 #define MIE_CLI_PI 3.14159265358979323846
@@ -135,6 +136,7 @@ int cmd_mie(int argc, char **argv)
     double *angles = NULL, *grid = NULL, *mu = NULL, *P = NULL, *tableP = NULL;
     double complex *s1 = NULL, *s2 = NULL;
     const char *table_path = NULL, *chart_path = NULL, *dsd_text = NULL;
+    output_paths files = {0};
     mie_dsd dsd = {0};
     cJSON *root = NULL;
     FILE *tf = NULL;
@@ -203,6 +205,9 @@ int cmd_mie(int argc, char **argv)
                        "one --wavelength-nm; see atmo mie --help");
         goto done;
     }
+    if ((table_path && (rc = output_paths_add(&files, "--table", table_path, &e))) ||
+        (chart_path && (rc = output_paths_add(&files, "--chart", chart_path, &e))))
+        goto done;
     if (chart_path && !mie_gnuplot_available()) {
         rc = atmo_fail(&e, ATMO_ERR_RUNTIME, "--chart needs gnuplot, which is not on PATH; install "
                        "gnuplot-nox (setup.sh does) or leave out --chart");
@@ -360,6 +365,7 @@ done:
         atmo_atomic_abort(tf, tmp);
     if (rc)
         fprintf(stderr, "atmo mie: %s\n", e.msg);
+    output_paths_free(&files);
     cJSON_Delete(root);
     free(angles);
     free(grid);

@@ -2,11 +2,19 @@
  *
  * Scene assembly, in this order: the defaults; --preset NAME (default: atmo_default_preset) or
  * --scene FILE; then --set KEY=VALUE and the shorthands (--width, --height, --samples, --seed,
- * --camera) in command-line order. Every output's format is checked before anything runs, so a
- * bad argument never costs a render. */
+ * --camera) in command-line order. Every output's format and path is checked before anything
+ * runs (output_paths.h: directory, name, limits, no two outputs in one file), so a bad argument
+ * never costs a render.
+ *
+ * Interrupts: the first SIGINT or SIGTERM sets the render's cancel token; the precompute or the
+ * render stops after the launch in flight. Samples already rendered are written, marked
+ * partial (report "interrupted", file metadata), and the exit status is 3; stopped before any
+ * sample (in the precompute, or in a spectral render's triplets), nothing is written and the
+ * exit status is 4. A signal while the files are written lets the writing finish (the image is
+ * whole). A second signal removes the temporary file being written and ends the process by
+ * that signal at once. Exit statuses: 0 done, 1 runtime error, 2 usage, 3 interrupted with a
+ * partial image written, 4 interrupted with nothing written. */
 #include <cjson/cJSON.h>
-#include <errno.h>
-#include <libgen.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,6 +29,7 @@
 #include "atmo/scene.h"
 #include "atmo/spectral_render.h"
 #include "commands.h"
+#include "output_paths.h"
 
 #define RENDER_MAX_OUTPUTS 8
 #define RENDER_MAX_SETS 256
@@ -58,29 +67,44 @@ static const char render_usage[] =
     "  --no-lut-cache         always precompute LUTs (LUTs that take over 0.5 s are cached)\n"
     "  --quiet                no progress output\n"
     "\n"
-    "Ctrl-C during the render writes the samples finished so far and says so.\n";
+    "\n"
+    "Ctrl-C (SIGINT) or SIGTERM stops the precompute or the render after the launch in flight:\n"
+    "the samples finished so far are written, marked partial, with exit status 3; stopped\n"
+    "before any sample, nothing is written and the exit status is 4. A second signal stops at\n"
+    "once and removes the file being written. Exit statuses: 0 done, 1 runtime error, 2 usage\n"
+    "or input error (nothing is rendered), 3 interrupted with a partial image, 4 interrupted\n"
+    "with nothing written.\n";
 
-/* The token the SIGINT handler sets: a handler takes no user data, so this file holds the one
- * token that the render it starts is given (atmo_render_settings.cancel). */
+/* What the signal handler uses: a handler takes no user data, so this file holds the one token
+ * that the render it starts is given (atmo_render_settings.cancel), and the temporary names of
+ * the outputs (atmo_tmp_path), computed before the handler is installed. */
 static atmo_cancel render_cancel;
+static volatile sig_atomic_t signals_seen;
+static char pending_tmp[OUTPUT_PATHS_MAX][ATMO_TMP_PATH_MAX];
+static int pending_count;
 
-static void on_sigint(int sig)
+/* Async-signal-safe: a store, unlink(2), signal(2) and raise(3). */
+static void on_signal(int sig)
 {
-    (void)sig;
-    atmo_cancel_request(&render_cancel);
-    signal(SIGINT, SIG_DFL); /* a second Ctrl-C ends the process */
+    if (signals_seen++ == 0) {
+        atmo_cancel_request(&render_cancel);
+        return;
+    }
+    for (int i = 0; i < pending_count; i++)
+        unlink(pending_tmp[i]);
+    signal(sig, SIG_DFL);
+    raise(sig);
 }
 
-/* Fails with exit code 2 unless dir(path) exists and is writable. */
-static int check_writable(const char *path, const char *what, atmo_err *e)
+/* SIGINT and SIGTERM to on_signal (install) or back to what they were. */
+static void handle_signals(int install, struct sigaction old[2])
 {
-    char copy[4096];
-    snprintf(copy, sizeof copy, "%s", path);
-    const char *dir = dirname(copy);
-    if (access(dir, W_OK) != 0)
-        return atmo_fail(e, ATMO_ERR_USAGE, "%s '%s': directory '%s' is not writable (%s)", what,
-                         path, dir, strerror(errno));
-    return ATMO_OK;
+    static const int sigs[2] = {SIGINT, SIGTERM};
+    struct sigaction sa = {0};
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    for (int i = 0; i < 2; i++)
+        sigaction(sigs[i], install ? &sa : &old[i], install ? &old[i] : NULL);
 }
 
 static double now_seconds(void)
@@ -173,6 +197,7 @@ int cmd_render(int argc, char **argv)
     char *sets[RENDER_MAX_SETS];
     char set_buffers[RENDER_MAX_SETS][64];
     int n_out = 0, n_set = 0, quiet = 0, lut_cache = 1, rc = ATMO_OK;
+    output_paths files = {0};
     atmo_render_settings_default(&rs);
 
     for (int i = 1; i < argc; i++) {
@@ -283,7 +308,7 @@ int cmd_render(int argc, char **argv)
     if (rc || (rc = atmo_scene_validate(&scene, &e)))
         goto usage_error;
 
-    /* outputs: formats and directories, before any work */
+    /* outputs: formats and paths, before any work; the same file twice is one output */
     if (n_out == 0 && !save_scene)
         outputs[n_out++] = "atmo.png";
     for (int i = 0; i < n_out; i++) {
@@ -293,16 +318,21 @@ int cmd_render(int argc, char **argv)
                            outputs[i]);
             goto usage_error;
         }
-        if ((rc = check_writable(outputs[i], "--output", &e)))
+        if ((rc = output_paths_add(&files, "--output", outputs[i], &e)))
             goto usage_error;
     }
-    if ((report && (rc = check_writable(report, "--report", &e))) ||
-        (save_scene && (rc = check_writable(save_scene, "--save-scene", &e))))
+    n_out = files.count;
+    for (int i = 0; i < n_out; i++)
+        outputs[i] = files.path[i];
+    if ((report && (rc = output_paths_add(&files, "--report", report, &e))) ||
+        (save_scene && (rc = output_paths_add(&files, "--save-scene", save_scene, &e))))
         goto usage_error;
     if (save_scene && (rc = atmo_scene_save_json(&scene, save_scene, &e)))
         goto runtime_error;
-    if (n_out == 0)
+    if (n_out == 0) {
+        output_paths_free(&files);
         return ATMO_OK;
+    }
 
     /* spectral mode plans each triplet of bands itself */
     int spectral = scene.render.spectral_bands > 0;
@@ -312,21 +342,40 @@ int cmd_render(int argc, char **argv)
     plan.cache_luts = lut_cache;
     rs.progress = quiet ? 0 : (isatty(STDERR_FILENO) ? 2 : 1);
 
+    /* the handler stays until the files are written: a signal then lets the writing finish */
     atmo_cancel_clear(&render_cancel);
+    signals_seen = 0;
+    pending_count = 0;
+    for (int i = 0; i < files.count; i++)
+        if (strcmp(files.option[i], "--save-scene") != 0)
+            atmo_tmp_path(files.path[i], pending_tmp[pending_count++]);
     rs.cancel = &render_cancel;
-    struct sigaction sa = {0}, old;
-    sa.sa_handler = on_sigint;
-    sigaction(SIGINT, &sa, &old);
+    struct sigaction old[2];
+    handle_signals(1, old);
     rc = spectral ? atmo_spectral_render(&scene, lut_cache, &rs, &res, &e)
                   : atmo_render(&plan, &rs, &res, &e);
-    sigaction(SIGINT, &old, NULL);
     if (!spectral)
         atmo_plan_free(&plan);
-    if (rc)
+    if (rc == ATMO_ERR_RUNTIME || rc == ATMO_ERR_USAGE) {
+        handle_signals(0, old);
         goto runtime_error;
+    }
+    if (rc == ATMO_OK && res.interrupted && res.samples_max == 0) {
+        atmo_fail(&e, ATMO_INTERRUPTED_EMPTY, "interrupted before the first sample");
+        rc = ATMO_INTERRUPTED_EMPTY;
+    }
+    if (rc) { /* interrupted before any result */
+        fprintf(stderr, "atmo render: %s; no image written (exit status %d)\n", e.msg, rc);
+        handle_signals(0, old);
+        atmo_render_result_free(&res);
+        output_paths_free(&files);
+        return rc;
+    }
     if (res.interrupted)
-        fprintf(stderr, "atmo render: interrupted; writing %d to %d of %d samples per pixel\n",
-                res.samples_min, res.samples_max, res.samples_requested);
+        fprintf(stderr, "atmo render: interrupted; writing %d to %d of %d samples per pixel "
+                        "(exit status %d)\n",
+                res.samples_min, res.samples_max, res.samples_requested,
+                ATMO_INTERRUPTED_PARTIAL);
     if (res.nonfinite)
         fprintf(stderr, "atmo render: warning: %u non-finite samples were dropped (a bug; please "
                         "report it with the scene)\n", res.nonfinite);
@@ -351,11 +400,13 @@ int cmd_render(int argc, char **argv)
                              spectral ? 0.0 : scene.render.wavelengths_nm[2]},
                             res.samples_min, res.interrupted, "atmo " ATMO_VERSION};
     atmo_image img = {res.width, res.height, res.rgb};
-    for (int i = 0; i < n_out; i++)
-        if ((rc = atmo_image_write(outputs[i], &img, &post, &meta, &e)))
-            goto runtime_error;
+    for (int i = 0; i < n_out && !rc; i++)
+        rc = atmo_image_write(outputs[i], &img, &post, &meta, &e);
     double seconds_write = now_seconds() - tw;
-    if (report && (rc = write_report(report, &scene, &res, &rs, outputs, n_out, seconds_write, &e)))
+    if (!rc && report)
+        rc = write_report(report, &scene, &res, &rs, outputs, n_out, seconds_write, &e);
+    handle_signals(0, old);
+    if (rc)
         goto runtime_error;
     if (!quiet)
         fprintf(stderr, "atmo render: wrote %d image%s (%dx%d, %d samples/pixel%s) in %.2fs render "
@@ -364,14 +415,18 @@ int cmd_render(int argc, char **argv)
                 spectral ? ", spectral mode" : "",
                 res.seconds_render, res.seconds_build, res.kernel_cache_hit ? " (cached)" : "",
                 res.device_name);
+    rc = res.interrupted ? ATMO_INTERRUPTED_PARTIAL : ATMO_OK;
     atmo_render_result_free(&res);
-    return ATMO_OK;
+    output_paths_free(&files);
+    return rc;
 
 usage_error:
+    output_paths_free(&files);
     fprintf(stderr, "atmo render: %s\n", e.msg);
     return rc;
 runtime_error:
     atmo_render_result_free(&res);
+    output_paths_free(&files);
     fprintf(stderr, "atmo render: %s\n", e.msg);
     return rc;
 }

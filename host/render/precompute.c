@@ -6,6 +6,13 @@
  * 8 x 8 work-groups and 3-D passes 4 x 4 x 4; global sizes are padded to them and the kernels
  * bounds-check. Host tables (a buffer's host_data) are copied in before any pass.
  *
+ * Launches: under a control (atmo_precompute_control) a pass runs in budgeted slices along its
+ * last dimension through the global work offset (get_global_id includes it), the way a render
+ * runs in budgeted batches, so a cancel token stops a precompute within about one launch
+ * budget; a work item computes the same values in a slice as in one launch, so the buffers are
+ * bitwise the same either way. A cancelled precompute returns ATMO_INTERRUPTED_EMPTY before the
+ * feature it stopped in is cached.
+ *
  * Cache: the unit is one feature's buffers (the products of its passes), stored as
  *   "<feature>-<key>.bin" = magic, key, buffer count, each buffer's size, the payloads, and a
  *   64-bit FNV-1a checksum of the payloads,
@@ -219,14 +226,32 @@ static void cache_store(atmo_cl *cl, const atmo_plan *plan, int feature, unsigne
         atmo_atomic_abort(f, tmp);
 }
 
+/* Whether the control stops the work before the next launch (and says so in e). */
+static int cancelled(const atmo_precompute_control *control, const char *kernel, atmo_err *e)
+{
+    if (!control || !atmo_cancel_requested(control->cancel))
+        return ATMO_OK;
+    return atmo_fail(e, ATMO_INTERRUPTED_EMPTY,
+                     "interrupted during the precompute (%s); nothing was rendered or cached",
+                     kernel);
+}
+
+/* One pass, in slices of whole work-group slabs along its last dimension (rows of a 2-D pass,
+ * layers of a 3-D one) placed by the global work offset, so each work item computes exactly
+ * what it does in a single launch. With a control, each slice is waited for and timed and the
+ * next one holds as many slabs as fit launch_budget_ms at the measured rate (at most twice the
+ * last, like the render batches), and the cancel token is checked before every slice. */
 static int run_pass(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_mem scene,
-                    cl_mem buffers[], const atmo_plan_pass *pass, atmo_err *e)
+                    cl_mem buffers[], const atmo_plan_pass *pass,
+                    const atmo_precompute_control *control, atmo_err *e)
 {
     cl_int err;
+    int rc = cancelled(control, pass->kernel, e);
+    if (rc)
+        return rc;
     cl_kernel k = clCreateKernel(program, pass->kernel, &err);
     if (err != CL_SUCCESS)
         return atmo_cl_fail(e, "clCreateKernel(precompute)", err);
-    int rc = ATMO_OK;
     int next = 0;
     err = clSetKernelArg(k, 0, sizeof scene, &scene);
     if (err != CL_SUCCESS)
@@ -235,15 +260,40 @@ static int run_pass(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_m
         rc = ATMO_ERR_RUNTIME;
     else if ((err = clSetKernelArg(k, (cl_uint)next, sizeof pass->arg, &pass->arg)) != CL_SUCCESS)
         rc = atmo_cl_fail(e, "clSetKernelArg(precompute)", err);
-    if (!rc) {
-        int three_d = pass->depth > 1;
-        size_t local[3] = {three_d ? 4 : 8, three_d ? 4 : 8, three_d ? 4 : 1};
-        size_t global[3] = {pad_to(pass->width, local[0]), pad_to(pass->height, local[1]),
-                            pad_to(pass->depth, local[2])};
-        err = clEnqueueNDRangeKernel(cl->queue, k, three_d ? 3 : 2, NULL, global, local, 0, NULL,
+    int three_d = pass->depth > 1, last = three_d ? 2 : 1;
+    size_t local[3] = {three_d ? 4 : 8, three_d ? 4 : 8, three_d ? 4 : 1};
+    size_t global[3] = {pad_to(pass->width, local[0]), pad_to(pass->height, local[1]),
+                        pad_to(pass->depth, local[2])};
+    size_t slabs = global[last] / local[last], per = 1;
+    int sliced = control && control->launch_budget_ms > 0.0;
+    if (!sliced)
+        per = slabs;
+    for (size_t first = 0; !rc && first < slabs;) {
+        size_t n = per < slabs - first ? per : slabs - first;
+        size_t offset[3] = {0, 0, 0}, size[3] = {global[0], global[1], global[2]};
+        offset[last] = first * local[last];
+        size[last] = n * local[last];
+        double t0 = now_seconds();
+        err = clEnqueueNDRangeKernel(cl->queue, k, three_d ? 3 : 2, offset, size, local, 0, NULL,
                                      NULL);
-        if (err != CL_SUCCESS)
+        if (err != CL_SUCCESS) {
             rc = atmo_cl_fail(e, pass->kernel, err);
+            break;
+        }
+        first += n;
+        if (!sliced)
+            continue;
+        if ((err = clFinish(cl->queue)) != CL_SUCCESS) {
+            rc = atmo_cl_fail(e, "clFinish(precompute)", err);
+            break;
+        }
+        double ms = 1e3 * (now_seconds() - t0);
+        double fit = (double)n * control->launch_budget_ms / (ms > 1e-3 ? ms : 1e-3);
+        per = fit > 2.0 * (double)n ? 2 * n : fit < 1.0 ? 1 : (size_t)fit;
+        if (control->max_slabs > 0 && per > (size_t)control->max_slabs)
+            per = (size_t)control->max_slabs;
+        if (first < slabs)
+            rc = cancelled(control, pass->kernel, e);
     }
     clReleaseKernel(k);
     return rc;
@@ -274,6 +324,14 @@ void atmo_release_buffers(cl_mem buffers[ATMO_PLAN_MAX_BUFFERS])
 int atmo_precompute(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_mem scene,
                     cl_mem buffers[ATMO_PLAN_MAX_BUFFERS], atmo_precompute_info *info,
                     atmo_err *e)
+{
+    return atmo_precompute_controlled(cl, program, plan, scene, buffers, NULL, info, e);
+}
+
+int atmo_precompute_controlled(atmo_cl *cl, cl_program program, const atmo_plan *plan,
+                               cl_mem scene, cl_mem buffers[ATMO_PLAN_MAX_BUFFERS],
+                               const atmo_precompute_control *control,
+                               atmo_precompute_info *info, atmo_err *e)
 {
     double t0 = now_seconds();
     cl_int err;
@@ -322,7 +380,7 @@ int atmo_precompute(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_m
         double tf = now_seconds();
         for (int p = 0; p < plan->pass_count; p++)
             if (plan->passes[p].feature == f &&
-                (rc = run_pass(cl, program, plan, scene, buffers, &plan->passes[p], e)))
+                (rc = run_pass(cl, program, plan, scene, buffers, &plan->passes[p], control, e)))
                 return rc;
         if ((err = clFinish(cl->queue)) != CL_SUCCESS)
             return atmo_cl_fail(e, "clFinish(precompute)", err);
@@ -340,12 +398,13 @@ int atmo_precompute(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_m
 }
 
 int atmo_precompute_view(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_mem scene,
-                         cl_mem buffers[ATMO_PLAN_MAX_BUFFERS], double *seconds, atmo_err *e)
+                         cl_mem buffers[ATMO_PLAN_MAX_BUFFERS],
+                         const atmo_precompute_control *control, double *seconds, atmo_err *e)
 {
     double t0 = now_seconds();
     for (int p = 0; p < plan->pass_count; p++) {
         int rc = follows_view(plan, plan->passes[p].feature)
-                     ? run_pass(cl, program, plan, scene, buffers, &plan->passes[p], e)
+                     ? run_pass(cl, program, plan, scene, buffers, &plan->passes[p], control, e)
                      : ATMO_OK;
         if (rc)
             return rc;

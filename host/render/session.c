@@ -5,7 +5,16 @@
  * Launches: the scheduler (atmo/tiles.h) picks a tile and a batch; the tile is launched with one
  * fixed 8 x 8 local size, its global size padded to it (the kernel bounds-checks), and the step
  * waits for it (clFinish) before timing it, calling the tile callback and checking the cancel
- * token, so a cancel takes effect after the launch in flight. */
+ * token, so a cancel takes effect after the launch in flight. The precompute passes run the same
+ * way, in slices of about one launch budget with the token checked between them (precompute.c);
+ * a precompute that the token stops leaves the session without its data: it returns
+ * ATMO_INTERRUPTED_EMPTY, and steps and reads are refused until set_view or set_scene completes.
+ *
+ * Device memory: right after the device is opened, before the build and the precompute, the
+ * accumulation buffers (two of width x height float4) and the plan's buffers are checked
+ * against CL_DEVICE_MAX_MEM_ALLOC_SIZE (each) and CL_DEVICE_GLOBAL_MEM_SIZE (all together),
+ * so an image the device cannot hold is refused (ATMO_ERR_USAGE, the limit named) before any
+ * work. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -29,6 +38,7 @@ struct atmo_session {
     atmo_tiles tiles;
     atmo_session_info info;
     double progress_start, progress_last;
+    int data_incomplete; /* an interrupted precompute: 1 the view's passes, 2 all passes */
 };
 
 void atmo_render_settings_default(atmo_render_settings *s)
@@ -98,6 +108,12 @@ int atmo_session_bind(const atmo_session *s, cl_kernel k, cl_uint *arg, atmo_err
     return ATMO_OK;
 }
 
+static atmo_precompute_control precompute_control(const atmo_session *s)
+{
+    atmo_precompute_control c = {s->settings.launch_budget_ms, 0, s->settings.cancel};
+    return c;
+}
+
 /* Upload the plan's scene struct, then every precompute pass (LUTs from the cache if keyed). */
 static int precompute_all(atmo_session *s, atmo_err *e)
 {
@@ -107,7 +123,10 @@ static int precompute_all(atmo_session *s, atmo_err *e)
         return atmo_cl_fail(e, "clEnqueueWriteBuffer(scene)", err);
     atmo_release_buffers(s->buffers);
     atmo_precompute_info pi;
-    int rc = atmo_precompute(&s->cl, s->program, &s->plan, s->scene, s->buffers, &pi, e);
+    atmo_precompute_control control = precompute_control(s);
+    int rc = atmo_precompute_controlled(&s->cl, s->program, &s->plan, s->scene, s->buffers,
+                                        &control, &pi, e);
+    s->data_incomplete = rc != ATMO_OK ? 2 : 0;
     if (rc)
         return rc;
     s->info.seconds_precompute += pi.seconds;
@@ -165,6 +184,43 @@ static int bind_render(atmo_session *s, atmo_err *e)
     return err == CL_SUCCESS ? ATMO_OK : atmo_cl_fail(e, "clSetKernelArg(sky_render)", err);
 }
 
+static double gib(cl_ulong bytes) { return (double)bytes / (1024.0 * 1024.0 * 1024.0); }
+
+/* Refuse a plan whose buffers this device cannot allocate, naming the limit. */
+static int check_device_memory(const atmo_session *s, atmo_err *e)
+{
+    cl_ulong max_alloc = 0;
+    cl_int err = clGetDeviceInfo(s->cl.device, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof max_alloc,
+                                 &max_alloc, NULL);
+    if (err != CL_SUCCESS)
+        return atmo_cl_fail(e, "clGetDeviceInfo(CL_DEVICE_MAX_MEM_ALLOC_SIZE)", err);
+    cl_ulong image = (cl_ulong)s->plan.width * (cl_ulong)s->plan.height * 4 * sizeof(float);
+    cl_ulong total = 2 * image + sizeof s->plan.gpu + sizeof(cl_uint);
+    if (image > max_alloc)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "a %dx%d image needs %.2f GiB per accumulation buffer, more than the "
+                         "largest buffer %s can allocate (CL_DEVICE_MAX_MEM_ALLOC_SIZE = %.2f "
+                         "GiB); render fewer pixels",
+                         s->plan.width, s->plan.height, gib(image), s->cl.device_name,
+                         gib(max_alloc));
+    for (int i = 0; i < s->plan.buffer_count; i++) {
+        const atmo_plan_buffer *b = &s->plan.buffers[i];
+        if (b->bytes > max_alloc)
+            return atmo_fail(e, ATMO_ERR_USAGE,
+                             "buffer '%s' needs %.2f GiB, more than the largest buffer %s can "
+                             "allocate (CL_DEVICE_MAX_MEM_ALLOC_SIZE = %.2f GiB)",
+                             b->name, gib(b->bytes), s->cl.device_name, gib(max_alloc));
+        total += b->bytes;
+    }
+    if (total > s->cl.global_memory)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "a %dx%d image and its data need %.2f GiB of device memory, more than "
+                         "%s has (CL_DEVICE_GLOBAL_MEM_SIZE = %.2f GiB); render fewer pixels",
+                         s->plan.width, s->plan.height, gib(total), s->cl.device_name,
+                         gib(s->cl.global_memory));
+    return ATMO_OK;
+}
+
 int atmo_session_open(atmo_session **out, const atmo_plan *plan, const atmo_render_settings *rs,
                       atmo_err *e)
 {
@@ -186,6 +242,8 @@ int atmo_session_open(atmo_session **out, const atmo_plan *plan, const atmo_rend
     snprintf(s->info.platform_name, sizeof s->info.platform_name, "%s", s->cl.platform_name);
     snprintf(s->info.driver_version, sizeof s->info.driver_version, "%s", s->cl.driver_version);
     s->info.seconds_device = now_seconds() - t0;
+    if ((rc = check_device_memory(s, e)))
+        goto cleanup;
 
     atmo_cl_build_options bo = {plan->fragments, plan->fragment_count, plan->defines,
                                 rs->dump_dir, rs->use_kernel_cache, NULL, plan->prelude};
@@ -236,6 +294,13 @@ void atmo_session_close(atmo_session *s)
     free(s);
 }
 
+static int incomplete(atmo_err *e)
+{
+    return atmo_fail(e, ATMO_ERR_USAGE,
+                     "the session's precompute was interrupted; set its view or scene again "
+                     "before rendering");
+}
+
 /* One launch of the render kernel over a tile's batch, waited for. */
 static int launch(atmo_session *s, const atmo_tile *t, atmo_err *e)
 {
@@ -268,6 +333,8 @@ int atmo_session_step(atmo_session *s, const atmo_step *step, atmo_step_status *
 {
     int rc = ATMO_OK;
     memset(status, 0, sizeof *status);
+    if (s->data_incomplete)
+        return incomplete(e);
     if (!s->accum && ((rc = restart(s, e)) || (rc = bind_render(s, e))))
         return rc;
     int target = step->samples > 0 ? step->samples : s->plan.samples;
@@ -342,8 +409,17 @@ int atmo_session_set_view(atmo_session *s, const atmo_plan *plan, atmo_err *e)
                                       &s->plan.gpu, 0, NULL, NULL);
     if (err != CL_SUCCESS)
         return atmo_cl_fail(e, "clEnqueueWriteBuffer(scene)", err);
+    if (s->data_incomplete == 2) { /* the view-independent buffers are unfinished too */
+        if ((rc = precompute_all(s, e)) || !s->accum || (rc = restart(s, e)))
+            return rc;
+        return bind_render(s, e);
+    }
     double seconds;
-    if ((rc = atmo_precompute_view(&s->cl, s->program, &s->plan, s->scene, s->buffers, &seconds, e)))
+    atmo_precompute_control control = precompute_control(s);
+    rc = atmo_precompute_view(&s->cl, s->program, &s->plan, s->scene, s->buffers, &control,
+                              &seconds, e);
+    s->data_incomplete = rc != ATMO_OK;
+    if (rc)
         return rc;
     s->info.seconds_precompute += seconds;
     return s->accum ? restart(s, e) : ATMO_OK;
@@ -368,6 +444,8 @@ int atmo_session_read(atmo_session *s, float *mean, float *se, int *samples, atm
 {
     int rc = ATMO_OK, W = s->plan.width, H = s->plan.height;
     size_t pixels = (size_t)W * (size_t)H;
+    if (s->data_incomplete)
+        return incomplete(e);
     if (!s->accum && ((rc = restart(s, e)) || (rc = bind_render(s, e))))
         return rc;
     float *s1 = malloc(pixels * 4 * sizeof(float));

@@ -166,7 +166,7 @@ int atmo_spectral_render(const atmo_scene *s, int cache_luts, const atmo_render_
         if (rc)
             goto cleanup;
         if (!status.complete) {
-            rc = atmo_fail(e, ATMO_ERR_RUNTIME,
+            rc = atmo_fail(e, ATMO_INTERRUPTED_EMPTY,
                            "interrupted in spectral triplet %d of %d; a partial set of bands has "
                            "no meaningful colour, so no image is written",
                            t + 1, triplets);

@@ -49,6 +49,21 @@ typedef struct atmo_precompute_info {
     int computed;   /* cacheable features whose passes ran */
     int damaged;    /* cache files that failed verification (recomputed and rewritten) */
 } atmo_precompute_info;
+/* How the passes are launched: each in slices of whole work-group slabs along its last
+ * dimension (rows of a 2-D pass, layers of a 3-D one), each slice sized to about
+ * launch_budget_ms at the measured rate, with the cancel token checked between them. */
+typedef struct atmo_precompute_control {
+    double launch_budget_ms;   /* > 0; 0 runs each pass in one launch */
+    int max_slabs;             /* upper bound on slabs per launch (0 = no bound; tests use it) */
+    const atmo_cancel *cancel; /* may be NULL */
+} atmo_precompute_control;
+/* control may be NULL: one launch per pass, not cancellable. A cancelled precompute returns
+ * ATMO_INTERRUPTED_EMPTY and caches nothing of the feature it stopped in. */
+int atmo_precompute_controlled(atmo_cl *cl, cl_program program, const atmo_plan *plan,
+                               cl_mem scene, cl_mem buffers[ATMO_PLAN_MAX_BUFFERS],
+                               const atmo_precompute_control *control,
+                               atmo_precompute_info *info, atmo_err *e);
+/* atmo_precompute_controlled without a control. */
 int atmo_precompute(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_mem scene,
                     cl_mem buffers[ATMO_PLAN_MAX_BUFFERS], atmo_precompute_info *info,
                     atmo_err *e);
@@ -56,7 +71,8 @@ void atmo_release_buffers(cl_mem buffers[ATMO_PLAN_MAX_BUFFERS]);
 /* Rerun only the passes of the features whose buffers follow the view into buffers[], after
  * the scene struct got another camera or sun; waits for the last. */
 int atmo_precompute_view(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_mem scene,
-                         cl_mem buffers[ATMO_PLAN_MAX_BUFFERS], double *seconds, atmo_err *e);
+                         cl_mem buffers[ATMO_PLAN_MAX_BUFFERS],
+                         const atmo_precompute_control *control, double *seconds, atmo_err *e);
 
 /* Bind the plan's buffers, in plan order, as arguments first_arg, first_arg + 1, ... of k (the
  * ATMO_LUT_PARAMS of the kernel's signature); returns the index of the next argument, or -1
