@@ -71,13 +71,15 @@ FILE *atmo_atomic_open(const char *path, char *tmp, atmo_err *e)
     return f;
 }
 
-/* fsync a path opened read-only (a file written through a library, or a directory); file
- * systems that cannot sync a directory answer EINVAL, which is not a failure. */
-static int sync_path(const char *path)
+/* fsync a path opened read-only (a file written through a library, or a directory). A
+ * directory that cannot be opened for reading (write and search permission only) or a file
+ * system that cannot sync one (EINVAL) leaves the name's durability to the file system, which
+ * is not a failure of the write: allow_unopened says so for directories. */
+static int sync_path(const char *path, int allow_unopened)
 {
     int fd = open(path, O_RDONLY);
     if (fd < 0)
-        return -1;
+        return allow_unopened ? 0 : -1;
     int rc = fsync(fd) != 0 && errno != EINVAL ? -1 : 0;
     close(fd);
     return rc;
@@ -92,7 +94,7 @@ int atmo_atomic_commit(FILE *f, const char *tmp, const char *path, atmo_err *e)
         failed |= fsync(fileno(f)) != 0;
         failed |= fclose(f) != 0;
     } else {
-        failed = sync_path(tmp) != 0;
+        failed = sync_path(tmp, 0) != 0;
     }
     if (failed) {
         int err = errno;
@@ -107,7 +109,7 @@ int atmo_atomic_commit(FILE *f, const char *tmp, const char *path, atmo_err *e)
     }
     char dir[ATMO_TMP_PATH_MAX];
     split_dir(path, dir, sizeof dir);
-    if (sync_path(dir) != 0)
+    if (sync_path(dir, 1) != 0)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "cannot sync directory '%s' after writing '%s': %s",
                          dir, path, strerror(errno));
     return ATMO_OK;
