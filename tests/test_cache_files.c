@@ -19,7 +19,8 @@
  *  4. Stale temporary files: the next atomic write of a name removes NAME.tmp.PID of a PID that
  *     is no running process (a child that has exited and been reaped) and keeps that of a live
  *     process (PID 1).
- * ctest gives the test its own cache directory. */
+ * The test starts from an empty cache directory of its own (removed at the end), since it
+ * asserts what a first use stores. */
 #include <fcntl.h>
 #include <float.h>
 #include <math.h>
@@ -369,8 +370,10 @@ static void test_stale_tmp(const char *dir)
 int main(void)
 {
     test_require_opencl();
-    char dir[1024];
-    CHECK(atmo_cache_dir(dir, sizeof dir) == 0);
+    char dir[] = "/tmp/atmo-test-cache-files-XXXXXX";
+    if (!mkdtemp(dir))
+        return 1;
+    setenv("ATMO_CACHE_DIR", dir, 1);
     test_nonfinite_scan();
     test_stale_tmp(dir);
     test_mie_cache();
@@ -379,5 +382,8 @@ int main(void)
     test_kernel_cache(&cl, dir);
     test_lut_cache(&cl, dir);
     atmo_cl_close(&cl);
+    char cmd[256];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    CHECK(system(cmd) == 0);
     return test_finish();
 }

@@ -7,7 +7,8 @@
  *   list    each product's kind, size, age and name, then the count and total size
  *   verify  checks every product (header, kind against its name, lengths, checksum), deletes
  *           those that fail and temporary files whose writer is gone; says how many went
- *   clear   deletes every atmo file in the directory
+ *   clear   deletes every atmo file in the directory (but the temporary files of running
+ *           writers, which those writers rename or remove)
  * Each exits 0 (1 when the directory cannot be read or a file cannot be removed). */
 #include <ctype.h>
 #include <dirent.h>
@@ -167,6 +168,12 @@ static int remove_file(const char *path)
     return -1;
 }
 
+/* A temporary file whose writer is no running process (kill(pid, 0) fails with ESRCH). */
+static int writer_gone(const entry *e)
+{
+    return e->pid > 0 && kill((pid_t)e->pid, 0) == -1 && errno == ESRCH;
+}
+
 static int verify_files(const char *dir, const entry *list, int n)
 {
     int removed = 0, products = 0, rc = ATMO_OK;
@@ -176,7 +183,7 @@ static int verify_files(const char *dir, const entry *list, int n)
         const char *why = NULL;
         char kind[ATMO_CACHE_KIND_MAX];
         if (list[i].pid) {
-            if (kill((pid_t)list[i].pid, 0) == -1 && errno == ESRCH)
+            if (writer_gone(&list[i]))
                 why = "a temporary file whose writer is gone";
         } else {
             products++;
@@ -202,6 +209,8 @@ static int clear_files(const char *dir, const entry *list, int n)
     int removed = 0, rc = ATMO_OK;
     char path[4096];
     for (int i = 0; i < n; i++) {
+        if (list[i].pid && !writer_gone(&list[i]))
+            continue; /* a running writer's: it renames it into place or removes it itself */
         snprintf(path, sizeof path, "%s/%s", dir, list[i].name);
         if (remove_file(path))
             rc = ATMO_ERR_RUNTIME;
