@@ -1,11 +1,18 @@
 /* cl_program.c — assemble embedded kernel fragments, build them, and cache the binaries
- * (atmo/cl_runtime.h). */
+ * (atmo/cl_runtime.h).
+ *
+ * Cache: <cache dir>/kernel-<key>.bin, a self-verifying file (atmo/cache_file.h) whose key is
+ * FNV-1a 64 of the platform, device, driver, build options, assembled source and cache-file
+ * format. Only a file that verifies is handed to clCreateProgramWithBinary (a truncated binary
+ * can abort a driver); a binary the driver refuses is deleted, rebuilt from source and
+ * rewritten. */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include "atmo/cache_file.h"
 #include "atmo/cl_runtime.h"
 #include "atmo/embedded.h"
 #include "atmo/fileio.h"
@@ -103,36 +110,39 @@ static int dump_source(const char *dir, unsigned long long key, const char *src,
     return atmo_write_text_file(path, src, e);
 }
 
-/* Load a cached binary; returns a built program or NULL. */
-static cl_program cache_load(atmo_cl *cl, const char *path, const char *options)
+/* Load a cached binary (atmo/cache_file.h); returns a built program or NULL. A file that fails
+ * verification never reaches the driver; one the driver refuses is rejected like a damaged one,
+ * and the caller rebuilds from source and rewrites it. */
+static cl_program cache_load(atmo_cl *cl, const char *path, unsigned long long key,
+                             const char *options)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
+    void *bin = NULL;
+    size_t len = 0;
+    if (atmo_cache_file_read(path, "kernel", &key, sizeof key, &bin, &len) != 0)
         return NULL;
-    fseek(f, 0, SEEK_END);
-    long size = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    unsigned char *bin = size > 0 ? malloc((size_t)size) : NULL;
-    cl_program prog = NULL;
-    if (bin && fread(bin, 1, (size_t)size, f) == (size_t)size) {
-        size_t len = (size_t)size;
-        const unsigned char *bins[1] = {bin};
-        cl_int status, err;
-        prog = clCreateProgramWithBinary(cl->context, 1, &cl->device, &len, bins, &status, &err);
-        if (err != CL_SUCCESS || status != CL_SUCCESS ||
-            clBuildProgram(prog, 1, &cl->device, options, NULL, NULL) != CL_SUCCESS) {
-            if (prog)
-                clReleaseProgram(prog);
-            prog = NULL; /* a stale or foreign binary: rebuild from source */
-        }
+    const unsigned char *bins[1] = {bin};
+    cl_int status = CL_SUCCESS, err;
+    cl_program prog = clCreateProgramWithBinary(cl->context, 1, &cl->device, &len, bins, &status,
+                                                &err);
+    if (err == CL_SUCCESS && status == CL_SUCCESS)
+        err = clBuildProgram(prog, 1, &cl->device, options, NULL, NULL);
+    else if (err == CL_SUCCESS)
+        err = status;
+    if (err != CL_SUCCESS) {
+        char why[128];
+        snprintf(why, sizeof why, "the OpenCL driver refused the binary: %s",
+                 atmo_cl_error_string(err));
+        atmo_cache_file_reject(path, why);
+        if (prog)
+            clReleaseProgram(prog);
+        prog = NULL;
     }
     free(bin);
-    fclose(f);
     return prog;
 }
 
 /* Store a built program's binary; failures only cost the next run a compile. */
-static void cache_store(cl_program prog, const char *path)
+static void cache_store(cl_program prog, const char *path, unsigned long long key)
 {
     size_t size = 0;
     if (clGetProgramInfo(prog, CL_PROGRAM_BINARY_SIZES, sizeof size, &size, NULL) != CL_SUCCESS ||
@@ -140,14 +150,8 @@ static void cache_store(cl_program prog, const char *path)
         return;
     unsigned char *bin = malloc(size);
     unsigned char *bins[1] = {bin};
-    if (bin && clGetProgramInfo(prog, CL_PROGRAM_BINARIES, sizeof bins, bins, NULL) == CL_SUCCESS) {
-        char tmp[ATMO_TMP_PATH_MAX];
-        FILE *f = atmo_atomic_open(path, tmp, NULL);
-        if (f) {
-            fwrite(bin, 1, size, f);
-            atmo_atomic_commit(f, tmp, path, NULL);
-        }
-    }
+    if (bin && clGetProgramInfo(prog, CL_PROGRAM_BINARIES, sizeof bins, bins, NULL) == CL_SUCCESS)
+        atmo_cache_file_write(path, "kernel", &key, sizeof key, bin, size);
     free(bin);
 }
 
@@ -168,6 +172,7 @@ int atmo_cl_build(atmo_cl *cl, const atmo_cl_build_options *o, cl_program *progr
     key = fnv1a(key, cl->driver_version);
     key = fnv1a(key, options);
     key = fnv1a(key, src);
+    key = fnv1a(key, ATMO_CACHE_FORMAT);
     info->key = key;
     info->cache_hit = 0;
     if (o->dump_dir && (rc = dump_source(o->dump_dir, key, src, e)))
@@ -177,7 +182,7 @@ int atmo_cl_build(atmo_cl *cl, const atmo_cl_build_options *o, cl_program *progr
     int cached = o->use_cache && atmo_cache_dir(dir, sizeof dir) == 0;
     if (cached) {
         snprintf(path, sizeof path, "%s/kernel-%016llx.bin", dir, key);
-        *program = cache_load(cl, path, options);
+        *program = cache_load(cl, path, key, options);
         if (*program) {
             info->cache_hit = 1;
             goto out;
@@ -211,7 +216,7 @@ int atmo_cl_build(atmo_cl *cl, const atmo_cl_build_options *o, cl_program *progr
         goto out;
     }
     if (cached)
-        cache_store(*program, path);
+        cache_store(*program, path, key);
 out:
     free(src);
     info->seconds = now_seconds() - t0;

@@ -64,7 +64,8 @@ static const char render_usage[] =
     "  --launch-budget-ms MS  time per kernel launch to aim for (default 100)\n"
     "  --dump-kernels DIR     write the assembled OpenCL source to DIR\n"
     "  --no-kernel-cache      always compile the kernels (cache: ATMO_CACHE_DIR or ~/.cache/atmo)\n"
-    "  --no-lut-cache         always precompute LUTs (LUTs that take over 0.5 s are cached)\n"
+    "  --no-lut-cache         always precompute LUTs and Mie tables, and store none (LUTs that\n"
+    "                         take over 0.5 s and Mie tables are cached)\n"
     "  --quiet                no progress output\n"
     "\n"
     "\n"
@@ -337,9 +338,8 @@ int cmd_render(int argc, char **argv)
     /* spectral mode plans each triplet of bands itself */
     int spectral = scene.render.spectral_bands > 0;
     atmo_plan plan;
-    if (!spectral && (rc = atmo_plan_make(&scene, &plan, &e)))
+    if (!spectral && (rc = atmo_plan_make_cached(&scene, lut_cache, lut_cache, &plan, &e)))
         goto usage_error;
-    plan.cache_luts = lut_cache;
     rs.progress = quiet ? 0 : (isatty(STDERR_FILENO) ? 2 : 1);
 
     /* the handler stays until the files are written: a signal then lets the writing finish */

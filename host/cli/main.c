@@ -12,6 +12,7 @@ static const atmo_command commands[] = {
     {"mie", "Lorenz-Mie optics of a droplet or a droplet size distribution", cmd_mie},
     {"bench", "measure error against time of the rendering methods", cmd_bench},
     {"radiance", "print sky radiance and luminance for view directions", cmd_radiance},
+    {"cache", "list, verify or clear the cache of kernels, LUTs and Mie tables", cmd_cache},
 };
 
 static void usage(FILE *f)

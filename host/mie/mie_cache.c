@@ -4,23 +4,24 @@
  * the radius quadrature); a loaded one takes ~1 ms. The key is a canonical text of the inputs:
  * the format/numerics version MIE_TABLE_CACHE_VERSION, the distribution (all fields of mie_dsd,
  * %.17g so distinct doubles give distinct text), wavelength, refractive index and the table
- * options. The file, <cache dir>/mie-table-<FNV-1a 64 of the key>.bin, starts with that text and
- * is used only when the text matches exactly (a hash collision or a stale file is a miss) and the
- * size is right; anything else is rebuilt and rewritten atomically (include/atmo/fileio.h).
- * Contents after the key: int n, then theta_deg, mu, P, cdf (n doubles each), norm, and the
- * mie_bulk record as bytes (its size is part of the key). A failure to write the cache is not an
- * error: the table is still returned.
+ * options. The file, <cache dir>/mie-table-<FNV-1a 64 of the key>.bin, is a self-verifying
+ * cache file (atmo/cache_file.h) holding that text as its key; it is used only when it verifies
+ * and the key text matches exactly, anything else is warned about, deleted, rebuilt and
+ * rewritten. Payload: int n, then theta_deg, mu, P, cdf (n doubles each), norm, and the mie_bulk
+ * record as bytes (its size is part of the key). A built table with a NaN or Inf is an error and
+ * is never stored. A failure to write the cache is not an error: the table is still returned.
  *
  * Bump MIE_TABLE_CACHE_VERSION whenever the solver, the size integration or the grid change the
  * numbers, so old files stop matching. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "atmo/cache_file.h"
 #include "atmo/cl_runtime.h"
 #include "atmo/fileio.h"
 #include "atmo/mie.h"
 
-#define MIE_TABLE_CACHE_VERSION 2
+#define MIE_TABLE_CACHE_VERSION 3
 #define MIE_CACHE_KEY_MAX 1024
 
 static unsigned long long mie_fnv1a(const char *s)
@@ -47,55 +48,88 @@ static void mie_cache_key(const mie_dsd *d, double wavelength_nm, double n, doub
              o.max_dx > 0.0 ? 0.0 : (o.tolerance > 0.0 ? o.tolerance : MIE_DSD_TOLERANCE));
 }
 
-/* Read a table whose key text is `key`; 0 on success, -1 on any mismatch or short file. */
+/* The payload: int n, then theta_deg, mu, P, cdf (n doubles each), norm, the mie_bulk bytes. */
+static size_t payload_bytes(int n)
+{
+    return sizeof(int) + 4 * sizeof(double) * (size_t)n + sizeof(double) + sizeof(mie_bulk);
+}
+
+/* Read the table stored under `key`; 0 on success, -1 when there is none or it was damaged
+ * (atmo_cache_file_read has then warned and deleted it). */
 static int mie_cache_load(const char *path, const char *key, mie_table *t)
 {
-    size_t klen = strlen(key);
-    char stored[MIE_CACHE_KEY_MAX];
-    int n = 0, rc = -1;
+    void *data = NULL;
+    size_t bytes = 0;
+    int n = 0;
     memset(t, 0, sizeof *t);
-    FILE *f = fopen(path, "rb");
-    if (!f)
+    if (atmo_cache_file_read(path, "mie-table", key, strlen(key), &data, &bytes) != 0)
         return -1;
-    if (fread(stored, 1, klen, f) != klen || memcmp(stored, key, klen) != 0 ||
-        fread(&n, sizeof n, 1, f) != 1 || n < 2 || n > 100000000)
-        goto done;
+    const unsigned char *p = data;
+    if (bytes >= sizeof n)
+        memcpy(&n, p, sizeof n);
+    if (n < 2 || bytes != payload_bytes(n)) {
+        atmo_cache_file_reject(path, "its table size does not match its length");
+        free(data);
+        return -1;
+    }
+    p += sizeof n;
     t->n = n;
     double **arrays[] = {&t->theta_deg, &t->mu, &t->P, &t->cdf};
     for (int i = 0; i < 4; i++) {
         *arrays[i] = malloc(sizeof(double) * (size_t)n);
-        if (!*arrays[i] || fread(*arrays[i], sizeof(double), (size_t)n, f) != (size_t)n)
-            goto done;
+        if (!*arrays[i]) {
+            mie_table_free(t);
+            free(data);
+            return -1;
+        }
+        memcpy(*arrays[i], p, sizeof(double) * (size_t)n);
+        p += sizeof(double) * (size_t)n;
     }
-    if (fread(&t->norm, sizeof t->norm, 1, f) != 1 || fread(&t->bulk, sizeof t->bulk, 1, f) != 1 ||
-        fgetc(f) != EOF) /* trailing bytes: not a file this code wrote */
-        goto done;
-    rc = 0;
-done:
-    fclose(f);
-    if (rc)
-        mie_table_free(t);
-    return rc;
+    memcpy(&t->norm, p, sizeof t->norm);
+    memcpy(&t->bulk, p + sizeof t->norm, sizeof t->bulk);
+    free(data);
+    return 0;
 }
 
 static void mie_cache_store(const char *path, const char *key, const mie_table *t)
 {
-    char tmp[ATMO_TMP_PATH_MAX];
-    atmo_err e;
-    FILE *f = atmo_atomic_open(path, tmp, &e);
-    if (!f)
+    size_t n = (size_t)t->n, bytes = payload_bytes(t->n);
+    unsigned char *data = malloc(bytes), *p = data;
+    if (!data)
         return;
-    size_t n = (size_t)t->n;
-    int ok = fwrite(key, 1, strlen(key), f) == strlen(key) && fwrite(&t->n, sizeof t->n, 1, f) == 1 &&
-             fwrite(t->theta_deg, sizeof(double), n, f) == n &&
-             fwrite(t->mu, sizeof(double), n, f) == n && fwrite(t->P, sizeof(double), n, f) == n &&
-             fwrite(t->cdf, sizeof(double), n, f) == n &&
-             fwrite(&t->norm, sizeof t->norm, 1, f) == 1 &&
-             fwrite(&t->bulk, sizeof t->bulk, 1, f) == 1;
-    if (ok)
-        atmo_atomic_commit(f, tmp, path, &e);
-    else
-        atmo_atomic_abort(f, tmp);
+    memcpy(p, &t->n, sizeof t->n);
+    p += sizeof t->n;
+    const double *arrays[] = {t->theta_deg, t->mu, t->P, t->cdf};
+    for (int i = 0; i < 4; i++, p += sizeof(double) * n)
+        memcpy(p, arrays[i], sizeof(double) * n);
+    memcpy(p, &t->norm, sizeof t->norm);
+    memcpy(p + sizeof t->norm, &t->bulk, sizeof t->bulk);
+    atmo_cache_file_write(path, "mie-table", key, strlen(key), data, bytes);
+    free(data);
+}
+
+/* A table with a NaN or Inf anywhere is an error naming it, never cached or used. */
+static int check_finite(const mie_table *t, double wavelength_nm, atmo_err *e)
+{
+    const mie_bulk *b = &t->bulk;
+    const double *arrays[] = {t->theta_deg, t->mu, t->P, t->cdf};
+    const char *names[] = {"angle", "cosine", "phase function", "CDF"};
+    double bulk[] = {t->norm, b->qext, b->qsca, b->qback, b->albedo, b->g, b->sigma_ext_per_lwc,
+                     b->sigma_sca_per_lwc, b->r_eff_um, b->v_eff};
+    for (int i = 0; i < 4; i++) {
+        long at = atmo_first_nonfinite_double(arrays[i], (size_t)t->n);
+        if (at >= 0)
+            return atmo_fail(e, ATMO_ERR_RUNTIME,
+                             "the Mie phase table at %g nm has a non-finite %s value (entry %ld "
+                             "of %d); it is not cached or used",
+                             wavelength_nm, names[i], at, t->n);
+    }
+    if (atmo_first_nonfinite_double(bulk, sizeof bulk / sizeof bulk[0]) >= 0)
+        return atmo_fail(e, ATMO_ERR_RUNTIME,
+                         "the Mie phase table at %g nm has non-finite bulk optics (Q, albedo, g "
+                         "or normalisation); it is not cached or used",
+                         wavelength_nm);
+    return ATMO_OK;
 }
 
 int mie_table_cache_path(const mie_dsd *d, double wavelength_nm, double n, double k,
@@ -125,6 +159,8 @@ int mie_table_get(const mie_dsd *d, double wavelength_nm, double n, double k,
         }
     }
     int rc = mie_table_build(d, wavelength_nm, n, k, opt, t, e);
+    if (rc == ATMO_OK && (rc = check_finite(t, wavelength_nm, e)))
+        mie_table_free(t);
     if (rc == ATMO_OK && cached)
         mie_cache_store(path, key, t);
     return rc;

@@ -214,7 +214,15 @@ static int plan_features(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 
 int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 {
+    return atmo_plan_make_cached(s, 0, 1, p, e);
+}
+
+int atmo_plan_make_cached(const atmo_scene *s, int cache_luts, int cache_tables, atmo_plan *p,
+                          atmo_err *e)
+{
     memset(p, 0, sizeof *p);
+    p->cache_luts = cache_luts;
+    p->cache_tables = cache_tables;
     int rc = plan_features(s, p, e);
     if (rc)
         atmo_plan_free(p);

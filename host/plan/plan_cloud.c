@@ -101,7 +101,8 @@ int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e)
         for (int i = 0; i < 3; i++) {
             double n, k, lambda = s->render.wavelengths_nm[i];
             if ((rc = mie_water_index(lambda, &n, &k, e)) ||
-                (rc = mie_table_get(&d, lambda, n, k, &opt, 1, &t[i], NULL, e)))
+                (rc = mie_table_get(&d, lambda, n, k, &opt, p->cache_tables, &t[i], NULL,
+                                    e)))
                 goto cleanup;
             (&g->extinction.x)[i] = (float)(t[i].bulk.sigma_ext_per_lwc * s->cloud.lwc_g_m3);
             (&g->albedo.x)[i] = (float)t[i].bulk.albedo;

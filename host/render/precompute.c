@@ -14,27 +14,29 @@
  * feature it stopped in is cached.
  *
  * Cache: the unit is one feature's buffers (the products of its passes), stored as
- *   "<feature>-<key>.bin" = magic, key, buffer count, each buffer's size, the payloads, and a
- *   64-bit FNV-1a checksum of the payloads,
+ *   "<feature>-<key>.bin", a self-verifying cache file (atmo/cache_file.h: kind = the feature,
+ *   key, lengths, checksum) whose payload is the buffer count, each buffer's size and the bytes,
  * under the key of exactly its inputs (atmo_product_key), so editing sky.cl, changing
  * render.view_steps, the camera or the sun keeps the `lut` tables, while another device or
  * driver, another atmosphere or another source of the passes computes them anew. A file is used
- * only when the magic, the key, the sizes, the checksum and its length all verify; a file that
- * exists but does not verify is reported on stderr, recomputed and rewritten. Features whose
- * buffers follow the view (fast's sky-view LUT) are never cached. Stores go through a temporary
- * file and a rename, so a reader never sees half a file. */
+ * only when the header, the key, the sizes and the checksum all verify; a file that exists but
+ * does not verify is reported on stderr in one line, deleted, recomputed and rewritten. Computed
+ * buffers of float type are checked for NaN and Inf before they are stored or used: one is an
+ * error naming the buffer. Features whose buffers follow the view (fast's sky-view LUT) are
+ * never cached. Stores fsync and rename a temporary file, so a reader never sees half a file. */
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include "atmo/cache_file.h"
 #include "atmo/embedded.h"
 #include "atmo/features.h"
 #include "atmo/fileio.h"
 #include "atmo/render.h"
 
 #define ATMO_LUT_CACHE_MIN_SECONDS 0.5
-#define CACHE_MAGIC "atmo-product-2"
+#define CACHE_MAGIC "atmo-product-3"
 #define FNV_BASIS 1469598103934665603ull
 
 static double now_seconds(void)
@@ -147,83 +149,94 @@ static int feature_buffers(const atmo_plan *plan, int feature, int out[ATMO_PLAN
     return n;
 }
 
-/* Fill a feature's buffers from its cache file: 0 loaded, 1 no file, -1 damaged (why says
- * what failed), -2 an OpenCL error. Nothing is written to a buffer unless all of it verifies. */
+/* Fill a feature's buffers from its cache file (atmo/cache_file.h; payload: uint32 count, uint64
+ * size of each buffer, the buffers' bytes): 0 loaded, 1 no file, -1 damaged (warned and
+ * deleted), -2 an OpenCL error. Nothing is written to a buffer unless all of it verifies. */
 static int cache_load(atmo_cl *cl, const atmo_plan *plan, int feature, unsigned long long key,
-                      const char *path, cl_mem buffers[], const char **why)
+                      const char *path, cl_mem buffers[])
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return 1;
-    int idx[ATMO_PLAN_MAX_BUFFERS], n = feature_buffers(plan, feature, idx), rc = 0;
-    void *data[ATMO_PLAN_MAX_BUFFERS] = {NULL};
-    char magic[sizeof CACHE_MAGIC];
-    uint64_t file_key, sizes[ATMO_PLAN_MAX_BUFFERS], sum, want = FNV_BASIS;
-    uint32_t count;
-    *why = "";
-    if (fread(magic, sizeof magic, 1, f) != 1 || memcmp(magic, CACHE_MAGIC, sizeof magic) != 0)
-        *why = "not a cache file", rc = -1;
-    else if (fread(&file_key, sizeof file_key, 1, f) != 1 || file_key != key)
-        *why = "its key does not match its name", rc = -1;
-    else if (fread(&count, sizeof count, 1, f) != 1 || count != (uint32_t)n ||
-             fread(sizes, sizeof sizes[0], (size_t)n, f) != (size_t)n)
-        *why = "wrong number of buffers", rc = -1;
-    for (int i = 0; i < n && rc == 0; i++) {
-        if (sizes[i] != plan->buffers[idx[i]].bytes) {
-            *why = "wrong buffer size", rc = -1;
-            break;
-        }
-        data[i] = malloc(sizes[i]);
-        if (!data[i] || fread(data[i], sizes[i], 1, f) != 1)
-            *why = data[i] ? "truncated" : "out of memory", rc = -1;
-        else
-            want = fnv(want, data[i], sizes[i]);
+    void *payload = NULL;
+    size_t bytes = 0;
+    uint64_t file_key = key;
+    int rc = atmo_cache_file_read(path, plan->features[feature]->name, &file_key,
+                                  sizeof file_key, &payload, &bytes);
+    if (rc)
+        return rc;
+    int idx[ATMO_PLAN_MAX_BUFFERS], n = feature_buffers(plan, feature, idx);
+    uint32_t count = 0;
+    size_t want = sizeof count + sizeof(uint64_t) * (size_t)n;
+    const unsigned char *p = payload;
+    if (bytes >= sizeof count)
+        memcpy(&count, p, sizeof count);
+    int same = count == (uint32_t)n && bytes >= want;
+    for (int i = 0; i < n && same; i++) {
+        uint64_t size;
+        memcpy(&size, p + sizeof count + sizeof size * (size_t)i, sizeof size);
+        same = size == plan->buffers[idx[i]].bytes;
+        want += plan->buffers[idx[i]].bytes;
     }
-    if (rc == 0 && (fread(&sum, sizeof sum, 1, f) != 1 || sum != want))
-        *why = "checksum mismatch", rc = -1;
-    if (rc == 0 && fgetc(f) != EOF)
-        *why = "trailing bytes", rc = -1;
-    for (int i = 0; i < n && rc == 0; i++)
-        if (clEnqueueWriteBuffer(cl->queue, buffers[idx[i]], CL_TRUE, 0, sizes[i], data[i], 0,
-                                 NULL, NULL) != CL_SUCCESS)
+    if (!same || bytes != want) {
+        atmo_cache_file_reject(path, "its buffers do not match the plan's");
+        free(payload);
+        return -1;
+    }
+    p += sizeof count + sizeof(uint64_t) * (size_t)n;
+    for (int i = 0; i < n && rc == 0; i++) {
+        size_t size = plan->buffers[idx[i]].bytes;
+        if (clEnqueueWriteBuffer(cl->queue, buffers[idx[i]], CL_TRUE, 0, size, p, 0, NULL,
+                                 NULL) != CL_SUCCESS)
             rc = -2;
-    for (int i = 0; i < n; i++)
-        free(data[i]);
-    fclose(f);
+        p += size;
+    }
+    free(payload);
     return rc;
 }
 
-/* Store a feature's buffers; a failure only costs the next run a precompute. */
-static void cache_store(atmo_cl *cl, const atmo_plan *plan, int feature, unsigned long long key,
-                        const char *path, cl_mem buffers[])
+/* Read a feature's buffers back into one cache payload (layout as cache_load's), checking that
+ * every float in them is finite: a table with NaN or Inf is an error naming it, never stored. */
+static int read_feature(atmo_cl *cl, const atmo_plan *plan, int feature, cl_mem buffers[],
+                        unsigned char **payload, size_t *bytes, atmo_err *e)
 {
     int idx[ATMO_PLAN_MAX_BUFFERS], n = feature_buffers(plan, feature, idx);
-    char tmp[ATMO_TMP_PATH_MAX];
-    FILE *f = atmo_atomic_open(path, tmp, NULL);
-    if (!f)
-        return;
-    uint64_t file_key = key, sizes[ATMO_PLAN_MAX_BUFFERS], sum = FNV_BASIS;
     uint32_t count = (uint32_t)n;
+    size_t total = sizeof count + sizeof(uint64_t) * (size_t)n;
     for (int i = 0; i < n; i++)
-        sizes[i] = plan->buffers[idx[i]].bytes;
-    int ok = fwrite(CACHE_MAGIC, sizeof CACHE_MAGIC, 1, f) == 1 &&
-             fwrite(&file_key, sizeof file_key, 1, f) == 1 &&
-             fwrite(&count, sizeof count, 1, f) == 1 &&
-             fwrite(sizes, sizeof sizes[0], (size_t)n, f) == (size_t)n;
-    for (int i = 0; i < n && ok; i++) {
-        void *data = malloc(sizes[i]);
-        ok = data &&
-             clEnqueueReadBuffer(cl->queue, buffers[idx[i]], CL_TRUE, 0, sizes[i], data, 0, NULL,
-                                 NULL) == CL_SUCCESS &&
-             fwrite(data, sizes[i], 1, f) == 1;
-        if (ok)
-            sum = fnv(sum, data, sizes[i]);
-        free(data);
+        total += plan->buffers[idx[i]].bytes;
+    unsigned char *data = malloc(total), *p = data;
+    if (!data)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory reading back %s",
+                         plan->features[feature]->name);
+    memcpy(p, &count, sizeof count);
+    p += sizeof count;
+    for (int i = 0; i < n; i++, p += sizeof(uint64_t)) {
+        uint64_t size = plan->buffers[idx[i]].bytes;
+        memcpy(p, &size, sizeof size);
     }
-    if (ok && fwrite(&sum, sizeof sum, 1, f) == 1)
-        atmo_atomic_commit(f, tmp, path, NULL);
-    else
-        atmo_atomic_abort(f, tmp);
+    for (int i = 0; i < n; i++) {
+        const atmo_plan_buffer *b = &plan->buffers[idx[i]];
+        cl_int err = clEnqueueReadBuffer(cl->queue, buffers[idx[i]], CL_TRUE, 0, b->bytes, p, 0,
+                                         NULL, NULL);
+        if (err != CL_SUCCESS) {
+            free(data);
+            return atmo_cl_fail(e, "clEnqueueReadBuffer(precomputed)", err);
+        }
+        long at = strncmp(b->type, "float", 5) == 0
+                      ? atmo_first_nonfinite_float((const float *)(const void *)p,
+                                                   b->bytes / sizeof(float))
+                      : -1;
+        if (at >= 0) {
+            free(data);
+            return atmo_fail(e, ATMO_ERR_RUNTIME,
+                             "precomputed %s (feature %s) has a non-finite value at float %ld of "
+                             "%zu; it is not cached or used (a bug: please report the scene)",
+                             b->name, plan->features[feature]->name, at,
+                             b->bytes / sizeof(float));
+        }
+        p += b->bytes;
+    }
+    *payload = data;
+    *bytes = total;
+    return ATMO_OK;
 }
 
 /* Whether the control stops the work before the next launch (and says so in e). */
@@ -359,10 +372,9 @@ int atmo_precompute_controlled(atmo_cl *cl, cl_program program, const atmo_plan 
         char path[1200];
         cacheables += cacheable(plan, f);
         if (cached) {
-            const char *why;
             key = atmo_product_key(plan, f, &device, atmo_kernel_sources);
             snprintf(path, sizeof path, "%s/%s-%016llx.bin", dir, plan->features[f]->name, key);
-            int loaded = cache_load(cl, plan, f, key, path, buffers, &why);
+            int loaded = cache_load(cl, plan, f, key, path, buffers);
             if (loaded == -2)
                 return atmo_fail(e, ATMO_ERR_RUNTIME, "clEnqueueWriteBuffer(cached %s) failed",
                                  plan->features[f]->name);
@@ -371,8 +383,6 @@ int atmo_precompute_controlled(atmo_cl *cl, cl_program program, const atmo_plan 
                 continue;
             }
             if (loaded == -1) {
-                fprintf(stderr, "atmo: cache file %s is damaged (%s); recomputing it\n", path,
-                        why);
                 info->damaged++;
                 damaged = 1;
             }
@@ -384,10 +394,20 @@ int atmo_precompute_controlled(atmo_cl *cl, cl_program program, const atmo_plan 
                 return rc;
         if ((err = clFinish(cl->queue)) != CL_SUCCESS)
             return atmo_cl_fail(e, "clFinish(precompute)", err);
-        info->computed += cacheable(plan, f);
-        if (cached && (damaged || plan->cache_luts == 2 ||
-                       now_seconds() - tf > ATMO_LUT_CACHE_MIN_SECONDS))
-            cache_store(cl, plan, f, key, path, buffers);
+        if (!cacheable(plan, f))
+            continue;
+        info->computed++;
+        int store = cached && (damaged || plan->cache_luts == 2 ||
+                               now_seconds() - tf > ATMO_LUT_CACHE_MIN_SECONDS);
+        unsigned char *payload = NULL;
+        size_t bytes = 0;
+        if ((rc = read_feature(cl, plan, f, buffers, &payload, &bytes, e)))
+            return rc;
+        uint64_t file_key = key;
+        if (store)
+            atmo_cache_file_write(path, plan->features[f]->name, &file_key, sizeof file_key,
+                                  payload, bytes);
+        free(payload);
     }
     err = clFinish(cl->queue);
     if (err != CL_SUCCESS)

@@ -147,9 +147,8 @@ int atmo_spectral_render(const atmo_scene *s, int cache_luts, const atmo_render_
         st.render.quantity = ATMO_QUANTITY_RADIANCE;
         st.render.spectral_bands = 0;
         atmo_plan plan;
-        if ((rc = atmo_plan_make(&st, &plan, e)))
+        if ((rc = atmo_plan_make_cached(&st, cache_luts, cache_luts, &plan, e)))
             goto cleanup;
-        plan.cache_luts = cache_luts;
         double seconds_before = 0.0;
         if (session) {
             const atmo_session_info *in = atmo_session_get_info(session);

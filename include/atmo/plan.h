@@ -69,6 +69,8 @@ typedef struct atmo_plan {
     int pass_count;
     int cache_luts;                /* disk cache of precomputed buffers: 0 off, 1 those whose
                                       passes took > 0.5 s, 2 all */
+    int cache_tables;              /* host tables built while planning (Mie phase tables) go
+                                      through the disk cache: 0 off, 1 on */
     void *owned[ATMO_PLAN_MAX_OWNED]; /* heap blocks the host tables live in (atmo_plan_own) */
     int owned_count;
     int width, height, samples;
@@ -77,6 +79,10 @@ typedef struct atmo_plan {
 /* Plan a validated scene. On failure nothing is left to release; on success the caller
  * releases the plan with atmo_plan_free once no session or probe opened with it is left. */
 int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e);
+/* atmo_plan_make with the disk caches chosen: cache_luts as the field of that name (plain
+ * atmo_plan_make: 0, for the caller to set), cache_tables for the host tables (plain: 1). */
+int atmo_plan_make_cached(const atmo_scene *s, int cache_luts, int cache_tables, atmo_plan *p,
+                          atmo_err *e);
 /* Release what the plan owns (its host tables) and zero it. */
 void atmo_plan_free(atmo_plan *p);
 /* For a feature's plan function: the plan takes the heap block (malloc'd) that a host table
