@@ -111,4 +111,39 @@ for args in "--dsd nope --wavelength-nm 550" "--radius-um 10" "--radius-um -1 --
         echo "atmo mie $args: exit $rc, stderr:"; cat "$tmp/e"; fail=1
     fi
 done
+
+# The radius range, stated in radius at the user's wavelength: 2 pi r / lambda in [1e-6, 2e4]
+# and r <= 5000 um, so at 550 nm 8.75352e-08 .. 1750.7 um. Outside it (the ends of the series'
+# precision: at 1e-300 x^2 underflows, at 1e-100 Q_sca does): exit 2, one line naming the range.
+for r in 1e-300 1e-100 8.7e-8 1751 5000 6000; do
+    "$atmo" mie --radius-um $r --wavelength-nm 550 >"$tmp/o" 2>"$tmp/e"
+    rc=$?
+    if [ $rc -ne 2 ] || [ "$(wc -l <"$tmp/e")" -ne 1 ] ||
+       ! grep -q "outside 8.75352e-08-1750.7 um.*at 550 nm" "$tmp/e"; then
+        echo "atmo mie --radius-um $r: exit $rc, stderr:"; cat "$tmp/e"; fail=1
+    fi
+done
+# Inside it, at both ends: finite numbers. Small end (x = 1.0001e-6) against the Rayleigh limit
+# (Bohren & Huffman eq. 5.8-5.9, K = (m^2 - 1)/(m^2 + 2)): Q_abs = 4 x Im K' (K' with m = n - ik
+# in the MIEV0 convention: 4 x Im(-K) here), Q_sca = 8/3 x^4 |K|^2, g -> 0; the series' own
+# corrections are O(x^2) = 1e-12, so 1e-9 relative bounds the solver and the JSON's 15 digits.
+"$atmo" mie --radius-um 8.7544e-8 --wavelength-nm 550 --index 1.33+1e-3i --json >"$tmp/small.json" \
+    2>"$tmp/e" || { echo "small end refused:"; cat "$tmp/e"; fail=1; }
+"$atmo" mie --radius-um 1750 --wavelength-nm 550 --json >"$tmp/large.json" 2>"$tmp/e" ||
+    { echo "large end refused:"; cat "$tmp/e"; fail=1; }
+python3 - "$tmp/small.json" "$tmp/large.json" <<'PY' || fail=1
+import json, math, sys
+r = json.load(open(sys.argv[1]))["results"][0]
+x, m = r["x"], complex(1.33, 1e-3)
+K = (m * m - 1) / (m * m + 2)
+q_abs, q_sca = 4 * x * abs(K.imag), 8 / 3 * x**4 * abs(K) ** 2
+for got, want in ((r["Qext"], q_abs + q_sca), (r["Qsca"], q_sca)):
+    assert abs(got - want) <= 1e-9 * want, (got, want)
+assert math.isfinite(r["g"]) and abs(r["g"]) < 1e-9, r["g"]
+big = json.load(open(sys.argv[2]))["results"][0]
+for k in ("Qext", "Qsca", "g"):
+    assert math.isfinite(big[k]), (k, big[k])
+assert abs(big["Qext"] - 2) < 0.01, big["Qext"]  # the extinction paradox: Q_ext -> 2
+print("radius range ends: ok")
+PY
 exit $fail

@@ -6,11 +6,12 @@
  * thesis presets are compared with the "direction to sun", position and rotation columns of
  * shared/reference/presets.md, and every rejection case of the validation (unknown keys, with a
  * suggestion; missing, malformed or non-finite values; values out of range; vectors of the wrong
- * length; unknown enum names; in JSON files also syntax errors, with their line, and values of the
- * wrong type) must return ATMO_ERR_USAGE with a one-line message naming the key. Tolerances: exact
- * (==, memcmp) where a value is stored or round-tripped, since nothing is computed; 1e-5 on the
- * thesis sun vectors, whose table entries carry 6 decimals (they are themselves normalised only to
- * ~5e-7). */
+ * length; unknown enum names; whole numbers not in decimal digits; NUL in a scene file's
+ * strings; in JSON files also syntax errors, with their line, and values of the wrong type) must
+ * return ATMO_ERR_USAGE with a one-line message naming the key, and a message over the buffer
+ * keeps its start and its reason. Tolerances: exact (==, memcmp) where a value is stored or
+ * round-tripped, since nothing is computed; 1e-5 on the thesis sun vectors, whose table entries
+ * carry 6 decimals (they are themselves normalised only to ~5e-7). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -303,6 +304,18 @@ static void test_set_rejections(void)
     check_set_rejected("camera.kind=fisheye", "camera.kind", "perspective, panorama");
     check_set_rejected("post.tonemap=filmic", "post.tonemap", "reinhard-white");
     check_set_rejected("post.white_balance=maybe", "post.white_balance", "true or false");
+    /* whole numbers in decimal digits only, the accepted form named */
+    check_set_rejected("image.width=0x10", "image.width = '0x10'", "decimal digits, e.g. 640");
+    check_set_rejected("image.width= 8", "image.width = ' 8'", "decimal digits");
+    check_set_rejected("image.width=8 ", "image.width = '8 '", "decimal digits");
+    check_set_rejected("image.width=010", "image.width = '010'", "decimal digits");
+    check_set_rejected("image.width=+8", "image.width = '+8'", "decimal digits");
+    check_set_rejected("image.width=-08", "image.width = '-08'", "decimal digits");
+    check_set_rejected("image.width=8.", "image.width = '8.'", "decimal digits");
+    /* a vec3's example is its own default, a valid value */
+    check_set_rejected("render.wavelengths_nm=680,550", "render.wavelengths_nm",
+                       "e.g. 680,550,440");
+    check_set_rejected("camera.position_m=1,2", "camera.position_m", "e.g. 0,1.7,0");
 }
 
 static void test_validate(void)
@@ -458,6 +471,29 @@ static void test_json(void)
     check_json_rejected("{\"sun\": {\"zenith_deg\": \"60\"}}", "sun.zenith_deg", "a number");
     check_json_rejected("{\"sun\": {\"zenith_deg\": null}}", "sun.zenith_deg", "a number");
     check_json_rejected("{\"sun\": {\"zenith_deg\": 1e999}}", "sun.zenith_deg", "finite");
+    /* a NUL in a string would cut the name short: refused, whether the value would then be
+     * valid ("panorama") or not */
+    check_json_rejected("{\"camera\": {\"kind\": \"panorama\\u0000x\"}}", "NUL", "line 1");
+    check_json_rejected("{\n\"camera\": {\"kind\\u0000\": \"panorama\"}}", "NUL", "line 2");
+    /* an escaped backslash before u0000 is text, not a NUL: the name is then wrong instead */
+    check_json_rejected("{\"camera\": {\"kind\": \"x\\\\u0000\"}}", "camera.kind", "valid name");
+    /* a message longer than the buffer keeps its start and its reason (the middle of a long
+     * path goes) */
+    {
+        char long_path[3000];
+        atmo_err err = {{0}};
+        atmo_scene sc;
+        memset(long_path, 'p', sizeof long_path - 1);
+        long_path[0] = '/';
+        long_path[sizeof long_path - 1] = '\0';
+        atmo_scene_defaults(&sc);
+        CHECK(atmo_scene_load_json(&sc, long_path, &err) == ATMO_ERR_USAGE);
+        size_t n = strlen(err.msg);
+        CHECK(n == sizeof err.msg - 1);
+        CHECK(strncmp(err.msg, "cannot read scene file '/ppp", 28) == 0);
+        CHECK(strstr(err.msg, "p...p") != NULL);
+        CHECK(n > 16 && strcmp(err.msg + n - 16, "(check the path)") == 0);
+    }
     check_json_rejected("{\"sun\": {\"zenith_deg\": 200}}", "sun.zenith_deg = 200", "0 .. 180 deg");
     check_json_rejected("{\"image\": {\"width\": 10.5}}", "image.width", "whole");
     check_json_rejected("{\"camera\": {\"position_m\": [1, 2]}}", "camera.position_m", "3 numbers");

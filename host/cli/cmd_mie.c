@@ -40,6 +40,8 @@ static void mie_usage(FILE *f)
             "                [--index N+Ki] [--angles-deg LIST] [--table out.csv] [--chart out.svg]\n"
             "                [--tolerance T | --radius-step DX] [--json] [--no-cache]\n\n"
             "Lorenz-Mie optics of one water droplet or a droplet size distribution.\n"
+            "  --radius-um  one droplet's radius: 2 pi R / lambda in [1e-6, 2e4] and R <= 5000 um\n"
+            "               (at 550 nm: 8.75e-8 to 1750 um)\n"
             "  --dsd        preset (cumulus stratus fog corona thesis-disperse thesis-uniform) or\n"
             "               mono:R | gamma:REFF,VEFF | lognormal:RG,SIGMA_G | modgamma:ALPHA,B,GAMMA\n"
             "               (radii in um; optional ,max=RMAX cut)\n"
@@ -159,8 +161,9 @@ int cmd_mie(int argc, char **argv)
             char *end;
             dsd = (mie_dsd){.kind = MIE_DSD_MONO, .radius_um = strtod(v, &end)};
             dsd_text = v;
-            rc = *end ? atmo_fail(&e, ATMO_ERR_USAGE, "--radius-um '%s' is not a number", v)
-                      : mie_dsd_validate(&dsd, &e);
+            /* its range depends on the wavelengths: checked once they are all known */
+            if (*end || end == v)
+                rc = atmo_fail(&e, ATMO_ERR_USAGE, "--radius-um '%s' is not a number", v);
             have_dsd++;
         } else if (strcmp(a, "--dsd") == 0) {
             rc = mie_dsd_parse(v, &dsd, &e);
@@ -214,18 +217,19 @@ int cmd_mie(int argc, char **argv)
         goto done;
     }
 
-    /* one grid for all wavelengths, fine enough for the shortest */
-    double r0, r1, lmin = lambda[0];
+    /* one grid for all wavelengths, fine enough for the shortest; the drops' radii within the
+     * solver's range at every wavelength (the largest at the shortest, the smallest at the
+     * longest) */
+    double r0, r1, lmin = lambda[0], lmax = lambda[0];
     for (int i = 1; i < nl; i++)
-        lmin = fmin(lmin, lambda[i]);
-    if ((rc = mie_dsd_range(&dsd, &r0, &r1, &e)))
+        lmin = fmin(lmin, lambda[i]), lmax = fmax(lmax, lambda[i]);
+    if (dsd.kind == MIE_DSD_MONO && ((rc = mie_check_radius(dsd.radius_um, lmin, &e)) ||
+                                     (rc = mie_check_radius(dsd.radius_um, lmax, &e))))
+        goto done;
+    if ((rc = mie_dsd_range(&dsd, &r0, &r1, &e)) || (rc = mie_check_radius(r1, lmin, &e)) ||
+        (rc = mie_check_radius(r0, lmax, &e)))
         goto done;
     double xmax = 2.0 * MIE_CLI_PI * r1 / (lmin * 1e-3);
-    if (xmax > MIE_X_MAX) {
-        rc = atmo_fail(&e, ATMO_ERR_USAGE, "size parameter %.0f exceeds %g; use smaller drops or "
-                       "longer wavelengths", xmax, MIE_X_MAX);
-        goto done;
-    }
     if (tolerance > 0.0 && radius_step > 0.0) {
         rc = atmo_fail(&e, ATMO_ERR_USAGE, "give --tolerance or --radius-step, not both");
         goto done;

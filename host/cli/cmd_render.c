@@ -178,11 +178,10 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
 
 static int parse_int_arg(const char *opt, const char *v, int lo, int hi, int *out, atmo_err *e)
 {
-    char *end;
-    long x = v ? strtol(v, &end, 10) : 0;
-    if (!v || *v == 0 || *end != 0 || x < lo || x > hi)
-        return atmo_fail(e, ATMO_ERR_USAGE, "%s needs an integer in [%d, %d], got '%s'", opt, lo,
-                         hi, v ? v : "");
+    double x = 0.0;
+    if (!v || !atmo_parse_decimal(v, &x) || x != floor(x) || x < lo || x > hi)
+        return atmo_fail(e, ATMO_ERR_USAGE, "%s needs a whole number in [%d, %d] written as "
+                         "decimal digits, got '%s'", opt, lo, hi, v ? v : "");
     *out = (int)x;
     return ATMO_OK;
 }
@@ -409,12 +408,16 @@ int cmd_render(int argc, char **argv)
     if (rc)
         goto runtime_error;
     if (!quiet)
-        fprintf(stderr, "atmo render: wrote %d image%s (%dx%d, %d samples/pixel%s) in %.2fs render "
-                        "+ %.2fs build%s on %s\n",
+        fprintf(stderr, "atmo render: wrote %d image%s (%dx%d, %d samples/pixel%s) in %.2fs: "
+                        "%.2fs device, %.2fs build%s, %.2fs precompute%s, %.2fs render, %.2fs "
+                        "write on %s\n",
                 n_out, n_out > 1 ? "s" : "", res.width, res.height, res.samples_min,
                 spectral ? ", spectral mode" : "",
-                res.seconds_render, res.seconds_build, res.kernel_cache_hit ? " (cached)" : "",
-                res.device_name);
+                res.seconds_device + res.seconds_build + res.seconds_precompute +
+                    res.seconds_render + seconds_write,
+                res.seconds_device, res.seconds_build, res.kernel_cache_hit ? " (cached)" : "",
+                res.seconds_precompute, res.lut_cache_hit ? " (cached)" : "", res.seconds_render,
+                seconds_write, res.device_name);
     rc = res.interrupted ? ATMO_INTERRUPTED_PARTIAL : ATMO_OK;
     atmo_render_result_free(&res);
     output_paths_free(&files);

@@ -125,12 +125,33 @@ static void mie_small(double x, double complex m, double complex *a, double comp
         a[1] = x3 * ah2;
 }
 
+void mie_radius_limits_um(double wavelength_nm, double *r_min_um, double *r_max_um)
+{
+    double per_x_um = wavelength_nm * 1e-3 / (2.0 * M_PI);
+    *r_min_um = MIE_X_MIN * per_x_um;
+    *r_max_um = fmin(MIE_X_MAX * per_x_um, MIE_RADIUS_MAX_UM);
+}
+
+int mie_check_radius(double radius_um, double wavelength_nm, atmo_err *e)
+{
+    double r_min, r_max;
+    mie_radius_limits_um(wavelength_nm, &r_min, &r_max);
+    if (radius_um >= r_min && radius_um <= r_max)
+        return ATMO_OK;
+    return atmo_fail(e, ATMO_ERR_USAGE,
+                     "radius %g um is outside %.6g-%.6g um, the radii the Mie solver resolves "
+                     "at %g nm (size parameter 2 pi r / lambda in [%g, %g], r <= %g um); "
+                     "choose a radius in that range",
+                     radius_um, r_min, r_max, wavelength_nm, MIE_X_MIN, MIE_X_MAX,
+                     MIE_RADIUS_MAX_UM);
+}
+
 static int mie_check(double x, double n, double k, atmo_err *e)
 {
-    if (!(x > 0.0) || !(x <= MIE_X_MAX))
+    if (!(x >= MIE_X_MIN) || !(x <= MIE_X_MAX))
         return atmo_fail(e, ATMO_ERR_USAGE,
-                         "Mie size parameter x = %g is outside (0, %g]; use a smaller radius or a "
-                         "longer wavelength", x, MIE_X_MAX);
+                         "Mie size parameter x = %g is outside [%g, %g]; use a radius within "
+                         "[%g, %g] lambda / 2 pi", x, MIE_X_MIN, MIE_X_MAX, MIE_X_MIN, MIE_X_MAX);
     if (!(n > 0.0) || !isfinite(n) || !(k >= 0.0) || !isfinite(k))
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "refractive index %g + %gi is invalid; need n > 0 and absorption k >= 0",

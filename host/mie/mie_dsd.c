@@ -48,9 +48,9 @@ int mie_dsd_validate(const mie_dsd *d, atmo_err *e)
 {
     switch (d->kind) {
     case MIE_DSD_MONO:
-        if (!(d->radius_um > 0.0 && d->radius_um <= 5000.0))
-            return atmo_fail(e, ATMO_ERR_USAGE, "droplet radius %g um is outside (0, 5000]",
-                             d->radius_um);
+        if (!(d->radius_um > 0.0 && d->radius_um <= MIE_RADIUS_MAX_UM))
+            return atmo_fail(e, ATMO_ERR_USAGE, "droplet radius %g um is outside (0, %g] um",
+                             d->radius_um, MIE_RADIUS_MAX_UM);
         break;
     case MIE_DSD_GAMMA:
         if (!(d->r_eff_um > 0.0 && d->r_eff_um <= 1000.0) || !(d->v_eff >= 0.001 && d->v_eff < 0.5))

@@ -123,9 +123,11 @@ int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e)
                                   sizeof(float4) * (size_t)count, 0, rows, e);
         g->table_size = count;
     } else {
-        /* observer only: an empty shell at the ground; the table is one zero row, never read */
+        /* observer only: an empty shell at the ground and a one-row zero table, so the
+         * cloud's phase (weighted by its zero scattering) is 0, not a read before the table */
         static const float4 zero_row;
         g->base_m = g->top_m = 0.0f;
+        g->table_size = 1;
         rc = atmo_plan_add_buffer(p, "cloud_phase_table", "float4", sizeof zero_row, 0,
                                   &zero_row, e);
     }

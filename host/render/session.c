@@ -39,6 +39,7 @@ struct atmo_session {
     atmo_session_info info;
     double progress_start, progress_last;
     int data_incomplete; /* an interrupted precompute: 1 the view's passes, 2 all passes */
+    double rate_start, rate_start_done; /* after the first launch: the rate's origin, or -1 */
 };
 
 void atmo_render_settings_default(atmo_render_settings *s)
@@ -67,9 +68,8 @@ static void report_progress(atmo_session *s, int target, int finished)
 {
     double t = now_seconds();
     int mode = s->settings.progress;
-    if (!mode || (!finished && t - s->progress_last < (mode == 2 ? 0.2 : 5.0)))
+    if (!mode)
         return;
-    s->progress_last = t;
     double done = 0.0, total = (double)target * s->tiles.width * s->tiles.height;
     for (int y = 0; y < s->tiles.height; y += s->tiles.size)
         for (int x = 0; x < s->tiles.width; x += s->tiles.size) {
@@ -78,21 +78,34 @@ static void report_progress(atmo_session *s, int target, int finished)
             int n = atmo_tiles_pixel_samples(&s->tiles, x, y);
             done += (double)(n < target ? n : target) * w * h;
         }
+    /* The first launch carries one-time costs (the driver finishing the kernel's compilation,
+     * the first batch size): the ETA is the rate measured from its end, none before that. */
+    if (s->rate_start < 0.0) {
+        s->rate_start = t;
+        s->rate_start_done = done;
+    }
+    if (!finished && t - s->progress_last < (mode == 2 ? 0.2 : 5.0))
+        return;
+    s->progress_last = t;
     double f = total > 0 ? done / total : 1.0;
-    double elapsed = t - s->progress_start, eta = f > 0 ? elapsed * (1.0 - f) / f : 0.0;
+    double elapsed = t - s->progress_start, measured = done - s->rate_start_done;
+    char eta[32] = "ETA --";
+    if (finished)
+        snprintf(eta, sizeof eta, "ETA 0.0s");
+    else if (measured > 0.0 && t > s->rate_start)
+        snprintf(eta, sizeof eta, "ETA %.1fs", (total - done) * (t - s->rate_start) / measured);
     if (mode == 2) {
         char bar[41];
         int n = (int)(f * 40.0);
         for (int i = 0; i < 40; i++)
             bar[i] = i < n ? '#' : '.';
         bar[40] = 0;
-        fprintf(stderr, "\rrender [%s] %5.1f%%  %.1fs elapsed  ETA %.1fs ", bar, 100.0 * f,
-                elapsed, eta);
+        fprintf(stderr, "\rrender [%s] %5.1f%%  %.1fs elapsed  %s ", bar, 100.0 * f, elapsed,
+                eta);
         if (finished)
             fputc('\n', stderr);
     } else {
-        fprintf(stderr, "render: %.1f%% done, %.1fs elapsed, ETA %.1fs\n", 100.0 * f, elapsed,
-                eta);
+        fprintf(stderr, "render: %.1f%% done, %.1fs elapsed, %s\n", 100.0 * f, elapsed, eta);
     }
 }
 
@@ -166,6 +179,7 @@ static int restart(atmo_session *s, atmo_err *e)
     atmo_tiles_reset(&s->tiles);
     s->info.nonfinite = 0;
     s->progress_start = now_seconds();
+    s->rate_start = -1.0;
     return ATMO_OK;
 }
 

@@ -358,10 +358,44 @@ static int parse_number(const char *text, double *out)
     return 1;
 }
 
+int atmo_parse_decimal(const char *text, double *out)
+{
+    const char *c = text;
+    c += *c == '-';
+    /* JSON's number grammar: -?(0|[1-9][0-9]*)(.[0-9]+)?([eE][+-]?[0-9]+)?, so no blanks, '+',
+     * hexadecimal, "inf"/"nan" or leading zero (which C and other readers take for octal) */
+    if (!isdigit((unsigned char)*c) || (c[0] == '0' && isdigit((unsigned char)c[1])))
+        return 0;
+    while (isdigit((unsigned char)*c))
+        c++;
+    if (*c == '.') {
+        if (!isdigit((unsigned char)*++c))
+            return 0;
+        while (isdigit((unsigned char)*c))
+            c++;
+    }
+    if (*c == 'e' || *c == 'E') {
+        c++;
+        c += *c == '+' || *c == '-';
+        if (!isdigit((unsigned char)*c))
+            return 0;
+        while (isdigit((unsigned char)*c))
+            c++;
+    }
+    if (*c)
+        return 0;
+    errno = 0;
+    *out = strtod(text, NULL);
+    if (errno == ERANGE && fabs(*out) > 1.0) /* overflow: report as Inf, not as garbage */
+        *out = HUGE_VAL;
+    return 1;
+}
+
 static int parse_value(const atmo_param *p, const char *value, double v[3])
 {
     switch (p->type) {
     case ATMO_PARAM_INT:
+        return atmo_parse_decimal(value, &v[0]);
     case ATMO_PARAM_FLOAT:
         return parse_number(value, &v[0]);
     case ATMO_PARAM_VEC3: {
@@ -415,14 +449,20 @@ int atmo_scene_set(atmo_scene *s, const char *key, const char *value, const char
         return unknown_key(key, where, e);
     double v[3] = {0, 0, 0};
     if (!parse_value(p, value, v)) {
-        char range[128];
+        char range[128], example[96] = "";
         range_text(p, range, sizeof range);
+        if (p->type == ATMO_PARAM_VEC3) /* the default is a valid example */
+            snprintf(example, sizeof example, ", e.g. %.15g,%.15g,%.15g (the default)",
+                     p->def[0], p->def[1], p->def[2]);
+        else if (p->type == ATMO_PARAM_INT)
+            snprintf(example, sizeof example, ", written as decimal digits, e.g. %.15g",
+                     p->def[0]);
         return atmo_fail(e, ATMO_ERR_USAGE, "%s = '%s' (from %s) is not %s; valid: %s%s", p->key,
                          value, where,
                          p->type == ATMO_PARAM_VEC3  ? "three numbers x,y,z"
                          : p->type == ATMO_PARAM_INT ? "an integer"
                                                      : "a number",
-                         range, p->type == ATMO_PARAM_VEC3 ? ", e.g. 0,1.7,0" : "");
+                         range, example);
     }
     return atmo_param_store(s, p, v, value, where, e);
 }

@@ -21,7 +21,7 @@
 #define SCENE_FILE_MAX (16 << 20) /* a scene is a few kB; refuse anything absurd */
 
 /* The whole file as a string; the buffer grows by doubling so pipes (--scene /dev/stdin) work. */
-static char *read_file(const char *path, atmo_err *e)
+static char *read_file(const char *path, size_t *length, atmo_err *e)
 {
     char *text = NULL;
     size_t used = 0, cap = 4096;
@@ -54,6 +54,7 @@ static char *read_file(const char *path, atmo_err *e)
         goto fail;
     }
     text[used] = '\0';
+    *length = used;
     goto cleanup;
 fail:
     free(text);
@@ -62,6 +63,29 @@ cleanup:
     if (f)
         fclose(f);
     return text;
+}
+
+/* The line of the first NUL character of the text's JSON strings, written raw or as the
+ * escape \u0000 (cJSON would end the string there and read a shorter name), or 0 if none. */
+static int nul_line(const char *text, size_t length)
+{
+    int line = 1, in_string = 0;
+    for (size_t i = 0; i < length; i++) {
+        char c = text[i];
+        if (c == '\0')
+            return line;
+        line += c == '\n';
+        if (!in_string) {
+            in_string = c == '"';
+        } else if (c == '"') {
+            in_string = 0;
+        } else if (c == '\\' && i + 1 < length) {
+            if (length - i >= 6 && memcmp(text + i + 1, "u0000", 5) == 0)
+                return line;
+            i++; /* the escaped character */
+        }
+    }
+    return 0;
 }
 
 /* One JSON value into parameter p. */
@@ -174,9 +198,18 @@ int atmo_scene_load_json(atmo_scene *s, const char *path, atmo_err *e)
     int rc = ATMO_OK;
     cJSON *root = NULL;
     unsigned char *seen = NULL;
-    char *text = read_file(path, e);
+    size_t length = 0;
+    char *text = read_file(path, &length, e);
     if (!text)
         return ATMO_ERR_USAGE;
+    int bad_line = nul_line(text, length);
+    if (bad_line) {
+        rc = atmo_fail(e, ATMO_ERR_USAGE,
+                       "%s: a NUL character (\\u0000 or a zero byte) near line %d; scene files "
+                       "hold names and numbers, which never contain one",
+                       path, bad_line);
+        goto cleanup;
+    }
     const char *end = NULL;
     root = cJSON_ParseWithOpts(text, &end, 1);
     if (!root) {

@@ -25,7 +25,21 @@
 
 /* ---- single sphere (host/mie.c) ------------------------------------------------------------ */
 
+/* The sizes the solver resolves: size parameter x = 2 pi r / lambda in [MIE_X_MIN, MIE_X_MAX]
+ * (below 1e-6 the small-sphere series' x^3 and x^6 terms leave double's range or precision:
+ * Q_sca underflows at x ~ 1e-77, x^2 at 1e-154; above 2e4 the term count and the recurrences
+ * are untested), and drops no larger than MIE_RADIUS_MAX_UM (raindrops break up beyond ~5 mm). */
+#define MIE_X_MIN 1.0e-6
 #define MIE_X_MAX 2.0e4
+#define MIE_RADIUS_MAX_UM 5000.0
+
+/* The radii (um) the solver takes at a wavelength (nm): [MIE_X_MIN, MIE_X_MAX] lambda / 2 pi,
+ * the upper end at most MIE_RADIUS_MAX_UM. */
+void mie_radius_limits_um(double wavelength_nm, double *r_min_um, double *r_max_um);
+
+/* ATMO_OK when radius_um is within mie_radius_limits_um at wavelength_nm; otherwise a usage
+ * error that states the range at that wavelength in radius and size parameter. */
+int mie_check_radius(double radius_um, double wavelength_nm, atmo_err *e);
 
 /* How the downward recurrence of D_n(mx) is started. Only MIE_DN_LENTZ is meant for use; the
  * others exist so tests can show which starts are safe (ZERO_FAR) and which are not (BHMIE). */

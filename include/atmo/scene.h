@@ -138,6 +138,10 @@ int atmo_param_store(atmo_scene *s, const atmo_param *p, const double v[3], cons
 int atmo_scene_check_spectral_bands(int bands, atmo_err *e);
 
 void atmo_scene_defaults(atmo_scene *s);
+/* A number written as a decimal literal in JSON's grammar ("8", "-3", "0.5", "1e3"; no
+ * blanks, '+', 0x, inf/nan or leading zero): 1 and *out when text is one, 0 otherwise. The
+ * form integer parameters take from text (whether the value is whole is checked apart). */
+int atmo_parse_decimal(const char *text, double *out);
 /* Set one parameter from text ("60", "1,2,3", "panorama", "true"); `where` names the source
  * for error messages ("--set", "scene.json"). Rejects unknown keys (suggesting the closest),
  * wrong types, NaN/Inf and out-of-range values. */

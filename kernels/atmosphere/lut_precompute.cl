@@ -44,11 +44,20 @@ float3 lut_weights(float3 sigma, float dt, float3 e)
 /* Mean of e^{-h/H} over a segment of length dt whose altitude is h at its middle and changes at
  * the rate dh (the cosine mu_t of the ray there): with h linear along the segment the mean is
  * e^{-h/H} sinh(y) / y, y = dh dt / (2 H). The bare midpoint value would be low by y^2 / 6: 2.6 %
- * for the Mie layer (H = 1.2 km) on a 64-segment zenith ray from the ground. */
+ * for the Mie layer (H = 1.2 km) on a 64-segment zenith ray from the ground. The same mean in
+ * terms of the ends h -+ a (a = |dh| dt / 2) is H (e^{-(h - a)/H} - e^{-(h + a)/H}) / (2a),
+ * written so for long segments (|y| > 20): those of a thick atmosphere (segments of hundreds
+ * of km over H = 1.2 km) reach |y| > 89, where sinh overflows float while e^{-h/H} underflows
+ * (0 x Inf = NaN), and the straight line through the midpoint can dip below the ground, which
+ * a segment above it never does: its lower end is taken at altitude >= 0. */
 float lut_mean_density(float h, float dh, float dt, float H)
 {
-    float y = 0.5f * dh * dt / H;
-    return exp(-h / H) * (fabs(y) > 1e-3f ? sinh(y) / y : 1.0f + y * y / 6.0f);
+    float y = 0.5f * dh * dt / H, ay = fabs(y);
+    if (ay > 20.0f) {
+        float lo = fmax(h - ay * H, 0.0f), hi = h + ay * H;
+        return H * (exp(-lo / H) - exp(-hi / H)) / (hi - lo);
+    }
+    return exp(-h / H) * (ay > 1e-3f ? sinh(y) / y : 1.0f + y * y / 6.0f);
 }
 
 /* Mean extinction over such a segment (the ozone tent is linear in h: its midpoint value). */

@@ -7,7 +7,7 @@
  * given to orders >= 4; g1, g2: the aerosol phase function's Legendre coefficients (ms_lut.h).
  * Fourteen planes of w x h texels (ms_lut.h): 0 Psi and f_ms, 1-5 the anisotropy D_uu, D_ss, D_us,
  * b_u, b_s (final after the third pass), 6 the source of the third pass and 7-11 its anisotropy, 12
- * the sky irradiance of the ground, 13 scratch (f_ms, then E_1 + E_2 / (1 - f)). Each pass writes
+ * the sky irradiance of the ground, 13 scratch (1 - f_ms, then E_1 + E_2 / (1 - f)). Each pass writes
  * only planes that no texel of the same pass reads from another texel. Needs the transmittance LUT,
  * so its passes run after transmittance_lut. */
 
@@ -32,7 +32,7 @@ int ms_this_texel(__global const atmo_gpu_scene *scene, float *r, float *mu_s)
 }
 
 /* Pass 1: order 2 from the first-order light at x (ms_lut_texel): plane 0 = (L_2, f_y),
- * 1-5 = its anisotropy, 13 = f_ms per channel, 12 = E_1 (the ground's first-order sky light). */
+ * 1-5 = its anisotropy, 13 = 1 - f_ms per channel, 12 = E_1 (the ground's first-order sky light). */
 __kernel void ms_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PARAMS, int arg)
 {
     float r, mu_s;
@@ -63,8 +63,8 @@ __kernel void ms_lut_order3(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_P
     float4 dev[6];
     float3 s3 = ms_lut_gather(scene, MS_PLANE(0), MS_PLANE(1), MS_PLANE(12), w, h, r, mu_s,
                               scene->ms.directions_mu, MS_GATHER_PHI, scene->ms.steps, dev);
-    float3 f = MS_PLANE(13)[idx].xyz, series = 1.0f / (1.0f - f);
-    float3 gain = 1.0f + scene->ms.higher_anisotropy * f * series;
+    float3 escape = MS_PLANE(13)[idx].xyz, series = 1.0f / escape;
+    float3 gain = 1.0f + scene->ms.higher_anisotropy * (1.0f - escape) * series;
     MS_PLANE(6)[idx] = (float4)(MS_PLANE(0)[idx].xyz + s3 * series, 0.0f);
     for (int k = 0; k < 5; k++)
         MS_PLANE(k + 7)[idx] = (float4)(MS_PLANE(k + 1)[idx].xyz + dev[k].xyz * gain, 0.0f);

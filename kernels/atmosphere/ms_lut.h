@@ -254,8 +254,14 @@ ATMO_FN vec3 ms_moments_finish(const ms_moments *m, float4 *dev)
 
 /* First pass at one texel at radius r and sun cosine mu_s: returns L_2 (xyz) and f_ms of
  * channel y (w); dev[0..4] = the anisotropy of order 2 (xyz per channel; see the file's
- * comment): D_uu, D_ss, D_us, b_u, b_s; dev[5] = f_ms (xyz per channel); dev[6] = E_1, the
- * first-order sky irradiance of a horizontal surface at x, 4 pi <L_1' max(mu, 0)>. */
+ * comment): D_uu, D_ss, D_us, b_u, b_s; dev[5] = 1 - f_ms (xyz per channel); dev[6] = E_1, the
+ * first-order sky irradiance of a horizontal surface at x, 4 pi <L_1' max(mu, 0)>.
+ * 1 - f_ms is summed as what leaves instead of subtracted: along each direction the segments'
+ * weights telescope, sum_i T_i w_i sigma_t,i = 1 - T_end, so the light that does not scatter
+ * again is T_end + sum_i T_i w_i sigma_abs,i (absorbed by the aerosols and ozone, or reaching
+ * the top or the ground). In an optically thick air (tau ~ 1e5 at rayleigh_coefficient 1)
+ * f_ms is 1 - 1e-8 and rounds to 1 in float, where the series 1 / (1 - f_ms) would divide by
+ * zero; the sum keeps the 1e-8. */
 ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
                             ATMO_GLOBAL const float4 *transmittance, float r, float mu_s,
                             int n_mu, int n_phi, int n_steps, float4 *dev)
@@ -266,7 +272,9 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
     vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
     vec3 albedo = v3_from4(a->ground_albedo);
     float sin_s = atmo_safe_sqrt(1.0f - mu_s * mu_s);
-    vec3 f = v3(0.0f, 0.0f, 0.0f), zero = v3(0.0f, 0.0f, 0.0f);
+    vec3 mie_absorption = v3_sub(v3_from4(a->mie_extinction), beta_m);
+    vec3 ozone_absorption = v3_from4(a->ozone_absorption);
+    vec3 escape = v3(0.0f, 0.0f, 0.0f), zero = v3(0.0f, 0.0f, 0.0f);
     ms_moments mom = {zero, zero, zero, zero, zero, zero, zero, 0.0f};
     float mu_h = -atmo_safe_sqrt((r - a->bottom_radius) * (r + a->bottom_radius)) / r;
     for (int k = 0; k < n_mu; k++) {
@@ -279,7 +287,7 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
         for (int l = 0; l < n_phi; l++) {
             float phi = ATMO_PI * ((float)l + 0.5f) / (float)n_phi;
             float nu = atmo_clamp_cos(mu * mu_s + sin_v * sin_s * cosf(phi));
-            vec3 L1 = v3(0.0f, 0.0f, 0.0f), f1 = v3(0.0f, 0.0f, 0.0f);
+            vec3 L1 = v3(0.0f, 0.0f, 0.0f), absorbed = v3(0.0f, 0.0f, 0.0f);
             float p_r = phase_rayleigh(nu), p_m = media_mie_phase(a, nu);
             vec3 T = v3(1.0f, 1.0f, 1.0f);
             for (int i = 0; i < n_steps; i++) {
@@ -294,7 +302,8 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
                 float rho_r = expf(-h / a->rayleigh_scale_height);
                 float rho_m = expf(-h / a->mie_scale_height);
                 vec3 sigma_t = atmosphere_extinction(a, h);
-                vec3 sigma_s = v3_add(v3_scale(beta_r, rho_r), v3_scale(beta_m, rho_m));
+                vec3 sigma_abs = v3_add(v3_scale(mie_absorption, rho_m),
+                                        v3_scale(ozone_absorption, atmosphere_ozone_tent(a, h)));
                 vec3 scattering = v3_add(v3_scale(beta_r, rho_r * p_r),
                                          v3_scale(beta_m, rho_m * p_m));
                 vec3 sun_t = atmosphere_sun_transmittance(a, transmittance, tw, th, r_t, mu_s_t);
@@ -303,7 +312,7 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
                             medium_segment_weight(sigma_t.z, dt));
                 vec3 Tw = v3_mul(T, w);
                 L1 = v3_add(L1, v3_mul(Tw, v3_mul(v3_mul(scattering, E), sun_t)));
-                f1 = v3_add(f1, v3_mul(Tw, sigma_s));
+                absorbed = v3_add(absorbed, v3_mul(Tw, sigma_abs));
                 T = v3_mul(T, v3_exp(v3_scale(sigma_t, -dt)));
             }
             if (hits_ground) {
@@ -316,14 +325,14 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
             }
             /* w in the local frame: up component mu, sun-ward horizontal sin_v cos(phi) */
             ms_moments_add(&mom, L1, u, mu, sin_v * cosf(phi));
-            f = v3_add(f, v3_scale(f1, u));
+            escape = v3_add(escape, v3_scale(v3_add(T, absorbed), u));
         }
     }
     vec3 L2 = ms_moments_finish(&mom, dev);
-    f = v3_scale(f, 1.0f / mom.weights);
-    dev[5] = ms_float4(f, 0.0f);
+    escape = v3_scale(escape, 1.0f / mom.weights);
+    dev[5] = ms_float4(escape, 0.0f);
     dev[6] = ms_float4(v3_scale(mom.e_up, 4.0f * ATMO_PI / mom.weights), 0.0f);
-    return ms_float4(L2, f.y);
+    return ms_float4(L2, 1.0f - escape.y);
 }
 
 /* A gathering pass at one texel (x at radius r, sun cosine mu_s): the radiance arriving at x
