@@ -139,9 +139,9 @@ fi
 
 # Reserved identifiers. Allowed: the OpenCL C address-space and function qualifiers, the GNU
 # attribute syntax (OpenCL C 6.11), OpenCL's and the compilers' predefined macros read in #if
-# tests, C's __VA_ARGS__, builtins, and C11's own keywords that begin with an underscore and a
-# capital.
-allowed='^(__kernel|__global|__constant|__local|__private|__read_only|__write_only|__attribute__|__OPENCL_VERSION__|__OPENCL_C_VERSION__|__VA_ARGS__|__func__|__FILE__|__LINE__|__STDC__|__STDC_VERSION__|__GNUC__|__clang__|__linux__|__x86_64__|__builtin_[A-Za-z0-9_]*|_Static_assert|_Alignas|_Alignof|_Bool|_Noreturn|_Atomic|_Generic|_Thread_local)$'
+# tests, C's __VA_ARGS__, builtins, C11's own keywords that begin with an underscore and a
+# capital, and POSIX's pathconf/sysconf names (_PC_*, _SC_*).
+allowed='^(__kernel|__global|__constant|__local|__private|__read_only|__write_only|__attribute__|__OPENCL_VERSION__|__OPENCL_C_VERSION__|__VA_ARGS__|__func__|__FILE__|__LINE__|__STDC__|__STDC_VERSION__|__GNUC__|__clang__|__linux__|__x86_64__|__builtin_[A-Za-z0-9_]*|_Static_assert|_Alignas|_Alignof|_Bool|_Noreturn|_Atomic|_Generic|_Thread_local|_PC_[A-Z_]*|_SC_[A-Z_]*)$'
 reserved=$(grep -rnoE '(^|[^A-Za-z0-9_])(__[A-Za-z0-9_]*|_[A-Z][A-Za-z0-9_]*)' host include kernels |
     sed -E 's/^([^:]*:[0-9]+):[^_]*/\1 /' | awk -v allowed="$allowed" '$2 !~ allowed')
 if [ -n "$reserved" ]; then

@@ -365,6 +365,13 @@ int atmo_precompute_controlled(atmo_cl *cl, cl_program program, const atmo_plan 
                                                         b->bytes, b->host_data, 0, NULL,
                                                         NULL)) != CL_SUCCESS)
             return atmo_cl_fail(e, "clEnqueueWriteBuffer(table)", err);
+        /* every other buffer starts as zeros: parts a scene's passes never write (lut's scratch
+         * with one order) are then defined, so a cached product is the same on every run */
+        static const unsigned char zero = 0;
+        if (!b->host_data && (err = clEnqueueFillBuffer(cl->queue, buffers[i], &zero, 1, 0,
+                                                        b->bytes ? b->bytes : 16, 0, NULL,
+                                                        NULL)) != CL_SUCCESS)
+            return atmo_cl_fail(e, "clEnqueueFillBuffer(buffer)", err);
     }
     for (int f = 0; f < plan->feature_count; f++) {
         int cached = use_cache && cacheable(plan, f), damaged = 0;
