@@ -88,7 +88,8 @@ const atmo_preset atmo_presets[] = {
            "sun.azimuth_deg=-150.985019"),
     PRESET("glory",
            "above a cloud deck of thesis-disperse drops, looking down at the antisolar point: "
-           "glory rings and the fog bow (thesis view 5's sun)",
+           "the fog bow and the glory's bright centre (its one ring lies within 1 deg, smoothed "
+           "by the sun's disc; thesis view 5's sun)",
            "camera.kind=perspective", "camera.position_m=0,3000,0", "camera.pitch_deg=-53.85",
            "camera.yaw_deg=180", "camera.fov_deg=90", "sun.zenith_deg=36.15",
            "sun.azimuth_deg=0", "atmosphere.method=march", "cloud.enabled=true",

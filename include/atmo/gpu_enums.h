@@ -15,6 +15,20 @@ enum { ATMO_PHASE_CORNETTE_SHANKS = 0, ATMO_PHASE_HENYEY_GREENSTEIN = 1 };
  * g, or Jendersie and d'Eon's fit for the effective diameter) */
 enum { ATMO_CLOUD_PHASE_MIE = 0, ATMO_CLOUD_PHASE_HG, ATMO_CLOUD_PHASE_JENDERSIE_DEON };
 
+/* post.tonemap and post.transfer: the display pipeline's operator and curve
+ * (kernels/post/tonemap.h) */
+enum {
+    ATMO_TONEMAP_NONE = 0,
+    ATMO_TONEMAP_EXPOSURE,
+    ATMO_TONEMAP_REINHARD,
+    ATMO_TONEMAP_REINHARD_WHITE,
+    ATMO_TONEMAP_ACES,
+    ATMO_TONEMAP_UNREAL3,
+    ATMO_TONEMAP_UCHIMURA,
+    ATMO_TONEMAP_LOTTES,
+};
+enum { ATMO_TRANSFER_SRGB = 0, ATMO_TRANSFER_GAMMA22 = 1 };
+
 /* atmosphere.method, in the order of the scene registry's names */
 enum {
     ATMO_METHOD_SINGLE = 0, /* single scattering only, ray marched */

@@ -46,21 +46,8 @@
 #define ATMO_TONEMAP_H
 #include "common/compat.h"
 
-#ifdef __OPENCL_VERSION__
-/* The same values as the host enums of include/atmo/scene.h (which OpenCL C does not see). */
-enum {
-    ATMO_TONEMAP_NONE = 0,
-    ATMO_TONEMAP_EXPOSURE,
-    ATMO_TONEMAP_REINHARD,
-    ATMO_TONEMAP_REINHARD_WHITE,
-    ATMO_TONEMAP_ACES,
-    ATMO_TONEMAP_UNREAL3,
-    ATMO_TONEMAP_UCHIMURA,
-    ATMO_TONEMAP_LOTTES,
-};
-enum { ATMO_TRANSFER_SRGB = 0, ATMO_TRANSFER_GAMMA22 = 1 };
-#else
-#include "atmo/scene.h"
+#ifndef __OPENCL_VERSION__
+#include "atmo/gpu_enums.h"
 #endif
 
 ATMO_FN float tonemap_exposure(float x) { return -expm1f(-x); }
