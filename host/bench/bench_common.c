@@ -18,7 +18,9 @@ int bench_render(const atmo_scene *s, const char *device, atmo_render_result *r,
         return rc;
     atmo_render_settings_default(&rs);
     rs.device = device;
-    return atmo_render(&plan, &rs, r, e);
+    rc = atmo_render(&plan, &rs, r, e);
+    atmo_plan_free(&plan);
+    return rc;
 }
 
 double bench_rms_relative(const atmo_render_result *a, const atmo_render_result *ref)
