@@ -23,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include "atmo/clock.h"
 #include "atmo/render.h"
 #include "testlib.h"
 #include "testscene.h"
@@ -52,13 +53,6 @@ static unsigned char *precompute_all(atmo_cl *cl, cl_program prog, const atmo_pl
     atmo_release_buffers(luts);
     clReleaseMemObject(scene);
     return all;
-}
-
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* Seconds that method lut's precompute takes in 1-slab slices (timed in part 2). */
@@ -138,9 +132,9 @@ static void test_cancel(atmo_cl *cl)
     atmo_plan uncached = plan; /* a view of the same plan that stores nothing (not freed) */
     uncached.cache_luts = 0;
     size_t n;
-    double t0 = now_seconds();
+    double t0 = atmo_now_seconds();
     free(precompute_all(cl, prog, &uncached, &during, &n));
-    lut_one_slab_seconds = now_seconds() - t0;
+    lut_one_slab_seconds = atmo_now_seconds() - t0;
     pthread_t thread;
     CHECK(pthread_create(&thread, NULL, cancel_later, &token) == 0);
     int rc = atmo_precompute_controlled(cl, prog, &plan, scene, luts, &during, &info, &e);

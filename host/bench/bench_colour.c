@@ -22,7 +22,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
+#include "atmo/clock.h"
 #include "atmo/bench.h"
 #include "atmo/colour.h"
 #include "atmo/fileio.h"
@@ -44,13 +44,6 @@ typedef struct colour_row {
     double seconds_3, seconds_n;
 } colour_row;
 
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* Radiance at three wavelengths for the views, with the method and the sun of the scene. */
 static int run_probe(const atmo_scene *base, const double wl[3], const float4 *rays, int n,
                    const char *device, double (*L)[3], double *seconds, char *device_name,
@@ -64,10 +57,10 @@ static int run_probe(const atmo_scene *base, const double wl[3], const float4 *r
     int rc = atmo_plan_make(&s, &plan, e);
     if (!rc)
         rc = atmo_probe_open(&probe, &plan, device, e);
-    double t0 = now_s();
+    double t0 = atmo_now_seconds();
     if (!rc)
         rc = atmo_probe_rays(&probe, rays, n, 64, L, NULL, e);
-    *seconds += probe.seconds_precompute + (now_s() - t0);
+    *seconds += probe.seconds_precompute + (atmo_now_seconds() - t0);
     if (!rc)
         snprintf(device_name, 256, "%s", atmo_session_get_info(probe.session)->device_name);
     atmo_probe_close(&probe);

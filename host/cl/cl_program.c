@@ -11,20 +11,13 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
+#include "atmo/clock.h"
 #include "atmo/cache_file.h"
 #include "atmo/cl_runtime.h"
 #include "atmo/embedded.h"
 #include "atmo/fileio.h"
 
 #define ATMO_CL_STD "-cl-std=CL1.2"
-
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 char *atmo_cl_assemble(const char *prelude, const char *const *fragments, int count,
                        const char *extra, atmo_err *e)
@@ -158,7 +151,7 @@ static void cache_store(cl_program prog, const char *path, unsigned long long ke
 int atmo_cl_build(atmo_cl *cl, const atmo_cl_build_options *o, cl_program *program,
                   atmo_cl_build_info *info, atmo_err *e)
 {
-    double t0 = now_seconds();
+    double t0 = atmo_now_seconds();
     int rc = ATMO_OK;
     char options[2048];
     snprintf(options, sizeof options, "%s %s", ATMO_CL_STD, o->defines ? o->defines : "");
@@ -219,6 +212,6 @@ int atmo_cl_build(atmo_cl *cl, const atmo_cl_build_options *o, cl_program *progr
         cache_store(*program, path, key);
 out:
     free(src);
-    info->seconds = now_seconds() - t0;
+    info->seconds = atmo_now_seconds() - t0;
     return rc;
 }

@@ -19,8 +19,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
+#include "atmo/clock.h"
 #include "atmo/colour.h"
 #include "atmo/fileio.h"
 #include "atmo/image.h"
@@ -106,13 +106,6 @@ static void handle_signals(int install, struct sigaction old[2])
     sigemptyset(&sa.sa_mask);
     for (int i = 0; i < 2; i++)
         sigaction(sigs[i], install ? &sa : &old[i], install ? &old[i] : NULL);
-}
-
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 static int write_report(const char *path, const atmo_scene *s, const atmo_render_result *r,
@@ -380,7 +373,7 @@ int cmd_render(int argc, char **argv)
                         "report it with the scene)\n", res.nonfinite);
 
     /* outputs */
-    double tw = now_seconds();
+    double tw = atmo_now_seconds();
     atmo_post post = {(float)scene.post.exposure, scene.post.tonemap, (float)scene.post.white_point,
                       scene.post.white_balance, {1.0f, 1.0f, 1.0f}, scene.post.transfer};
     double wp[3];
@@ -401,7 +394,7 @@ int cmd_render(int argc, char **argv)
     atmo_image img = {res.width, res.height, res.rgb};
     for (int i = 0; i < n_out && !rc; i++)
         rc = atmo_image_write(outputs[i], &img, &post, &meta, &e);
-    double seconds_write = now_seconds() - tw;
+    double seconds_write = atmo_now_seconds() - tw;
     if (!rc && report)
         rc = write_report(report, &scene, &res, &rs, outputs, n_out, seconds_write, &e);
     handle_signals(0, old);

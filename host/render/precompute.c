@@ -28,7 +28,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
+#include "atmo/clock.h"
 #include "atmo/cache_file.h"
 #include "atmo/embedded.h"
 #include "atmo/features.h"
@@ -38,13 +38,6 @@
 #define ATMO_LUT_CACHE_MIN_SECONDS 0.5
 #define CACHE_MAGIC "atmo-product-3"
 #define FNV_BASIS 1469598103934665603ull
-
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static size_t pad_to(int n, size_t m) { return ((size_t)n + m - 1) / m * m; }
 
@@ -286,7 +279,7 @@ static int run_pass(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_m
         size_t offset[3] = {0, 0, 0}, size[3] = {global[0], global[1], global[2]};
         offset[last] = first * local[last];
         size[last] = n * local[last];
-        double t0 = now_seconds();
+        double t0 = atmo_now_seconds();
         err = clEnqueueNDRangeKernel(cl->queue, k, three_d ? 3 : 2, offset, size, local, 0, NULL,
                                      NULL);
         if (err != CL_SUCCESS) {
@@ -300,7 +293,7 @@ static int run_pass(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_m
             rc = atmo_cl_fail(e, "clFinish(precompute)", err);
             break;
         }
-        double ms = 1e3 * (now_seconds() - t0);
+        double ms = 1e3 * (atmo_now_seconds() - t0);
         double fit = (double)n * control->launch_budget_ms / (ms > 1e-3 ? ms : 1e-3);
         per = fit > 2.0 * (double)n ? 2 * n : fit < 1.0 ? 1 : (size_t)fit;
         if (control->max_slabs > 0 && per > (size_t)control->max_slabs)
@@ -346,7 +339,7 @@ int atmo_precompute_controlled(atmo_cl *cl, cl_program program, const atmo_plan 
                                const atmo_precompute_control *control,
                                atmo_precompute_info *info, atmo_err *e)
 {
-    double t0 = now_seconds();
+    double t0 = atmo_now_seconds();
     cl_int err;
     int rc, cacheables = 0;
     char dir[1024];
@@ -394,7 +387,7 @@ int atmo_precompute_controlled(atmo_cl *cl, cl_program program, const atmo_plan 
                 damaged = 1;
             }
         }
-        double tf = now_seconds();
+        double tf = atmo_now_seconds();
         for (int p = 0; p < plan->pass_count; p++)
             if (plan->passes[p].feature == f &&
                 (rc = run_pass(cl, program, plan, scene, buffers, &plan->passes[p], control, e)))
@@ -405,7 +398,7 @@ int atmo_precompute_controlled(atmo_cl *cl, cl_program program, const atmo_plan 
             continue;
         info->computed++;
         int store = cached && (damaged || plan->cache_luts == 2 ||
-                               now_seconds() - tf > ATMO_LUT_CACHE_MIN_SECONDS);
+                               atmo_now_seconds() - tf > ATMO_LUT_CACHE_MIN_SECONDS);
         unsigned char *payload = NULL;
         size_t bytes = 0;
         if ((rc = read_feature(cl, plan, f, buffers, &payload, &bytes, e)))
@@ -420,7 +413,7 @@ int atmo_precompute_controlled(atmo_cl *cl, cl_program program, const atmo_plan 
     if (err != CL_SUCCESS)
         return atmo_cl_fail(e, "clFinish(precompute)", err);
     info->cache_hit = cacheables > 0 && info->loaded == cacheables;
-    info->seconds = now_seconds() - t0;
+    info->seconds = atmo_now_seconds() - t0;
     return ATMO_OK;
 }
 
@@ -428,7 +421,7 @@ int atmo_precompute_view(atmo_cl *cl, cl_program program, const atmo_plan *plan,
                          cl_mem buffers[ATMO_PLAN_MAX_BUFFERS],
                          const atmo_precompute_control *control, double *seconds, atmo_err *e)
 {
-    double t0 = now_seconds();
+    double t0 = atmo_now_seconds();
     for (int p = 0; p < plan->pass_count; p++) {
         int rc = follows_view(plan, plan->passes[p].feature)
                      ? run_pass(cl, program, plan, scene, buffers, &plan->passes[p], control, e)
@@ -439,6 +432,6 @@ int atmo_precompute_view(atmo_cl *cl, cl_program program, const atmo_plan *plan,
     cl_int err = clFinish(cl->queue);
     if (err != CL_SUCCESS)
         return atmo_cl_fail(e, "clFinish(precompute)", err);
-    *seconds = now_seconds() - t0;
+    *seconds = atmo_now_seconds() - t0;
     return ATMO_OK;
 }

@@ -20,7 +20,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
+#include "atmo/clock.h"
 #include "atmo/render.h"
 #include "atmo/session.h"
 
@@ -54,19 +54,12 @@ void atmo_cancel_request(atmo_cancel *c) { c->requested = 1; }
 void atmo_cancel_clear(atmo_cancel *c) { c->requested = 0; }
 int atmo_cancel_requested(const atmo_cancel *c) { return c && c->requested; }
 
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static size_t round_up(int n, int m) { return (size_t)((n + m - 1) / m * m); }
 
 /* Progress on stderr: a bar redrawn in place on a terminal, a line every few seconds otherwise. */
 static void report_progress(atmo_session *s, int target, int finished)
 {
-    double t = now_seconds();
+    double t = atmo_now_seconds();
     int mode = s->settings.progress;
     if (!mode)
         return;
@@ -178,7 +171,7 @@ static int restart(atmo_session *s, atmo_err *e)
         return atmo_cl_fail(e, "clear accumulation image", err);
     atmo_tiles_reset(&s->tiles);
     s->info.nonfinite = 0;
-    s->progress_start = now_seconds();
+    s->progress_start = atmo_now_seconds();
     s->rate_start = -1.0;
     return ATMO_OK;
 }
@@ -248,14 +241,14 @@ int atmo_session_open(atmo_session **out, const atmo_plan *plan, const atmo_rend
     s->settings = *rs;
     if ((rc = atmo_tiles_init(&s->tiles, plan->width, plan->height, rs->tile_size, e)))
         goto cleanup;
-    double t0 = now_seconds();
+    double t0 = atmo_now_seconds();
     if ((rc = atmo_cl_open(&s->cl, rs->device, e)))
         goto cleanup;
     s->cl_open = 1;
     snprintf(s->info.device_name, sizeof s->info.device_name, "%s", s->cl.device_name);
     snprintf(s->info.platform_name, sizeof s->info.platform_name, "%s", s->cl.platform_name);
     snprintf(s->info.driver_version, sizeof s->info.driver_version, "%s", s->cl.driver_version);
-    s->info.seconds_device = now_seconds() - t0;
+    s->info.seconds_device = atmo_now_seconds() - t0;
     if ((rc = check_device_memory(s, e)))
         goto cleanup;
 
@@ -352,7 +345,7 @@ int atmo_session_step(atmo_session *s, const atmo_step *step, atmo_step_status *
     if (!s->accum && ((rc = restart(s, e)) || (rc = bind_render(s, e))))
         return rc;
     int target = step->samples > 0 ? step->samples : s->plan.samples;
-    double t0 = now_seconds();
+    double t0 = atmo_now_seconds();
     atmo_tile t;
     while (!atmo_cancel_requested(step->cancel)) {
         if (!atmo_tiles_next(&s->tiles, target, &t)) {
@@ -360,12 +353,12 @@ int atmo_session_step(atmo_session *s, const atmo_step *step, atmo_step_status *
             break;
         }
         if (status->launches > 0 && step->budget_seconds > 0.0 &&
-            now_seconds() - t0 >= step->budget_seconds)
+            atmo_now_seconds() - t0 >= step->budget_seconds)
             break;
-        double tl = now_seconds();
+        double tl = atmo_now_seconds();
         if ((rc = launch(s, &t, e)))
             break;
-        atmo_tiles_done(&s->tiles, &t, 1e3 * (now_seconds() - tl), s->settings.launch_budget_ms,
+        atmo_tiles_done(&s->tiles, &t, 1e3 * (atmo_now_seconds() - tl), s->settings.launch_budget_ms,
                         s->settings.max_batch);
         status->launches++;
         s->info.launches++;
@@ -374,7 +367,7 @@ int atmo_session_step(atmo_session *s, const atmo_step *step, atmo_step_status *
         report_progress(s, target, 0);
     }
     status->cancelled = !status->complete && atmo_cancel_requested(step->cancel);
-    s->info.seconds_render += now_seconds() - t0;
+    s->info.seconds_render += atmo_now_seconds() - t0;
     if (rc)
         return rc;
     if (status->complete || status->cancelled)
