@@ -22,8 +22,11 @@
 #  - the saved PFM is bitwise `atmo render --scene` of the saved scene (same session, seed and
 #    samples: the draft and the refinement after each change leave no trace).
 # Also: a hold of Q for 10 s from 1.7 m stops at the ground clearance of 0.5 m (altitude
-# 0.5 m to 1e-6 m), and Tab (preview: method fast at half size) saves an 8x4 image with the
-# quality scene beside it.
+# 0.5 m to 1e-6 m); Tab (preview: method fast at half size) saves an 8x4 image with the
+# quality scene beside it; key 3 loads thesis-3 with the --set options but camera.* and sun.*
+# (the scene file equals `atmo render --preset thesis-3 --set ... --save-scene`'s), = raises
+# the exposure by 2^(1/3) and T moves to the next tone mapper (exposure -> reinhard), and the
+# saved PNG is byte for byte `atmo render --scene` of the saved scene's.
 set -u
 atmo=$1
 work=$(mktemp -d)
@@ -95,6 +98,29 @@ assert header[0] == b'PF' and header[1] == b'8 4', header[:2]
 PY
 else
     bad "the viewer failed on down.txt"
+fi
+
+# a thesis view, exposure and tone mapper keys, saved as a PNG
+printf 'press 3\npress Equal\npress T\nwait-samples 2\npress P\nquit\n' >thesis.txt
+"$atmo" render --preset thesis-3 --set image.width=16 --set image.height=8 --set image.samples=2 \
+    --set atmosphere.method=fast --save-scene want3.json
+if "$atmo" view "${scene[@]}" --script thesis.txt --save th.png --quiet; then
+    python3 - want3.json th-001.json <<'PY' && ok || bad "the thesis view or the display keys are wrong"
+import json, sys
+want, got = (json.load(open(p)) for p in sys.argv[1:3])
+e = got['post']['exposure']
+print('exposure after =: %.17g (want 10 * 2^(1/3) = %.17g), tone mapper %s' % (e, 10 * 2 ** (1 / 3), got['post']['tonemap']))
+assert abs(e - 10 * 2 ** (1 / 3)) < 1e-12 and got['post']['tonemap'] == 'reinhard'
+want['post']['exposure'], want['post']['tonemap'] = e, 'reinhard'
+assert want == got, 'the scene is not thesis-3 with the --set options but camera.* and sun.*'
+PY
+    if "$atmo" render --scene th-001.json --output again.png --quiet && cmp -s th-001.png again.png; then
+        ok
+    else
+        bad "atmo render --scene th-001.json does not reproduce the saved PNG"
+    fi
+else
+    bad "the viewer failed on thesis.txt"
 fi
 
 echo "test_view_keys: $passed passed, $failed failed"

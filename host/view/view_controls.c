@@ -19,12 +19,17 @@
  * degree, 10 with Shift; the zenith stays within [0, 180]. Angles that wrap (yaw, azimuth) are
  * kept in [-180, 180).
  *
+ * Views: 1-9 load thesis-1 ... thesis-9 over the defaults with the user's --set options
+ * reapplied but for camera.* and sun.* (so a size, method or sample count stays), and the
+ * current post.* settings; 0 goes back to the start scene.
+ *
  * Display: = and - (or keypad + and -) change post.exposure by a third of a stop (2^(1/3));
  * T cycles post.tonemap forward (Shift+T backward). Neither restarts the accumulation: the
  * shader applies them to the same linear image. */
 #include <GLFW/glfw3.h>
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 #include "atmo/plan.h"
 #include "atmo/view.h"
 #include "view_controls.h"
@@ -130,7 +135,8 @@ int view_controls_zoom(view_state *v, double notches)
     return VIEW_CHANGE_RENDER;
 }
 
-/* Thesis view n over the defaults, then the user's --set list, keeping the display settings. */
+/* Thesis view n over the defaults, then the user's --set list but for its camera.* and sun.*
+ * keys (the view is the thesis'), keeping the display settings. */
 static int thesis_view(view_state *v, int n, atmo_err *e)
 {
     char name[16];
@@ -139,7 +145,8 @@ static int thesis_view(view_state *v, int n, atmo_err *e)
     atmo_scene_defaults(&s);
     int rc = atmo_scene_apply_preset(&s, name, e);
     for (int i = 0; i < v->set_count && !rc; i++)
-        rc = atmo_scene_assign(&s, v->sets[i], "--set", e);
+        if (strncmp(v->sets[i], "camera.", 7) != 0 && strncmp(v->sets[i], "sun.", 4) != 0)
+            rc = atmo_scene_assign(&s, v->sets[i], "--set", e);
     s.post = v->scene.post;
     if (rc || (rc = atmo_scene_validate(&s, e)))
         return 0;
