@@ -21,6 +21,8 @@
 #     one step, in a fraction of about 2 * 127 * (relative error) of the values (5e-4 here, 1.3%
 #     for a driver whose pow is good to 1e-4). The test allows one step in at most 2% of the
 #     values; a formula that differs moves most values, or by more than a step.
+#  4. The same for the OpenGL 2.1 / GLSL 1.20 path, forced by telling Mesa to offer no more
+#     than OpenGL 2.1 (MESA_GL_VERSION_OVERRIDE), with the default post settings.
 set -u
 atmo=$1
 work=$(mktemp -d)
@@ -64,6 +66,21 @@ for c in $cases; do
         bad "$c: the shader's output is off by $worst/255 in $differing values"
     fi
 done
+
+# the OpenGL 2.1 path (GLSL 1.20): Mesa told to offer no more than 2.1, so no 3.3 core context
+if MESA_GL_VERSION_OVERRIDE=2.1 MESA_GLSL_VERSION_OVERRIDE=120 "$atmo" view "${scene[@]}" \
+    --screenshot-after 4 --output v-legacy.png --window-capture w-legacy.png --window 32x16 \
+    2>legacy.txt && grep -q "2.1 context, GLSL 1.20" legacy.txt; then
+    read -r w h worst differing <<<"$(png_compare "r-exposure-10.png" "w-legacy.png")"
+else
+    worst=x
+fi
+echo "OpenGL 2.1, the default post settings: window vs PNG max difference $worst/255, ${differing:-?} values differ"
+if [ "$worst" != x ] && [ "$worst" -le 1 ] && [ "$differing" -le $((3 * 32 * 16 / 50)) ]; then
+    ok
+else
+    bad "the OpenGL 2.1 path: $(cat legacy.txt)"
+fi
 
 echo "test_view_screenshot: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

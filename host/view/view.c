@@ -395,6 +395,10 @@ int atmo_view_run(const atmo_view_options *o, atmo_err *e)
     }
     if ((rc = view_window_open(&a->win, ww, wh, e)))
         goto cleanup;
+    if (!o->quiet)
+        fprintf(stderr, "atmo view: OpenGL %s (%s), %s\n",
+                (const char *)glGetString(GL_VERSION), (const char *)glGetString(GL_RENDERER),
+                a->win.core ? "core profile, GLSL 3.30" : "2.1 context, GLSL 1.20");
     glfwSetWindowUserPointer(a->win.window, a);
     glfwSetKeyCallback(a->win.window, key_callback);
     glfwSetMouseButtonCallback(a->win.window, button_callback);
