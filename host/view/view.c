@@ -6,8 +6,9 @@
  * the scene (view_controls.c), sends a changed scene to the render thread
  * (view_render_thread.c), uploads the tiles it finished since the last turn as sub-images,
  * draws the image through the tone-mapping shader and the overlay, and updates the title. The
- * longest turn while the render thread is busy is measured and printed at exit (the "events at
- * >= 30 Hz" figure: a turn under 33 ms).
+ * turns while the render thread is busy are timed and summarised at exit (the "events at
+ * >= 30 Hz" figure: the share of turns over 33 ms, and the longest), with the time from a change
+ * to its first image on screen (the draft, or an error).
  *
  * A screenshot (--screenshot-after N) is taken when the script, if any, has run to its end and
  * the current view's image has N samples per pixel: the image goes through view_save_image,
@@ -29,6 +30,7 @@
 
 #define VIEW_EVENT_SECONDS (1.0 / 60.0)
 #define VIEW_TITLE_SECONDS 0.25
+#define VIEW_TILE_FPS 30.0
 #define VIEW_HOLD_TICK (1.0 / 60.0)
 #define VIEW_MAX_KEYS 64
 
@@ -50,6 +52,9 @@ typedef struct view_app {
     int redraw;               /* the window needs drawing (an expose, a change, new tiles) */
     double longest_turn;      /* seconds, while the render thread was busy */
     long turns, busy_turns, slow_turns; /* all; while busy; of those, over 1/30 s */
+    double requested_at;      /* when the last request was sent, until its first image shows */
+    double latency_sum, latency_max; /* request to its first image on screen, seconds */
+    int latency_count;
 } view_app;
 
 static volatile sig_atomic_t interrupted;
@@ -109,6 +114,7 @@ static void request(view_app *a)
     view_mode_scene(&a->state.scene, a->state.mode, &r);
     int samples = a->o->screenshot_after > 0 ? a->o->screenshot_after : r.image.samples;
     view_renderer_request(a->renderer, &r, samples, ++a->generation);
+    a->requested_at = atmo_now_seconds();
 }
 
 static int current(const view_app *a) { return a->shown.generation == a->generation; }
@@ -271,6 +277,13 @@ static int take_frame(view_app *a, atmo_err *e)
     }
     a->shown = *f;
     a->shown.rgb = NULL;
+    if (a->requested_at > 0.0 && current(a) && f->phase != VIEW_PHASE_PREPARING) {
+        double latency = atmo_now_seconds() - a->requested_at;
+        a->latency_sum += latency;
+        a->latency_max = latency > a->latency_max ? latency : a->latency_max;
+        a->latency_count++;
+        a->requested_at = 0.0;
+    }
     view_renderer_release(a->renderer, rc == ATMO_OK);
     return rc;
 }
@@ -292,7 +305,7 @@ static int screenshot(view_app *a, atmo_err *e)
 
 static int loop(view_app *a, atmo_err *e)
 {
-    double last = atmo_now_seconds(), last_title = 0.0;
+    double last = atmo_now_seconds(), last_title = 0.0, last_draw = 0.0;
     int rc = ATMO_OK;
     request(a);
     while (!glfwWindowShouldClose(a->win.window) && !interrupted) {
@@ -354,9 +367,12 @@ static int loop(view_app *a, atmo_err *e)
         }
         int shoot = a->o->screenshot_after > 0 && a->script.next >= a->script.count &&
                     reached(a, a->o->screenshot_after) && !(change & VIEW_CHANGE_RENDER);
-        /* drawing only what changed leaves the CPU to the render where the device is the CPU */
-        if (!(a->redraw || change || shoot || (a->state.help && status_due)))
+        /* Drawing only what changed, and new tiles at most VIEW_TILE_FPS times a second, leaves
+         * the CPU to the render where the device (and Mesa's OpenGL) is the CPU. */
+        int tiles_due = a->redraw && now - last_draw >= 1.0 / VIEW_TILE_FPS;
+        if (!(tiles_due || change || shoot || (a->state.help && status_due)))
             continue;
+        last_draw = now;
         if (a->state.help)
             overlay(a);
         atmo_post post;
@@ -415,8 +431,11 @@ int atmo_view_run(const atmo_view_options *o, atmo_err *e)
     signal(SIGTERM, old_term);
     if (!o->quiet)
         fprintf(stderr, "atmo view: %ld event-loop turns, %ld while rendering: %ld of those "
-                        "over 33 ms, the longest %.1f ms\n", a->turns, a->busy_turns,
-                a->slow_turns, 1e3 * a->longest_turn);
+                        "over 33 ms, the longest %.1f ms; %d changes, first image after one in "
+                        "%.0f ms on average, %.0f ms at most\n", a->turns, a->busy_turns,
+                a->slow_turns, 1e3 * a->longest_turn, a->latency_count,
+                a->latency_count ? 1e3 * a->latency_sum / a->latency_count : 0.0,
+                1e3 * a->latency_max);
 cleanup:
     view_renderer_stop(a->renderer);
     view_window_close(&a->win);
