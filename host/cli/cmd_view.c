@@ -144,10 +144,10 @@ static int view_main(int argc, char **argv)
         else if (strcmp(a, "--script") == 0)
             o.script = v;
         else if (strcmp(a, "--window") == 0) {
-            char *x = strchr(v, 'x');
-            char wbuf[16];
-            if (!x || x - v >= (long)sizeof wbuf || (memcpy(wbuf, v, (size_t)(x - v)), wbuf[x - v] = 0,
-                !whole(wbuf, 16, 16384, &o.window_width)) || !whole(x + 1, 16, 16384, &o.window_height)) {
+            char rest;
+            if (sscanf(v, "%dx%d%c", &o.window_width, &o.window_height, &rest) != 2 ||
+                o.window_width < 16 || o.window_width > 16384 || o.window_height < 16 ||
+                o.window_height > 16384) {
                 fprintf(stderr, "atmo view: --window needs WIDTHxHEIGHT in pixels (16 to 16384), "
                                 "e.g. 1280x720, got '%s'\n", v);
                 return ATMO_ERR_USAGE;

@@ -76,9 +76,12 @@ static int parse_line(char *line, view_action *a)
     else if (strcmp(w[0], "press") == 0 && (n == 2 || n == 3) && (a->key = key_code(w[1])) >= 0 &&
              (a->mods = mods_code(w[2])) >= 0)
         a->kind = VIEW_ACT_PRESS;
-    else if (strcmp(w[0], "hold") == 0 && (n == 3 || n == 4) && strchr("WASDQE", w[1][0]) &&
-             !w[1][1] && number(w[2], 0.0, 3600.0, &a->value) && (a->mods = mods_code(w[3])) >= 0)
-        a->kind = VIEW_ACT_HOLD, a->key = w[1][0];
+    else if (strcmp(w[0], "hold") == 0 && (n == 3 || n == 4) && !w[1][1] &&
+             strchr("WASDQE", toupper((unsigned char)w[1][0])) &&
+             number(w[2], 0.0, 3600.0, &a->value) && (a->mods = mods_code(w[3])) >= 0) {
+        a->kind = VIEW_ACT_HOLD;
+        a->key = toupper((unsigned char)w[1][0]);
+    }
     else if (strcmp(w[0], "look") == 0 && n == 3 && number(w[1], -1e5, 1e5, &a->value) &&
              number(w[2], -1e5, 1e5, &a->value2))
         a->kind = VIEW_ACT_LOOK;

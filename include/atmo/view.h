@@ -42,8 +42,9 @@ typedef struct atmo_view_options {
 /* The keys, one per line (host/view/view_controls.c), for --help and the overlay. */
 extern const char atmo_view_keys[];
 
-/* Run the viewer until the window closes, Esc, the script's `quit` or the screenshot.
- * Returns ATMO_OK, ATMO_ERR_USAGE (bad script, no display) or ATMO_ERR_RUNTIME, with e set. */
+/* Run the viewer until the window closes, Esc, the script's `quit`, SIGINT/SIGTERM or the
+ * screenshot. Returns ATMO_OK, ATMO_ERR_USAGE (a bad script, before the window opens) or
+ * ATMO_ERR_RUNTIME (no display, OpenGL, the render, writing), with e set. */
 int atmo_view_run(const atmo_view_options *o, atmo_err *e);
 
 #endif
