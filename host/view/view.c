@@ -55,6 +55,8 @@ typedef struct view_app {
     double requested_at;      /* when the last request was sent, until its first image shows */
     double latency_sum, latency_max; /* request to its first image on screen, seconds */
     int latency_count;
+    unsigned last_generation_shown; /* the newest request whose image was on screen */
+    int changes, changes_shown;     /* requests; of those, with an image on screen */
 } view_app;
 
 static volatile sig_atomic_t interrupted;
@@ -115,6 +117,7 @@ static void request(view_app *a)
     int samples = a->o->screenshot_after > 0 ? a->o->screenshot_after : r.image.samples;
     view_renderer_request(a->renderer, &r, samples, ++a->generation);
     a->requested_at = atmo_now_seconds();
+    a->changes++;
 }
 
 static int current(const view_app *a) { return a->shown.generation == a->generation; }
@@ -277,6 +280,10 @@ static int take_frame(view_app *a, atmo_err *e)
     }
     a->shown = *f;
     a->shown.rgb = NULL;
+    if (f->generation > a->last_generation_shown && f->phase != VIEW_PHASE_PREPARING) {
+        a->last_generation_shown = f->generation;
+        a->changes_shown++;
+    }
     if (a->requested_at > 0.0 && current(a) && f->phase != VIEW_PHASE_PREPARING) {
         double latency = atmo_now_seconds() - a->requested_at;
         a->latency_sum += latency;
@@ -431,9 +438,10 @@ int atmo_view_run(const atmo_view_options *o, atmo_err *e)
     signal(SIGTERM, old_term);
     if (!o->quiet)
         fprintf(stderr, "atmo view: %ld event-loop turns, %ld while rendering: %ld of those "
-                        "over 33 ms, the longest %.1f ms; %d changes, first image after one in "
-                        "%.0f ms on average, %.0f ms at most\n", a->turns, a->busy_turns,
-                a->slow_turns, 1e3 * a->longest_turn, a->latency_count,
+                        "over 33 ms, the longest %.1f ms; %d changes, %d of them shown; the "
+                        "first image of the last of a burst came in %.0f ms on average, %.0f ms "
+                        "at most\n", a->turns, a->busy_turns, a->slow_turns,
+                1e3 * a->longest_turn, a->changes, a->changes_shown,
                 a->latency_count ? 1e3 * a->latency_sum / a->latency_count : 0.0,
                 1e3 * a->latency_max);
 cleanup:

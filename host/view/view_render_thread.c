@@ -10,6 +10,12 @@
  * mean and a copy of the tiles it finished into the shared frame; the main thread uploads those
  * tiles as sub-images. A new request sets the cancel token (atmo_cancel): the step, or the
  * precompute, stops after the launch in flight, and the thread starts over with the new scene.
+ * A draft under way is let finish and shown, unless it has already taken twice as long as the
+ * last draft that reused its session (at least VIEW_DRAFT_PATIENCE): while the camera moves
+ * continuously, each request would otherwise cancel the one before and nothing would show
+ * until the movement stops; this way the drafts follow the movement at the rate the device
+ * makes them, and a kernel build or a full precompute (after a change of method or size) is
+ * still cut short by the next change.
  * The launch budget of the caller's settings keeps each launch short.
  *
  * On Linux the thread lowers its own scheduling priority (nice 10) before its first OpenCL
@@ -37,6 +43,7 @@
 
 #define VIEW_STEP_SECONDS (1.0 / 30.0)
 #define VIEW_NOISE_SECONDS 0.5
+#define VIEW_DRAFT_PATIENCE 0.5 /* seconds */
 
 typedef struct slot {
     atmo_session *session;
@@ -52,6 +59,9 @@ struct view_renderer {
     atmo_cancel cancel;
     /* shared, under lock */
     int quit, pending;
+    int draft_shown;      /* the current request's draft is on screen */
+    double draft_started; /* when the current request was taken up */
+    double draft_seconds; /* the last draft that reused its session took this long */
     atmo_scene next;
     int next_samples;
     unsigned next_generation;
@@ -74,9 +84,10 @@ static void slot_close(slot *s)
     s->session = NULL;
 }
 
-/* Bring the slot's session to `scene`: set_view, set_scene or a new session. */
-static int prepare(view_renderer *r, slot *s, const atmo_scene *scene, atmo_err *e)
+/* Bring the slot's session to `scene`: set_view, set_scene or a new session (*opened). */
+static int prepare(view_renderer *r, slot *s, const atmo_scene *scene, int *opened, atmo_err *e)
 {
+    *opened = 0;
     atmo_plan p;
     int rc = atmo_plan_make_cached(scene, r->lut_cache, r->lut_cache, &p, e);
     if (rc)
@@ -103,6 +114,7 @@ static int prepare(view_renderer *r, slot *s, const atmo_scene *scene, atmo_err 
         }
         slot_close(s); /* other kernels or another image size */
     }
+    *opened = 1;
     rc = atmo_session_open(&s->session, &p, &r->rs, e);
     if (rc) {
         atmo_plan_free(&p);
@@ -160,7 +172,7 @@ static int render_draft(view_renderer *r, unsigned generation, const atmo_scene 
         return rc;
     pthread_mutex_lock(&r->lock);
     view_frame *f = &r->frame;
-    if (!r->pending && (rc = frame_size(f, W, H, e)) == ATMO_OK) {
+    if ((rc = frame_size(f, W, H, e)) == ATMO_OK) { /* shown even if a newer request waits */
         for (int y = 0; y < H; y++)
             for (int x = 0; x < W; x++) {
                 const float *src = r->mean + 3 * ((size_t)(y * dh / H) * dw + (size_t)(x * dw / W));
@@ -174,6 +186,7 @@ static int render_draft(view_renderer *r, unsigned generation, const atmo_scene 
         f->noise = 0.0;
         f->seconds = atmo_now_seconds() - t0;
         f->launches = st.launches;
+        r->draft_shown = 1;
     }
     pthread_mutex_unlock(&r->lock);
     return rc;
@@ -275,6 +288,15 @@ static void publish_error(view_renderer *r, unsigned generation, const atmo_err 
     pthread_mutex_unlock(&r->lock);
 }
 
+/* A newer request waits (the thread then starts over with it). */
+static int superseded(view_renderer *r)
+{
+    pthread_mutex_lock(&r->lock);
+    int p = r->pending;
+    pthread_mutex_unlock(&r->lock);
+    return p || atmo_cancel_requested(&r->cancel);
+}
+
 static void *render_main(void *arg)
 {
     view_renderer *r = arg;
@@ -303,6 +325,8 @@ static void *render_main(void *arg)
             r->pending = 0;
             atmo_cancel_clear(&r->cancel);
             r->frame.phase = VIEW_PHASE_PREPARING;
+            r->draft_shown = 0;
+            r->draft_started = atmo_now_seconds();
             stage = STAGE_START;
             launches = 0;
             t0 = atmo_now_seconds();
@@ -313,12 +337,18 @@ static void *render_main(void *arg)
         if (stage == STAGE_START) {
             double tp = atmo_now_seconds();
             view_mode_draft(&scene, &draft);
-            rc = prepare(r, &r->draft, &draft, &e);
+            int opened;
+            rc = prepare(r, &r->draft, &draft, &opened, &e);
             if (!rc && !atmo_cancel_requested(&r->cancel))
                 rc = render_draft(r, generation, &scene, samples, t0, &e);
-            if (!rc && !atmo_cancel_requested(&r->cancel))
-                rc = prepare(r, &r->full, &scene, &e);
-            if (!rc && !atmo_cancel_requested(&r->cancel)) {
+            if (!rc && !opened && r->draft_shown) {
+                pthread_mutex_lock(&r->lock);
+                r->draft_seconds = atmo_now_seconds() - t0;
+                pthread_mutex_unlock(&r->lock);
+            }
+            if (!rc && !superseded(r))
+                rc = prepare(r, &r->full, &scene, &opened, &e);
+            if (!rc && !superseded(r)) {
                 stage = STAGE_REFINE;
                 r->noise_time = atmo_now_seconds();
                 pthread_mutex_lock(&r->lock);
@@ -378,7 +408,10 @@ void view_renderer_request(view_renderer *r, const atmo_scene *scene, int sample
     r->next_samples = samples;
     r->next_generation = generation;
     r->pending = 1;
-    atmo_cancel_request(&r->cancel);
+    double patience = 2.0 * r->draft_seconds > VIEW_DRAFT_PATIENCE ? 2.0 * r->draft_seconds
+                                                                   : VIEW_DRAFT_PATIENCE;
+    if (r->draft_shown || atmo_now_seconds() - r->draft_started > patience)
+        atmo_cancel_request(&r->cancel);
     pthread_cond_signal(&r->wake);
     pthread_mutex_unlock(&r->lock);
 }
