@@ -162,7 +162,7 @@ static int save(view_app *a, atmo_err *e)
     if (rc || (rc = copy_image(a, &img, &spp, e)))
         return rc;
     view_mode_scene(&a->state.scene, a->state.mode, &rendered);
-    rc = view_save_image(image, &img, &rendered, spp, spp < a->shown.target, e);
+    rc = view_save_image(image, &img, &rendered, spp, spp < a->shown.target || !current(a), e);
     free(img.rgb);
     if (!rc)
         rc = atmo_scene_save_json(&a->state.scene, scene, e);
@@ -251,11 +251,13 @@ static void overlay(view_app *a)
     char text[4096];
     snprintf(text, sizeof text,
              "atmo view - keys\n%s\n"
-             "mode %s   samples %d-%d of %d   noise %.2f%%   %.1f s, %d launches\n"
+             "mode %s   samples %d-%d of %d   noise %.2f%%   %.1f s, %d launches   "
+             "draft and sessions ready in %.2f s\n"
              "camera (%.6g, %.6g, %.6g) m, altitude %.6g m, pitch %.2f, yaw %.2f, fov %.1f deg\n"
              "sun zenith %.2f deg, azimuth %.2f deg   speed %.3g m/s\n%s\n",
              atmo_view_keys, view_mode_name(a->state.mode), f->samples_min, f->samples_max,
-             f->target, 100.0 * f->noise, f->seconds, f->launches, p[0], p[1], p[2],
+             f->target, 100.0 * f->noise, f->seconds, f->launches, f->precompute_seconds, p[0],
+             p[1], p[2],
              view_altitude_m(s), s->camera.pitch_deg, s->camera.yaw_deg, s->camera.fov_deg,
              s->sun.zenith_deg, s->sun.azimuth_deg, view_speed_m_per_s(s, 0), a->message);
     if (view_overlay_build(&a->overlay, text))

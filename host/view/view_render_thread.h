@@ -29,7 +29,9 @@ typedef struct view_frame {
     double noise;               /* mean relative standard error over pixels with 2+ samples */
     double seconds;             /* since the request */
     int launches;               /* since the request */
-    double precompute_seconds;  /* of the last prepare */
+    double precompute_seconds;  /* from the request to the refinement's start: both sessions
+                                   brought to it (set_view, set_scene or a new session, with
+                                   their precompute passes) and the draft */
     char message[1024];         /* the error, in phase ERROR */
 } view_frame;
 
