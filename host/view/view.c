@@ -140,6 +140,7 @@ static int copy_image(view_app *a, atmo_image *img, int *samples_min, atmo_err *
 {
     view_frame *f = view_renderer_acquire(a->renderer);
     size_t n = (size_t)f->width * (size_t)f->height * 3;
+    memset(img, 0, sizeof *img); /* no extra layers */
     img->width = f->width;
     img->height = f->height;
     img->rgb = n ? malloc(n * sizeof(float)) : NULL;
