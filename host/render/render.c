@@ -1,4 +1,6 @@
-/* render.c — a whole render in one call over a session (atmo/render.h). */
+/* render.c — a whole render in one call over a session (atmo/render.h): its mean image, or the
+ * raw sums of one part of a split render (atmo/part.h). */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/render.h"
@@ -50,6 +52,29 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
         atmo_render_result_from_session(s, res);
     else
         atmo_render_result_free(res);
+    atmo_session_close(s);
+    return rc;
+}
+
+int atmo_render_part(const atmo_plan *plan, const atmo_render_settings *settings,
+                     atmo_render_result *res, atmo_part *part, atmo_err *e)
+{
+    atmo_session *s = NULL;
+    atmo_step step = {plan->samples, 0.0, NULL, NULL, settings->cancel};
+    atmo_step_status st;
+    memset(res, 0, sizeof *res);
+    int rc = atmo_session_open(&s, plan, settings, e);
+    if (!rc)
+        rc = atmo_session_step(s, &step, &st, e);
+    if (!rc)
+        rc = atmo_session_read_sums(s, part->s1, part->s2, part->samples, e);
+    if (!rc) {
+        atmo_render_result_from_session(s, res);
+        part->part = settings->part;
+        part->parts = settings->parts;
+        snprintf(part->device, sizeof part->device, "%s / %s / %s", res->platform_name,
+                 res->device_name, res->driver_version);
+    }
     atmo_session_close(s);
     return rc;
 }

@@ -447,6 +447,11 @@ int atmo_session_set_scene(atmo_session *s, const atmo_plan *plan, atmo_err *e)
     return bind_render(s, e); /* the LUT buffers are new */
 }
 
+float atmo_session_mean(float sum, int samples)
+{
+    return sum * (samples > 0 ? 1.0f / (float)samples : 0.0f);
+}
+
 /* The accumulators, 4 floats per pixel, into s1 and s2 (either may be NULL). */
 static int read_accumulators(atmo_session *s, float *s1, float *s2, atmo_err *e)
 {
@@ -481,12 +486,11 @@ int atmo_session_read(atmo_session *s, float *mean, float *se, int *samples, atm
         for (int x = 0; x < W; x++) {
             size_t i = (size_t)y * W + x;
             int n = atmo_tiles_pixel_samples(&s->tiles, x, y);
-            float inv = n > 0 ? 1.0f / (float)n : 0.0f;
             if (samples)
                 samples[i] = n;
             for (int c = 0; c < 3; c++) {
                 if (mean)
-                    mean[3 * i + c] = s1[4 * i + c] * inv;
+                    mean[3 * i + c] = atmo_session_mean(s1[4 * i + c], n);
                 if (!se)
                     continue;
                 double a = s1[4 * i + c], b = s2[4 * i + c];

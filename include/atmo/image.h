@@ -78,6 +78,39 @@ int atmo_image_write_pfm(const char *path, const atmo_image *img, atmo_err *e);
 int atmo_image_read_pfm(const char *path, atmo_image *img, atmo_err *e);
 void atmo_image_free(atmo_image *img);
 
+/* EXR files of named float layers (host/image/image_exr_layers.c): one full-resolution 32-bit
+ * float channel per layer (width x height values, row 0 = top), ZIP-compressed (lossless: every
+ * bit reads back), and string attributes. The raw sums of a split render's parts use them. */
+typedef struct atmo_image_layer {
+    const char *name;  /* EXR channel name, e.g. "S1.R" */
+    const float *data; /* width x height floats */
+} atmo_image_layer;
+
+typedef struct atmo_image_attr {
+    const char *name, *value;
+} atmo_image_attr;
+
+int atmo_image_write_exr_layers(const char *path, int width, int height,
+                                const atmo_image_layer *layers, int count,
+                                const atmo_image_attr *attrs, int attr_count, atmo_err *e);
+
+/* What atmo_image_read_exr_layers returns: every channel as floats, every string attribute. */
+typedef struct atmo_exr_layers {
+    int width, height;
+    int count;
+    char **name;
+    float **data;
+    int attr_count;
+    char **attr_name, **attr_value;
+} atmo_exr_layers;
+
+/* Read a single-part scanline EXR; a file that is none is a usage error naming it. */
+int atmo_image_read_exr_layers(const char *path, atmo_exr_layers *f, atmo_err *e);
+void atmo_exr_layers_free(atmo_exr_layers *f);
+/* The layer or the string attribute of that name, NULL if the file has none. */
+const float *atmo_exr_layer(const atmo_exr_layers *f, const char *name);
+const char *atmo_exr_attr(const atmo_exr_layers *f, const char *name);
+
 /* "R 680 nm, G 550 nm, B 440 nm; 64 samples per pixel" style description shared by the
  * writers: quantity, unit, wavelengths, samples, and "partial render" when meta->partial. */
 void atmo_image_describe(const atmo_image_meta *meta, char *buf, int size);

@@ -103,6 +103,8 @@ int atmo_session_read(atmo_session *s, float *mean, float *se, int *samples, atm
  * sums in sample order) and the samples per pixel (W x H); any may be NULL. These are what a
  * part of a split render stores, so that merging parts repeats atmo_session_read bit for bit. */
 int atmo_session_read_sums(atmo_session *s, float *s1, float *s2, int *samples, atmo_err *e);
+/* The mean atmo_session_read gives for a sum of `samples` samples: sum * (1/samples), 0 for none. */
+float atmo_session_mean(float sum, int samples);
 void atmo_session_close(atmo_session *s); /* NULL is fine */
 
 const atmo_session_info *atmo_session_get_info(const atmo_session *s);

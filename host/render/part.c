@@ -1,0 +1,246 @@
+/* part.c — the parts of a split render (atmo/part.h): part files and their merge.
+ *
+ * The merge's checks, in order, each a usage error that names a file or a part: every file
+ * reads as a part (the layers and attributes of part.h) whose stored hash is its scene text's;
+ * all have the first file's scene hash, image size, N and band rows; no part index appears
+ * twice; none of 1..N is missing; each part has the requested samples in every pixel row of
+ * its bands (atmo_part_of_row) and 0 samples elsewhere. Only then are the pixels copied. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "atmo/image.h"
+#include "atmo/part.h"
+#include "atmo/session.h"
+#include "atmo/tiles.h"
+
+#define PART_LAYERS 7
+
+static const char *const layer_names[PART_LAYERS] = {"S1.R", "S1.G", "S1.B", "S2.R",
+                                                      "S2.G", "S2.B", "N"};
+
+unsigned long long atmo_part_scene_hash(const char *scene_json)
+{
+    unsigned long long h = 1469598103934665603ull;
+    for (const unsigned char *c = (const unsigned char *)scene_json; *c; c++)
+        h = (h ^ *c) * 1099511628211ull;
+    return h;
+}
+
+int atmo_part_alloc(atmo_part *p, int width, int height, const char *scene_json, atmo_err *e)
+{
+    size_t pixels = (size_t)width * (size_t)height;
+    memset(p, 0, sizeof *p);
+    p->width = width;
+    p->height = height;
+    p->band_rows = ATMO_PART_BAND_ROWS;
+    p->s1 = calloc(pixels * 3, sizeof(float));
+    p->s2 = calloc(pixels * 3, sizeof(float));
+    p->samples = calloc(pixels, sizeof(int));
+    p->scene_json = malloc(strlen(scene_json) + 1);
+    if (!p->s1 || !p->s2 || !p->samples || !p->scene_json) {
+        atmo_part_free(p);
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the sums of a %dx%d image", width,
+                         height);
+    }
+    strcpy(p->scene_json, scene_json);
+    p->scene_hash = atmo_part_scene_hash(scene_json);
+    return ATMO_OK;
+}
+
+void atmo_part_free(atmo_part *p)
+{
+    free(p->scene_json);
+    free(p->samples);
+    free(p->s2);
+    free(p->s1);
+    memset(p, 0, sizeof *p);
+}
+
+int atmo_part_write(const char *path, const atmo_part *p, atmo_err *e)
+{
+    size_t pixels = (size_t)p->width * (size_t)p->height;
+    float *planes = malloc(pixels * PART_LAYERS * sizeof(float));
+    if (!planes)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory writing '%s'", path);
+    atmo_image_layer layers[PART_LAYERS];
+    for (int k = 0; k < PART_LAYERS; k++) {
+        float *plane = planes + (size_t)k * pixels;
+        for (size_t i = 0; i < pixels; i++)
+            plane[i] = k < 3 ? p->s1[3 * i + k] : k < 6 ? p->s2[3 * i + k - 3] : (float)p->samples[i];
+        layers[k].name = layer_names[k];
+        layers[k].data = plane;
+    }
+    char part[32], rows[16], hash[24];
+    snprintf(part, sizeof part, "%d/%d", p->part, p->parts);
+    snprintf(rows, sizeof rows, "%d", p->band_rows);
+    snprintf(hash, sizeof hash, "%016llx", p->scene_hash);
+    const atmo_image_attr attrs[] = {{"atmoPart", part},
+                                     {"atmoBandRows", rows},
+                                     {"atmoSceneHash", hash},
+                                     {"atmoScene", p->scene_json},
+                                     {"atmoDevice", p->device},
+                                     {"software", "atmo " ATMO_VERSION}};
+    int rc = atmo_image_write_exr_layers(path, p->width, p->height, layers, PART_LAYERS, attrs,
+                                         (int)(sizeof attrs / sizeof attrs[0]), e);
+    free(planes);
+    return rc;
+}
+
+/* "I/N" with 1 <= I <= N, nothing else. */
+static int parse_part(const char *text, int *part, int *parts)
+{
+    char tail;
+    return text && sscanf(text, "%d/%d%c", part, parts, &tail) == 2 && *parts >= 1 &&
+           *part >= 1 && *part <= *parts;
+}
+
+int atmo_part_read(const char *path, atmo_part *p, atmo_err *e)
+{
+    atmo_exr_layers f;
+    memset(p, 0, sizeof *p);
+    int rc = atmo_image_read_exr_layers(path, &f, e);
+    if (rc)
+        return rc;
+    const char *part = atmo_exr_attr(&f, "atmoPart"), *rows = atmo_exr_attr(&f, "atmoBandRows");
+    const char *hash = atmo_exr_attr(&f, "atmoSceneHash"), *scene = atmo_exr_attr(&f, "atmoScene");
+    const char *device = atmo_exr_attr(&f, "atmoDevice");
+    const float *planes[PART_LAYERS];
+    int complete = part && rows && hash && scene && device;
+    for (int k = 0; k < PART_LAYERS; k++)
+        complete = complete && (planes[k] = atmo_exr_layer(&f, layer_names[k])) != NULL;
+    int i_part = 0, n_parts = 0, band_rows = 0;
+    unsigned long long stored = 0;
+    char tail;
+    if (!complete || !parse_part(part, &i_part, &n_parts) ||
+        sscanf(rows, "%d%c", &band_rows, &tail) != 1 || band_rows < 1 ||
+        sscanf(hash, "%16llx%c", &stored, &tail) != 1) {
+        rc = atmo_fail(e, ATMO_ERR_USAGE,
+                       "'%s' is not a part of a split render (it lacks the S1, S2, N layers or "
+                       "the atmoPart, atmoScene attributes); make parts with atmo render --part "
+                       "I/N --output FILE.exr",
+                       path);
+        goto cleanup;
+    }
+    if ((rc = atmo_part_alloc(p, f.width, f.height, scene, e)))
+        goto cleanup;
+    if (p->scene_hash != stored) {
+        rc = atmo_fail(e, ATMO_ERR_USAGE,
+                       "'%s' is damaged: its scene does not hash to its atmoSceneHash %s; render "
+                       "that part again",
+                       path, hash);
+        goto cleanup;
+    }
+    p->part = i_part;
+    p->parts = n_parts;
+    p->band_rows = band_rows;
+    snprintf(p->device, sizeof p->device, "%s", device);
+    size_t pixels = (size_t)f.width * (size_t)f.height;
+    for (size_t i = 0; i < pixels; i++) {
+        for (int c = 0; c < 3; c++) {
+            p->s1[3 * i + c] = planes[c][i];
+            p->s2[3 * i + c] = planes[3 + c][i];
+        }
+        p->samples[i] = (int)planes[6][i];
+    }
+cleanup:
+    if (rc)
+        atmo_part_free(p);
+    atmo_exr_layers_free(&f);
+    return rc;
+}
+
+/* The part's samples in its own bands are all `samples`, elsewhere all 0. */
+static int check_cover(const atmo_part *p, const char *path, int samples, atmo_err *e)
+{
+    int lo = -1, hi = -1, stray = 0;
+    for (int y = 0; y < p->height; y++) {
+        int mine = atmo_part_of_row(y, p->parts) == p->part;
+        for (int x = 0; x < p->width; x++) {
+            int n = p->samples[(size_t)y * p->width + x];
+            if (!mine) {
+                stray |= n != 0;
+                continue;
+            }
+            lo = lo < 0 || n < lo ? n : lo;
+            hi = n > hi ? n : hi;
+        }
+    }
+    if (stray)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "'%s' (part %d/%d) has samples outside its bands; it is not a part "
+                         "atmo rendered, render it again",
+                         path, p->part, p->parts);
+    if (lo != samples || hi != samples)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "'%s' (part %d/%d) is incomplete: %d to %d of %d samples per pixel (an "
+                         "interrupted render); render that part again",
+                         path, p->part, p->parts, lo, hi, samples);
+    return ATMO_OK;
+}
+
+int atmo_part_merge(const atmo_part *parts, const char *const *paths, int n, int samples,
+                    atmo_part *out, atmo_err *e)
+{
+    memset(out, 0, sizeof *out);
+    if (n < 1)
+        return atmo_fail(e, ATMO_ERR_USAGE, "no parts to merge");
+    const atmo_part *a = &parts[0];
+    int *seen = calloc((size_t)a->parts + 1, sizeof *seen);
+    if (!seen)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for %d parts", a->parts);
+    int rc = ATMO_OK;
+    for (int k = 0; k < n && !rc; k++) {
+        const atmo_part *p = &parts[k];
+        if (p->scene_hash != a->scene_hash)
+            rc = atmo_fail(e, ATMO_ERR_USAGE,
+                           "'%s' is a part of another scene (hash %016llx, '%s' has %016llx); "
+                           "merge only the parts of one render",
+                           paths[k], p->scene_hash, paths[0], a->scene_hash);
+        else if (p->width != a->width || p->height != a->height || p->parts != a->parts ||
+                 p->band_rows != a->band_rows)
+            rc = atmo_fail(e, ATMO_ERR_USAGE,
+                           "'%s' is part %d/%d of a %dx%d image in bands of %d rows, '%s' part "
+                           "%d/%d of %dx%d in bands of %d; merge only the parts of one render",
+                           paths[k], p->part, p->parts, p->width, p->height, p->band_rows,
+                           paths[0], a->part, a->parts, a->width, a->height, a->band_rows);
+        else if (p->band_rows != ATMO_PART_BAND_ROWS)
+            rc = atmo_fail(e, ATMO_ERR_USAGE,
+                           "'%s' cuts the image into bands of %d rows; this atmo's parts have %d "
+                           "(render the parts with one atmo version)",
+                           paths[k], p->band_rows, ATMO_PART_BAND_ROWS);
+        else if (seen[p->part])
+            rc = atmo_fail(e, ATMO_ERR_USAGE,
+                           "'%s' is part %d/%d again (so is '%s'); give each part once",
+                           paths[k], p->part, p->parts, paths[seen[p->part] - 1]);
+        else
+            seen[p->part] = k + 1;
+    }
+    for (int i = 1; i <= a->parts && !rc; i++)
+        if (!seen[i])
+            rc = atmo_fail(e, ATMO_ERR_USAGE,
+                           "part %d/%d is missing (%d of %d parts given); render it with "
+                           "--part %d/%d and merge all of them",
+                           i, a->parts, n, a->parts, i, a->parts);
+    for (int k = 0; k < n && !rc; k++)
+        rc = check_cover(&parts[k], paths[k], samples, e);
+    if (!rc && (rc = atmo_part_alloc(out, a->width, a->height, a->scene_json, e)) == ATMO_OK) {
+        snprintf(out->device, sizeof out->device, "%s", a->device);
+        for (int y = 0; y < a->height; y++) {
+            const atmo_part *p = &parts[seen[atmo_part_of_row(y, a->parts)] - 1];
+            size_t row = (size_t)y * a->width;
+            memcpy(out->s1 + 3 * row, p->s1 + 3 * row, sizeof(float) * 3 * (size_t)a->width);
+            memcpy(out->s2 + 3 * row, p->s2 + 3 * row, sizeof(float) * 3 * (size_t)a->width);
+            memcpy(out->samples + row, p->samples + row, sizeof(int) * (size_t)a->width);
+        }
+    }
+    free(seen);
+    return rc;
+}
+
+void atmo_part_mean(const atmo_part *p, float *rgb)
+{
+    size_t pixels = (size_t)p->width * (size_t)p->height;
+    for (size_t i = 0; i < pixels; i++)
+        for (int c = 0; c < 3; c++)
+            rgb[3 * i + c] = atmo_session_mean(p->s1[3 * i + c], p->samples[i]);
+}

@@ -1,0 +1,60 @@
+/* part.h — the parts of a split render: what a part holds, its file, and merging parts into the
+ * image one process would render.
+ *
+ * A render split into N parts (`atmo render --part I/N`) renders in part I only the pixel rows
+ * of its bands (atmo/tiles.h: bands of ATMO_PART_BAND_ROWS rows, band b in part b mod N + 1).
+ * Every pixel's sums are built in sample order on the device, the same in whichever process
+ * and with whichever tiles or launch budget, so a part holds for its pixels exactly the S1, S2
+ * and sample counts of the single render (atmo/session.h), and the merge is a copy: pixel by
+ * pixel from the one part that owns it, then the mean S1/n as atmo_session_read computes it.
+ * (A split of the sample range could not merge bit for bit: part 2's sum starts from 0, not
+ * from part 1's, and float addition is not associative.)
+ *
+ * A part file is an EXR (atmo_image_write_exr_layers) of 7 float layers: S1.R S1.G S1.B,
+ * S2.R S2.G S2.B and N (the samples, exact in float up to 2^24 > image.samples' maximum), and
+ * string attributes: atmoPart "I/N", atmoBandRows, atmoScene (the resolved scene as JSON,
+ * atmo_scene_to_json), atmoSceneHash (16 hex digits of the FNV-1a 64 hash of that text),
+ * atmoDevice (platform, device and driver: the image is bitwise the single render's on the same
+ * device) and software.
+ *
+ * atmo_part_merge checks, before it merges anything: every file is a part of the same scene
+ * (hash, size, N, band rows), each part 1..N is there exactly once, and every part holds the
+ * scene's image.samples in each pixel of its bands and none elsewhere. A failed check is one
+ * usage error naming the file or the part. */
+#ifndef ATMO_PART_H
+#define ATMO_PART_H
+#include "atmo/status.h"
+
+typedef struct atmo_part {
+    int width, height;
+    int part, parts, band_rows;
+    float *s1, *s2;            /* width x height x 3: the sums of the samples and their squares */
+    int *samples;              /* width x height */
+    char *scene_json;          /* the resolved scene (malloc'ed) */
+    unsigned long long scene_hash;
+    char device[656]; /* "platform / device / driver" */
+} atmo_part;
+
+/* FNV-1a 64 of the scene text. */
+unsigned long long atmo_part_scene_hash(const char *scene_json);
+
+/* Allocate the sums of a width x height part (zeros) and copy the scene text; *p is zeroed
+ * first. */
+int atmo_part_alloc(atmo_part *p, int width, int height, const char *scene_json, atmo_err *e);
+void atmo_part_free(atmo_part *p);
+
+int atmo_part_write(const char *path, const atmo_part *p, atmo_err *e);
+/* A usage error naming the file when it is not a readable atmo part. */
+int atmo_part_read(const char *path, atmo_part *p, atmo_err *e);
+
+/* Check that parts[0..n-1] (read from paths[]) are the N parts of one scene, each complete
+ * (samples per pixel = `samples` in its bands, 0 elsewhere), and copy each pixel's sums into
+ * *out (parts = 0: the whole image). */
+int atmo_part_merge(const atmo_part *parts, const char *const *paths, int n, int samples,
+                    atmo_part *out, atmo_err *e);
+
+/* The image's mean, S1 * (1/n) per channel, exactly as atmo_session_read computes it (0 where
+ * n = 0); rgb holds width x height x 3 floats. */
+void atmo_part_mean(const atmo_part *p, float *rgb);
+
+#endif
