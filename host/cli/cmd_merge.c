@@ -67,7 +67,7 @@ static int merge_parts(const char *const *paths, int n, const char *const *outpu
                 break;
             }
         atmo_part_mean(&merged, rgb);
-        atmo_image img = {merged.width, merged.height, rgb};
+        atmo_image img = {.width = merged.width, .height = merged.height, .rgb = rgb};
         rc = render_outputs_write(&scene, &img, scene.image.samples, 0, outputs, n_out, e);
     }
     if (!rc && !quiet)

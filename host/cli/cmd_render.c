@@ -256,7 +256,7 @@ static int render_frame(const atmo_scene *scene_in, atmo_render_settings *rs_in,
 
     /* outputs */
     double tw = atmo_now_seconds();
-    atmo_image img = {res.width, res.height, res.rgb};
+    atmo_image img = {.width = res.width, .height = res.height, .rgb = res.rgb};
     rc = part_file ? atmo_part_write(outputs[0], &part, &e)
                    : render_outputs_write(&scene, &img, res.samples_min, res.interrupted,
                                           outputs, n_out, &e);

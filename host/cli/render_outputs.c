@@ -25,12 +25,15 @@ int render_outputs_write(const atmo_scene *scene, const atmo_image *img, int sam
     snprintf(spectral_quantity, sizeof spectral_quantity,
              "luminance (linear sRGB from %d spectral bands, 360-830 nm; no channel wavelengths)",
              scene->render.spectral_bands);
-    atmo_image_meta meta = {spectral ? spectral_quantity : lum ? "luminance" : "spectral radiance",
-                            lum ? "cd m^-2" : "W m^-2 sr^-1 nm^-1",
-                            {spectral ? 0.0 : scene->render.wavelengths_nm[0],
-                             spectral ? 0.0 : scene->render.wavelengths_nm[1],
-                             spectral ? 0.0 : scene->render.wavelengths_nm[2]},
-                            samples_min, partial, "atmo " ATMO_VERSION};
+    atmo_image_meta meta = {
+        .quantity = spectral ? spectral_quantity : lum ? "luminance" : "spectral radiance",
+        .unit = lum ? "cd m^-2" : "W m^-2 sr^-1 nm^-1",
+        .wavelengths_nm = {spectral ? 0.0 : scene->render.wavelengths_nm[0],
+                           spectral ? 0.0 : scene->render.wavelengths_nm[1],
+                           spectral ? 0.0 : scene->render.wavelengths_nm[2]},
+        .samples_per_pixel = samples_min,
+        .partial = partial,
+        .software = "atmo " ATMO_VERSION};
     for (int i = 0; i < n && !rc; i++)
         rc = atmo_image_write(outputs[i], img, &post, &meta, e);
     return rc;

@@ -13,10 +13,8 @@
 #include "atmo/session.h"
 #include "atmo/tiles.h"
 
-#define PART_LAYERS 7
-
-static const char *const layer_names[PART_LAYERS] = {"S1.R", "S1.G", "S1.B", "S2.R",
-                                                      "S2.G", "S2.B", "N"};
+static const char *const rgb_names[4] = {"R", "G", "B", NULL};
+static const char *const count_names[4] = {"N", NULL, NULL, NULL};
 
 unsigned long long atmo_part_scene_hash(const char *scene_json)
 {
@@ -59,30 +57,42 @@ void atmo_part_free(atmo_part *p)
 int atmo_part_write(const char *path, const atmo_part *p, atmo_err *e)
 {
     size_t pixels = (size_t)p->width * (size_t)p->height;
-    float *planes = malloc(pixels * PART_LAYERS * sizeof(float));
-    if (!planes)
+    float *mean = malloc(pixels * 3 * sizeof(float));
+    float *count = malloc(pixels * sizeof(float));
+    if (!mean || !count) {
+        free(count);
+        free(mean);
         return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory writing '%s'", path);
-    atmo_image_layer layers[PART_LAYERS];
-    for (int k = 0; k < PART_LAYERS; k++) {
-        float *plane = planes + (size_t)k * pixels;
-        for (size_t i = 0; i < pixels; i++)
-            plane[i] = k < 3 ? p->s1[3 * i + k] : k < 6 ? p->s2[3 * i + k - 3] : (float)p->samples[i];
-        layers[k].name = layer_names[k];
-        layers[k].data = plane;
+    }
+    atmo_part_mean(p, mean);
+    for (size_t i = 0; i < pixels; i++)
+        count[i] = (float)p->samples[i];
+    atmo_image_layer layers[3] = {
+        {.name = "S1", .channels = 3, .data = p->s1},
+        {.name = "S2", .channels = 3, .data = p->s2},
+        {.name = "Samples", .channels = 1, .data = count}};
+    for (int c = 0; c < 4; c++) {
+        layers[0].channel_names[c] = layers[1].channel_names[c] = rgb_names[c];
+        layers[2].channel_names[c] = count_names[c];
     }
     char part[32], rows[16], hash[24];
     snprintf(part, sizeof part, "%d/%d", p->part, p->parts);
     snprintf(rows, sizeof rows, "%d", p->band_rows);
     snprintf(hash, sizeof hash, "%016llx", p->scene_hash);
-    const atmo_image_attr attrs[] = {{"atmoPart", part},
-                                     {"atmoBandRows", rows},
-                                     {"atmoSceneHash", hash},
-                                     {"atmoScene", p->scene_json},
-                                     {"atmoDevice", p->device},
-                                     {"software", "atmo " ATMO_VERSION}};
-    int rc = atmo_image_write_exr_layers(path, p->width, p->height, layers, PART_LAYERS, attrs,
-                                         (int)(sizeof attrs / sizeof attrs[0]), e);
-    free(planes);
+    const char *const attributes[] = {"atmoPart",      part,          "atmoBandRows", rows,
+                                      "atmoSceneHash", hash,          "atmoScene",    p->scene_json,
+                                      "atmoDevice",    p->device};
+    atmo_image_meta meta = {
+        .quantity = "a part of a split render: its mean in R, G, B; the sums of the samples and "
+                    "of their squares in S1, S2; the samples per pixel in Samples.N (atmo merge)",
+        .software = "atmo " ATMO_VERSION,
+        .attributes = attributes,
+        .attribute_count = (int)(sizeof attributes / sizeof attributes[0] / 2)};
+    atmo_image img = {.width = p->width, .height = p->height, .rgb = mean, .layers = layers,
+                      .layer_count = 3};
+    int rc = atmo_image_write(path, &img, NULL, &meta, e);
+    free(count);
+    free(mean);
     return rc;
 }
 
@@ -96,18 +106,24 @@ static int parse_part(const char *text, int *part, int *parts)
 
 int atmo_part_read(const char *path, atmo_part *p, atmo_err *e)
 {
-    atmo_exr_layers f;
+    atmo_exr_file f;
     memset(p, 0, sizeof *p);
-    int rc = atmo_image_read_exr_layers(path, &f, e);
-    if (rc)
+    int rc = atmo_exr_read(path, &f, e);
+    if (rc) {
+        atmo_exr_file_free(&f);
         return rc;
-    const char *part = atmo_exr_attr(&f, "atmoPart"), *rows = atmo_exr_attr(&f, "atmoBandRows");
-    const char *hash = atmo_exr_attr(&f, "atmoSceneHash"), *scene = atmo_exr_attr(&f, "atmoScene");
-    const char *device = atmo_exr_attr(&f, "atmoDevice");
-    const float *planes[PART_LAYERS];
+    }
+    const char *part = atmo_exr_attribute_value(&f, "atmoPart");
+    const char *rows = atmo_exr_attribute_value(&f, "atmoBandRows");
+    const char *hash = atmo_exr_attribute_value(&f, "atmoSceneHash");
+    const char *scene = atmo_exr_attribute_value(&f, "atmoScene");
+    const char *device = atmo_exr_attribute_value(&f, "atmoDevice");
+    static const char *const plane_names[7] = {"S1.R", "S1.G", "S1.B", "S2.R",
+                                               "S2.G", "S2.B", "Samples.N"};
+    const float *planes[7];
     int complete = part && rows && hash && scene && device;
-    for (int k = 0; k < PART_LAYERS; k++)
-        complete = complete && (planes[k] = atmo_exr_layer(&f, layer_names[k])) != NULL;
+    for (int k = 0; k < 7; k++)
+        complete = complete && (planes[k] = atmo_exr_channel_data(&f, plane_names[k])) != NULL;
     int i_part = 0, n_parts = 0, band_rows = 0;
     unsigned long long stored = 0;
     char tail;
@@ -115,9 +131,9 @@ int atmo_part_read(const char *path, atmo_part *p, atmo_err *e)
         sscanf(rows, "%d%c", &band_rows, &tail) != 1 || band_rows < 1 ||
         sscanf(hash, "%16llx%c", &stored, &tail) != 1) {
         rc = atmo_fail(e, ATMO_ERR_USAGE,
-                       "'%s' is not a part of a split render (it lacks the S1, S2, N layers or "
-                       "the atmoPart, atmoScene attributes); make parts with atmo render --part "
-                       "I/N --output FILE.exr",
+                       "'%s' is not a part of a split render (it lacks the S1, S2, Samples "
+                       "layers or the atmoPart, atmoScene attributes); make parts with atmo "
+                       "render --part I/N --output FILE.exr",
                        path);
         goto cleanup;
     }
@@ -145,7 +161,7 @@ int atmo_part_read(const char *path, atmo_part *p, atmo_err *e)
 cleanup:
     if (rc)
         atmo_part_free(p);
-    atmo_exr_layers_free(&f);
+    atmo_exr_file_free(&f);
     return rc;
 }
 

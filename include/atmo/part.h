@@ -10,12 +10,13 @@
  * (A split of the sample range could not merge bit for bit: part 2's sum starts from 0, not
  * from part 1's, and float addition is not associative.)
  *
- * A part file is an EXR (atmo_image_write_exr_layers) of 7 float layers: S1.R S1.G S1.B,
- * S2.R S2.G S2.B and N (the samples, exact in float up to 2^24 > image.samples' maximum), and
- * string attributes: atmoPart "I/N", atmoBandRows, atmoScene (the resolved scene as JSON,
- * atmo_scene_to_json), atmoSceneHash (16 hex digits of the FNV-1a 64 hash of that text),
- * atmoDevice (platform, device and driver: the image is bitwise the single render's on the same
- * device) and software.
+ * A part file is an EXR (atmo_image_write: PIZ, lossless, so every float reads back bit for bit)
+ * with R, G, B the part's mean (0 outside its bands: a look at the part), the layers S1.R/G/B
+ * and S2.R/G/B (the raw sums) and Samples.N (the samples per pixel, exact in float up to
+ * 2^24 > image.samples' maximum), and string attributes: atmoPart "I/N", atmoBandRows,
+ * atmoScene (the resolved scene as JSON, atmo_scene_to_json), atmoSceneHash (16 hex digits of
+ * the FNV-1a 64 hash of that text), atmoDevice (platform, device and driver: the image is
+ * bitwise the single render's on the same device).
  *
  * atmo_part_merge checks, before it merges anything: every file is a part of the same scene
  * (hash, size, N, band rows), each part 1..N is there exactly once, and every part holds the
