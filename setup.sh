@@ -22,6 +22,8 @@ as_root=()
 packages=(cmake make gcc pkg-config
           pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers
           libstb-dev libcjson-dev libopenexr-dev openexr libglfw3-dev gnuplot-nox)
+# the tests also start a one-node Slurm cluster (tests/test_slurm.sh)
+[ "$mode" = test ] && packages+=(slurm-wlm munge)
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -77,8 +77,9 @@ static const char render_usage[] =
     "  --frames A..B          render frames A to B; each output NAME.EXT becomes NAME.0001.EXT\n"
     "                         ...; with --part I/N, part I renders frames A+I-1, A+I-1+N, ...\n"
     "  --animate KEY=V0..V1   move a float key linearly from V0 (frame A) to V1 (frame B)\n"
-    "  --scene-end FILE       move every float and vector key in which FILE (with the same\n"
-    "                         --set options) differs from the scene\n"
+    "  --scene-end FILE       move every float and vector key in which the end scene differs\n"
+    "                         from the start: the --preset (none with --scene), FILE, then\n"
+    "                         the same --set options\n"
     "\n"
     "Ctrl-C (SIGINT) or SIGTERM stops the precompute or the render after the launch in flight:\n"
     "the samples finished so far are written, marked partial, with exit status 3; stopped\n"
@@ -495,8 +496,11 @@ int cmd_render(int argc, char **argv)
         rc = frames_add_animate(&anim, animate[i], &e);
     if (!rc && scene_end) {
         atmo_scene end;
-        atmo_scene_defaults(&end);
-        rc = atmo_scene_load_json(&end, scene_end, &e);
+        atmo_scene_defaults(&end); /* the start's base (defaults or the preset), then FILE */
+        if (!scene_file)
+            rc = atmo_scene_apply_preset(&end, preset ? preset : atmo_default_preset, &e);
+        if (!rc)
+            rc = atmo_scene_load_json(&end, scene_end, &e);
         for (int i = 0; i < n_set && !rc; i++)
             rc = atmo_scene_assign(&end, sets[i], "--set", &e);
         if (!rc && !(rc = atmo_scene_validate(&end, &e)))
