@@ -9,7 +9,7 @@
 # sums are built in sample order whatever the tiles and batches (atmo/session.h), a part holds
 # its pixels' sums exactly (lossless EXR float layers), and the merge copies them and divides
 # as the session does, so the comparison is exact (cmp), with no tolerance. Parts of 3 and of
-# 4 cover images whose height is not a multiple of the 16-row bands (40 rows: bands 16, 16, 8).
+# 2 cover an image of 5 bands of 8 rows (40 rows), which neither divides evenly.
 set -u
 atmo=$1
 work=$(mktemp -d)
@@ -65,9 +65,12 @@ same_files single m3
     bad "merge of 2 parts failed"
 same_files single m2
 
-# a part file is readable by other EXR tools and holds the mean in R, G, B
+# a part file is readable by other EXR tools and holds only its own rows: part 1/3 of 40 rows
+# in bands of 8 has bands 0 and 3, 16 rows
 if command -v exrheader >/dev/null; then
-    exrheader p3_1.exr | grep -q 'atmoPart (type string): "1/3"' && ok || bad "exrheader: no atmoPart"
+    exrheader p3_1.exr >hdr.txt
+    grep -q 'atmoPart (type string): "1/3"' hdr.txt && ok || bad "exrheader: no atmoPart"
+    grep -q 'dataWindow (type box2i): (0 0) - (47 15)' hdr.txt && ok || bad "part 1/3 is not 48x16"
 fi
 
 # refusals: no output is written
@@ -84,7 +87,7 @@ refused "--part to a PNG" "one --output FILE.exr" render "${scene[@]}" --part 1/
 refused "--part with two outputs" "one --output FILE.exr" render "${scene[@]}" --part 1/2 --output out/p.exr --output out/q.exr
 refused "--part 0/2" "--part needs I/N" render "${scene[@]}" --part 0/2 --output out/p.exr
 refused "--part 3/x" "--part needs I/N" render "${scene[@]}" --part 3/x --output out/p.exr
-refused "more parts than bands" "only 3 bands" render "${scene[@]}" --part 1/4 --output out/p.exr
+refused "more parts than bands" "only 5 bands" render "${scene[@]}" --part 1/6 --output out/p.exr
 refused "spectral mode" "spectral mode" render "${scene[@]}" --set render.spectral_bands=15 --part 1/2 --output out/p.exr
 
 echo "test_merge: $passed passed, $failed failed"

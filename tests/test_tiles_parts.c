@@ -8,8 +8,9 @@
  * its own part (band b in part b mod N + 1); every tile is `size` wide except at the right
  * edge; parts = 0 is the whole image in the classic square tiles. The scheduler's per-pixel
  * sample count is the sample count of the tile that holds the pixel, 0 outside the part. The
- * counts are exact: no tolerance. Then atmo_part_merge on synthetic parts: complete parts merge
- * into each pixel's own part's values; a missing, a duplicated, a foreign and an incomplete
+ * counts are exact: no tolerance. Then atmo_part_merge on synthetic parts (each holding only
+ * its rows): complete parts merge into each pixel's own part's values, and their row counts add
+ * up to the image's; a missing, a duplicated, a foreign and an incomplete
  * part are refused as usage errors. */
 #include <stdlib.h>
 #include <string.h>
@@ -61,22 +62,19 @@ static void check_split(int width, int height, int size, int parts)
     free(cover);
 }
 
-/* A synthetic part i of n of a w x h image: its bands hold `samples`, pixel values i + c. */
+/* A synthetic part i of n of a w x h image: `samples` in each pixel, values i + c and i c. */
 static void make_part(atmo_part *p, int w, int h, int i, int n, int samples, const char *scene)
 {
     atmo_err e = {{0}};
-    CHECK(atmo_part_alloc(p, w, h, scene, &e) == ATMO_OK);
-    p->part = i;
-    p->parts = n;
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w && atmo_part_of_row(y, n) == i; x++) {
-            size_t k = (size_t)y * w + x;
-            p->samples[k] = samples;
-            for (int c = 0; c < 3; c++) {
-                p->s1[3 * k + c] = (float)(i + c);
-                p->s2[3 * k + c] = (float)(i * c);
-            }
+    CHECK(atmo_part_alloc(p, w, h, i, n, scene, &e) == ATMO_OK);
+    CHECK(p->rows == atmo_part_row_count(h, i, n));
+    for (size_t k = 0; k < (size_t)w * p->rows; k++) {
+        p->samples[k] = samples;
+        for (int c = 0; c < 3; c++) {
+            p->s1[3 * k + c] = (float)(i + c);
+            p->s2[3 * k + c] = (float)(i * c);
         }
+    }
 }
 
 static void check_merge(void)
@@ -87,7 +85,9 @@ static void check_merge(void)
     atmo_err e = {{0}};
     for (int i = 0; i < N; i++)
         make_part(&parts[i], W, H, i + 1, N, S, "{\"scene\": 1}");
+    CHECK(parts[0].rows + parts[1].rows + parts[2].rows == H);
     CHECK(atmo_part_merge(parts, paths, N, S, &merged, &e) == ATMO_OK);
+    CHECK(merged.rows == H);
     int right = 1;
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
@@ -131,7 +131,7 @@ int main(void)
             }
     atmo_tiles t;
     atmo_err e = {{0}};
-    CHECK(atmo_tiles_init_part(&t, 64, 40, 16, 1, 4, &e) == ATMO_ERR_USAGE); /* 3 bands */
+    CHECK(atmo_tiles_init_part(&t, 64, 40, 16, 1, 6, &e) == ATMO_ERR_USAGE); /* 5 bands */
     CHECK(atmo_tiles_init_part(&t, 64, 40, 16, 0, 2, &e) == ATMO_ERR_USAGE);
     CHECK(atmo_tiles_init_part(&t, 64, 40, 16, 3, 2, &e) == ATMO_ERR_USAGE);
     check_merge();

@@ -71,7 +71,7 @@ static const char render_usage[] =
     "                         take over 0.5 s and Mie tables are cached)\n"
     "  --quiet                no progress output\n"
     "split and animate (README: Rendering on a cluster):\n"
-    "  --part I/N             render part I of N of the image (its rows in bands of 16, band b\n"
+    "  --part I/N             render part I of N of the image (its rows in bands of 8, band b\n"
     "                         in part b mod N + 1) into one --output FILE.exr of raw sums;\n"
     "                         atmo merge joins the N parts into the image of a single render\n"
     "  --frames A..B          render frames A to B; each output NAME.EXT becomes NAME.0001.EXT\n"
@@ -223,7 +223,8 @@ static int render_frame(const atmo_scene *scene_in, atmo_render_settings *rs_in,
     char *scene_json = part_file ? atmo_scene_to_json(&scene) : NULL;
     if (part_file && !scene_json)
         rc = atmo_fail(&e, ATMO_ERR_RUNTIME, "out of memory for the scene's text");
-    else if (part_file && !(rc = atmo_part_alloc(&part, plan.width, plan.height, scene_json, &e)))
+    else if (part_file && !(rc = atmo_part_alloc(&part, plan.width, plan.height, rs.part,
+                                                 rs.parts, scene_json, &e)))
         rc = atmo_render_part(&plan, &rs, &res, &part, &e);
     else if (!part_file)
         rc = spectral ? atmo_spectral_render(&scene, lut_cache, &rs, &res, &e)

@@ -3,8 +3,8 @@
  * The merge's checks, in order, each a usage error that names a file or a part: every file
  * reads as a part (the layers and attributes of part.h) whose stored hash is its scene text's;
  * all have the first file's scene hash, image size, N and band rows; no part index appears
- * twice; none of 1..N is missing; each part has the requested samples in every pixel row of
- * its bands (atmo_part_of_row) and 0 samples elsewhere. Only then are the pixels copied. */
+ * twice; none of 1..N is missing; each part has the requested samples in every pixel. Only
+ * then are the rows copied, each to its place in the image (atmo_part_of_row). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,16 +24,28 @@ unsigned long long atmo_part_scene_hash(const char *scene_json)
     return h;
 }
 
-int atmo_part_alloc(atmo_part *p, int width, int height, const char *scene_json, atmo_err *e)
+int atmo_part_row_count(int height, int part, int parts)
 {
-    size_t pixels = (size_t)width * (size_t)height;
+    int n = 0;
+    for (int y = 0; y < height; y++)
+        n += atmo_part_of_row(y, parts) == part;
+    return n;
+}
+
+int atmo_part_alloc(atmo_part *p, int width, int height, int part, int parts,
+                    const char *scene_json, atmo_err *e)
+{
     memset(p, 0, sizeof *p);
     p->width = width;
     p->height = height;
+    p->part = part;
+    p->parts = parts;
     p->band_rows = ATMO_PART_BAND_ROWS;
-    p->s1 = calloc(pixels * 3, sizeof(float));
-    p->s2 = calloc(pixels * 3, sizeof(float));
-    p->samples = calloc(pixels, sizeof(int));
+    p->rows = atmo_part_row_count(height, part, parts);
+    size_t pixels = (size_t)width * (size_t)p->rows;
+    p->s1 = calloc(pixels * 3 + 1, sizeof(float));
+    p->s2 = calloc(pixels * 3 + 1, sizeof(float));
+    p->samples = calloc(pixels + 1, sizeof(int));
     p->scene_json = malloc(strlen(scene_json) + 1);
     if (!p->s1 || !p->s2 || !p->samples || !p->scene_json) {
         atmo_part_free(p);
@@ -43,6 +55,19 @@ int atmo_part_alloc(atmo_part *p, int width, int height, const char *scene_json,
     strcpy(p->scene_json, scene_json);
     p->scene_hash = atmo_part_scene_hash(scene_json);
     return ATMO_OK;
+}
+
+void atmo_part_pack(atmo_part *p, const float *s1, const float *s2, const int *samples)
+{
+    size_t w = (size_t)p->width, k = 0;
+    for (int y = 0; y < p->height; y++) {
+        if (atmo_part_of_row(y, p->parts) != p->part)
+            continue;
+        memcpy(p->s1 + 3 * w * k, s1 + 3 * w * (size_t)y, sizeof(float) * 3 * w);
+        memcpy(p->s2 + 3 * w * k, s2 + 3 * w * (size_t)y, sizeof(float) * 3 * w);
+        memcpy(p->samples + w * k, samples + w * (size_t)y, sizeof(int) * w);
+        k++;
+    }
 }
 
 void atmo_part_free(atmo_part *p)
@@ -56,7 +81,7 @@ void atmo_part_free(atmo_part *p)
 
 int atmo_part_write(const char *path, const atmo_part *p, atmo_err *e)
 {
-    size_t pixels = (size_t)p->width * (size_t)p->height;
+    size_t pixels = (size_t)p->width * (size_t)p->rows;
     float *mean = malloc(pixels * 3 * sizeof(float));
     float *count = malloc(pixels * sizeof(float));
     if (!mean || !count) {
@@ -75,12 +100,13 @@ int atmo_part_write(const char *path, const atmo_part *p, atmo_err *e)
         layers[0].channel_names[c] = layers[1].channel_names[c] = rgb_names[c];
         layers[2].channel_names[c] = count_names[c];
     }
-    char part[32], rows[16], hash[24];
+    char part[32], rows[16], hash[24], size[32];
     snprintf(part, sizeof part, "%d/%d", p->part, p->parts);
+    snprintf(size, sizeof size, "%dx%d", p->width, p->height);
     snprintf(rows, sizeof rows, "%d", p->band_rows);
     snprintf(hash, sizeof hash, "%016llx", p->scene_hash);
     const char *const attributes[] = {"atmoPart",      part,          "atmoBandRows", rows,
-                                      "atmoSceneHash", hash,          "atmoScene",    p->scene_json,
+                                      "atmoImageSize", size,         "atmoSceneHash", hash,          "atmoScene",    p->scene_json,
                                       "atmoDevice",    p->device};
     atmo_image_meta meta = {
         .quantity = "a part of a split render: its mean in R, G, B; the sums of the samples and "
@@ -88,7 +114,7 @@ int atmo_part_write(const char *path, const atmo_part *p, atmo_err *e)
         .software = "atmo " ATMO_VERSION,
         .attributes = attributes,
         .attribute_count = (int)(sizeof attributes / sizeof attributes[0] / 2)};
-    atmo_image img = {.width = p->width, .height = p->height, .rgb = mean, .layers = layers,
+    atmo_image img = {.width = p->width, .height = p->rows, .rgb = mean, .layers = layers,
                       .layer_count = 3};
     int rc = atmo_image_write(path, &img, NULL, &meta, e);
     free(count);
@@ -118,18 +144,20 @@ int atmo_part_read(const char *path, atmo_part *p, atmo_err *e)
     const char *hash = atmo_exr_attribute_value(&f, "atmoSceneHash");
     const char *scene = atmo_exr_attribute_value(&f, "atmoScene");
     const char *device = atmo_exr_attribute_value(&f, "atmoDevice");
+    const char *size = atmo_exr_attribute_value(&f, "atmoImageSize");
     static const char *const plane_names[7] = {"S1.R", "S1.G", "S1.B", "S2.R",
                                                "S2.G", "S2.B", "Samples.N"};
     const float *planes[7];
-    int complete = part && rows && hash && scene && device;
+    int complete = part && rows && hash && scene && device && size;
     for (int k = 0; k < 7; k++)
         complete = complete && (planes[k] = atmo_exr_channel_data(&f, plane_names[k])) != NULL;
-    int i_part = 0, n_parts = 0, band_rows = 0;
+    int i_part = 0, n_parts = 0, band_rows = 0, width = 0, height = 0;
     unsigned long long stored = 0;
     char tail;
     if (!complete || !parse_part(part, &i_part, &n_parts) ||
         sscanf(rows, "%d%c", &band_rows, &tail) != 1 || band_rows < 1 ||
-        sscanf(hash, "%16llx%c", &stored, &tail) != 1) {
+        sscanf(hash, "%16llx%c", &stored, &tail) != 1 ||
+        sscanf(size, "%dx%d%c", &width, &height, &tail) != 2 || width < 1 || height < 1) {
         rc = atmo_fail(e, ATMO_ERR_USAGE,
                        "'%s' is not a part of a split render (it lacks the S1, S2, Samples "
                        "layers or the atmoPart, atmoScene attributes); make parts with atmo "
@@ -137,8 +165,22 @@ int atmo_part_read(const char *path, atmo_part *p, atmo_err *e)
                        path);
         goto cleanup;
     }
-    if ((rc = atmo_part_alloc(p, f.width, f.height, scene, e)))
+    if (band_rows != ATMO_PART_BAND_ROWS) {
+        rc = atmo_fail(e, ATMO_ERR_USAGE,
+                       "'%s' cuts the image into bands of %d rows; this atmo's parts have %d "
+                       "(render the parts with one atmo version)",
+                       path, band_rows, ATMO_PART_BAND_ROWS);
         goto cleanup;
+    }
+    if ((rc = atmo_part_alloc(p, width, height, i_part, n_parts, scene, e)))
+        goto cleanup;
+    if (f.width != width || f.height != p->rows) {
+        rc = atmo_fail(e, ATMO_ERR_USAGE,
+                       "'%s' is damaged: part %d/%d of a %dx%d image has %d rows of %d pixels, "
+                       "but the file holds %dx%d; render that part again",
+                       path, i_part, n_parts, width, height, p->rows, width, f.width, f.height);
+        goto cleanup;
+    }
     if (p->scene_hash != stored) {
         rc = atmo_fail(e, ATMO_ERR_USAGE,
                        "'%s' is damaged: its scene does not hash to its atmoSceneHash %s; render "
@@ -146,9 +188,6 @@ int atmo_part_read(const char *path, atmo_part *p, atmo_err *e)
                        path, hash);
         goto cleanup;
     }
-    p->part = i_part;
-    p->parts = n_parts;
-    p->band_rows = band_rows;
     snprintf(p->device, sizeof p->device, "%s", device);
     size_t pixels = (size_t)f.width * (size_t)f.height;
     for (size_t i = 0; i < pixels; i++) {
@@ -165,27 +204,14 @@ cleanup:
     return rc;
 }
 
-/* The part's samples in its own bands are all `samples`, elsewhere all 0. */
-static int check_cover(const atmo_part *p, const char *path, int samples, atmo_err *e)
+/* Every pixel of the part has `samples` samples. */
+static int check_complete(const atmo_part *p, const char *path, int samples, atmo_err *e)
 {
-    int lo = -1, hi = -1, stray = 0;
-    for (int y = 0; y < p->height; y++) {
-        int mine = atmo_part_of_row(y, p->parts) == p->part;
-        for (int x = 0; x < p->width; x++) {
-            int n = p->samples[(size_t)y * p->width + x];
-            if (!mine) {
-                stray |= n != 0;
-                continue;
-            }
-            lo = lo < 0 || n < lo ? n : lo;
-            hi = n > hi ? n : hi;
-        }
+    int lo = samples, hi = samples;
+    for (size_t i = 0; i < (size_t)p->width * (size_t)p->rows; i++) {
+        lo = p->samples[i] < lo ? p->samples[i] : lo;
+        hi = p->samples[i] > hi ? p->samples[i] : hi;
     }
-    if (stray)
-        return atmo_fail(e, ATMO_ERR_USAGE,
-                         "'%s' (part %d/%d) has samples outside its bands; it is not a part "
-                         "atmo rendered, render it again",
-                         path, p->part, p->parts);
     if (lo != samples || hi != samples)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "'%s' (part %d/%d) is incomplete: %d to %d of %d samples per pixel (an "
@@ -219,11 +245,6 @@ int atmo_part_merge(const atmo_part *parts, const char *const *paths, int n, int
                            "%d/%d of %dx%d in bands of %d; merge only the parts of one render",
                            paths[k], p->part, p->parts, p->width, p->height, p->band_rows,
                            paths[0], a->part, a->parts, a->width, a->height, a->band_rows);
-        else if (p->band_rows != ATMO_PART_BAND_ROWS)
-            rc = atmo_fail(e, ATMO_ERR_USAGE,
-                           "'%s' cuts the image into bands of %d rows; this atmo's parts have %d "
-                           "(render the parts with one atmo version)",
-                           paths[k], p->band_rows, ATMO_PART_BAND_ROWS);
         else if (seen[p->part])
             rc = atmo_fail(e, ATMO_ERR_USAGE,
                            "'%s' is part %d/%d again (so is '%s'); give each part once",
@@ -238,16 +259,24 @@ int atmo_part_merge(const atmo_part *parts, const char *const *paths, int n, int
                            "--part %d/%d and merge all of them",
                            i, a->parts, n, a->parts, i, a->parts);
     for (int k = 0; k < n && !rc; k++)
-        rc = check_cover(&parts[k], paths[k], samples, e);
-    if (!rc && (rc = atmo_part_alloc(out, a->width, a->height, a->scene_json, e)) == ATMO_OK) {
+        rc = check_complete(&parts[k], paths[k], samples, e);
+    if (!rc && (rc = atmo_part_alloc(out, a->width, a->height, 1, 1, a->scene_json, e)) == ATMO_OK) {
         snprintf(out->device, sizeof out->device, "%s", a->device);
-        for (int y = 0; y < a->height; y++) {
-            const atmo_part *p = &parts[seen[atmo_part_of_row(y, a->parts)] - 1];
-            size_t row = (size_t)y * a->width;
-            memcpy(out->s1 + 3 * row, p->s1 + 3 * row, sizeof(float) * 3 * (size_t)a->width);
-            memcpy(out->s2 + 3 * row, p->s2 + 3 * row, sizeof(float) * 3 * (size_t)a->width);
-            memcpy(out->samples + row, p->samples + row, sizeof(int) * (size_t)a->width);
+        size_t w = (size_t)a->width;
+        int *next = calloc((size_t)a->parts + 1, sizeof *next); /* packed row per part */
+        if (!next)
+            rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for %d parts", a->parts);
+        for (int y = 0; next && y < a->height; y++) {
+            int i = atmo_part_of_row(y, a->parts);
+            const atmo_part *p = &parts[seen[i] - 1];
+            size_t k = (size_t)next[i]++;
+            memcpy(out->s1 + 3 * w * (size_t)y, p->s1 + 3 * w * k, sizeof(float) * 3 * w);
+            memcpy(out->s2 + 3 * w * (size_t)y, p->s2 + 3 * w * k, sizeof(float) * 3 * w);
+            memcpy(out->samples + w * (size_t)y, p->samples + w * k, sizeof(int) * w);
         }
+        free(next);
+        if (rc)
+            atmo_part_free(out);
     }
     free(seen);
     return rc;
@@ -255,7 +284,7 @@ int atmo_part_merge(const atmo_part *parts, const char *const *paths, int n, int
 
 void atmo_part_mean(const atmo_part *p, float *rgb)
 {
-    size_t pixels = (size_t)p->width * (size_t)p->height;
+    size_t pixels = (size_t)p->width * (size_t)p->rows;
     for (size_t i = 0; i < pixels; i++)
         for (int c = 0; c < 3; c++)
             rgb[3 * i + c] = atmo_session_mean(p->s1[3 * i + c], p->samples[i]);

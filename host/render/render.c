@@ -62,19 +62,26 @@ int atmo_render_part(const atmo_plan *plan, const atmo_render_settings *settings
     atmo_session *s = NULL;
     atmo_step step = {plan->samples, 0.0, NULL, NULL, settings->cancel};
     atmo_step_status st;
+    size_t pixels = (size_t)plan->width * (size_t)plan->height;
+    float *s1 = malloc(sizeof(float) * 3 * pixels), *s2 = malloc(sizeof(float) * 3 * pixels);
+    int *samples = malloc(sizeof(int) * pixels);
     memset(res, 0, sizeof *res);
-    int rc = atmo_session_open(&s, plan, settings, e);
+    int rc = s1 && s2 && samples ? atmo_session_open(&s, plan, settings, e)
+                                 : atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for a %dx%d "
+                                             "image", plan->width, plan->height);
     if (!rc)
         rc = atmo_session_step(s, &step, &st, e);
     if (!rc)
-        rc = atmo_session_read_sums(s, part->s1, part->s2, part->samples, e);
+        rc = atmo_session_read_sums(s, s1, s2, samples, e);
     if (!rc) {
+        atmo_part_pack(part, s1, s2, samples);
         atmo_render_result_from_session(s, res);
-        part->part = settings->part;
-        part->parts = settings->parts;
         snprintf(part->device, sizeof part->device, "%s / %s / %s", res->platform_name,
                  res->device_name, res->driver_version);
     }
     atmo_session_close(s);
+    free(samples);
+    free(s2);
+    free(s1);
     return rc;
 }

@@ -17,8 +17,11 @@
  * holds only the tiles of its own bands: each band cut into rows of at most `size` pixels,
  * each row into columns of `size`. The bands do not depend on the tile size, so parts rendered
  * with different tile sizes or budgets still cover the image exactly once; interleaving thin
- * bands spreads the costly rows (the horizon, the ground, the sun) over all parts. Pixels
- * outside the part have 0 samples. parts = 0 is the whole image, tiled as above. */
+ * bands spreads the costly rows (the horizon, the ground, the sun) over all parts. A band is
+ * the session's local size high (8), so every tile is still whole work-groups high; on the
+ * scenes of docs/notes/split_render.md 8-row bands balance 4 parts within a few per cent of a
+ * split of the sample range, which could not merge bit for bit (atmo/part.h). Pixels outside
+ * the part have 0 samples. parts = 0 is the whole image, tiled as above. */
 #ifndef ATMO_TILES_H
 #define ATMO_TILES_H
 #include "atmo/status.h"
@@ -32,7 +35,7 @@ typedef struct atmo_tile {
     int samples;        /* samples per pixel the tile has once the launch is done */
 } atmo_tile;
 
-#define ATMO_PART_BAND_ROWS 16
+#define ATMO_PART_BAND_ROWS 8
 
 typedef struct atmo_tiles {
     int width, height, size;
