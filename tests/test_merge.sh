@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # test_merge — a render split into parts (atmo render --part I/N) and joined (atmo merge) gives
 # the single render's files byte for byte, whatever tile size and launch budget each part used;
-# the merge refuses a missing, duplicated, foreign or non-part file with one line naming it,
+# the merge refuses a missing, duplicated, foreign, interrupted or non-part file with one line naming it,
 # exit 2 and no output; --part refuses bad use before any work.
 # labels: cli render
 #
@@ -83,6 +83,22 @@ refused "not a part" "'single.exr' is not a part" merge single.exr --output out/
 refused "not an EXR" "single.pfm" merge single.pfm --output out/m.pfm
 refused "output is a part" "is the part" merge p3_1.exr p3_2.exr p3_3.exr --output p3_1.exr
 refused "no output" "no --output" merge p3_1.exr
+# an interrupted part (Ctrl-C: exit 3, the samples so far written) is refused as incomplete:
+# part 1/1 of a scene of 10^6 samples per pixel; the signal must land in the render, after the
+# first launch: wait longer if it came too early
+for wait_s in 2 4 8; do
+    "$atmo" render --width 16 --height 16 --samples 1000000 --quiet --part 1/1 \
+        --output cut.exr 2>/dev/null &
+    pid=$!
+    sleep $wait_s
+    kill -INT $pid
+    wait $pid
+    rc=$?
+    [ $rc -ne 4 ] && break
+done
+[ $rc -eq 3 ] && ok || bad "interrupted part: exit $rc, want 3"
+refused "incomplete part" "'cut.exr' \\(part 1/1\\) is incomplete: [0-9]+ to [0-9]+ of 1000000 samples" \
+    merge cut.exr --output out/m.pfm
 refused "--part to a PNG" "one --output FILE.exr" render "${scene[@]}" --part 1/2 --output out/p.png
 refused "--part with two outputs" "one --output FILE.exr" render "${scene[@]}" --part 1/2 --output out/p.exr --output out/q.exr
 refused "--part 0/2" "--part needs I/N" render "${scene[@]}" --part 0/2 --output out/p.exr
