@@ -4,12 +4,14 @@
 # directory), submits tools/slurm/submit.sh's array job of 4 parts and the dependent merge job,
 # waits for them, and compares the merged files with a single-process render, byte for byte.
 # It also checks that the tasks' cache directories on the node's disk (one per task) are gone
-# when the jobs are. The daemons are stopped on every exit (trap). Exit 77 (skipped) where the
+# when the jobs are, and renders a 2-frame animation as 2 tasks (whole frames, no merge) that
+# share one kept node cache (ATMO_NODE_CACHE_SHARED=1). The daemons are stopped on every exit (trap). Exit 77 (skipped) where the
 # packages are missing or the daemons cannot be started (not root, ports taken, no munge).
 # labels: cli slow
 #
 # Oracle: the single-process render of the same scene and seed on the same device (bitwise:
-# the parts hold each pixel's sums in sample order, atmo/part.h), and the Slurm job states
+# the parts hold each pixel's sums in sample order, atmo/part.h; each frame against a render at
+# its interpolated zenith, 40 and 60 deg, exact in binary), and the Slurm job states
 # (COMPLETED) that scontrol reports.
 set -u
 atmo=$1
@@ -114,6 +116,30 @@ n=$(ls "$work"/out/part.*.exr 2>/dev/null | wc -l)
 cmp -s single.exr merged.exr && ok || bad "merged .exr differs from the single render"
 cmp -s single.pfm merged.pfm && ok || bad "merged .pfm differs from the single render"
 [ -z "$(ls -A "$work"/node)" ] && ok || bad "tasks left cache directories: $(ls "$work"/node)"
+
+# an animation: 2 tasks render frames 1 and 2 whole, sharing one kept cache on the node
+wait_job() {
+    local i s
+    for ((i = 0; i < 240; i++)); do
+        s=$(state "$1")
+        case $s in *COMPLETED* | *FAILED* | *CANCELLED* | *TIMEOUT*) return ;; esac
+        sleep 0.5
+    done
+}
+anim=(--width 32 --height 16 --samples 2 --frames 1..2 --animate sun.zenith_deg=40..60)
+ids=$(ATMO_NODE_CACHE_SHARED=1 "$src"/tools/slurm/submit.sh 2 "$work"/frames sky.pfm "${anim[@]}") ||
+    bad "submit.sh --frames failed"
+read -r array merge <<<"$ids"
+wait_job "$array"
+[ "$(state "$array")" = "JobState=COMPLETED " ] && ok ||
+    { bad "frames job $array: $(state "$array")"; cat "$work"/frames/frames.*.log >&2; }
+[ "$merge" = - ] && ok || bad "a merge job ($merge) for an animation"
+for f in 1 2; do
+    "$atmo" render --width 32 --height 16 --samples 2 --set sun.zenith_deg=$((20 + 20 * f)) \
+        --quiet --output ref$f.pfm
+    cmp -s ref$f.pfm "$work"/frames/sky.000$f.pfm && ok || bad "Slurm frame $f differs"
+done
+[ -d "$work"/node/atmo-cache ] && ok || bad "the shared node cache is not kept"
 
 echo "test_slurm: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

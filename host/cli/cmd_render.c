@@ -551,6 +551,9 @@ int cmd_render(int argc, char **argv)
         goto usage_error;
     if (save_scene && (rc = atmo_scene_save_json(&scene, save_scene, &e)))
         goto runtime_error;
+    if (n_out > 0 && frame_first > frame_last && !quiet)
+        fprintf(stderr, "atmo render: part %d/%d of frames %d..%d has no frame to render\n",
+                frame_first - anim.first + 1, frame_step, anim.first, anim.last);
     if (n_out == 0 || frame_first > frame_last) {
         output_paths_free(&files);
         return ATMO_OK;
