@@ -24,6 +24,8 @@ packages=(cmake make gcc pkg-config
           libstb-dev libcjson-dev libopenexr-dev openexr libglfw3-dev gnuplot-nox)
 # the viewer's tests (tests/test_view_*.sh): an X server and Mesa's software OpenGL
 [ "$mode" = test ] && packages+=(xvfb xauth libgl1-mesa-dri)
+# the tests also start a one-node Slurm cluster (tests/test_slurm.sh)
+[ "$mode" = test ] && packages+=(slurm-wlm munge)
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

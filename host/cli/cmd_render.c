@@ -24,12 +24,15 @@
 #include "atmo/colour.h"
 #include "atmo/fileio.h"
 #include "atmo/image.h"
+#include "atmo/part.h"
 #include "atmo/plan.h"
 #include "atmo/render.h"
 #include "atmo/scene.h"
 #include "atmo/spectral_render.h"
 #include "commands.h"
+#include "frames.h"
 #include "output_paths.h"
+#include "render_outputs.h"
 
 #define RENDER_MAX_OUTPUTS 8
 #define RENDER_MAX_SETS 256
@@ -67,7 +70,16 @@ static const char render_usage[] =
     "  --no-lut-cache         always precompute LUTs and Mie tables, and store none (LUTs that\n"
     "                         take over 0.5 s and Mie tables are cached)\n"
     "  --quiet                no progress output\n"
-    "\n"
+    "split and animate (README: Rendering on a cluster):\n"
+    "  --part I/N             render part I of N of the image (its rows in bands of 8, band b\n"
+    "                         in part b mod N + 1) into one --output FILE.exr of raw sums;\n"
+    "                         atmo merge joins the N parts into the image of a single render\n"
+    "  --frames A..B          render frames A to B; each output NAME.EXT becomes NAME.0001.EXT\n"
+    "                         ...; with --part I/N, part I renders frames A+I-1, A+I-1+N, ...\n"
+    "  --animate KEY=V0..V1   move a float key linearly from V0 (frame A) to V1 (frame B)\n"
+    "  --scene-end FILE       move every float and vector key in which the end scene differs\n"
+    "                         from the start: the --preset (none with --scene), FILE, then\n"
+    "                         the same --set options\n"
     "\n"
     "Ctrl-C (SIGINT) or SIGTERM stops the precompute or the render after the launch in flight:\n"
     "the samples finished so far are written, marked partial, with exit status 3; stopped\n"
@@ -179,13 +191,172 @@ static int parse_int_arg(const char *opt, const char *v, int lo, int hi, int *ou
     return ATMO_OK;
 }
 
+/* Render one scene (a frame) and write its files: the images, or with part_file the part's raw
+ * sums (outputs[0]); then the report. Returns the exit status; errors are printed. */
+static int render_frame(const atmo_scene *scene_in, atmo_render_settings *rs_in, int lut_cache,
+                        int quiet, int part_file, const char *const *outputs, int n_out,
+                        const char *report)
+{
+    atmo_err e = {{0}};
+    atmo_scene scene = *scene_in;
+    atmo_render_settings rs = *rs_in;
+    atmo_render_result res = {0};
+    atmo_part part = {0};
+    int rc = ATMO_OK;
+    /* spectral mode plans each triplet of bands itself */
+    int spectral = scene.render.spectral_bands > 0;
+    atmo_plan plan;
+    if (!spectral && (rc = atmo_plan_make_cached(&scene, lut_cache, lut_cache, &plan, &e)))
+        goto runtime_error;
+
+    /* the handler stays until the files are written: a signal then lets the writing finish */
+    atmo_cancel_clear(&render_cancel);
+    signals_seen = 0;
+    pending_count = 0;
+    for (int i = 0; i < n_out; i++)
+        atmo_tmp_path(outputs[i], pending_tmp[pending_count++]);
+    if (report)
+        atmo_tmp_path(report, pending_tmp[pending_count++]);
+    rs.cancel = &render_cancel;
+    struct sigaction old[2];
+    handle_signals(1, old);
+    char *scene_json = part_file ? atmo_scene_to_json(&scene) : NULL;
+    if (part_file && !scene_json)
+        rc = atmo_fail(&e, ATMO_ERR_RUNTIME, "out of memory for the scene's text");
+    else if (part_file && !(rc = atmo_part_alloc(&part, plan.width, plan.height, rs.part,
+                                                 rs.parts, scene_json, &e)))
+        rc = atmo_render_part(&plan, &rs, &res, &part, &e);
+    else if (!part_file)
+        rc = spectral ? atmo_spectral_render(&scene, lut_cache, &rs, &res, &e)
+                      : atmo_render(&plan, &rs, &res, &e);
+    free(scene_json);
+    if (!spectral)
+        atmo_plan_free(&plan);
+    if (rc == ATMO_ERR_RUNTIME || rc == ATMO_ERR_USAGE) {
+        handle_signals(0, old);
+        goto runtime_error;
+    }
+    if (rc == ATMO_OK && res.interrupted && res.samples_max == 0) {
+        atmo_fail(&e, ATMO_INTERRUPTED_EMPTY, "interrupted before the first sample");
+        rc = ATMO_INTERRUPTED_EMPTY;
+    }
+    if (rc) { /* interrupted before any result */
+        fprintf(stderr, "atmo render: %s; no image written (exit status %d)\n", e.msg, rc);
+        handle_signals(0, old);
+        atmo_render_result_free(&res);
+        atmo_part_free(&part);
+        return rc;
+    }
+    if (res.interrupted)
+        fprintf(stderr, "atmo render: interrupted; writing %d to %d of %d samples per pixel "
+                        "(exit status %d)\n",
+                res.samples_min, res.samples_max, res.samples_requested,
+                ATMO_INTERRUPTED_PARTIAL);
+    if (res.nonfinite)
+        fprintf(stderr, "atmo render: warning: %u non-finite samples were dropped (a bug; please "
+                        "report it with the scene)\n", res.nonfinite);
+
+    /* outputs */
+    double tw = atmo_now_seconds();
+    atmo_image img = {.width = res.width, .height = res.height, .rgb = res.rgb};
+    rc = part_file ? atmo_part_write(outputs[0], &part, &e)
+                   : render_outputs_write(&scene, &img, res.samples_min, res.interrupted,
+                                          outputs, n_out, &e);
+    double seconds_write = atmo_now_seconds() - tw;
+    if (!rc && report)
+        rc = write_report(report, &scene, &res, &rs, outputs, n_out, seconds_write, &e);
+    handle_signals(0, old);
+    if (rc)
+        goto runtime_error;
+    if (!quiet)
+        fprintf(stderr, "atmo render: wrote %d image%s (%dx%d, %d samples/pixel%s) in %.2fs: "
+                        "%.2fs device, %.2fs build%s, %.2fs precompute%s, %.2fs render, %.2fs "
+                        "write on %s\n",
+                n_out, n_out > 1 ? "s" : "", res.width, res.height, res.samples_min,
+                spectral ? ", spectral mode" : "",
+                res.seconds_device + res.seconds_build + res.seconds_precompute +
+                    res.seconds_render + seconds_write,
+                res.seconds_device, res.seconds_build, res.kernel_cache_hit ? " (cached)" : "",
+                res.seconds_precompute, res.lut_cache_hit ? " (cached)" : "", res.seconds_render,
+                seconds_write, res.device_name);
+    rc = res.interrupted ? ATMO_INTERRUPTED_PARTIAL : ATMO_OK;
+    atmo_render_result_free(&res);
+    atmo_part_free(&part);
+    return rc;
+runtime_error:
+    atmo_render_result_free(&res);
+    atmo_part_free(&part);
+    fprintf(stderr, "atmo render: %s\n", e.msg);
+    return rc;
+}
+
+
+/* "I/N" with 1 <= I <= N <= 4096. */
+static int parse_part(const char *text, int *part, int *parts, atmo_err *e)
+{
+    char tail;
+    if (sscanf(text, "%d/%d%c", part, parts, &tail) != 2 || *parts < 1 || *parts > 4096 ||
+        *part < 1 || *part > *parts)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "--part needs I/N with 1 <= I <= N <= 4096 (e.g. 2/4), got '%s'", text);
+    return ATMO_OK;
+}
+
+/* A part of one image is one EXR of raw sums of a 3-wavelength render, in one of its bands. */
+static int check_part(const atmo_scene *s, int parts, int frames, const char *const *outputs,
+                      int n_out, atmo_err *e)
+{
+    if (frames)
+        return ATMO_OK;
+    int bands = (s->image.height + ATMO_PART_BAND_ROWS - 1) / ATMO_PART_BAND_ROWS;
+    if (parts > bands)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "--part: %d parts of a %d-row image, which has only %d bands of %d rows "
+                         "(one per part at least); use at most %d parts",
+                         parts, s->image.height, bands, ATMO_PART_BAND_ROWS, bands);
+    if (s->render.spectral_bands > 0)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "--part: the spectral mode (render.spectral_bands) cannot be split; "
+                         "render it whole");
+    if (n_out != 1 || atmo_image_format_from_path(outputs[0]) != ATMO_IMAGE_EXR)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "--part writes the part's sums to one --output FILE.exr (got %d "
+                         "output%s%s%s); atmo merge writes the images",
+                         n_out, n_out == 1 ? " '" : "s", n_out == 1 ? outputs[0] : "",
+                         n_out == 1 ? "'" : "");
+    return ATMO_OK;
+}
+
+/* The numbered names of the last frame (the longest) can be written. */
+static int check_frame_paths(const char *const *outputs, int n_out, const char *report,
+                             int frame, atmo_err *e)
+{
+    output_paths last = {0};
+    char names[RENDER_MAX_OUTPUTS + 1][ATMO_TMP_PATH_MAX];
+    int rc = ATMO_OK;
+    for (int i = 0; i <= n_out && !rc; i++) {
+        const char *path = i < n_out ? outputs[i] : report;
+        if (!path)
+            continue;
+        if (!frames_path(path, frame, names[i], sizeof names[i]))
+            rc = atmo_fail(e, ATMO_ERR_USAGE, "'%s': the name of frame %d is too long", path,
+                           frame);
+        else
+            rc = output_paths_add(&last, i < n_out ? "--output" : "--report", names[i], e);
+    }
+    output_paths_free(&last);
+    return rc;
+}
+
 int cmd_render(int argc, char **argv)
 {
     atmo_err e = {{0}};
     atmo_scene scene;
     atmo_render_settings rs;
-    atmo_render_result res = {0};
     const char *preset = NULL, *scene_file = NULL, *report = NULL, *save_scene = NULL;
+    const char *part_text = NULL, *frames_text = NULL, *scene_end = NULL;
+    const char *animate[FRAMES_MAX_KEYS];
+    int n_animate = 0;
     const char *outputs[RENDER_MAX_OUTPUTS];
     char *sets[RENDER_MAX_SETS];
     char set_buffers[RENDER_MAX_SETS][64];
@@ -216,7 +387,8 @@ int cmd_render(int argc, char **argv)
         static const char *const with_value[] = {
             "--preset", "--scene", "--set", "--output", "-o", "--report", "--save-scene",
             "--device", "--dump-kernels", "--tile-size", "--launch-budget-ms", "--width",
-            "--height", "--samples", "--seed", "--camera", NULL};
+            "--height", "--samples", "--seed", "--part", "--frames", "--animate", "--scene-end",
+            "--camera", NULL};
         int known = 0;
         for (int k = 0; with_value[k]; k++)
             known |= strcmp(a, with_value[k]) == 0;
@@ -273,7 +445,19 @@ int cmd_render(int argc, char **argv)
             shorthand = "image.samples";
         else if (strcmp(a, "--seed") == 0)
             shorthand = "image.seed";
-        else /* --camera, the last of with_value[] */
+        else if (strcmp(a, "--part") == 0)
+            part_text = v;
+        else if (strcmp(a, "--frames") == 0)
+            frames_text = v;
+        else if (strcmp(a, "--scene-end") == 0)
+            scene_end = v;
+        else if (strcmp(a, "--animate") == 0) {
+            if (n_animate == FRAMES_MAX_KEYS) {
+                fprintf(stderr, "atmo render: more than %d --animate options\n", FRAMES_MAX_KEYS);
+                return ATMO_ERR_USAGE;
+            }
+            animate[n_animate++] = v;
+        } else /* --camera, the last of with_value[] */
             shorthand = "camera.kind";
         if (shorthand) {
             if (n_set == RENDER_MAX_SETS || strlen(v) > 40) {
@@ -301,6 +485,48 @@ int cmd_render(int argc, char **argv)
     if (rc || (rc = atmo_scene_validate(&scene, &e)))
         goto usage_error;
 
+    /* animation: the frames' scenes, each checked before any work */
+    frames_animation anim = {0};
+    if (frames_text && (rc = frames_parse_range(frames_text, &anim.first, &anim.last, &e)))
+        goto usage_error;
+    if (!frames_text && (n_animate || scene_end)) {
+        rc = atmo_fail(&e, ATMO_ERR_USAGE, "--animate and --scene-end need --frames A..B");
+        goto usage_error;
+    }
+    for (int i = 0; i < n_animate && !rc; i++)
+        rc = frames_add_animate(&anim, animate[i], &e);
+    if (!rc && scene_end) {
+        atmo_scene end;
+        atmo_scene_defaults(&end); /* the start's base (defaults or the preset), then FILE */
+        if (!scene_file)
+            rc = atmo_scene_apply_preset(&end, preset ? preset : atmo_default_preset, &e);
+        if (!rc)
+            rc = atmo_scene_load_json(&end, scene_end, &e);
+        for (int i = 0; i < n_set && !rc; i++)
+            rc = atmo_scene_assign(&end, sets[i], "--set", &e);
+        if (!rc && !(rc = atmo_scene_validate(&end, &e)))
+            rc = frames_add_scene_end(&anim, &scene, &end, scene_end, &e);
+    }
+    for (int f = anim.first; frames_text && f <= anim.last && !rc; f++) {
+        atmo_scene frame;
+        rc = frames_scene(&anim, &scene, f, &frame, &e);
+    }
+    if (rc)
+        goto usage_error;
+
+    /* parts: one EXR of raw sums per part of one image, or whole frames per part */
+    if (part_text && ((rc = parse_part(part_text, &rs.part, &rs.parts, &e)) ||
+                      (rc = check_part(&scene, rs.parts, frames_text != NULL, outputs, n_out, &e))))
+        goto usage_error;
+    int part_file = part_text && !frames_text;
+    int frame_first = frames_text ? anim.first : 0, frame_last = frames_text ? anim.last : 0;
+    int frame_step = 1;
+    if (frames_text && part_text) { /* part I of N: frames A + I - 1, A + I - 1 + N, ... */
+        frame_first += rs.part - 1;
+        frame_step = rs.parts;
+        rs.part = rs.parts = 0;
+    }
+
     /* outputs: formats and paths, before any work; the same file twice is one output */
     if (n_out == 0 && !save_scene)
         outputs[n_out++] = "atmo.png";
@@ -320,102 +546,38 @@ int cmd_render(int argc, char **argv)
     if ((report && (rc = output_paths_add(&files, "--report", report, &e))) ||
         (save_scene && (rc = output_paths_add(&files, "--save-scene", save_scene, &e))))
         goto usage_error;
+    /* numbered names: the longest (the last frame's) is checked like the others */
+    if (frames_text && (rc = check_frame_paths(outputs, n_out, report, anim.last, &e)))
+        goto usage_error;
     if (save_scene && (rc = atmo_scene_save_json(&scene, save_scene, &e)))
         goto runtime_error;
-    if (n_out == 0) {
+    if (n_out > 0 && frame_first > frame_last && !quiet)
+        fprintf(stderr, "atmo render: part %d/%d of frames %d..%d has no frame to render\n",
+                frame_first - anim.first + 1, frame_step, anim.first, anim.last);
+    if (n_out == 0 || frame_first > frame_last) {
         output_paths_free(&files);
         return ATMO_OK;
     }
 
-    /* spectral mode plans each triplet of bands itself */
-    int spectral = scene.render.spectral_bands > 0;
-    atmo_plan plan;
-    if (!spectral && (rc = atmo_plan_make_cached(&scene, lut_cache, lut_cache, &plan, &e)))
-        goto usage_error;
     rs.progress = quiet ? 0 : (isatty(STDERR_FILENO) ? 2 : 1);
-
-    /* the handler stays until the files are written: a signal then lets the writing finish */
-    atmo_cancel_clear(&render_cancel);
-    signals_seen = 0;
-    pending_count = 0;
-    for (int i = 0; i < files.count; i++)
-        if (strcmp(files.option[i], "--save-scene") != 0)
-            atmo_tmp_path(files.path[i], pending_tmp[pending_count++]);
-    rs.cancel = &render_cancel;
-    struct sigaction old[2];
-    handle_signals(1, old);
-    rc = spectral ? atmo_spectral_render(&scene, lut_cache, &rs, &res, &e)
-                  : atmo_render(&plan, &rs, &res, &e);
-    if (!spectral)
-        atmo_plan_free(&plan);
-    if (rc == ATMO_ERR_RUNTIME || rc == ATMO_ERR_USAGE) {
-        handle_signals(0, old);
-        goto runtime_error;
+    for (int f = frame_first; f <= frame_last && !rc; f += frame_step) {
+        char names[RENDER_MAX_OUTPUTS][ATMO_TMP_PATH_MAX], report_name[ATMO_TMP_PATH_MAX];
+        const char *frame_outputs[RENDER_MAX_OUTPUTS];
+        atmo_scene frame = scene;
+        for (int i = 0; i < n_out; i++) {
+            frame_outputs[i] = outputs[i];
+            if (frames_text) {
+                frames_path(outputs[i], f, names[i], sizeof names[i]);
+                frame_outputs[i] = names[i];
+            }
+        }
+        if (frames_text && report)
+            frames_path(report, f, report_name, sizeof report_name);
+        if (frames_text && (rc = frames_scene(&anim, &scene, f, &frame, &e)))
+            goto runtime_error;
+        rc = render_frame(&frame, &rs, lut_cache, quiet, part_file, frame_outputs, n_out,
+                          frames_text ? (report ? report_name : NULL) : report);
     }
-    if (rc == ATMO_OK && res.interrupted && res.samples_max == 0) {
-        atmo_fail(&e, ATMO_INTERRUPTED_EMPTY, "interrupted before the first sample");
-        rc = ATMO_INTERRUPTED_EMPTY;
-    }
-    if (rc) { /* interrupted before any result */
-        fprintf(stderr, "atmo render: %s; no image written (exit status %d)\n", e.msg, rc);
-        handle_signals(0, old);
-        atmo_render_result_free(&res);
-        output_paths_free(&files);
-        return rc;
-    }
-    if (res.interrupted)
-        fprintf(stderr, "atmo render: interrupted; writing %d to %d of %d samples per pixel "
-                        "(exit status %d)\n",
-                res.samples_min, res.samples_max, res.samples_requested,
-                ATMO_INTERRUPTED_PARTIAL);
-    if (res.nonfinite)
-        fprintf(stderr, "atmo render: warning: %u non-finite samples were dropped (a bug; please "
-                        "report it with the scene)\n", res.nonfinite);
-
-    /* outputs */
-    double tw = atmo_now_seconds();
-    atmo_post post = {(float)scene.post.exposure, scene.post.tonemap, (float)scene.post.white_point,
-                      scene.post.white_balance, {1.0f, 1.0f, 1.0f}, scene.post.transfer};
-    double wp[3];
-    atmo_solar_white_point(wp);
-    for (int c = 0; c < 3; c++)
-        post.white_balance_rgb[c] = (float)wp[c];
-    int lum = spectral || scene.render.quantity == ATMO_QUANTITY_LUMINANCE;
-    char spectral_quantity[96];
-    snprintf(spectral_quantity, sizeof spectral_quantity,
-             "luminance (linear sRGB from %d spectral bands, 360-830 nm; no channel wavelengths)",
-             scene.render.spectral_bands);
-    atmo_image_meta meta = {
-        .quantity = spectral ? spectral_quantity : lum ? "luminance" : "spectral radiance",
-        .unit = lum ? "cd m^-2" : "W m^-2 sr^-1 nm^-1",
-        .wavelengths_nm = {spectral ? 0.0 : scene.render.wavelengths_nm[0],
-                           spectral ? 0.0 : scene.render.wavelengths_nm[1],
-                           spectral ? 0.0 : scene.render.wavelengths_nm[2]},
-        .samples_per_pixel = res.samples_min,
-        .partial = res.interrupted,
-        .software = "atmo " ATMO_VERSION};
-    atmo_image img = {.width = res.width, .height = res.height, .rgb = res.rgb};
-    for (int i = 0; i < n_out && !rc; i++)
-        rc = atmo_image_write(outputs[i], &img, &post, &meta, &e);
-    double seconds_write = atmo_now_seconds() - tw;
-    if (!rc && report)
-        rc = write_report(report, &scene, &res, &rs, outputs, n_out, seconds_write, &e);
-    handle_signals(0, old);
-    if (rc)
-        goto runtime_error;
-    if (!quiet)
-        fprintf(stderr, "atmo render: wrote %d image%s (%dx%d, %d samples/pixel%s) in %.2fs: "
-                        "%.2fs device, %.2fs build%s, %.2fs precompute%s, %.2fs render, %.2fs "
-                        "write on %s\n",
-                n_out, n_out > 1 ? "s" : "", res.width, res.height, res.samples_min,
-                spectral ? ", spectral mode" : "",
-                res.seconds_device + res.seconds_build + res.seconds_precompute +
-                    res.seconds_render + seconds_write,
-                res.seconds_device, res.seconds_build, res.kernel_cache_hit ? " (cached)" : "",
-                res.seconds_precompute, res.lut_cache_hit ? " (cached)" : "", res.seconds_render,
-                seconds_write, res.device_name);
-    rc = res.interrupted ? ATMO_INTERRUPTED_PARTIAL : ATMO_OK;
-    atmo_render_result_free(&res);
     output_paths_free(&files);
     return rc;
 
@@ -424,7 +586,6 @@ usage_error:
     fprintf(stderr, "atmo render: %s\n", e.msg);
     return rc;
 runtime_error:
-    atmo_render_result_free(&res);
     output_paths_free(&files);
     fprintf(stderr, "atmo render: %s\n", e.msg);
     return rc;

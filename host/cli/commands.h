@@ -18,5 +18,6 @@ int cmd_mie(int argc, char **argv);
 int cmd_radiance(int argc, char **argv);
 int cmd_cache(int argc, char **argv);
 int cmd_view(int argc, char **argv);
+int cmd_merge(int argc, char **argv);
 
 #endif

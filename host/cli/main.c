@@ -7,6 +7,7 @@
 static const atmo_command commands[] = {
     {"render", "render a scene to images (PNG, HDR, EXR, PFM)", cmd_render},
     {"view", "a live window: move the camera and the sun, watch the image refine", cmd_view},
+    {"merge", "join the parts of a split render into its images", cmd_merge},
     {"devices", "list OpenCL platforms and devices", cmd_devices},
     {"params", "list every scene parameter with unit, default and range", cmd_params},
     {"presets", "list the built-in scenes", cmd_presets},

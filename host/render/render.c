@@ -1,4 +1,6 @@
-/* render.c — a whole render in one call over a session (atmo/render.h). */
+/* render.c — a whole render in one call over a session (atmo/render.h): its mean image, or the
+ * raw sums of one part of a split render (atmo/part.h). */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/render.h"
@@ -51,5 +53,35 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
     else
         atmo_render_result_free(res);
     atmo_session_close(s);
+    return rc;
+}
+
+int atmo_render_part(const atmo_plan *plan, const atmo_render_settings *settings,
+                     atmo_render_result *res, atmo_part *part, atmo_err *e)
+{
+    atmo_session *s = NULL;
+    atmo_step step = {plan->samples, 0.0, NULL, NULL, settings->cancel};
+    atmo_step_status st;
+    size_t pixels = (size_t)plan->width * (size_t)plan->height;
+    float *s1 = malloc(sizeof(float) * 3 * pixels), *s2 = malloc(sizeof(float) * 3 * pixels);
+    int *samples = malloc(sizeof(int) * pixels);
+    memset(res, 0, sizeof *res);
+    int rc = s1 && s2 && samples ? atmo_session_open(&s, plan, settings, e)
+                                 : atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for a %dx%d "
+                                             "image", plan->width, plan->height);
+    if (!rc)
+        rc = atmo_session_step(s, &step, &st, e);
+    if (!rc)
+        rc = atmo_session_read_sums(s, s1, s2, samples, e);
+    if (!rc) {
+        atmo_part_pack(part, s1, s2, samples);
+        atmo_render_result_from_session(s, res);
+        snprintf(part->device, sizeof part->device, "%s / %s / %s", res->platform_name,
+                 res->device_name, res->driver_version);
+    }
+    atmo_session_close(s);
+    free(samples);
+    free(s2);
+    free(s1);
     return rc;
 }

@@ -63,14 +63,13 @@ static void report_progress(atmo_session *s, int target, int finished)
     int mode = s->settings.progress;
     if (!mode)
         return;
-    double done = 0.0, total = (double)target * s->tiles.width * s->tiles.height;
-    for (int y = 0; y < s->tiles.height; y += s->tiles.size)
-        for (int x = 0; x < s->tiles.width; x += s->tiles.size) {
-            int w = s->tiles.width - x < s->tiles.size ? s->tiles.width - x : s->tiles.size;
-            int h = s->tiles.height - y < s->tiles.size ? s->tiles.height - y : s->tiles.size;
-            int n = atmo_tiles_pixel_samples(&s->tiles, x, y);
-            done += (double)(n < target ? n : target) * w * h;
-        }
+    double done = 0.0, total = 0.0;
+    for (int i = 0; i < s->tiles.count; i++) {
+        atmo_tile tile;
+        atmo_tiles_get(&s->tiles, i, &tile);
+        done += (double)(tile.samples < target ? tile.samples : target) * tile.w * tile.h;
+        total += (double)target * tile.w * tile.h;
+    }
     /* The first launch carries one-time costs (the driver finishing the kernel's compilation,
      * the first batch size): the ETA is the rate measured from its end, none before that. */
     if (s->rate_start < 0.0) {
@@ -239,7 +238,8 @@ int atmo_session_open(atmo_session **out, const atmo_plan *plan, const atmo_rend
         return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for a render session");
     s->plan = *plan;
     s->settings = *rs;
-    if ((rc = atmo_tiles_init(&s->tiles, plan->width, plan->height, rs->tile_size, e)))
+    if ((rc = atmo_tiles_init_part(&s->tiles, plan->width, plan->height, rs->tile_size, rs->part,
+                                    rs->parts, e)))
         goto cleanup;
     double t0 = atmo_now_seconds();
     if ((rc = atmo_cl_open(&s->cl, rs->device, e)))
@@ -447,39 +447,50 @@ int atmo_session_set_scene(atmo_session *s, const atmo_plan *plan, atmo_err *e)
     return bind_render(s, e); /* the LUT buffers are new */
 }
 
-int atmo_session_read(atmo_session *s, float *mean, float *se, int *samples, atmo_err *e)
+float atmo_session_mean(float sum, int samples)
 {
-    int rc = ATMO_OK, W = s->plan.width, H = s->plan.height;
-    size_t pixels = (size_t)W * (size_t)H;
+    return sum * (samples > 0 ? 1.0f / (float)samples : 0.0f);
+}
+
+/* The accumulators, 4 floats per pixel, into s1 and s2 (either may be NULL). */
+static int read_accumulators(atmo_session *s, float *s1, float *s2, atmo_err *e)
+{
+    int rc = ATMO_OK;
+    size_t bytes = (size_t)s->plan.width * (size_t)s->plan.height * 4 * sizeof(float);
     if (s->data_incomplete)
         return incomplete(e);
     if (!s->accum && ((rc = restart(s, e)) || (rc = bind_render(s, e))))
         return rc;
+    cl_int err = CL_SUCCESS;
+    if (s1)
+        err = clEnqueueReadBuffer(s->cl.queue, s->accum, CL_TRUE, 0, bytes, s1, 0, NULL, NULL);
+    if (err == CL_SUCCESS && s2)
+        err = clEnqueueReadBuffer(s->cl.queue, s->accum_sq, CL_TRUE, 0, bytes, s2, 0, NULL, NULL);
+    return err == CL_SUCCESS ? ATMO_OK
+                             : atmo_cl_fail(e, "clEnqueueReadBuffer(accumulation image)", err);
+}
+
+int atmo_session_read(atmo_session *s, float *mean, float *se, int *samples, atmo_err *e)
+{
+    int rc = ATMO_OK, W = s->plan.width, H = s->plan.height;
+    size_t pixels = (size_t)W * (size_t)H;
     float *s1 = malloc(pixels * 4 * sizeof(float));
     float *s2 = se ? malloc(pixels * 4 * sizeof(float)) : NULL;
     if (!s1 || (se && !s2)) {
         rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for a %dx%d image", W, H);
         goto cleanup;
     }
-    cl_int err = clEnqueueReadBuffer(s->cl.queue, s->accum, CL_TRUE, 0, pixels * 4 * sizeof(float),
-                                     s1, 0, NULL, NULL);
-    if (err == CL_SUCCESS && se)
-        err = clEnqueueReadBuffer(s->cl.queue, s->accum_sq, CL_TRUE, 0,
-                                  pixels * 4 * sizeof(float), s2, 0, NULL, NULL);
-    if (err != CL_SUCCESS) {
-        rc = atmo_cl_fail(e, "clEnqueueReadBuffer(accumulation image)", err);
+    if ((rc = read_accumulators(s, s1, s2, e)))
         goto cleanup;
-    }
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
             size_t i = (size_t)y * W + x;
             int n = atmo_tiles_pixel_samples(&s->tiles, x, y);
-            float inv = n > 0 ? 1.0f / (float)n : 0.0f;
             if (samples)
                 samples[i] = n;
             for (int c = 0; c < 3; c++) {
                 if (mean)
-                    mean[3 * i + c] = s1[4 * i + c] * inv;
+                    mean[3 * i + c] = atmo_session_mean(s1[4 * i + c], n);
                 if (!se)
                     continue;
                 double a = s1[4 * i + c], b = s2[4 * i + c];
@@ -491,6 +502,36 @@ int atmo_session_read(atmo_session *s, float *mean, float *se, int *samples, atm
 cleanup:
     free(s2);
     free(s1);
+    return rc;
+}
+
+int atmo_session_read_sums(atmo_session *s, float *s1, float *s2, int *samples, atmo_err *e)
+{
+    int rc = ATMO_OK, W = s->plan.width, H = s->plan.height;
+    size_t pixels = (size_t)W * (size_t)H;
+    float *a = s1 ? malloc(pixels * 4 * sizeof(float)) : NULL;
+    float *b = s2 ? malloc(pixels * 4 * sizeof(float)) : NULL;
+    if ((s1 && !a) || (s2 && !b)) {
+        rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for a %dx%d image", W, H);
+        goto cleanup;
+    }
+    if ((rc = read_accumulators(s, a, b, e)))
+        goto cleanup;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            size_t i = (size_t)y * W + x;
+            if (samples)
+                samples[i] = atmo_tiles_pixel_samples(&s->tiles, x, y);
+            for (int c = 0; c < 3; c++) {
+                if (s1)
+                    s1[3 * i + c] = a[4 * i + c];
+                if (s2)
+                    s2[3 * i + c] = b[4 * i + c];
+            }
+        }
+cleanup:
+    free(b);
+    free(a);
     return rc;
 }
 

@@ -3,27 +3,96 @@
 #include <string.h>
 #include "atmo/tiles.h"
 
-int atmo_tiles_init(atmo_tiles *t, int width, int height, int size, atmo_err *e)
+int atmo_part_of_row(int y, int parts) { return y / ATMO_PART_BAND_ROWS % parts + 1; }
+
+/* The tile rows of the part's bands (of the whole image for parts = 0), in image order. */
+static int tile_rows(atmo_tiles *t, atmo_err *e)
+{
+    int band = t->parts ? ATMO_PART_BAND_ROWS : t->height;
+    t->row_y = malloc(sizeof *t->row_y * (size_t)t->height);
+    t->row_h = malloc(sizeof *t->row_h * (size_t)t->height);
+    t->row_of_y = malloc(sizeof *t->row_of_y * (size_t)t->height);
+    if (!t->row_y || !t->row_h || !t->row_of_y)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the tiles of %d rows", t->height);
+    for (int b0 = 0; b0 < t->height; b0 += band) {
+        int b1 = b0 + band < t->height ? b0 + band : t->height;
+        int mine = !t->parts || atmo_part_of_row(b0, t->parts) == t->part;
+        for (int y = b0; y < b1; y += t->size) {
+            int h = b1 - y < t->size ? b1 - y : t->size;
+            if (mine) {
+                t->row_y[t->rows] = y;
+                t->row_h[t->rows] = h;
+            }
+            for (int k = y; k < y + h; k++)
+                t->row_of_y[k] = mine ? t->rows : -1;
+            t->rows += mine;
+        }
+    }
+    return ATMO_OK;
+}
+
+int atmo_tiles_init_part(atmo_tiles *t, int width, int height, int size, int part, int parts,
+                         atmo_err *e)
 {
     memset(t, 0, sizeof *t);
     if (width < 1 || height < 1 || size < 1)
         return atmo_fail(e, ATMO_ERR_USAGE, "tiles of %d px for a %dx%d image: sizes must be > 0",
                          size, width, height);
+    int bands = (height + ATMO_PART_BAND_ROWS - 1) / ATMO_PART_BAND_ROWS;
+    if (parts < 0 || (parts > 0 && (part < 1 || part > parts)))
+        return atmo_fail(e, ATMO_ERR_USAGE, "part %d of %d: a part is I/N with 1 <= I <= N",
+                         part, parts);
+    if (parts > bands)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "%d parts of a %d-row image: it has only %d bands of %d rows, one per "
+                         "part at least; use at most %d parts",
+                         parts, height, bands, ATMO_PART_BAND_ROWS, bands);
     t->width = width;
     t->height = height;
     t->size = size;
+    t->part = part;
+    t->parts = parts;
+    t->full_h = parts && ATMO_PART_BAND_ROWS < size ? ATMO_PART_BAND_ROWS : size;
+    int rc = tile_rows(t, e);
+    if (rc) {
+        atmo_tiles_free(t);
+        return rc;
+    }
     t->columns = (width + size - 1) / size;
-    t->count = t->columns * ((height + size - 1) / size);
+    t->count = t->columns * t->rows;
     t->batch = 1;
     t->samples = calloc((size_t)t->count, sizeof *t->samples);
-    if (!t->samples)
+    if (!t->samples) {
+        atmo_tiles_free(t);
         return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for %d tiles", t->count);
+    }
     return ATMO_OK;
+}
+
+int atmo_tiles_init(atmo_tiles *t, int width, int height, int size, atmo_err *e)
+{
+    return atmo_tiles_init_part(t, width, height, size, 0, 0, e);
+}
+
+void atmo_tiles_get(const atmo_tiles *t, int index, atmo_tile *tile)
+{
+    int row = index / t->columns;
+    tile->index = index;
+    tile->x = index % t->columns * t->size;
+    tile->y = t->row_y[row];
+    tile->w = t->width - tile->x < t->size ? t->width - tile->x : t->size;
+    tile->h = t->row_h[row];
+    tile->sample_begin = t->samples[index];
+    tile->sample_count = 0;
+    tile->samples = t->samples[index];
 }
 
 void atmo_tiles_free(atmo_tiles *t)
 {
     free(t->samples);
+    free(t->row_of_y);
+    free(t->row_h);
+    free(t->row_y);
     memset(t, 0, sizeof *t);
 }
 
@@ -40,12 +109,7 @@ int atmo_tiles_next(atmo_tiles *t, int target, atmo_tile *launch)
         int remaining = target - t->samples[i];
         if (remaining <= 0)
             continue;
-        launch->index = i;
-        launch->x = i % t->columns * t->size;
-        launch->y = i / t->columns * t->size;
-        launch->w = t->width - launch->x < t->size ? t->width - launch->x : t->size;
-        launch->h = t->height - launch->y < t->size ? t->height - launch->y : t->size;
-        launch->sample_begin = t->samples[i];
+        atmo_tiles_get(t, i, launch);
         launch->sample_count = t->batch < remaining ? t->batch : remaining;
         launch->samples = t->samples[i] + launch->sample_count;
         return 1;
@@ -57,7 +121,7 @@ void atmo_tiles_done(atmo_tiles *t, atmo_tile *launch, double ms, double budget_
 {
     t->samples[launch->index] = launch->samples;
     t->cursor = (launch->index + 1) % t->count;
-    if (launch->w != t->size || launch->h != t->size)
+    if (launch->w != t->size || launch->h != t->full_h)
         return;
     double target = (double)launch->sample_count * budget_ms / (ms > 1e-3 ? ms : 1e-3);
     int next = target > 2.0 * t->batch ? 2 * t->batch : (int)target;
@@ -68,7 +132,8 @@ void atmo_tiles_done(atmo_tiles *t, atmo_tile *launch, double ms, double budget_
 
 int atmo_tiles_pixel_samples(const atmo_tiles *t, int x, int y)
 {
-    return t->samples[(y / t->size) * t->columns + x / t->size];
+    int row = t->row_of_y[y];
+    return row < 0 ? 0 : t->samples[row * t->columns + x / t->size];
 }
 
 void atmo_tiles_range(const atmo_tiles *t, int *min, int *max)

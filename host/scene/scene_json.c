@@ -193,15 +193,12 @@ static size_t param_count(void)
     return n;
 }
 
-int atmo_scene_load_json(atmo_scene *s, const char *path, atmo_err *e)
+int atmo_scene_load_json_text(atmo_scene *s, const char *text, size_t length, const char *path,
+                              atmo_err *e)
 {
     int rc = ATMO_OK;
     cJSON *root = NULL;
     unsigned char *seen = NULL;
-    size_t length = 0;
-    char *text = read_file(path, &length, e);
-    if (!text)
-        return ATMO_ERR_USAGE;
     int bad_line = nul_line(text, length);
     if (bad_line) {
         rc = atmo_fail(e, ATMO_ERR_USAGE,
@@ -239,6 +236,16 @@ int atmo_scene_load_json(atmo_scene *s, const char *path, atmo_err *e)
 cleanup:
     free(seen);
     cJSON_Delete(root);
+    return rc;
+}
+
+int atmo_scene_load_json(atmo_scene *s, const char *path, atmo_err *e)
+{
+    size_t length = 0;
+    char *text = read_file(path, &length, e);
+    if (!text)
+        return ATMO_ERR_USAGE;
+    int rc = atmo_scene_load_json_text(s, text, length, path, e);
     free(text);
     return rc;
 }

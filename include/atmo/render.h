@@ -9,6 +9,7 @@
 #define ATMO_RENDER_H
 #include "atmo/cl_runtime.h"
 #include "atmo/embedded.h"
+#include "atmo/part.h"
 #include "atmo/plan.h"
 #include "atmo/session.h"
 #include "atmo/status.h"
@@ -30,6 +31,11 @@ typedef struct atmo_render_result {
 int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
                 atmo_render_result *result, atmo_err *e);
 void atmo_render_result_free(atmo_render_result *r);
+/* atmo_render of part settings->part of settings->parts into the raw sums of *part, allocated
+ * by the caller for the same part of the plan's image (atmo_part_alloc); fills its device.
+ * result->rgb stays NULL. */
+int atmo_render_part(const atmo_plan *plan, const atmo_render_settings *settings,
+                     atmo_render_result *result, atmo_part *part, atmo_err *e);
 /* Fill result's device names, cache flags, timings, launches and sample range from a session. */
 void atmo_render_result_from_session(const atmo_session *s, atmo_render_result *result);
 

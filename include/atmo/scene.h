@@ -140,6 +140,10 @@ int atmo_scene_set(atmo_scene *s, const char *key, const char *value, const char
 int atmo_scene_assign(atmo_scene *s, const char *assignment, const char *where, atmo_err *e);
 int atmo_scene_apply_preset(atmo_scene *s, const char *name, atmo_err *e);
 int atmo_scene_load_json(atmo_scene *s, const char *path, atmo_err *e);
+/* The same for a scene text of `length` bytes (NUL-terminated) that came from `path` (named in
+ * the errors), e.g. the scene stored in a part file. */
+int atmo_scene_load_json_text(atmo_scene *s, const char *text, size_t length, const char *path,
+                              atmo_err *e);
 /* Whole scene as nested JSON (every key), malloc'd; NULL when out of memory. */
 char *atmo_scene_to_json(const atmo_scene *s);
 int atmo_scene_save_json(const atmo_scene *s, const char *path, atmo_err *e);

@@ -10,7 +10,8 @@
  * e.g. the sky-view LUT of `fast`) and restarts the accumulation; the view-independent LUTs stay.
  * atmo_session_set_scene takes a plan with the same program but other parameters (another
  * atmosphere, other wavelengths: the spectral mode's triplets) and reruns every pass.
- * atmo_session_read gives the mean, its standard error and the sample count per pixel;
+ * atmo_session_read gives the mean, its standard error and the sample count per pixel
+ * (atmo_session_read_sums the raw sums they come from);
  * atmo_session_close releases everything in reverse order.
  *
  * Accumulation. Two float4 buffers per pixel: accum holds S1 = sum_k L_k per channel (xyz; w
@@ -44,6 +45,8 @@ typedef struct atmo_render_settings {
     const char *dump_dir;      /* --dump-kernels DIR */
     int use_kernel_cache;
     struct atmo_cancel *cancel; /* token for atmo_render / atmo_spectral_render (may be NULL) */
+    int part, parts;           /* render only part `part` (1 .. parts) of the image's bands
+                                  (atmo/tiles.h); parts = 0: the whole image */
 } atmo_render_settings;
 
 void atmo_render_settings_default(atmo_render_settings *s);
@@ -96,6 +99,12 @@ int atmo_session_set_view(atmo_session *s, const atmo_plan *plan, atmo_err *e);
 int atmo_session_set_scene(atmo_session *s, const atmo_plan *plan, atmo_err *e);
 /* Any of mean (W x H x 3), se (W x H x 3) and samples (W x H) may be NULL; row 0 = top. */
 int atmo_session_read(atmo_session *s, float *mean, float *se, int *samples, atmo_err *e);
+/* The raw accumulators as they are on the device: s1 = S1 and s2 = S2 (W x H x 3 each, the
+ * sums in sample order) and the samples per pixel (W x H); any may be NULL. These are what a
+ * part of a split render stores, so that merging parts repeats atmo_session_read bit for bit. */
+int atmo_session_read_sums(atmo_session *s, float *s1, float *s2, int *samples, atmo_err *e);
+/* The mean atmo_session_read gives for a sum of `samples` samples: sum * (1/samples), 0 for none. */
+float atmo_session_mean(float sum, int samples);
 void atmo_session_close(atmo_session *s); /* NULL is fine */
 
 const atmo_session_info *atmo_session_get_info(const atmo_session *s);

@@ -9,7 +9,19 @@
  * c * budget / m, at most doubled and at least 1 (edge tiles are cheaper and would overshoot,
  * so their timings are not used). The scheduler holds the per-tile sample counts; it never
  * touches the device, so the split of samples into launches is its only effect on the image,
- * and the kernel makes that split invisible (sums in sample order). */
+ * and the kernel makes that split invisible (sums in sample order).
+ *
+ * Parts. A render can be split into `parts` pieces that separate processes render and
+ * `atmo merge` joins (atmo/part.h): the image's rows are cut into bands of ATMO_PART_BAND_ROWS
+ * rows (the last one shorter), band b belongs to part b mod parts + 1, and a part's scheduler
+ * holds only the tiles of its own bands: each band cut into rows of at most `size` pixels,
+ * each row into columns of `size`. The bands do not depend on the tile size, so parts rendered
+ * with different tile sizes or budgets still cover the image exactly once; interleaving thin
+ * bands spreads the costly rows (the horizon, the ground, the sun) over all parts. A band is
+ * the session's local size high (8), so every tile is still whole work-groups high; on the
+ * scenes of docs/notes/split_render.md 8-row bands balance 4 parts within a few per cent of a
+ * split of the sample range, which could not merge bit for bit (atmo/part.h). Pixels outside
+ * the part have 0 samples. parts = 0 is the whole image, tiled as above. */
 #ifndef ATMO_TILES_H
 #define ATMO_TILES_H
 #include "atmo/status.h"
@@ -23,15 +35,29 @@ typedef struct atmo_tile {
     int samples;        /* samples per pixel the tile has once the launch is done */
 } atmo_tile;
 
+#define ATMO_PART_BAND_ROWS 8
+
 typedef struct atmo_tiles {
     int width, height, size;
-    int columns, count;
+    int part, parts;    /* part (1 .. parts) of the image, or parts = 0: all of it */
+    int columns, rows, count;
+    int *row_y, *row_h; /* the tile rows: top and height in pixels */
+    int *row_of_y;      /* per pixel row: its tile row, -1 outside the part */
+    int full_h;         /* height of a full tile (whose timing adapts the batch) */
     int *samples;       /* per tile */
     int cursor;         /* where the next search starts */
     int batch;          /* samples per launch, adapted */
 } atmo_tiles;
 
 int atmo_tiles_init(atmo_tiles *t, int width, int height, int size, atmo_err *e);
+/* Only the tiles of part `part` of `parts` (parts = 0: the whole image). Usage error when the
+ * part is out of range or when the image has fewer bands than parts (a part would be empty). */
+int atmo_tiles_init_part(atmo_tiles *t, int width, int height, int size, int part, int parts,
+                         atmo_err *e);
+/* Which part (1 .. parts) renders pixel row y. */
+int atmo_part_of_row(int y, int parts);
+/* The rectangle of tile `index` (< t->count) and its samples so far. */
+void atmo_tiles_get(const atmo_tiles *t, int index, atmo_tile *tile);
 void atmo_tiles_free(atmo_tiles *t);
 /* Every tile back to 0 samples and the cursor to tile 0 (the adapted batch stays). */
 void atmo_tiles_reset(atmo_tiles *t);
@@ -40,7 +66,7 @@ int atmo_tiles_next(atmo_tiles *t, int target, atmo_tile *launch);
 /* Record a finished launch that took ms milliseconds; adapt the batch to budget_ms (at most
  * max_batch when max_batch > 0). */
 void atmo_tiles_done(atmo_tiles *t, atmo_tile *launch, double ms, double budget_ms, int max_batch);
-/* Samples of the tile that holds pixel (x, y). */
+/* Samples of the tile that holds pixel (x, y); 0 outside the part. */
 int atmo_tiles_pixel_samples(const atmo_tiles *t, int x, int y);
 /* Fewest and most samples over the tiles. */
 void atmo_tiles_range(const atmo_tiles *t, int *min, int *max);
