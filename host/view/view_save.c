@@ -41,10 +41,14 @@ int view_save_image(const char *path, const atmo_image *img, const atmo_scene *r
     atmo_post post;
     view_save_post(rendered, &post);
     int lum = rendered->render.quantity == ATMO_QUANTITY_LUMINANCE;
-    atmo_image_meta meta = {lum ? "luminance" : "spectral radiance",
-                            lum ? "cd m^-2" : "W m^-2 sr^-1 nm^-1",
-                            {rendered->render.wavelengths_nm[0], rendered->render.wavelengths_nm[1],
-                             rendered->render.wavelengths_nm[2]},
-                            samples_min, partial, "atmo " ATMO_VERSION};
+    atmo_image_meta meta = {
+        .quantity = lum ? "luminance" : "spectral radiance",
+        .unit = lum ? "cd m^-2" : "W m^-2 sr^-1 nm^-1",
+        .wavelengths_nm = {rendered->render.wavelengths_nm[0],
+                           rendered->render.wavelengths_nm[1],
+                           rendered->render.wavelengths_nm[2]},
+        .samples_per_pixel = samples_min,
+        .partial = partial,
+        .software = "atmo " ATMO_VERSION};
     return atmo_image_write(path, img, &post, &meta, e);
 }
