@@ -101,11 +101,18 @@ ids=$("$src"/tools/slurm/submit.sh 4 "$work"/out merged.exr,merged.pfm "${scene[
     bad "submit.sh failed"
 read -r array merge <<<"$ids"
 state() { scontrol show job "$1" 2>/dev/null | grep -o 'JobState=[A-Z_]*' | sort -u | tr '\n' ' '; }
-for ((i = 0; i < 240; i++)); do
-    s=$(state "$merge")
-    case $s in *COMPLETED* | *FAILED* | *CANCELLED* | *TIMEOUT*) break ;; esac
-    sleep 0.5
-done
+# until no task of the job is still waiting or running (an array job lists one state a task)
+wait_job() {
+    local i s
+    for ((i = 0; i < 480; i++)); do
+        s=$(state "$1")
+        case $s in *PENDING* | *RUNNING* | *CONFIGURING* | *COMPLETING* | *SUSPENDED* | "") ;;
+        *) return ;; esac
+        sleep 0.5
+    done
+}
+wait_job "$array"
+wait_job "$merge"
 [ "$(state "$array")" = "JobState=COMPLETED " ] && ok ||
     { bad "array job $array: $(state "$array")"; cat "$work"/out/part.*.log >&2; }
 [ "$(state "$merge")" = "JobState=COMPLETED " ] && ok ||
@@ -118,14 +125,6 @@ cmp -s single.pfm merged.pfm && ok || bad "merged .pfm differs from the single r
 [ -z "$(ls -A "$work"/node)" ] && ok || bad "tasks left cache directories: $(ls "$work"/node)"
 
 # an animation: 2 tasks render frames 1 and 2 whole, sharing one kept cache on the node
-wait_job() {
-    local i s
-    for ((i = 0; i < 240; i++)); do
-        s=$(state "$1")
-        case $s in *COMPLETED* | *FAILED* | *CANCELLED* | *TIMEOUT*) return ;; esac
-        sleep 0.5
-    done
-}
 anim=(--width 32 --height 16 --samples 2 --frames 1..2 --animate sun.zenith_deg=40..60)
 ids=$(ATMO_NODE_CACHE_SHARED=1 "$src"/tools/slurm/submit.sh 2 "$work"/frames sky.pfm "${anim[@]}") ||
     bad "submit.sh --frames failed"
