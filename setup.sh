@@ -21,7 +21,7 @@ as_root=()
 
 packages=(cmake make gcc pkg-config
           pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers
-          libstb-dev libcjson-dev libopenexr-dev openexr libglfw3-dev gnuplot-nox)
+          libstb-dev libcjson-dev libopenexr-dev openexr libglfw3-dev libgdal-dev gnuplot-nox)
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
