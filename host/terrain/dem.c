@@ -62,7 +62,7 @@ int dem_extent_from_options(const char *path, const char *format, const atmo_dem
 {
     if (!(o->extent_m > 0))
         return atmo_fail(e, ATMO_ERR_USAGE,
-                         "%s: a %s carries no georeference; give its east-west size with "
+                         "%s: the %s carries no georeference; give its east-west size with "
                          "terrain.heightmap_extent_m (metres)",
                          path, format);
     dem->extent_m[0] = o->extent_m;

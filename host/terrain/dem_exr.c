@@ -93,7 +93,7 @@ int dem_read_exr(const char *path, const atmo_dem_options *o, atmo_dem *dem, atm
     exr_decode_pipeline_t decoder = EXR_DECODE_PIPELINE_INITIALIZER;
     int initialized = 0;
     float *grid = NULL;
-    const char *what = "its header";
+    const char *what = "header";
 
     exr_result_t r = exr_start_read(&ctxt, path, &init);
     exr_storage_t storage = EXR_STORAGE_SCANLINE;
@@ -141,7 +141,7 @@ int dem_read_exr(const char *path, const atmo_dem_options *o, atmo_dem *dem, atm
                        height);
         goto cleanup;
     }
-    what = "its pixels";
+    what = "pixels";
     r = storage == EXR_STORAGE_TILED
             ? read_tiles(ctxt, grid, (int)width, (int)height, &decoder, &initialized)
             : read_scanlines(ctxt, window.min.y, grid, (int)width, (int)height, &decoder,

@@ -195,6 +195,8 @@ int dem_read_gdal(const char *path, const atmo_dem_options *o, atmo_dem *dem, at
         goto cleanup;
     }
     const char *driver = GDALGetDriverShortName(GDALGetDatasetDriver(ds));
+    if (strcmp(driver, "GTiff") == 0)
+        driver = "GeoTIFF";
     long width = GDALGetRasterXSize(ds), height = GDALGetRasterYSize(ds);
     if (GDALGetRasterCount(ds) < 1) {
         rc = atmo_fail(e, ATMO_ERR_USAGE, "%s (%s) has no raster band; is it a DEM?", path,
@@ -231,8 +233,7 @@ int dem_read_gdal(const char *path, const atmo_dem_options *o, atmo_dem *dem, at
         rc = read_heights(path, ds, gt, dem, &log, e);
     if (rc == ATMO_OK) {
         dem->format = ATMO_DEM_GEOTIFF;
-        snprintf(dem->format_name, sizeof dem->format_name, "%s",
-                 strcmp(driver, "GTiff") == 0 ? "GeoTIFF" : driver);
+        snprintf(dem->format_name, sizeof dem->format_name, "%s", driver);
     }
 cleanup:
     if (ds)

@@ -20,7 +20,7 @@ int dem_read_png(const char *path, const atmo_dem_options *o, atmo_dem *dem, atm
         return atmo_fail(e, ATMO_ERR_USAGE, "%s: not a readable PNG (%s); is the file complete?",
                          path, stbi_failure_reason());
     int sixteen = stbi_is_16_bit(path);
-    const char *format = sixteen ? "PNG 16-bit" : "PNG 8-bit";
+    const char *format = sixteen ? "16-bit PNG" : "8-bit PNG";
     int rc = dem_check_size(path, format, w, h, o, e);
     if (rc)
         return rc;
