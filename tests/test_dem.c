@@ -18,6 +18,7 @@
  *     plane is the plane's value (to float rounding); a large hole is filled within the range of
  *     the heights around it (the filling averages, so it cannot leave that range) and no sample
  *     stays non-finite.
+ *   - Built without GDAL, a GeoTIFF is refused with one line saying how to enable it.
  *   - Bad files (truncated PNG, EXR, GeoTIFF; a text file; an RGB PNG; a two-channel EXR; a
  *     rotated geotransform; no CRS; a local CRS; sizes beyond the limit): ATMO_ERR_USAGE with one
  *     line naming the file and the reason.
@@ -26,6 +27,9 @@
  *     both filters return the samples at the sample centres; halving c must divide the
  *     bilinear error by ~4 (measured order >= 1.8) and the bicubic (Keys) error by ~8 (order >=
  *     2.7, Keys 1981: third order), and bicubic must beat bilinear.
+ *   - The shipped real DEM (tests/data/jacksboro_fault_dem.tif, 403 x 344 samples of 3 arc-seconds)
+ *     reads back with the size, height range and spot values its generator printed from the
+ *     source, and its extent equals the closed-form lengths of its degrees on WGS 84 (1e-9).
  *   - The plan reads the scene's heightmap (terrain.heightmap_*) and refuses a bad one with the
  *     loader's error, before any device work. */
 #include <math.h>
@@ -606,6 +610,52 @@ static void test_geotiff(void)
     free(h);
     free(flipped);
 }
+
+/* The shipped real DEM (tests/data/README.md): size, range and spot values as the tool that
+ * wrote it printed them from matplotlib's file, and the extent of 403 x 344 cells of 1/1200
+ * degree at the centre latitude by the closed forms with WGS 84's defining constants
+ * (a = 6378137 m, 1/f = 298.257223563), computed here independently of dem_gdal.c. */
+static void test_real_dem(void)
+{
+    const char *src = getenv("ATMO_SOURCE_DIR");
+    char path[512];
+    snprintf(path, sizeof path, "%s/tests/data/jacksboro_fault_dem.tif", src ? src : "..");
+    atmo_dem d;
+    atmo_err e;
+    atmo_dem_options o = options(0, 0, 0);
+    CHECK(atmo_dem_load(path, &o, &d, &e) == ATMO_OK);
+    if (!d.heights_m) {
+        fprintf(stderr, "  %s: %s\n", path, e.msg);
+        return;
+    }
+    CHECK(d.width == 403 && d.height == 344 && d.min_m == 236 && d.max_m == 1076);
+    CHECK(d.heights_m[0] == 483 && d.heights_m[172 * 403 + 201] == 583 &&
+          d.heights_m[343 * 403 + 402] == 272 && d.heights_m[100 * 403 + 300] == 537);
+    double lat = (36.73291666666667 + 36.44625) / 2 * PI / 180;
+    double f = 1 / 298.257223563, e2 = f * (2 - f), w = 1 - e2 * sin(lat) * sin(lat);
+    double ew = 6378137.0 / sqrt(w) * cos(lat) * PI / 180 * 403 / 1200.0;
+    double ns = 6378137.0 * (1 - e2) / (w * sqrt(w)) * PI / 180 * 344 / 1200.0;
+    printf("real DEM: %d x %d, %.3f x %.3f m (closed form %.3f x %.3f), %g .. %g m, %s\n",
+           d.width, d.height, d.extent_m[0], d.extent_m[1], ew, ns, d.min_m, d.max_m,
+           d.projection);
+    CHECK_REL(d.extent_m[0], ew, 1e-9);
+    CHECK_REL(d.extent_m[1], ns, 1e-9);
+    CHECK(d.geographic && strstr(d.projection, "4326"));
+    atmo_dem_free(&d);
+}
+#endif
+
+#ifndef ATMO_HAVE_GDAL
+/* Built without GDAL: a GeoTIFF is refused with one line that says how to enable it. */
+static void test_without_gdal(void)
+{
+    const char *src = getenv("ATMO_SOURCE_DIR");
+    char path[512];
+    snprintf(path, sizeof path, "%s/tests/data/jacksboro_fault_dem.tif", src ? src : "..");
+    atmo_dem_options o = options(0, 0, 0);
+    check_refused(path, &o, "built without GDAL; install libgdal-dev and rebuild");
+    printf("GeoTIFF reading: not in this build (no GDAL); its refusal tested\n");
+}
 #endif
 
 /* ---- not a DEM, the plan --------------------------------------------------------------- */
@@ -746,8 +796,9 @@ int main(void)
     test_exr();
 #ifdef ATMO_HAVE_GDAL
     test_geotiff();
+    test_real_dem();
 #else
-    printf("GeoTIFF: not tested (atmo built without GDAL)\n");
+    test_without_gdal();
 #endif
     test_not_a_dem();
     test_plan();
