@@ -17,7 +17,8 @@
  *   - nodata: an isolated missing sample on a plane is the mean of its 8 neighbours, which on a
  *     plane is the plane's value (to float rounding); a large hole is filled within the range of
  *     the heights around it (the filling averages, so it cannot leave that range) and no sample
- *     stays non-finite.
+ *     stays non-finite; half a 1024 x 1024 grid missing (a coast) likewise; with
+ *     terrain.heightmap_nodata=sea-level the missing samples are exactly 0 m.
  *   - Built without GDAL, a GeoTIFF is refused with one line saying how to enable it.
  *   - Bad files (truncated PNG, EXR, GeoTIFF; a text file; an RGB PNG; a two-channel EXR; a
  *     rotated geotransform; no CRS; a local CRS; sizes beyond the limit): ATMO_ERR_USAGE with one
@@ -38,6 +39,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 #include <stb_image_write.h>
 #include "atmo/dem.h"
@@ -326,7 +328,8 @@ static void test_png(void)
         CHECK(d.nodata_filled == 0 && d.min_m <= d.max_m && d.min_m > 0);
     }
     atmo_dem_free(&d);
-    check_refused(path, &(atmo_dem_options){0, scale, offset, 0}, "terrain.heightmap_extent_m");
+    atmo_dem_options no_extent = options(0, scale, offset);
+    check_refused(path, &no_extent, "terrain.heightmap_file_extent_m");
     atmo_dem_options small = o;
     small.max_samples = W * H - 1;
     check_refused(path, &small, "48 x 32 samples, beyond the limit");
@@ -410,8 +413,54 @@ static void test_png(void)
             }
     }
     atmo_dem_free(&d);
+    /* the same holes with terrain.heightmap_nodata=sea-level: exactly 0 m */
+    atmo_dem_options sea = o;
+    sea.nodata = ATMO_DEM_NODATA_SEA_LEVEL;
+    CHECK(atmo_dem_load(path, &sea, &d, &e) == ATMO_OK);
+    if (d.heights_m) {
+        CHECK(d.nodata_filled == (size_t)holes);
+        CHECK(d.heights_m[2 * W + 2] == 0 && d.heights_m[12 * W + 38] == 0 && d.min_m == 0);
+    }
+    atmo_dem_free(&d);
     free(v);
     free(v8);
+}
+
+/* A coast: the eastern half of a 1024 x 1024 grid is nodata. Filling from the neighbours is
+ * linear in the grid (the time is printed, not asserted) and leaves every sample finite and
+ * within the range of the known heights (a mean of known values cannot leave their range). */
+static void test_large_hole(void)
+{
+    enum { N = 1024 };
+    char path[300];
+    uint16_t *v = malloc(sizeof *v * N * N * 2);
+    for (int row = 0; row < N; row++)
+        for (int col = 0; col < N; col++) {
+            v[2 * (row * N + col)] = (uint16_t)(1000 + 30 * ((row * 7 + col * 3) % 101));
+            v[2 * (row * N + col) + 1] = col < N / 2 ? 65535 : 0;
+        }
+    path_of(path, sizeof path, "coast.png");
+    write_png16(path, N, N, 2, v);
+    free(v);
+    atmo_dem d;
+    atmo_err e;
+    atmo_dem_options o = options(N * 30.0, 65535, 0); /* heights = stored values, metres */
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    CHECK(atmo_dem_load(path, &o, &d, &e) == ATMO_OK);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    if (d.heights_m) {
+        CHECK(d.nodata_filled == (size_t)N * N / 2);
+        CHECK(d.min_m >= 1000 && d.max_m <= 1000 + 30 * 100);
+        int finite = 1;
+        for (size_t i = 0; i < (size_t)N * N; i++)
+            finite &= isfinite(d.heights_m[i]) != 0;
+        CHECK(finite);
+        printf("coast: %zu of %d samples filled from their neighbours in %.3f s (with reading)\n",
+               d.nodata_filled, N * N,
+               (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
+    }
+    atmo_dem_free(&d);
 }
 
 /* ---- EXR -------------------------------------------------------------------------------- */
@@ -468,7 +517,8 @@ static void test_exr(void)
     path_of(cut, sizeof cut, "cut.exr");
     truncate_copy(path, cut, 0.6);
     check_refused(cut, &o, "cut.exr");
-    check_refused(path, &(atmo_dem_options){0, 0, 0, 0}, "terrain.heightmap_extent_m");
+    atmo_dem_options no_extent = options(0, 0, 0);
+    check_refused(path, &no_extent, "terrain.heightmap_file_extent_m");
     free(h);
 }
 
@@ -686,13 +736,13 @@ static void test_plan(void)
     path_of(path, sizeof path, "surface16.png");
     snprintf(set, sizeof set, "terrain.heightmap_file=%s", path);
     CHECK(atmo_scene_assign(&s, set, "test", &e) == ATMO_OK);
-    CHECK(atmo_scene_assign(&s, "terrain.heightmap_extent_m=4800", "test", &e) == ATMO_OK);
+    CHECK(atmo_scene_assign(&s, "terrain.heightmap_file_extent_m=4800", "test", &e) == ATMO_OK);
     CHECK(atmo_plan_make(&s, &p, &e) == ATMO_OK);
     CHECK(p.dem.width == W && p.dem.height == H && p.dem.extent_m[0] == 4800);
     atmo_plan_free(&p);
-    CHECK(atmo_scene_assign(&s, "terrain.heightmap_extent_m=0", "test", &e) == ATMO_OK);
+    CHECK(atmo_scene_assign(&s, "terrain.heightmap_file_extent_m=0", "test", &e) == ATMO_OK);
     int rc = atmo_plan_make(&s, &p, &e);
-    CHECK(rc == ATMO_ERR_USAGE && strstr(e.msg, "terrain.heightmap_extent_m"));
+    CHECK(rc == ATMO_ERR_USAGE && strstr(e.msg, "terrain.heightmap_file_extent_m"));
     atmo_scene_defaults(&s); /* no file: no DEM */
     CHECK(atmo_plan_make(&s, &p, &e) == ATMO_OK && p.dem.width == 0 && !p.dem.heights_m);
     atmo_plan_free(&p);
@@ -793,6 +843,7 @@ int main(void)
         return 1;
     }
     test_png();
+    test_large_hole();
     test_exr();
 #ifdef ATMO_HAVE_GDAL
     test_geotiff();

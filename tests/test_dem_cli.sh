@@ -40,7 +40,7 @@ png += chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b"")
 open(sys.argv[1], "wb").write(png)
 PY
 
-keys=(--set terrain.heightmap_extent_m=4000 --set terrain.heightmap_scale_m=512
+keys=(--set terrain.heightmap_file_extent_m=4000 --set terrain.heightmap_scale_m=512
       --set terrain.heightmap_offset_m=-64)
 "$atmo" dem info "$tmp/ramp.png" "${keys[@]}" --json >"$tmp/info.json" 2>"$tmp/err" ||
     { bad "atmo dem info --json failed"; cat "$tmp/err" >&2; }
@@ -52,7 +52,8 @@ assert d["extent_m"] == [4000, 4000 * 25 / 40], d["extent_m"]
 assert d["cell_m"] == [100, 100], d["cell_m"]
 assert d["min_m"] == -64 and d["max_m"] == 448, (d["min_m"], d["max_m"])
 assert d["format"].startswith("16-bit PNG") and d["nodata_filled"] == 0, d
-assert d["geographic"] is False and "terrain.heightmap_extent_m" in d["projection"], d
+assert d["nodata_fill"] == "neighbours", d
+assert d["geographic"] is False and "terrain.heightmap_file_extent_m" in d["projection"], d
 print("atmo dem info: 40 x 25 samples, %g x %g m, heights %g .. %g m" %
       (d["extent_m"][0], d["extent_m"][1], d["min_m"], d["max_m"]))
 PY
@@ -64,15 +65,15 @@ done
 
 # bad input: one line, exit 2
 "$atmo" dem info "$tmp/ramp.png" 2>"$tmp/err" >/dev/null
-one_line_error $? "terrain.heightmap_extent_m"
+one_line_error $? "terrain.heightmap_file_extent_m"
 "$atmo" dem info "$tmp/none.tif" 2>"$tmp/err" >/dev/null
 one_line_error $? "none.tif"
 "$atmo" dem info 2>"$tmp/err" >/dev/null
 one_line_error $? "atmo dem info FILE"
 "$atmo" dem 2>"$tmp/err" >/dev/null
 one_line_error $? "info FILE"
-"$atmo" dem info "$tmp/ramp.png" --set terrain.heightmap_extent_m=-1 2>"$tmp/err" >/dev/null
-one_line_error $? "terrain.heightmap_extent_m"
+"$atmo" dem info "$tmp/ramp.png" --set terrain.heightmap_file_extent_m=-1 2>"$tmp/err" >/dev/null
+one_line_error $? "terrain.heightmap_file_extent_m"
 # method single: the smallest program to build (PoCL compiles it in a few seconds)
 "$atmo" render --quiet --width 4 --height 4 --samples 1 --set atmosphere.method=single \
     --output "$tmp/rgb.exr" 2>"$tmp/err" || bad "render to EXR failed"
@@ -86,7 +87,7 @@ one_line_error $? "none.png"
 [ -e "$tmp/out.png" ] && bad "a refused render wrote its output"
 "$atmo" render --quiet --width 4 --height 4 --samples 1 --set terrain.heightmap_file="$tmp/ramp.png" \
     --output "$tmp/out.png" 2>"$tmp/err" >/dev/null
-one_line_error $? "terrain.heightmap_extent_m"
+one_line_error $? "terrain.heightmap_file_extent_m"
 "$atmo" render --quiet --width 4 --height 4 --samples 1 --set terrain.heightmap_file="$tmp/ramp.png" \
     "${keys[@]}" --set atmosphere.method=single --output "$tmp/out.png" 2>"$tmp/err" >/dev/null ||
     bad "render with a heightmap failed"
@@ -96,7 +97,7 @@ one_line_error $? "terrain.heightmap_extent_m"
 python3 - "$tmp/params.json" <<'PY' || fail=1
 import json, sys
 types = {p["key"]: p["type"] for p in json.load(open(sys.argv[1]))}
-want = {"terrain.heightmap_file": "string", "terrain.heightmap_extent_m": "float",
+want = {"terrain.heightmap_file": "string", "terrain.heightmap_file_extent_m": "float",
         "terrain.heightmap_center_m": "vec2", "terrain.heightmap_scale_m": "float",
         "terrain.heightmap_offset_m": "float", "terrain.heightmap_detail": "bool"}
 for k, t in want.items():

@@ -84,11 +84,12 @@ static const char *const spec_defaults[] = {"image.width=640",
                                             "post.white_balance=true",
                                             "post.transfer=srgb",
                                             "terrain.heightmap_file=",
-                                            "terrain.heightmap_extent_m=0",
+                                            "terrain.heightmap_file_extent_m=0",
                                             "terrain.heightmap_center_m=0,0",
                                             "terrain.heightmap_scale_m=1000",
                                             "terrain.heightmap_offset_m=0",
                                             "terrain.heightmap_detail=false",
+                                            "terrain.heightmap_nodata=neighbours",
                                             NULL};
 
 /* Ranges of the specification: key, min, max (enums and bools are checked by name). */
@@ -127,7 +128,7 @@ static const struct {
     {"render.transmittance_height", 4, 4096},
     {"post.exposure", 0, 1e9},
     {"post.white_point", 1e-6, 1e9},
-    {"terrain.heightmap_extent_m", 0, 1e7},
+    {"terrain.heightmap_file_extent_m", 0, 1e7},
     {"terrain.heightmap_center_m", -1e8, 1e8},
     {"terrain.heightmap_scale_m", 0, 1e5},
     {"terrain.heightmap_offset_m", -1e5, 1e5},

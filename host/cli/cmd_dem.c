@@ -18,14 +18,19 @@ static void print_usage(FILE *f)
             "Read a digital elevation model as `atmo render --set terrain.heightmap_file=FILE`\n"
             "would, and print its format, size, extent in metres, height range and projection.\n"
             "Formats: GeoTIFF (%s), 16-bit greyscale PNG, one-channel EXR.\n\n"
-            "  --set KEY=VALUE  PNG/EXR: terrain.heightmap_extent_m (east-west size in metres);\n"
+            "  --set KEY=VALUE  PNG/EXR: terrain.heightmap_file_extent_m (east-west size in metres);\n"
             "                   PNG: terrain.heightmap_scale_m, terrain.heightmap_offset_m\n"
             "  --json           print one JSON object\n"
             "  --help           this text\n",
             atmo_dem_have_gdal() ? "through GDAL" : "not in this build: needs libgdal-dev");
 }
 
-static int print_json(const char *path, const atmo_dem *d)
+static const char *fill_name(const atmo_dem_options *o)
+{
+    return o->nodata == ATMO_DEM_NODATA_SEA_LEVEL ? "sea-level" : "neighbours";
+}
+
+static int print_json(const char *path, const atmo_dem *d, const atmo_dem_options *opt)
 {
     int rc = ATMO_ERR_RUNTIME;
     char *text = NULL;
@@ -43,7 +48,8 @@ static int print_json(const char *path, const atmo_dem *d)
         !cJSON_AddStringToObject(o, "projection", d->projection) ||
         !cJSON_AddBoolToObject(o, "geographic", d->geographic) ||
         (d->geographic && !cJSON_AddNumberToObject(o, "centre_lat_deg", d->centre_lat_deg)) ||
-        !cJSON_AddNumberToObject(o, "nodata_filled", (double)d->nodata_filled))
+        !cJSON_AddNumberToObject(o, "nodata_filled", (double)d->nodata_filled) ||
+        !cJSON_AddStringToObject(o, "nodata_fill", fill_name(opt)))
         goto cleanup;
     text = cJSON_Print(o);
     if (!text)
@@ -58,7 +64,7 @@ cleanup:
     return rc;
 }
 
-static void print_text(const char *path, const atmo_dem *d)
+static void print_text(const char *path, const atmo_dem *d, const atmo_dem_options *o)
 {
     printf("file        %s\n", path);
     printf("format      %s\n", d->format_name);
@@ -67,7 +73,9 @@ static void print_text(const char *path, const atmo_dem *d)
            d->extent_m[1], d->extent_m[0] / d->width, d->extent_m[1] / d->height);
     printf("height      %.6g .. %.6g m\n", d->min_m, d->max_m);
     printf("projection  %s\n", d->projection);
-    printf("nodata      %zu samples, filled from their neighbours\n", d->nodata_filled);
+    printf("nodata      %zu samples, %s\n", d->nodata_filled,
+           o->nodata == ATMO_DEM_NODATA_SEA_LEVEL ? "set to sea level (0 m)"
+                                                  : "filled from their neighbours");
 }
 
 int cmd_dem(int argc, char **argv)
@@ -120,9 +128,9 @@ int cmd_dem(int argc, char **argv)
         return rc;
     }
     if (json)
-        rc = print_json(path, &d);
+        rc = print_json(path, &d, &o);
     else
-        print_text(path, &d);
+        print_text(path, &d, &o);
     atmo_dem_free(&d);
     return rc;
 }

@@ -58,6 +58,8 @@ static const char *const transfer_names[] = {"srgb", "gamma22", NULL};
 static const char *const cloud_dsd_names[] = {"cumulus", "stratus", "fog", "corona",
                                               "thesis-disperse", "thesis-uniform", NULL};
 static const char *const cloud_phase_names[] = {"mie", "hg", "jendersie-deon", NULL};
+/* ATMO_DEM_NODATA_* of dem.h, in order */
+static const char *const dem_nodata_names[] = {"neighbours", "sea-level", NULL};
 _Static_assert(ATMO_CAMERA_PANORAMA == 1 && ATMO_PHASE_HENYEY_GREENSTEIN == 1 &&
                    ATMO_QUANTITY_LUMINANCE == 1 && ATMO_TONEMAP_LOTTES == 7 &&
                    ATMO_TRANSFER_GAMMA22 == 1,
@@ -188,7 +190,7 @@ const atmo_param atmo_params[] = {
     /* a digital elevation model as the terrain (atmo/dem.h; `atmo dem info FILE`) */
     ROW_STRING("terrain.heightmap_file", dem.file,
                "DEM file: GeoTIFF (with GDAL), 16-bit PNG or one-channel EXR; \"\" = none"),
-    ROW_FLOAT("terrain.heightmap_extent_m", dem.extent_m, "m", 0, 1e7, 0,
+    ROW_FLOAT("terrain.heightmap_file_extent_m", dem.extent_m, "m", 0, 1e7, 0,
               "east-west size of a PNG/EXR heightmap (north-south by its aspect); GeoTIFF: 0, "
               "from the file"),
     ROW_VEC2("terrain.heightmap_center_m", dem.center_m, "m", -1e8, 1e8, 0, 0,
@@ -199,6 +201,8 @@ const atmo_param atmo_params[] = {
               "PNG heightmap: height of value 0 above sea level"),
     ROW_BOOL("terrain.heightmap_detail", dem.detail, 0,
              "the procedural fBm adds detail below the heightmap's cell size"),
+    ROW_ENUM("terrain.heightmap_nodata", dem.nodata, dem_nodata_names, 0,
+             "heightmap samples without data: filled from their neighbours, or sea level (0 m)"),
     {NULL, ATMO_PARAM_INT, 0, NULL, 0, 0, {0, 0, 0}, NULL, NULL},
 };
 

@@ -6,11 +6,11 @@
  * (dem_png.c, dem_exr.c, dem_gdal.c) give heights with missing samples as NaN; this file then
  * fills them from their neighbours and finds the range.
  *
- * Filling (dem.h): pass k takes every missing sample that has at least one known sample among
- * its 8 neighbours after pass k-1 and gives it the mean of those; a pass reads only the values of
- * the pass before, so the result does not depend on the order of the samples. The passes end when
- * no sample is missing; a hole of radius r closes in about r passes, each visiting only the
- * samples still missing. */
+ * Filling (dem.h): layer k holds every missing sample that has a known sample among its 8
+ * neighbours once the layers before it are filled, and gives it the mean of those; a layer reads
+ * only the values of the layers before, so the result does not depend on the order of the
+ * samples. Layer k + 1 is found among the neighbours of layer k, so each sample is visited a
+ * bounded number of times: linear in the grid, however large the holes. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -24,6 +24,7 @@ void atmo_dem_options_from_scene(const atmo_scene *s, atmo_dem_options *o)
     o->extent_m = s->dem.extent_m;
     o->scale_m = s->dem.scale_m;
     o->offset_m = s->dem.offset_m;
+    o->nodata = s->dem.nodata;
 }
 
 int atmo_dem_have_gdal(void)
@@ -63,25 +64,47 @@ int dem_extent_from_options(const char *path, const char *format, const atmo_dem
     if (!(o->extent_m > 0))
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "%s: the %s carries no georeference; give its east-west size with "
-                         "terrain.heightmap_extent_m (metres)",
+                         "terrain.heightmap_file_extent_m (metres)",
                          path, format);
     dem->extent_m[0] = o->extent_m;
     dem->extent_m[1] = o->extent_m * dem->height / dem->width;
     snprintf(dem->projection, sizeof dem->projection,
-             "none (extent from terrain.heightmap_extent_m)");
+             "none (extent from terrain.heightmap_file_extent_m)");
     return ATMO_OK;
 }
 
-/* Missing samples (NaN) from their neighbours; ATMO_ERR_USAGE when there is no known one. */
-static int fill_missing(const char *path, atmo_dem *dem, atmo_err *e)
+/* The missing samples that have a known 8-neighbour, each once (state 1 -> 2), appended to
+ * order[*n...]; of the neighbours of order[from, to) or, with from == to == 0 and *n == 0, of
+ * every known sample's missing neighbours (the first layer). */
+static void next_layer(const atmo_dem *dem, unsigned char *state, size_t *order, size_t from,
+                       size_t to, size_t *n)
+{
+    long w = dem->width, h = dem->height;
+    for (size_t k = from; k < to; k++) {
+        long x = (long)(order[k] % (size_t)w), z = (long)(order[k] / (size_t)w);
+        for (long dz = -1; dz <= 1; dz++)
+            for (long dx = -1; dx <= 1; dx++) {
+                long xx = x + dx, zz = z + dz;
+                size_t q = (size_t)zz * (size_t)w + (size_t)xx;
+                if (xx >= 0 && xx < w && zz >= 0 && zz < h && state[q] == 1) {
+                    state[q] = 2;
+                    order[(*n)++] = q;
+                }
+            }
+    }
+}
+
+/* Missing samples (non-finite) filled as the options say: from their neighbours (dem.h: layer
+ * by layer from the known samples inward, each the mean of its known 8-neighbours; every sample
+ * is visited once per layer it borders, so the work is linear in the grid) or with sea level.
+ * ATMO_ERR_USAGE when no sample is known. */
+static int fill_missing(const char *path, const atmo_dem_options *o, atmo_dem *dem, atmo_err *e)
 {
     size_t n = (size_t)dem->width * (size_t)dem->height, missing = 0;
+    long w = dem->width, hgt = dem->height;
     float *h = dem->heights_m;
     for (size_t i = 0; i < n; i++)
-        if (!isfinite(h[i])) {
-            h[i] = NAN;
-            missing++;
-        }
+        missing += !isfinite(h[i]);
     dem->nodata_filled = missing;
     if (missing == 0)
         return ATMO_OK;
@@ -89,47 +112,65 @@ static int fill_missing(const char *path, atmo_dem *dem, atmo_err *e)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "%s: every sample is nodata (or not finite); is it the right band/file?",
                          path);
+    if (o->nodata == ATMO_DEM_NODATA_SEA_LEVEL) {
+        for (size_t i = 0; i < n; i++)
+            if (!isfinite(h[i]))
+                h[i] = 0.0f;
+        return ATMO_OK;
+    }
     int rc = ATMO_OK;
-    size_t *todo = malloc(missing * sizeof *todo);
+    unsigned char *state = malloc(n); /* 0 known, 1 missing, 2 missing and in a layer */
+    size_t *order = malloc(missing * sizeof *order);
     float *value = malloc(missing * sizeof *value);
-    if (!todo || !value) {
+    if (!state || !order || !value) {
         rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory filling the nodata samples of %s", path);
         goto cleanup;
     }
     size_t count = 0;
     for (size_t i = 0; i < n; i++)
-        if (isnan(h[i]))
-            todo[count++] = i;
-    while (count > 0) {
-        /* this pass's values, from the known samples of the passes before */
-        for (size_t k = 0; k < count; k++) {
-            long x = (long)(todo[k] % (size_t)dem->width), z = (long)(todo[k] / (size_t)dem->width);
+        state[i] = !isfinite(h[i]);
+    /* the first layer: missing samples next to a known one */
+    for (size_t i = 0; i < n; i++) {
+        if (state[i] != 1)
+            continue;
+        long x = (long)(i % (size_t)w), z = (long)(i / (size_t)w);
+        int near_known = 0;
+        for (long dz = -1; dz <= 1 && !near_known; dz++)
+            for (long dx = -1; dx <= 1 && !near_known; dx++) {
+                long xx = x + dx, zz = z + dz;
+                near_known = xx >= 0 && xx < w && zz >= 0 && zz < hgt &&
+                             state[(size_t)zz * (size_t)w + (size_t)xx] == 0;
+            }
+        if (near_known) {
+            state[i] = 2;
+            order[count++] = i;
+        }
+    }
+    for (size_t begin = 0, end = count; begin < end; begin = end, end = count) {
+        for (size_t k = begin; k < end; k++) { /* from the samples known before this layer */
+            long x = (long)(order[k] % (size_t)w), z = (long)(order[k] / (size_t)w);
             double sum = 0;
             int known = 0;
             for (long dz = -1; dz <= 1; dz++)
                 for (long dx = -1; dx <= 1; dx++) {
                     long xx = x + dx, zz = z + dz;
-                    if ((dx || dz) && xx >= 0 && xx < dem->width && zz >= 0 && zz < dem->height) {
-                        float v = h[(size_t)zz * (size_t)dem->width + (size_t)xx];
-                        if (!isnan(v)) {
-                            sum += (double)v;
-                            known++;
-                        }
+                    size_t q = (size_t)zz * (size_t)w + (size_t)xx;
+                    if (xx >= 0 && xx < w && zz >= 0 && zz < hgt && state[q] == 0) {
+                        sum += (double)h[q];
+                        known++;
                     }
                 }
-            value[k] = known ? (float)(sum / known) : NAN;
+            value[k] = (float)(sum / known);
         }
-        size_t left = 0;
-        for (size_t k = 0; k < count; k++) {
-            if (isnan(value[k]))
-                todo[left++] = todo[k];
-            else
-                h[todo[k]] = value[k];
+        for (size_t k = begin; k < end; k++) {
+            h[order[k]] = value[k];
+            state[order[k]] = 0;
         }
-        count = left;
+        next_layer(dem, state, order, begin, end, &count);
     }
 cleanup:
-    free(todo);
+    free(state);
+    free(order);
     free(value);
     return rc;
 }
@@ -177,7 +218,7 @@ int atmo_dem_load(const char *path, const atmo_dem_options *o, atmo_dem *dem, at
     memset(dem, 0, sizeof *dem);
     int rc = read_by_signature(path, o, dem, e);
     if (rc == ATMO_OK)
-        rc = fill_missing(path, dem, e);
+        rc = fill_missing(path, o, dem, e);
     if (rc != ATMO_OK) {
         atmo_dem_free(dem);
         return rc;

@@ -5,7 +5,7 @@
  * pixel type (half, float or uint; the library converts each to float: half's 11-bit mantissa
  * gives heights to 1 part in 2048, float's to 1 in 2^24). The grid is the data window, its first
  * row north. Non-finite samples count as missing (dem.c fills them). The extent comes from
- * terrain.heightmap_extent_m: EXR carries no georeference. Library messages are collected into
+ * terrain.heightmap_file_extent_m: EXR carries no georeference. Library messages are collected into
  * the one-line error instead of being printed. */
 #include <math.h>
 #include <stdio.h>

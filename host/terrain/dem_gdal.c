@@ -80,7 +80,7 @@ static int extent_m(const char *path, GDALDatasetH ds, const double gt[6], atmo_
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "%s has no coordinate reference system, so its extent in metres is "
                          "unknown; assign one (gdal_edit.py -a_srs EPSG:...) or convert it to a "
-                         "16-bit PNG with terrain.heightmap_extent_m",
+                         "16-bit PNG with terrain.heightmap_file_extent_m",
                          path);
     crs_name(srs, name, sizeof name);
     if (OSRIsLocal(srs) || (!OSRIsProjected(srs) && !OSRIsGeographic(srs)))
@@ -210,7 +210,7 @@ int dem_read_gdal(const char *path, const atmo_dem_options *o, atmo_dem *dem, at
     if (GDALGetGeoTransform(ds, gt) != CE_None) {
         rc = atmo_fail(e, ATMO_ERR_USAGE,
                        "%s (%s) has no geotransform, so its extent is unknown; georeference it "
-                       "or convert it to a 16-bit PNG with terrain.heightmap_extent_m",
+                       "or convert it to a 16-bit PNG with terrain.heightmap_file_extent_m",
                        path, driver);
         goto cleanup;
     }

@@ -5,7 +5,7 @@
  * v16 / 65535 = v8 / 255 exactly and one formula serves both). The quantisation error of a
  * height is then at most scale_m / 2 / vmax. A grey+alpha PNG marks samples with alpha 0 as
  * missing (filled by dem.c). Colour PNGs are refused: a heightmap is one channel, and mixing
- * R, G, B into grey would invent heights. The extent comes from terrain.heightmap_extent_m. */
+ * R, G, B into grey would invent heights. The extent comes from terrain.heightmap_file_extent_m. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

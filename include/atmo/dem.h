@@ -17,10 +17,13 @@
  * above sea level. In the world (Y up) the grid lies in the X-Z plane with +X east and +Z south
  * (so X x Y = Z: right-handed), its centre at the scene's terrain.heightmap_center_m.
  *
- * Missing samples (GDAL's nodata value, or a non-finite value in any format) are filled from
- * their neighbours: passes over the missing samples each give those with a known 8-neighbour
- * the mean of their known neighbours, until none is missing (holes close from their rims, so a
- * hole takes the heights around it, never sea level); a grid with no known sample is refused.
+ * Missing samples (GDAL's nodata value, alpha 0 in a PNG, or a non-finite value in any format)
+ * are filled, as the options say (terrain.heightmap_nodata):
+ *   - from their neighbours (the default, for voids in the data such as SRTM's): layer by layer
+ *     from the rim of each hole inward, each sample the mean of its known 8-neighbours, so a
+ *     hole takes the heights around it;
+ *   - with sea level, 0 m (for DEMs whose sea is nodata, e.g. coastal tiles).
+ * A grid with no known sample is refused.
  *
  * Limits: each side at most ATMO_DEM_MAX_SIDE and the grid at most ATMO_DEM_MAX_SAMPLES
  * samples (256 MiB of floats on the host); larger files are refused with one line naming the
@@ -40,6 +43,8 @@
 
 typedef enum { ATMO_DEM_GEOTIFF = 0, ATMO_DEM_PNG = 1, ATMO_DEM_EXR = 2 } atmo_dem_format;
 
+typedef enum { ATMO_DEM_NODATA_NEIGHBOURS = 0, ATMO_DEM_NODATA_SEA_LEVEL = 1 } atmo_dem_nodata;
+
 typedef struct atmo_dem {
     int width, height;         /* samples along X (east) and Z (south) */
     float *heights_m;          /* width * height, row 0 north; malloc'd, atmo_dem_free */
@@ -58,6 +63,7 @@ typedef struct atmo_dem_options {
     double extent_m;           /* X extent of a PNG/EXR grid (Z: extent_m * height / width);
                                   0 = not given (PNG/EXR refused; GeoTIFF uses its own) */
     double scale_m, offset_m;  /* PNG: height = offset_m + scale_m * v / vmax */
+    int nodata;                /* atmo_dem_nodata: how missing samples are filled */
     size_t max_samples;        /* 0: ATMO_DEM_MAX_SAMPLES */
 } atmo_dem_options;
 

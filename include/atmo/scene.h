@@ -89,6 +89,7 @@ typedef struct atmo_scene {
         double center_m[2];    /* world X, Z of the grid's centre */
         double scale_m, offset_m; /* PNG: height = offset + scale * value / max value */
         int detail;            /* 0/1: the procedural fBm adds detail below the file's cells */
+        int nodata;            /* ATMO_DEM_NODATA_* (dem.h): how missing samples are filled */
     } dem;
 } atmo_scene;
 
