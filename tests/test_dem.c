@@ -9,7 +9,7 @@
  *     format's quantisation: 16-bit PNG scale/2/65535, 8-bit PNG scale/2/255, EXR half 2^-11 |h|
  *     (half's rounding), float formats exactly, all plus the float rounding of a height
  *     (2^-24 |h|, from metres in double to float). The non-square grid (48 x 32) catches a
- *     transposition, the south-up GeoTIFF a row flip.
+ *     transposition, the south-up and east-first GeoTIFFs a row or column flip.
  *   - GeoTIFF extents: projected (UTM, metres) = size x cell exactly; geographic degrees against
  *     the published lengths of a degree on WGS 84 (Wikipedia "Latitude", table of 1-degree
  *     lengths: at 0 deg 110 574 m of latitude and 111 320 m of longitude, at 45 deg 111 132 m and
@@ -597,6 +597,20 @@ static void test_geotiff(void)
     if (d.heights_m)
         CHECK(memcmp(d.heights_m, h, sizeof *h * W * H) == 0);
     atmo_dem_free(&d);
+
+    /* columns stored east first (negative cell width): the same grid */
+    float *mirrored = malloc(sizeof *h * W * H);
+    for (int row = 0; row < H; row++)
+        for (int col = 0; col < W; col++)
+            mirrored[row * W + (W - 1 - col)] = h[row * W + col];
+    double gt_east[6] = {400000 + W * CELL, -CELL, 0, 5100000, 0, -CELL};
+    path_of(path, sizeof path, "east_first.tif");
+    write_tiff(path, W, H, 32632, gt_east, mirrored, 0, 0, NULL);
+    CHECK(atmo_dem_load(path, &o, &d, &e) == ATMO_OK);
+    if (d.heights_m)
+        CHECK(memcmp(d.heights_m, h, sizeof *h * W * H) == 0);
+    atmo_dem_free(&d);
+    free(mirrored);
 
     /* nodata and a band in feet */
     float *holed = malloc(sizeof *h * W * H);

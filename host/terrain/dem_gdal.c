@@ -134,7 +134,8 @@ static int extent_m(const char *path, GDALDatasetH ds, const double gt[6], atmo_
     return ATMO_OK;
 }
 
-/* Band 1 into dem->heights_m, flipped to row 0 north and column 0 west, nodata as NaN. */
+/* Band 1 into dem->heights_m, flipped to row 0 north and column 0 west, nodata as NaN. On
+ * failure dem->heights_m may hold a block, which atmo_dem_load releases. */
 static int read_heights(const char *path, GDALDatasetH ds, const double gt[6], atmo_dem *dem,
                         gdal_log *log, atmo_err *e)
 {
@@ -154,29 +155,34 @@ static int read_heights(const char *path, GDALDatasetH ds, const double gt[6], a
     if (!has_offset)
         offset = 0;
     size_t w = (size_t)dem->width, h = (size_t)dem->height;
-    float *raw = malloc(w * h * sizeof *raw);
-    if (!raw)
+    float *z = malloc(w * h * sizeof *z);
+    if (!z)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory reading %s (%zu x %zu)", path, w, h);
-    if (GDALRasterIO(band, GF_Read, 0, 0, dem->width, dem->height, raw, dem->width, dem->height,
-                     GDT_Float32, 0, 0) != CE_None) {
-        free(raw);
+    dem->heights_m = z; /* released by atmo_dem_load on failure */
+    if (GDALRasterIO(band, GF_Read, 0, 0, dem->width, dem->height, z, dem->width, dem->height,
+                     GDT_Float32, 0, 0) != CE_None)
         return atmo_fail(e, ATMO_ERR_USAGE, "%s: its heights cannot be read: %s; is the file "
                          "complete?", path, log->msg[0] ? log->msg : "GDAL gave no reason");
-    }
     float missing = (float)nodata; /* compared as GDAL stored it: in the band's float values */
-    int flip_x = gt[1] < 0, flip_z = gt[5] > 0;
-    dem->heights_m = malloc(w * h * sizeof *dem->heights_m);
-    if (!dem->heights_m) {
-        free(raw);
-        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory reading %s (%zu x %zu)", path, w, h);
+    for (size_t i = 0; i < w * h; i++) {
+        int is_missing = has_nodata && (z[i] == missing || (isnan(missing) && isnan(z[i])));
+        z[i] = is_missing ? NAN : (float)(((double)z[i] * scale + offset) * to_m);
     }
-    for (size_t z = 0; z < h; z++)
-        for (size_t x = 0; x < w; x++) {
-            float v = raw[(flip_z ? h - 1 - z : z) * w + (flip_x ? w - 1 - x : x)];
-            int is_missing = has_nodata && (v == missing || (isnan(missing) && isnan(v)));
-            dem->heights_m[z * w + x] = is_missing ? NAN : (float)(((double)v * scale + offset) * to_m);
-        }
-    free(raw);
+    /* in place, so a grid needs its own size in memory and no more */
+    if (gt[5] > 0)
+        for (size_t r = 0; r < h / 2; r++)
+            for (size_t c = 0; c < w; c++) {
+                float t = z[r * w + c];
+                z[r * w + c] = z[(h - 1 - r) * w + c];
+                z[(h - 1 - r) * w + c] = t;
+            }
+    if (gt[1] < 0)
+        for (size_t r = 0; r < h; r++)
+            for (size_t c = 0; c < w / 2; c++) {
+                float t = z[r * w + c];
+                z[r * w + c] = z[r * w + w - 1 - c];
+                z[r * w + w - 1 - c] = t;
+            }
     return ATMO_OK;
 }
 
