@@ -27,7 +27,9 @@
  *     is at most (c^2/8)(max |h_xx| + max |h_zz|) (tensor-product linear interpolation), and
  *     both filters return the samples at the sample centres; halving c must divide the
  *     bilinear error by ~4 (measured order >= 1.8) and the bicubic (Keys) error by ~8 (order >=
- *     2.7, Keys 1981: third order), and bicubic must beat bilinear.
+ *     2.7, Keys 1981: third order), and bicubic must beat bilinear; bicubic's gradient against
+ *     the surface's closed-form gradient falls by ~4 (order >= 1.8) and matches the central
+ *     difference of the interpolated heights over +-0.1 mm within 0.1 mm x (max |h_xx| + max |h_zz|).
  *   - The shipped real DEM (tests/data/jacksboro_fault_dem.tif, 403 x 344 samples of 3 arc-seconds)
  *     reads back with the size, height range and spot values its generator printed from the
  *     source, and its extent equals the closed-form lengths of its degrees on WGS 84 (1e-9).
@@ -62,11 +64,18 @@ static void path_of(char *buf, size_t n, const char *name)
     snprintf(buf, n, "%s/%s", dir, name);
 }
 
-/* The closed-form surface, metres, at a point of the DEM frame. */
+/* The closed-form surface, metres, at a point of the DEM frame, and its gradient. */
 static double surface(double x, double z)
 {
     return 400.0 + 300.0 * sin(2 * PI * x / 1700.0) * cos(2 * PI * z / 1300.0) + 0.01 * x -
            0.02 * z;
+}
+
+static void surface_gradient(double x, double z, double g[2])
+{
+    double kx = 2 * PI / 1700.0, kz = 2 * PI / 1300.0;
+    g[0] = 300.0 * kx * cos(kx * x) * cos(kz * z) + 0.01;
+    g[1] = -300.0 * kz * sin(kx * x) * sin(kz * z) - 0.02;
 }
 
 static double centre_x(int col, int width, double cell)
@@ -779,16 +788,47 @@ static void make_dem(atmo_dem *d, double cell)
                 (float)surface(centre_x(col, d->width, cell), centre_x(row, d->height, cell));
 }
 
-/* max error over a fixed set of points inside the outermost sample centres */
+/* A low-discrepancy (golden-ratio) sequence over [-2500, 2500] x [-1500, 1500], inside the
+ * outermost sample centres. */
+static void test_point(int k, double *x, double *z)
+{
+    *x = -2500 + 5000 * fmod(0.5 + k * 0.6180339887498949, 1.0);
+    *z = -1500 + 3000 * fmod(0.5 + k * 0.7548776662466927, 1.0);
+}
+
+/* max error of the height over the test points */
 static double interpolation_error(const atmo_dem *d, int filter)
 {
-    double worst = 0;
+    double worst = 0, x, z;
     for (int k = 0; k < 4000; k++) {
-        /* a low-discrepancy (golden-ratio) sequence over [-2500, 2500] x [-1500, 1500] */
-        double x = -2500 + 5000 * fmod(0.5 + k * 0.6180339887498949, 1.0);
-        double z = -1500 + 3000 * fmod(0.5 + k * 0.7548776662466927, 1.0);
+        test_point(k, &x, &z);
         worst = fmax(worst, fabs(atmo_dem_sample(d, x, z, filter) - surface(x, z)));
     }
+    return worst;
+}
+
+/* max error of bicubic's gradient against the surface's, and its largest difference from the
+ * central difference of the interpolated heights over +-0.1 mm. The interpolant is a cubic in
+ * each cell and C1 across cells, so that difference is at most delta/2 times the jump of its
+ * second derivative at a cell edge (<= 2 max |h''|, 0.007/m for this surface) plus
+ * delta^2/6 max |h'''| and the rounding of double heights over 2 delta (~1e-9): below
+ * delta (max |h_xx| + max |h_zz|) ~ 1.1e-6. */
+static double gradient_error(const atmo_dem *d, double *to_differences)
+{
+    double worst = 0, worst_fd = 0, x, z;
+    for (int k = 0; k < 4000; k++) {
+        test_point(k, &x, &z);
+        double g[2], want[2], delta = 1e-4;
+        atmo_dem_sample_gradient(d, x, z, ATMO_DEM_BICUBIC, g);
+        surface_gradient(x, z, want);
+        worst = fmax(worst, fmax(fabs(g[0] - want[0]), fabs(g[1] - want[1])));
+        double fx = (atmo_dem_sample(d, x + delta, z, ATMO_DEM_BICUBIC) -
+                     atmo_dem_sample(d, x - delta, z, ATMO_DEM_BICUBIC)) / (2 * delta);
+        double fz = (atmo_dem_sample(d, x, z + delta, ATMO_DEM_BICUBIC) -
+                     atmo_dem_sample(d, x, z - delta, ATMO_DEM_BICUBIC)) / (2 * delta);
+        worst_fd = fmax(worst_fd, fmax(fabs(g[0] - fx), fabs(g[1] - fz)));
+    }
+    *to_differences = worst_fd;
     return worst;
 }
 
@@ -796,13 +836,19 @@ static void test_resample(void)
 {
     /* |h_xx| <= 300 (2 pi / 1700)^2, |h_zz| <= 300 (2 pi / 1300)^2 */
     const double hxx = 300 * pow(2 * PI / 1700, 2), hzz = 300 * pow(2 * PI / 1300, 2);
-    double err_lin[2], err_cub[2];
+    double err_lin[2], err_cub[2], err_grad[2];
     for (int level = 0; level < 2; level++) {
         double cell = level == 0 ? 100 : 50;
         atmo_dem d;
         make_dem(&d, cell);
         err_lin[level] = interpolation_error(&d, ATMO_DEM_BILINEAR);
         err_cub[level] = interpolation_error(&d, ATMO_DEM_BICUBIC);
+        double to_fd;
+        err_grad[level] = gradient_error(&d, &to_fd);
+        printf("bicubic gradient at %g m cells: max error %.3g (surface slope up to %.3g), "
+               "%.2g from central differences\n",
+               cell, err_grad[level], 300 * 2 * PI / 1300 + 0.02, to_fd);
+        CHECK(to_fd <= 1e-4 * (hxx + hzz));
         double bound = cell * cell / 8 * (hxx + hzz) + surface_max * float_rel;
         printf("resample at %g m cells: bilinear %.4g m (bound %.4g m), bicubic %.4g m\n", cell,
                err_lin[level], bound, err_cub[level]);
@@ -818,17 +864,23 @@ static void test_resample(void)
                                                            centre_x(row, d.height, cell), filter) -
                                            d.heights_m[row * d.width + col]));
         CHECK(at_centres <= surface_max * 1e-12);
-        /* the grid form equals the point form, as float */
-        atmo_dem_grid g = {17, 11, -2000, 1500, 230, -260};
-        float out[17 * 11];
+        /* the grid form equals the point form, as float, with and without derivatives */
+        atmo_dem_grid g = {17, 11, -2000, 1500, 230, -260, 0};
+        float out[17 * 11], out3[3 * 17 * 11];
         atmo_err e;
         CHECK(atmo_dem_resample(&d, &g, ATMO_DEM_BICUBIC, out, &e) == ATMO_OK);
+        g.derivatives = 1;
+        CHECK(atmo_dem_resample(&d, &g, ATMO_DEM_BICUBIC, out3, &e) == ATMO_OK);
         int same = 1;
         for (int j = 0; j < g.height; j++)
-            for (int i = 0; i < g.width; i++)
-                same &= out[j * g.width + i] ==
-                        (float)atmo_dem_sample(&d, g.x0_m + i * g.dx_m, g.z0_m + j * g.dz_m,
-                                               ATMO_DEM_BICUBIC);
+            for (int i = 0; i < g.width; i++) {
+                double grad[2];
+                double h = atmo_dem_sample_gradient(&d, g.x0_m + i * g.dx_m, g.z0_m + j * g.dz_m,
+                                                    ATMO_DEM_BICUBIC, grad);
+                int k = j * g.width + i;
+                same &= out[k] == (float)h && out3[3 * k] == (float)h &&
+                        out3[3 * k + 1] == (float)grad[0] && out3[3 * k + 2] == (float)grad[1];
+            }
         CHECK(same);
         /* far outside, the edge extends */
         CHECK(atmo_dem_sample(&d, -1e7, -1e7, ATMO_DEM_BILINEAR) == d.heights_m[0]);
@@ -839,7 +891,10 @@ static void test_resample(void)
            order_lin, order_cub);
     CHECK(order_lin >= 1.8 && order_lin <= 2.2);
     CHECK(order_cub >= 2.7);
-    atmo_dem_grid bad = {0, 4, 0, 0, 1, 1};
+    double order_grad = log2(err_grad[0] / err_grad[1]);
+    printf("resample: bicubic gradient's measured order %.2f (2 expected)\n", order_grad);
+    CHECK(order_grad >= 1.8);
+    atmo_dem_grid bad = {0, 4, 0, 0, 1, 1, 0};
     atmo_err e;
     atmo_dem d;
     make_dem(&d, 100);

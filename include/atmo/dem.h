@@ -80,19 +80,27 @@ int atmo_dem_have_gdal(void);
 typedef enum { ATMO_DEM_BILINEAR = 0, ATMO_DEM_BICUBIC = 1 } atmo_dem_filter;
 
 /* A target grid in the DEM's own frame (metres from the DEM's centre, +X east, +Z south):
- * sample (i, j) at (x0_m + i * dx_m, z0_m + j * dz_m), written to out[j * width + i]. */
+ * sample (i, j) at (x0_m + i * dx_m, z0_m + j * dz_m), written to out[j * width + i], or with
+ * `derivatives` to out[3 (j * width + i) + 0, 1, 2] = h, dh/dx, dh/dz (the layout of a height
+ * + derivatives heightmap). */
 typedef struct atmo_dem_grid {
     int width, height;
     double x0_m, z0_m;
     double dx_m, dz_m;
+    int derivatives;
 } atmo_dem_grid;
 
 /* The height at (x_m, z_m) of the DEM's frame, interpolated between the sample centres:
  * bilinear, or bicubic (Keys' cubic convolution, a = -1/2: third-order accurate, C1). Outside
  * the outermost sample centres the edge samples are extended (indices clamped). */
 double atmo_dem_sample(const atmo_dem *dem, double x_m, double z_m, int filter);
+/* The same height and its gradient (dh/dx, dh/dz, dimensionless) from the interpolant's
+ * derivative: bilinear's is constant across each cell's x or z, bicubic's continuous. */
+double atmo_dem_sample_gradient(const atmo_dem *dem, double x_m, double z_m, int filter,
+                                double gradient[2]);
 
-/* Fill out (grid->width * grid->height floats) with atmo_dem_sample at the grid's points. */
+/* Fill out (grid->width * grid->height floats, three times that with derivatives) with
+ * atmo_dem_sample_gradient at the grid's points. */
 int atmo_dem_resample(const atmo_dem *dem, const atmo_dem_grid *grid, int filter, float *out,
                       atmo_err *e);
 
