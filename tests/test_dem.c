@@ -29,7 +29,8 @@
  *     bilinear error by ~4 (measured order >= 1.8) and the bicubic (Keys) error by ~8 (order >=
  *     2.7, Keys 1981: third order), and bicubic must beat bilinear; bicubic's gradient against
  *     the surface's closed-form gradient falls by ~4 (order >= 1.8) and matches the central
- *     difference of the interpolated heights over +-0.1 mm within 0.1 mm x (max |h_xx| + max |h_zz|).
+ *     difference of the interpolated heights over +-0.1 mm within
+ *     0.1 mm x (max |h_xx| + max |h_zz|).
  *   - The shipped real DEM (tests/data/jacksboro_fault_dem.tif, 403 x 344 samples of 3 arc-seconds)
  *     reads back with the size, height range and spot values its generator printed from the
  *     source, and its extent equals the closed-form lengths of its degrees on WGS 84 (1e-9).
@@ -220,7 +221,8 @@ static int write_exr(const char *path, int w, int h, const float *heights, exr_p
                 break;
             for (int c = 0; c < enc.channel_count; c++) {
                 enc.channels[c].encode_from_ptr =
-                    (const uint8_t *)(heights + (size_t)(ty * rows) * (size_t)w + (size_t)(tx * 16));
+                    (const uint8_t *)(heights + (size_t)(ty * rows) * (size_t)w +
+                                      (size_t)(tx * 16));
                 enc.channels[c].user_pixel_stride = sizeof(float);
                 enc.channels[c].user_line_stride = w * (int32_t)sizeof(float);
                 enc.channels[c].user_bytes_per_element = sizeof(float);

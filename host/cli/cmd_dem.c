@@ -18,8 +18,9 @@ static void print_usage(FILE *f)
             "Read a digital elevation model as `atmo render --set terrain.heightmap_file=FILE`\n"
             "would, and print its format, size, extent in metres, height range and projection.\n"
             "Formats: GeoTIFF (%s), 16-bit greyscale PNG, one-channel EXR.\n\n"
-            "  --set KEY=VALUE  PNG/EXR: terrain.heightmap_file_extent_m (east-west size in metres);\n"
-            "                   PNG: terrain.heightmap_scale_m, terrain.heightmap_offset_m\n"
+            "  --set KEY=VALUE  PNG/EXR: terrain.heightmap_file_extent_m (east-west size, m);\n"
+            "                   PNG: terrain.heightmap_scale_m, terrain.heightmap_offset_m;\n"
+            "                   terrain.heightmap_nodata (neighbours or sea-level)\n"
             "  --json           print one JSON object\n"
             "  --help           this text\n",
             atmo_dem_have_gdal() ? "through GDAL" : "not in this build: needs libgdal-dev");

@@ -131,7 +131,8 @@ int dem_read_exr(const char *path, const atmo_dem_options *o, atmo_dem *dem, atm
                        ch->name.str, ch->x_sampling, ch->y_sampling);
         goto cleanup;
     }
-    long width = (long)window.max.x - window.min.x + 1, height = (long)window.max.y - window.min.y + 1;
+    long width = (long)window.max.x - window.min.x + 1;
+    long height = (long)window.max.y - window.min.y + 1;
     rc = dem_check_size(path, "EXR", width, height, o, e);
     if (rc)
         goto cleanup;
