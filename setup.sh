@@ -21,7 +21,7 @@ as_root=()
 
 packages=(cmake make gcc pkg-config
           pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers
-          libstb-dev libcjson-dev libopenexr-dev openexr libglfw3-dev gnuplot-nox)
+          libstb-dev libcjson-dev libopenexr-dev openexr libglfw3-dev libgdal-dev gnuplot-nox)
 # the viewer's tests (tests/test_view_*.sh): an X server and Mesa's software OpenGL
 [ "$mode" = test ] && packages+=(xvfb xauth libgl1-mesa-dri)
 # the tests also start a one-node Slurm cluster (tests/test_slurm.sh)

@@ -18,6 +18,7 @@
 #   cloud.*, observer.*         single and march with the cloud or the observer enabled
 #   image.*, post.*, spectral   single (image.width/height at the maximum with the other 1,
 #                               image.samples at the maximum on 1 x 1)
+#   terrain.heightmap_file_extent_m, _scale_m, _offset_m   single (no heightmap file given)
 #   everything else             single, march, fast, lut, reference (not the reference at the
 #                               extinction maxima, rayleigh_coefficient or mie_extinction_per_m
 #                               1 per m: optical depth ~1e5, where the Monte Carlo reference
@@ -104,6 +105,9 @@ while read -r key bound value; do
     image.samples)
         render "$key" single --width 1 --height 1 --set "$key=$value" ;;
     image.* | post.* | render.spectral_bands)
+        render "$key" single --set "$key=$value" ;;
+    terrain.heightmap_file_extent_m | terrain.heightmap_scale_m | terrain.heightmap_offset_m)
+        # they shape a heightmap file's grid: with none given, one method shows they are inert
         render "$key" single --set "$key=$value" ;;
     atmosphere.rayleigh_coefficient | atmosphere.mie_extinction_per_m)
         for m in single march fast lut; do

@@ -83,6 +83,13 @@ static const char *const spec_defaults[] = {"image.width=640",
                                             "post.white_point=4",
                                             "post.white_balance=true",
                                             "post.transfer=srgb",
+                                            "terrain.heightmap_file=",
+                                            "terrain.heightmap_file_extent_m=0",
+                                            "terrain.heightmap_center_m=0,0",
+                                            "terrain.heightmap_scale_m=1000",
+                                            "terrain.heightmap_offset_m=0",
+                                            "terrain.heightmap_detail=false",
+                                            "terrain.heightmap_nodata=neighbours",
                                             NULL};
 
 /* Ranges of the specification: key, min, max (enums and bools are checked by name). */
@@ -121,7 +128,20 @@ static const struct {
     {"render.transmittance_height", 4, 4096},
     {"post.exposure", 0, 1e9},
     {"post.white_point", 1e-6, 1e9},
+    {"terrain.heightmap_file_extent_m", 0, 1e7},
+    {"terrain.heightmap_center_m", -1e8, 1e8},
+    {"terrain.heightmap_scale_m", 0, 1e5},
+    {"terrain.heightmap_offset_m", -1e5, 1e5},
 };
+
+/* Bytes of atmo_scene a parameter's value occupies. */
+static size_t param_bytes(const atmo_param *p)
+{
+    return p->type == ATMO_PARAM_STRING ? ATMO_PARAM_STRING_MAX
+           : p->type == ATMO_PARAM_INT || p->type == ATMO_PARAM_ENUM || p->type == ATMO_PARAM_BOOL
+               ? sizeof(int)
+               : (size_t)atmo_param_components(p) * sizeof(double);
+}
 
 static char tmpdir[64];
 
@@ -211,7 +231,9 @@ static void test_registry(void)
         const atmo_param *p = &atmo_params[i];
         double v[3];
         atmo_param_get(&a, p, v);
-        int comps = p->type == ATMO_PARAM_VEC3 ? 3 : 1;
+        int comps = atmo_param_components(p);
+        if (p->type == ATMO_PARAM_STRING)
+            CHECK(strcmp(atmo_param_text(&a, p), "") == 0); /* strings start empty */
         for (int c = 0; c < comps; c++) {
             CHECK(v[c] == p->def[c]); /* defaults equal the registry */
             CHECK(p->def[c] >= p->min && p->def[c] <= p->max);
@@ -220,15 +242,11 @@ static void test_registry(void)
         CHECK(p->unit != NULL);
         CHECK(atmo_param_find(p->key) == p); /* unique keys */
         /* no two rows share bytes of the struct */
-        size_t size_i = p->type == ATMO_PARAM_VEC3    ? 3 * sizeof(double)
-                        : p->type == ATMO_PARAM_FLOAT ? sizeof(double)
-                                                      : sizeof(int);
+        size_t size_i = param_bytes(p);
         CHECK(p->offset + size_i <= sizeof(atmo_scene));
         for (size_t j = 0; j < i; j++) {
             const atmo_param *q = &atmo_params[j];
-            size_t size_j = q->type == ATMO_PARAM_VEC3    ? 3 * sizeof(double)
-                            : q->type == ATMO_PARAM_FLOAT ? sizeof(double)
-                                                          : sizeof(int);
+            size_t size_j = param_bytes(q);
             CHECK(p->offset >= q->offset + size_j || q->offset >= p->offset + size_i);
         }
     }
@@ -246,6 +264,13 @@ static void test_set(void)
     atmo_scene s;
     atmo_err e;
     atmo_scene_defaults(&s);
+    CHECK(atmo_scene_assign(&s, "terrain.heightmap_file=dems/n46 e007.tif", "--set", &e) ==
+              ATMO_OK &&
+          strcmp(s.dem.file, "dems/n46 e007.tif") == 0);
+    CHECK(atmo_scene_assign(&s, "terrain.heightmap_file=", "--set", &e) == ATMO_OK &&
+          s.dem.file[0] == '\0');
+    CHECK(atmo_scene_assign(&s, "terrain.heightmap_center_m=1.5, -2e3", "--set", &e) == ATMO_OK &&
+          s.dem.center_m[0] == 1.5 && s.dem.center_m[1] == -2e3);
     CHECK(atmo_scene_set(&s, "image.width", "1024", "--set", &e) == ATMO_OK &&
           s.image.width == 1024);
     CHECK(atmo_scene_set(&s, "image.samples", "1e3", "--set", &e) == ATMO_OK &&
@@ -316,6 +341,20 @@ static void test_set_rejections(void)
     check_set_rejected("render.wavelengths_nm=680,550", "render.wavelengths_nm",
                        "e.g. 680,550,440");
     check_set_rejected("camera.position_m=1,2", "camera.position_m", "e.g. 0,1.7,0");
+    /* vec2: exactly two numbers; strings: no control characters, shorter than the field */
+    check_set_rejected("terrain.heightmap_center_m=1,2,3", "terrain.heightmap_center_m", "x,z");
+    check_set_rejected("terrain.heightmap_center_m=1", "terrain.heightmap_center_m", "e.g. 0,0");
+    check_set_rejected("terrain.heightmap_center_m=1,nan", "terrain.heightmap_center_m", "finite");
+    check_set_rejected("terrain.heightmap_center_m=1,2e8", "terrain.heightmap_center_m",
+                       "-100000000 .. 100000000 (each) m");
+    check_set_rejected("terrain.heightmap_file=a\tb.tif", "terrain.heightmap_file",
+                       "control character");
+    char longer[ATMO_PARAM_STRING_MAX + 40];
+    snprintf(longer, sizeof longer, "terrain.heightmap_file=");
+    size_t prefix = strlen(longer);
+    memset(longer + prefix, 'x', ATMO_PARAM_STRING_MAX);
+    longer[prefix + ATMO_PARAM_STRING_MAX] = '\0';
+    check_set_rejected(longer, "terrain.heightmap_file", "the limit is 511");
 }
 
 static void test_validate(void)
@@ -377,6 +416,11 @@ static void unusual_scene(atmo_scene *s)
         double v[3];
         atmo_err e;
         atmo_param_get(s, p, v);
+        if (p->type == ATMO_PARAM_STRING) { /* blanks, a quote, a backslash and UTF-8 */
+            CHECK(atmo_param_store_text(s, p, "dir with blanks/\"d\\em\" \xc3\xbc.tif", "test",
+                                        &e) == ATMO_OK);
+            continue;
+        }
         if (p->type == ATMO_PARAM_ENUM || p->type == ATMO_PARAM_BOOL) {
             v[0] = v[0] == p->max ? p->min : v[0] + 1;
         } else {
@@ -409,7 +453,10 @@ static void test_json(void)
         double va[3], vd[3];
         atmo_param_get(&a, p, va);
         atmo_param_get(&defaults, p, vd);
-        CHECK(va[0] != vd[0] || va[1] != vd[1] || va[2] != vd[2]);
+        if (p->type == ATMO_PARAM_STRING)
+            CHECK(strcmp(atmo_param_text(&a, p), atmo_param_text(&defaults, p)) != 0);
+        else
+            CHECK(va[0] != vd[0] || va[1] != vd[1] || va[2] != vd[2]);
     }
     CHECK(atmo_scene_save_json(&a, path, &e) == ATMO_OK);
     atmo_scene_defaults(&b);
@@ -502,6 +549,10 @@ static void test_json(void)
     check_json_rejected("{\"camera\": {\"position_m\": [1, true, 3]}}", "camera.position_m",
                         "3 numbers");
     check_json_rejected("{\"camera\": {\"kind\": 1}}", "camera.kind", "name string");
+    check_json_rejected("{\"terrain\": {\"heightmap_file\": 5}}", "terrain.heightmap_file",
+                        "a string");
+    check_json_rejected("{\"terrain\": {\"heightmap_center_m\": [1, 2, 3]}}",
+                        "terrain.heightmap_center_m", "an array of 2 numbers");
     check_json_rejected("{\"camera\": {\"kind\": \"fisheye\"}}", "camera.kind",
                         "perspective, panorama");
     check_json_rejected("{\"post\": {\"white_balance\": 1}}", "post.white_balance",

@@ -26,6 +26,12 @@ static void default_text(const atmo_param *p, char *buf, size_t n)
     case ATMO_PARAM_VEC3:
         snprintf(buf, n, "%.9g,%.9g,%.9g", p->def[0], p->def[1], p->def[2]);
         break;
+    case ATMO_PARAM_VEC2:
+        snprintf(buf, n, "%.9g,%.9g", p->def[0], p->def[1]);
+        break;
+    case ATMO_PARAM_STRING:
+        snprintf(buf, n, "\"\"");
+        break;
     case ATMO_PARAM_ENUM:
         snprintf(buf, n, "%s", p->names[(int)p->def[0]]);
         break;
@@ -46,9 +52,11 @@ static void range_text(const atmo_param *p, char *buf, size_t n)
             used += (size_t)snprintf(buf + used, n - used, "%s%s", i ? "|" : "", p->names[i]);
     } else if (p->type == ATMO_PARAM_BOOL) {
         snprintf(buf, n, "true|false");
+    } else if (p->type == ATMO_PARAM_STRING) {
+        snprintf(buf, n, "text (< %d bytes)", ATMO_PARAM_STRING_MAX);
     } else {
         snprintf(buf, n, "%.15g .. %.15g%s", p->min, p->max,
-                 p->type == ATMO_PARAM_VEC3 ? " each" : "");
+                 atmo_param_components(p) > 1 ? " each" : "");
     }
 }
 
@@ -68,11 +76,16 @@ static int print_json(void)
                                 p->type == ATMO_PARAM_INT     ? "int"
                                 : p->type == ATMO_PARAM_FLOAT ? "float"
                                 : p->type == ATMO_PARAM_VEC3  ? "vec3"
+                                : p->type == ATMO_PARAM_VEC2  ? "vec2"
                                 : p->type == ATMO_PARAM_ENUM  ? "enum"
+                                : p->type == ATMO_PARAM_STRING ? "string"
                                                               : "bool");
         cJSON_AddStringToObject(row, "unit", p->unit);
-        if (p->type == ATMO_PARAM_VEC3)
-            cJSON_AddItemToObject(row, "default", cJSON_CreateDoubleArray(p->def, 3));
+        if (p->type == ATMO_PARAM_VEC3 || p->type == ATMO_PARAM_VEC2)
+            cJSON_AddItemToObject(row, "default",
+                                  cJSON_CreateDoubleArray(p->def, atmo_param_components(p)));
+        else if (p->type == ATMO_PARAM_STRING)
+            cJSON_AddStringToObject(row, "default", "");
         else if (p->type == ATMO_PARAM_ENUM)
             cJSON_AddStringToObject(row, "default", p->names[(int)p->def[0]]);
         else if (p->type == ATMO_PARAM_BOOL)
@@ -84,7 +97,7 @@ static int print_json(void)
             while (p->names[n])
                 n++;
             cJSON_AddItemToObject(row, "values", cJSON_CreateStringArray(p->names, n));
-        } else if (p->type != ATMO_PARAM_BOOL) {
+        } else if (p->type != ATMO_PARAM_BOOL && p->type != ATMO_PARAM_STRING) {
             cJSON_AddNumberToObject(row, "min", p->min);
             cJSON_AddNumberToObject(row, "max", p->max);
         }

@@ -15,6 +15,7 @@ static const atmo_command commands[] = {
     {"bench", "measure error against time of the rendering methods", cmd_bench},
     {"radiance", "print sky radiance and luminance for view directions", cmd_radiance},
     {"cache", "list, verify or clear the cache of kernels, LUTs and Mie tables", cmd_cache},
+    {"dem", "read a digital elevation model (GeoTIFF, PNG, EXR): size, extent, heights", cmd_dem},
 };
 
 static void usage(FILE *f)

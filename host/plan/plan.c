@@ -197,6 +197,7 @@ void atmo_plan_free(atmo_plan *p)
 {
     for (int i = 0; i < p->owned_count; i++)
         free(p->owned[i]);
+    atmo_dem_free(&p->dem);
     memset(p, 0, sizeof *p);
 }
 
@@ -235,6 +236,12 @@ static int plan_features(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     int rc;
     if ((rc = atmo_scene_validate(s, e)) || (rc = atmo_atmosphere_from_scene(s, &p->atmosphere, e)))
         return rc;
+    if (s->dem.file[0]) { /* a bad heightmap fails here, before any device work */
+        atmo_dem_options o;
+        atmo_dem_options_from_scene(s, &o);
+        if ((rc = atmo_dem_load(s->dem.file, &o, &p->dem, e)))
+            return rc;
+    }
     atmo_gpu_scene *g = &p->gpu;
     fill_atmosphere(&p->atmosphere, &g->atmosphere);
     fill_camera(s, &p->atmosphere, &g->camera);

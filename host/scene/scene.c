@@ -10,6 +10,8 @@
  * unknown keys (with the closest key by Levenshtein edit distance), text that is not entirely a
  * number (strtod must consume it all), NaN and Inf, values outside [min, max] (inclusive, every
  * component of a vec3), non-integers for int keys, and enum names not in the list.
+ * String keys (file paths) take any text shorter than ATMO_PARAM_STRING_MAX bytes without control
+ * characters; "" means none. Vec2 keys are two numbers "x,z".
  * atmo_scene_validate adds the checks between parameters: top radius above the bottom radius,
  * ozone bottom <= peak <= top with bottom < top, and the camera not below the ground. */
 #include <ctype.h>
@@ -36,6 +38,12 @@
      {d, 0, 0}, names, help}
 #define ROW_BOOL(k, f, d, help) \
     {k, ATMO_PARAM_BOOL, SCENE_FIELD(f, int), "", 0, 1, {d, 0, 0}, NULL, help}
+#define ROW_VEC2(k, f, unit, lo, hi, x, z, help) \
+    {k, ATMO_PARAM_VEC2, SCENE_FIELD(f, double[2]), unit, lo, hi, {x, z, 0}, NULL, help}
+/* a string's default is always "" (a scene starts with no file named) */
+#define ROW_STRING(k, f, help) \
+    {k, ATMO_PARAM_STRING, SCENE_FIELD(f, char[ATMO_PARAM_STRING_MAX]), "", 0, 0, {0, 0, 0}, \
+     NULL, help}
 
 /* Enum names in the order of the ATMO_* constants of scene.h and atmosphere.h. */
 static const char *const camera_kinds[] = {"perspective", "panorama", NULL};
@@ -50,6 +58,8 @@ static const char *const transfer_names[] = {"srgb", "gamma22", NULL};
 static const char *const cloud_dsd_names[] = {"cumulus", "stratus", "fog", "corona",
                                               "thesis-disperse", "thesis-uniform", NULL};
 static const char *const cloud_phase_names[] = {"mie", "hg", "jendersie-deon", NULL};
+/* ATMO_DEM_NODATA_* of dem.h, in order */
+static const char *const dem_nodata_names[] = {"neighbours", "sea-level", NULL};
 _Static_assert(ATMO_CAMERA_PANORAMA == 1 && ATMO_PHASE_HENYEY_GREENSTEIN == 1 &&
                    ATMO_QUANTITY_LUMINANCE == 1 && ATMO_TONEMAP_LOTTES == 7 &&
                    ATMO_TRANSFER_GAMMA22 == 1,
@@ -177,8 +187,39 @@ const atmo_param atmo_params[] = {
              "divide by the sun's colour so sunlight is white"),
     ROW_ENUM("post.transfer", post.transfer, transfer_names, ATMO_TRANSFER_SRGB,
              "PNG encoding curve: sRGB or a pure 2.2 gamma"),
+    /* a digital elevation model as the terrain (atmo/dem.h; `atmo dem info FILE`) */
+    ROW_STRING("terrain.heightmap_file", dem.file,
+               "DEM file: GeoTIFF (with GDAL), 16-bit PNG or one-channel EXR; \"\" = none"),
+    ROW_FLOAT("terrain.heightmap_file_extent_m", dem.extent_m, "m", 0, 1e7, 0,
+              "east-west size of a PNG/EXR heightmap (north-south by its aspect); GeoTIFF: 0, "
+              "from the file"),
+    ROW_VEC2("terrain.heightmap_center_m", dem.center_m, "m", -1e8, 1e8, 0, 0,
+             "world X, Z of the heightmap's centre (+X east, +Z south; row 0 is north)"),
+    ROW_FLOAT("terrain.heightmap_scale_m", dem.scale_m, "m", 0, 1e5, 1000,
+              "PNG heightmap: metres between value 0 and the largest value (65535 or 255)"),
+    ROW_FLOAT("terrain.heightmap_offset_m", dem.offset_m, "m", -1e5, 1e5, 0,
+              "PNG heightmap: height of value 0 above sea level"),
+    ROW_BOOL("terrain.heightmap_detail", dem.detail, 0,
+             "the procedural fBm adds detail below the heightmap's cell size"),
+    ROW_ENUM("terrain.heightmap_nodata", dem.nodata, dem_nodata_names, 0,
+             "heightmap samples without data: filled from their neighbours, or sea level (0 m)"),
     {NULL, ATMO_PARAM_INT, 0, NULL, 0, 0, {0, 0, 0}, NULL, NULL},
 };
+
+int atmo_param_components(const atmo_param *p)
+{
+    return p->type == ATMO_PARAM_VEC3 ? 3
+           : p->type == ATMO_PARAM_VEC2 ? 2
+           : p->type == ATMO_PARAM_STRING ? 0
+                                         : 1;
+}
+
+/* The types stored as doubles. */
+static int is_real(const atmo_param *p)
+{
+    return p->type == ATMO_PARAM_FLOAT || p->type == ATMO_PARAM_VEC3 ||
+           p->type == ATMO_PARAM_VEC2;
+}
 
 const atmo_param *atmo_param_find(const char *key)
 {
@@ -202,20 +243,48 @@ void atmo_param_get(const atmo_scene *s, const atmo_param *p, double v[3])
 {
     const char *base = (const char *)s + p->offset;
     v[0] = v[1] = v[2] = 0;
-    if (p->type == ATMO_PARAM_FLOAT || p->type == ATMO_PARAM_VEC3)
-        memcpy(v, base, (p->type == ATMO_PARAM_VEC3 ? 3 : 1) * sizeof(double));
-    else
+    if (is_real(p))
+        memcpy(v, base, (size_t)atmo_param_components(p) * sizeof(double));
+    else if (p->type != ATMO_PARAM_STRING)
         v[0] = *(const int *)base;
+}
+
+const char *atmo_param_text(const atmo_scene *s, const atmo_param *p)
+{
+    return p->type == ATMO_PARAM_STRING ? (const char *)s + p->offset : NULL;
+}
+
+int atmo_param_store_text(atmo_scene *s, const atmo_param *p, const char *text, const char *where,
+                          atmo_err *e)
+{
+    if (p->type != ATMO_PARAM_STRING)
+        return atmo_fail(e, ATMO_ERR_USAGE, "%s (from %s) takes a number, not text", p->key,
+                         where);
+    size_t n = strlen(text);
+    if (n >= ATMO_PARAM_STRING_MAX)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "%s = '%.40s...' (from %s) is %zu bytes long; the limit is %d (use a "
+                         "shorter path)",
+                         p->key, text, where, n, ATMO_PARAM_STRING_MAX - 1);
+    for (size_t i = 0; i < n; i++)
+        if ((unsigned char)text[i] < 0x20 || text[i] == 0x7f)
+            return atmo_fail(e, ATMO_ERR_USAGE,
+                             "%s (from %s) holds a control character at byte %zu; write the "
+                             "text without one",
+                             p->key, where, i);
+    char *field = (char *)s + p->offset;
+    memset(field, 0, ATMO_PARAM_STRING_MAX); /* the rest zero, so scenes compare with memcmp */
+    memcpy(field, text, n);
+    return ATMO_OK;
 }
 
 void atmo_scene_defaults(atmo_scene *s)
 {
     memset(s, 0, sizeof *s); /* padding too, so scenes compare with memcmp */
     for (const atmo_param *p = atmo_params; p->key; p++) {
-        if (p->type == ATMO_PARAM_FLOAT || p->type == ATMO_PARAM_VEC3)
-            memcpy(double_field(s, p), p->def,
-                   (p->type == ATMO_PARAM_VEC3 ? 3 : 1) * sizeof(double));
-        else
+        if (is_real(p))
+            memcpy(double_field(s, p), p->def, (size_t)atmo_param_components(p) * sizeof(double));
+        else if (p->type != ATMO_PARAM_STRING) /* strings: "" from the memset */
             *int_field(s, p) = (int)p->def[0];
     }
 }
@@ -283,7 +352,7 @@ static int unknown_key(const char *key, const char *where, atmo_err *e)
 static void range_text(const atmo_param *p, char *buf, size_t n)
 {
     snprintf(buf, n, "%.15g .. %.15g%s%s%s", p->min, p->max,
-             p->type == ATMO_PARAM_VEC3 ? " (each)" : "", p->unit[0] ? " " : "", p->unit);
+             atmo_param_components(p) > 1 ? " (each)" : "", p->unit[0] ? " " : "", p->unit);
 }
 
 static void names_text(const atmo_param *p, char *buf, size_t n)
@@ -298,7 +367,10 @@ int atmo_param_store(atmo_scene *s, const atmo_param *p, const double v[3], cons
                      const char *where, atmo_err *e)
 {
     char range[128];
-    int n = p->type == ATMO_PARAM_VEC3 ? 3 : 1;
+    int n = atmo_param_components(p);
+    if (p->type == ATMO_PARAM_STRING)
+        return atmo_fail(e, ATMO_ERR_USAGE, "%s = %s (from %s) must be text, not a number",
+                         p->key, shown, where);
     for (int i = 0; i < n; i++) {
         if (!isfinite(v[i]))
             return atmo_fail(e, ATMO_ERR_USAGE,
@@ -329,7 +401,7 @@ int atmo_param_store(atmo_scene *s, const atmo_param *p, const double v[3], cons
                              p->key, shown, where, range);
         }
     }
-    if (p->type == ATMO_PARAM_FLOAT || p->type == ATMO_PARAM_VEC3)
+    if (is_real(p))
         memcpy(double_field(s, p), v, (size_t)n * sizeof(double));
     else
         *int_field(s, p) = (int)v[0];
@@ -398,7 +470,9 @@ static int parse_value(const atmo_param *p, const char *value, double v[3])
         return atmo_parse_decimal(value, &v[0]);
     case ATMO_PARAM_FLOAT:
         return parse_number(value, &v[0]);
+    case ATMO_PARAM_VEC2:
     case ATMO_PARAM_VEC3: {
+        int want = atmo_param_components(p);
         char buf[256];
         if (strlen(value) >= sizeof buf)
             return 0;
@@ -407,14 +481,14 @@ static int parse_value(const atmo_param *p, const char *value, double v[3])
         int n = 1;
         for (char *c = buf; *c; c++)
             if (*c == ',') {
-                if (n == 3)
+                if (n == want)
                     return 0;
                 *c = '\0';
                 parts[n++] = c + 1;
             }
-        if (n != 3)
+        if (n != want)
             return 0;
-        for (int i = 0; i < 3; i++)
+        for (int i = 0; i < want; i++)
             if (!parse_number(parts[i], &v[i]))
                 return 0;
         return 1;
@@ -437,6 +511,8 @@ static int parse_value(const atmo_param *p, const char *value, double v[3])
         else
             v[0] = -1; /* reported as not a boolean */
         return 1;
+    case ATMO_PARAM_STRING: /* stored by atmo_param_store_text */
+        return 0;
     }
     return 0;
 }
@@ -447,6 +523,8 @@ int atmo_scene_set(atmo_scene *s, const char *key, const char *value, const char
     const atmo_param *p = atmo_param_find(key);
     if (!p)
         return unknown_key(key, where, e);
+    if (p->type == ATMO_PARAM_STRING)
+        return atmo_param_store_text(s, p, value, where, e);
     double v[3] = {0, 0, 0};
     if (!parse_value(p, value, v)) {
         char range[128], example[96] = "";
@@ -454,14 +532,18 @@ int atmo_scene_set(atmo_scene *s, const char *key, const char *value, const char
         if (p->type == ATMO_PARAM_VEC3) /* the default is a valid example */
             snprintf(example, sizeof example, ", e.g. %.15g,%.15g,%.15g (the default)",
                      p->def[0], p->def[1], p->def[2]);
+        else if (p->type == ATMO_PARAM_VEC2)
+            snprintf(example, sizeof example, ", e.g. %.15g,%.15g (the default)", p->def[0],
+                     p->def[1]);
         else if (p->type == ATMO_PARAM_INT)
             snprintf(example, sizeof example, ", written as decimal digits, e.g. %.15g",
                      p->def[0]);
         return atmo_fail(e, ATMO_ERR_USAGE, "%s = '%s' (from %s) is not %s; valid: %s%s", p->key,
                          value, where,
-                         p->type == ATMO_PARAM_VEC3  ? "three numbers x,y,z"
-                         : p->type == ATMO_PARAM_INT ? "an integer"
-                                                     : "a number",
+                         p->type == ATMO_PARAM_VEC3   ? "three numbers x,y,z"
+                         : p->type == ATMO_PARAM_VEC2 ? "two numbers x,z"
+                         : p->type == ATMO_PARAM_INT  ? "an integer"
+                                                      : "a number",
                          range, example);
     }
     return atmo_param_store(s, p, v, value, where, e);
@@ -525,9 +607,17 @@ int atmo_scene_validate(const atmo_scene *s, atmo_err *e)
         atmo_param_get(s, p, v);
         if (p->type == ATMO_PARAM_VEC3)
             snprintf(shown, sizeof shown, "%.9g,%.9g,%.9g", v[0], v[1], v[2]);
+        else if (p->type == ATMO_PARAM_VEC2)
+            snprintf(shown, sizeof shown, "%.9g,%.9g", v[0], v[1]);
         else
             snprintf(shown, sizeof shown, "%.9g", v[0]);
-        int rc = atmo_param_store(&copy, p, v, shown, "the scene", e);
+        const char *text = atmo_param_text(s, p);
+        /* a string filled in by code may lack its terminator: check it within the field */
+        if (text && !memchr(text, '\0', ATMO_PARAM_STRING_MAX))
+            return atmo_fail(e, ATMO_ERR_USAGE, "%s is not terminated within %d bytes", p->key,
+                             ATMO_PARAM_STRING_MAX);
+        int rc = text ? atmo_param_store_text(&copy, p, text, "the scene", e)
+                      : atmo_param_store(&copy, p, v, shown, "the scene", e);
         if (rc)
             return rc;
     }

@@ -2,8 +2,8 @@
  *
  * A scene file is a JSON object whose keys are the registry's dotted keys, nested by their
  * dots ({"sun": {"zenith_deg": 60}}); dotted keys at the top level ({"sun.zenith_deg": 60}) are
- * read too. Values: numbers for int and float keys, [x, y, z] for vec3, a name string for
- * enums, true/false for booleans. Keys not in the file keep the values already in the scene
+ * read too. Values: numbers for int and float keys, [x, y, z] for vec3, [x, z] for vec2, a name
+ * string for enums, true/false for booleans, a string for string keys (file paths). Keys not in the file keep the values already in the scene
  * (the caller starts from the defaults or a preset); unknown keys, duplicates and values of the
  * wrong JSON type are errors naming the key and the file.
  *
@@ -103,16 +103,26 @@ static int store_json(atmo_scene *s, const atmo_param *p, const cJSON *item, con
         else
             v[0] = item->valuedouble;
         break;
-    case ATMO_PARAM_VEC3:
-        if (!cJSON_IsArray(item) || cJSON_GetArraySize(item) != 3)
-            expected = "an array of 3 numbers";
-        for (int i = 0; !expected && i < 3; i++) {
+    case ATMO_PARAM_VEC2:
+    case ATMO_PARAM_VEC3: {
+        int n = atmo_param_components(p);
+        const char *want = n == 3 ? "an array of 3 numbers" : "an array of 2 numbers";
+        if (!cJSON_IsArray(item) || cJSON_GetArraySize(item) != n)
+            expected = want;
+        for (int i = 0; !expected && i < n; i++) {
             const cJSON *c = cJSON_GetArrayItem(item, i);
             if (!cJSON_IsNumber(c))
-                expected = "an array of 3 numbers";
+                expected = want;
             else
                 v[i] = c->valuedouble;
         }
+        break;
+    }
+    case ATMO_PARAM_STRING:
+        if (!cJSON_IsString(item))
+            expected = "a string";
+        else
+            return atmo_param_store_text(s, p, item->valuestring, path, e);
         break;
     case ATMO_PARAM_ENUM:
         if (!cJSON_IsString(item)) {
@@ -142,6 +152,8 @@ static int store_json(atmo_scene *s, const atmo_param *p, const cJSON *item, con
     }
     if (p->type == ATMO_PARAM_VEC3)
         snprintf(shown, sizeof shown, "[%.17g, %.17g, %.17g]", v[0], v[1], v[2]);
+    else if (p->type == ATMO_PARAM_VEC2)
+        snprintf(shown, sizeof shown, "[%.17g, %.17g]", v[0], v[1]);
     else
         snprintf(shown, sizeof shown, "%.17g", v[0]);
     return atmo_param_store(s, p, v, shown, path, e);
@@ -298,9 +310,10 @@ char *atmo_scene_to_json(const atmo_scene *s)
         case ATMO_PARAM_FLOAT:
             item = exact_number(v[0]);
             break;
+        case ATMO_PARAM_VEC2:
         case ATMO_PARAM_VEC3:
             item = cJSON_CreateArray();
-            for (int c = 0; item && c < 3; c++) {
+            for (int c = 0; item && c < atmo_param_components(p); c++) {
                 cJSON *x = exact_number(v[c]);
                 if (!x || !cJSON_AddItemToArray(item, x)) {
                     cJSON_Delete(x);
@@ -320,6 +333,9 @@ char *atmo_scene_to_json(const atmo_scene *s)
         }
         case ATMO_PARAM_BOOL:
             item = cJSON_CreateBool(v[0] != 0);
+            break;
+        case ATMO_PARAM_STRING:
+            item = cJSON_CreateString(atmo_param_text(s, p));
             break;
         }
         if (!obj || !item || !cJSON_AddItemToObject(obj, leaf, item)) {

@@ -19,6 +19,7 @@
 #define ATMO_PLAN_H
 #include <stddef.h>
 #include "atmo/atmosphere.h"
+#include "atmo/dem.h"
 #include "atmo/gpu_types.h"
 #include "atmo/scene.h"
 #include "atmo/status.h"
@@ -73,6 +74,9 @@ typedef struct atmo_plan {
                                       through the disk cache: 0 off, 1 on */
     void *owned[ATMO_PLAN_MAX_OWNED]; /* heap blocks the host tables live in (atmo_plan_own) */
     int owned_count;
+    atmo_dem dem;                  /* the scene's terrain.heightmap_file, read and checked while
+                                      planning (width 0: none); the terrain's heightmap pass
+                                      resamples it (atmo_dem_resample) into its host table */
     int width, height, samples;
 } atmo_plan;
 
@@ -83,7 +87,7 @@ int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e);
  * atmo_plan_make: 0, for the caller to set), cache_tables for the host tables (plain: 1). */
 int atmo_plan_make_cached(const atmo_scene *s, int cache_luts, int cache_tables, atmo_plan *p,
                           atmo_err *e);
-/* Release what the plan owns (its host tables) and zero it. */
+/* Release what the plan owns (its host tables, the DEM) and zero it. */
 void atmo_plan_free(atmo_plan *p);
 /* For a feature's plan function: the plan takes the heap block (malloc'd) that a host table
  * lives in and frees it in atmo_plan_free; on failure the block is freed at once. */

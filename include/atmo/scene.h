@@ -83,10 +83,27 @@ typedef struct atmo_scene {
         double height_m;       /* of its centre relative to the camera */
         double radius_m;
     } observer;
+    struct {                   /* a digital elevation model as the terrain (atmo/dem.h) */
+        char file[512];        /* path; "" = none (procedural terrain only) */
+        double extent_m;       /* PNG/EXR: east-west size; GeoTIFF: 0 (from the file) */
+        double center_m[2];    /* world X, Z of the grid's centre */
+        double scale_m, offset_m; /* PNG: height = offset + scale * value / max value */
+        int detail;            /* 0/1: the procedural fBm adds detail below the file's cells */
+        int nodata;            /* ATMO_DEM_NODATA_* (dem.h): how missing samples are filled */
+    } dem;
 } atmo_scene;
 
-typedef enum { ATMO_PARAM_INT, ATMO_PARAM_FLOAT, ATMO_PARAM_VEC3, ATMO_PARAM_ENUM, ATMO_PARAM_BOOL }
-    atmo_param_type;
+typedef enum {
+    ATMO_PARAM_INT,
+    ATMO_PARAM_FLOAT,
+    ATMO_PARAM_VEC3,
+    ATMO_PARAM_ENUM,
+    ATMO_PARAM_BOOL,
+    ATMO_PARAM_VEC2,  /* two doubles, e.g. a position X, Z on the ground */
+    ATMO_PARAM_STRING /* a char array of ATMO_PARAM_STRING_MAX bytes, e.g. a file path */
+} atmo_param_type;
+
+#define ATMO_PARAM_STRING_MAX 512
 
 typedef struct atmo_param {
     const char *key;      /* dotted, e.g. "sun.zenith_deg" */
@@ -113,8 +130,17 @@ const atmo_param *atmo_param_find(const char *key);
 const atmo_preset *atmo_preset_find(const char *name);
 /* The registry key closest to `key` by edit distance (for "did you mean" hints). */
 const char *atmo_param_closest(const char *key);
-/* A parameter's value as doubles (scalars in v[0]; enum: index; bool: 0/1). */
+/* A parameter's value as doubles (scalars in v[0]; enum: index; bool: 0/1; vec2: v[0], v[1];
+ * string: zeros, see atmo_param_text). */
 void atmo_param_get(const atmo_scene *s, const atmo_param *p, double v[3]);
+/* Number of doubles a parameter holds: 3 (vec3), 2 (vec2), 1 (others; 0 for strings). */
+int atmo_param_components(const atmo_param *p);
+/* A string parameter's text (NULL for other types). */
+const char *atmo_param_text(const atmo_scene *s, const atmo_param *p);
+/* Check a string value (shorter than ATMO_PARAM_STRING_MAX, no control characters) and store
+ * it; `where` names its source for the error message. */
+int atmo_param_store_text(atmo_scene *s, const atmo_param *p, const char *text, const char *where,
+                          atmo_err *e);
 /* Check v (finite, in range, whole for int/enum/bool) and store it; `shown` is the value as
  * the user wrote it and `where` its source, both for the error message. */
 int atmo_param_store(atmo_scene *s, const atmo_param *p, const double v[3], const char *shown,

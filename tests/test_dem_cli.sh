@@ -1,0 +1,119 @@
+#!/bin/bash
+# test_dem_cli.sh — `atmo dem info` and the terrain.heightmap_* keys end to end.
+# labels: cli
+#
+# Oracles: a 16-bit greyscale PNG written here (Python's zlib and struct, from the PNG
+# specification) holds the values 0 .. 65535 in a known pattern, so with scale S and offset O
+# the heights are O + S v / 65535: the lowest O and the highest O + S exactly (both exact in
+# float for the values used), the extent the given east-west size and that size times
+# height/width north-south, the cell size extent / samples. An EXR that `atmo render` writes
+# has three channels (R, G, B), which a heightmap is not: refused. The keys are listed by
+# `atmo params --json` with their types; a scene saved with a heightmap file reads back to the
+# same bytes. Bad input (no file, a missing file, no extent) exits 2 with one line on stderr
+# naming what is wrong, before any rendering (no output file is written).
+set -u
+atmo=$1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail=0
+bad() { echo "FAIL: $*" >&2; fail=1; }
+
+# one_line_error RC_FILE NEEDLE: exit 2, one line on stderr containing NEEDLE
+one_line_error() {
+    local rc=$1 needle=$2
+    if [ "$rc" -ne 2 ] || [ "$(wc -l <"$tmp/err")" -ne 1 ] || ! grep -qF -- "$needle" "$tmp/err"; then
+        bad "expected exit 2 and one line with '$needle', got $rc:"
+        cat "$tmp/err" >&2
+    fi
+}
+
+python3 - "$tmp/ramp.png" <<'PY'
+import struct, sys, zlib
+w, h = 40, 25
+rows = b""
+for y in range(h):
+    rows += b"\0" + b"".join(struct.pack(">H", (65535 * ((x + 3 * y) % 41)) // 40) for x in range(w))
+def chunk(t, d):
+    return struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d) & 0xffffffff)
+png = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 16, 0, 0, 0, 0))
+png += chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b"")
+open(sys.argv[1], "wb").write(png)
+PY
+
+keys=(--set terrain.heightmap_file_extent_m=4000 --set terrain.heightmap_scale_m=512
+      --set terrain.heightmap_offset_m=-64)
+"$atmo" dem info "$tmp/ramp.png" "${keys[@]}" --json >"$tmp/info.json" 2>"$tmp/err" ||
+    { bad "atmo dem info --json failed"; cat "$tmp/err" >&2; }
+python3 - "$tmp/info.json" <<'PY' || fail=1
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["width"] == 40 and d["height"] == 25, d
+assert d["extent_m"] == [4000, 4000 * 25 / 40], d["extent_m"]
+assert d["cell_m"] == [100, 100], d["cell_m"]
+assert d["min_m"] == -64 and d["max_m"] == 448, (d["min_m"], d["max_m"])
+assert d["format"].startswith("16-bit PNG") and d["nodata_filled"] == 0, d
+assert d["nodata_fill"] == "neighbours", d
+assert d["geographic"] is False and "terrain.heightmap_file_extent_m" in d["projection"], d
+print("atmo dem info: 40 x 25 samples, %g x %g m, heights %g .. %g m" %
+      (d["extent_m"][0], d["extent_m"][1], d["min_m"], d["max_m"]))
+PY
+"$atmo" dem info "$tmp/ramp.png" "${keys[@]}" >"$tmp/info.txt" 2>"$tmp/err" || bad "atmo dem info failed"
+for field in "size        40 x 25 samples" "extent      4000 x 2500 m" "height      -64 .. 448 m" \
+    "projection  none" "nodata      0 samples"; do
+    grep -qF "$field" "$tmp/info.txt" || bad "atmo dem info: no line '$field'"
+done
+
+# bad input: one line, exit 2
+"$atmo" dem info "$tmp/ramp.png" 2>"$tmp/err" >/dev/null
+one_line_error $? "terrain.heightmap_file_extent_m"
+"$atmo" dem info "$tmp/none.tif" 2>"$tmp/err" >/dev/null
+one_line_error $? "none.tif"
+"$atmo" dem info 2>"$tmp/err" >/dev/null
+one_line_error $? "atmo dem info FILE"
+"$atmo" dem 2>"$tmp/err" >/dev/null
+one_line_error $? "info FILE"
+"$atmo" dem info "$tmp/ramp.png" --set terrain.heightmap_file_extent_m=-1 2>"$tmp/err" >/dev/null
+one_line_error $? "terrain.heightmap_file_extent_m"
+# method single: the smallest program to build (PoCL compiles it in a few seconds)
+"$atmo" render --quiet --width 4 --height 4 --samples 1 --set atmosphere.method=single \
+    --output "$tmp/rgb.exr" 2>"$tmp/err" || bad "render to EXR failed"
+"$atmo" dem info "$tmp/rgb.exr" "${keys[@]}" 2>"$tmp/err" >/dev/null
+one_line_error $? "3 channels"
+
+# render: the file is checked while planning, before any work, and nothing is written
+"$atmo" render --quiet --width 4 --height 4 --samples 1 --set terrain.heightmap_file="$tmp/none.png" \
+    --output "$tmp/out.png" 2>"$tmp/err" >/dev/null
+one_line_error $? "none.png"
+[ -e "$tmp/out.png" ] && bad "a refused render wrote its output"
+"$atmo" render --quiet --width 4 --height 4 --samples 1 --set terrain.heightmap_file="$tmp/ramp.png" \
+    --output "$tmp/out.png" 2>"$tmp/err" >/dev/null
+one_line_error $? "terrain.heightmap_file_extent_m"
+"$atmo" render --quiet --width 4 --height 4 --samples 1 --set terrain.heightmap_file="$tmp/ramp.png" \
+    "${keys[@]}" --set atmosphere.method=single --output "$tmp/out.png" 2>"$tmp/err" >/dev/null ||
+    bad "render with a heightmap failed"
+
+# the keys: listed with their types; a saved scene reads back to the same bytes
+"$atmo" params --json >"$tmp/params.json" || bad "atmo params --json failed"
+python3 - "$tmp/params.json" <<'PY' || fail=1
+import json, sys
+types = {p["key"]: p["type"] for p in json.load(open(sys.argv[1]))}
+want = {"terrain.heightmap_file": "string", "terrain.heightmap_file_extent_m": "float",
+        "terrain.heightmap_center_m": "vec2", "terrain.heightmap_scale_m": "float",
+        "terrain.heightmap_offset_m": "float", "terrain.heightmap_detail": "bool"}
+for k, t in want.items():
+    assert types.get(k) == t, (k, types.get(k))
+PY
+"$atmo" render --set terrain.heightmap_file="$tmp/my dem \"v2\".tif" \
+    --set terrain.heightmap_center_m=1500,-2500 --save-scene "$tmp/s.json" 2>"$tmp/err" ||
+    { bad "--save-scene with a heightmap failed"; cat "$tmp/err" >&2; }
+"$atmo" render --scene "$tmp/s.json" --save-scene "$tmp/s2.json" 2>"$tmp/err" ||
+    { bad "the saved scene does not load"; cat "$tmp/err" >&2; }
+cmp -s "$tmp/s.json" "$tmp/s2.json" || bad "the saved scene does not read back to the same bytes"
+python3 - "$tmp/s.json" "$tmp/my dem \"v2\".tif" <<'PY' || fail=1
+import json, sys
+t = json.load(open(sys.argv[1]))["terrain"]
+assert t["heightmap_file"] == sys.argv[2] and t["heightmap_center_m"] == [1500, -2500], t
+PY
+
+[ $fail -eq 0 ] && echo "test_dem_cli: passed"
+exit $fail
