@@ -2,10 +2,10 @@
  * once, an image accumulated in budgeted steps, view updates that rerun only the passes that
  * follow the view.
  *
- * Launches: the scheduler (atmo/tiles.h) picks a tile and a batch; the tile is launched with one
- * fixed 8 x 8 local size, its global size padded to it (the kernel bounds-checks), and the step
- * waits for it (clFinish) before timing it, calling the tile callback and checking the cancel
- * token, so a cancel takes effect after the launch in flight. The precompute passes run the same
+ * Launches: the scheduler (atmo/tiles.h) picks a rectangle of tiles and a batch; it is launched
+ * with one fixed 8 x 8 local size, its global size padded to it (the kernel bounds-checks); the
+ * step waits for it (clFinish) before timing it, calling the tile callback and checking the
+ * cancel token, so a cancel takes effect after the launch in flight. The precompute passes run the same
  * way, in slices of about one launch budget with the token checked between them (precompute.c);
  * a precompute that the token stops leaves the session without its data: it returns
  * ATMO_INTERRUPTED_EMPTY, and steps and reads are refused until set_view or set_scene completes.
@@ -359,7 +359,7 @@ int atmo_session_step(atmo_session *s, const atmo_step *step, atmo_step_status *
         if ((rc = launch(s, &t, e)))
             break;
         atmo_tiles_done(&s->tiles, &t, 1e3 * (atmo_now_seconds() - tl), s->settings.launch_budget_ms,
-                        s->settings.max_batch);
+                        s->settings.max_batch, s->settings.max_tiles);
         status->launches++;
         s->info.launches++;
         if (step->on_tile)

@@ -40,6 +40,8 @@ typedef struct atmo_render_settings {
     int tile_size;             /* pixels, > 0 */
     double launch_budget_ms;   /* > 0 */
     int max_batch;             /* upper bound on samples per launch (0 = no bound; tests use it) */
+    int max_tiles;             /* upper bound on tiles per launch (0 = no bound, 1 = a launch
+                                  per tile, as the tests of per-tile launches want) */
     int progress;              /* 0 none, 1 plain lines, 2 terminal bar */
     const char *dump_dir;      /* --dump-kernels DIR */
     int use_kernel_cache;
