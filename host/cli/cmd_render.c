@@ -58,6 +58,8 @@ static const char render_usage[] =
     "output:\n"
     "  --output FILE          image to write (repeatable; default atmo.png)\n"
     "  --report FILE          JSON run report: settings, device, samples, stage timings\n"
+    "  --exr-compression C    EXR codec, all lossless: piz (default: smallest), none (fastest,\n"
+    "                         2x the size), zip, zips, rle\n"
     "device:\n"
     "  --device N|NAME        OpenCL device by index or name part (or ATMO_DEVICE; atmo devices)\n"
     "  --tile-size N          tile edge in pixels (default 64)\n"
@@ -190,6 +192,7 @@ int cmd_render(int argc, char **argv)
     char *sets[RENDER_MAX_SETS];
     char set_buffers[RENDER_MAX_SETS][64];
     int n_out = 0, n_set = 0, quiet = 0, lut_cache = 1, rc = ATMO_OK;
+    int exr_compression = ATMO_EXR_DEFAULT;
     output_paths files = {0};
     atmo_render_settings_default(&rs);
 
@@ -216,7 +219,7 @@ int cmd_render(int argc, char **argv)
         static const char *const with_value[] = {
             "--preset", "--scene", "--set", "--output", "-o", "--report", "--save-scene",
             "--device", "--dump-kernels", "--tile-size", "--launch-budget-ms", "--width",
-            "--height", "--samples", "--seed", "--camera", NULL};
+            "--height", "--samples", "--seed", "--exr-compression", "--camera", NULL};
         int known = 0;
         for (int k = 0; with_value[k]; k++)
             known |= strcmp(a, with_value[k]) == 0;
@@ -254,6 +257,13 @@ int cmd_render(int argc, char **argv)
             rs.device = v;
         else if (strcmp(a, "--dump-kernels") == 0)
             rs.dump_dir = v;
+        else if (strcmp(a, "--exr-compression") == 0) {
+            if ((exr_compression = atmo_exr_compression_from_name(v)) < 0) {
+                rc = atmo_fail(&e, ATMO_ERR_USAGE, "--exr-compression '%s': use piz, none, zip, "
+                               "zips or rle", v);
+                goto usage_error;
+            }
+        }
         else if (strcmp(a, "--tile-size") == 0) {
             if ((rc = parse_int_arg(a, v, 8, 4096, &rs.tile_size, &e)))
                 goto usage_error;
@@ -393,6 +403,7 @@ int cmd_render(int argc, char **argv)
                            spectral ? 0.0 : scene.render.wavelengths_nm[2]},
         .samples_per_pixel = res.samples_min,
         .partial = res.interrupted,
+        .exr_compression = exr_compression,
         .software = "atmo " ATMO_VERSION};
     atmo_image img = {.width = res.width, .height = res.height, .rgb = res.rgb};
     for (int i = 0; i < n_out && !rc; i++)
