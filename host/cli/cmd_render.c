@@ -150,6 +150,7 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON_AddNumberToObject(t, "kernel_build", r->seconds_build);
     cJSON_AddNumberToObject(t, "precompute", r->seconds_precompute);
     cJSON_AddNumberToObject(t, "render", r->seconds_render);
+    cJSON_AddNumberToObject(t, "read_back", r->seconds_read);
     cJSON_AddNumberToObject(t, "write", seconds_write);
     cJSON *outs = cJSON_AddArrayToObject(root, "outputs");
     for (int i = 0; i < n_out; i++)
@@ -417,14 +418,14 @@ int cmd_render(int argc, char **argv)
     if (!quiet)
         fprintf(stderr, "atmo render: wrote %d image%s (%dx%d, %d samples/pixel%s) in %.2fs: "
                         "%.2fs device, %.2fs build%s, %.2fs precompute%s, %.2fs render, %.2fs "
-                        "write on %s\n",
+                        "read-back, %.2fs write on %s\n",
                 n_out, n_out > 1 ? "s" : "", res.width, res.height, res.samples_min,
                 spectral ? ", spectral mode" : "",
                 res.seconds_device + res.seconds_build + res.seconds_precompute +
-                    res.seconds_render + seconds_write,
+                    res.seconds_render + res.seconds_read + seconds_write,
                 res.seconds_device, res.seconds_build, res.kernel_cache_hit ? " (cached)" : "",
                 res.seconds_precompute, res.lut_cache_hit ? " (cached)" : "", res.seconds_render,
-                seconds_write, res.device_name);
+                res.seconds_read, seconds_write, res.device_name);
     rc = res.interrupted ? ATMO_INTERRUPTED_PARTIAL : ATMO_OK;
     atmo_render_result_free(&res);
     output_paths_free(&files);

@@ -80,6 +80,7 @@ typedef struct atmo_session_info {
     char device_name[256], platform_name[256], driver_version[128];
     int kernel_cache_hit, lut_cache_hit;
     double seconds_device, seconds_build, seconds_precompute, seconds_render;
+    double seconds_read; /* in atmo_session_read, summed */
     int launches;
     unsigned nonfinite; /* dropped non-finite samples since the last restart (should be 0) */
 } atmo_session_info;
