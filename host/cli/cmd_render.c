@@ -67,7 +67,7 @@ static const char render_usage[] =
     "  --dump-kernels DIR     write the assembled OpenCL source to DIR\n"
     "  --no-kernel-cache      always compile the kernels (cache: ATMO_CACHE_DIR or ~/.cache/atmo)\n"
     "  --no-lut-cache         always precompute LUTs and Mie tables, and store none (LUTs that\n"
-    "                         take over 0.5 s and Mie tables are cached)\n"
+    "                         take over 20 ms and Mie tables are cached)\n"
     "  --quiet                no progress output\n"
     "\n"
     "\n"
