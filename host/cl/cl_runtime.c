@@ -5,7 +5,16 @@
  * user set it: PoCL then keeps its compiled programs and the work-group functions it compiles
  * at a kernel's first launch next to atmo's kernel binaries and LUTs, where `atmo cache` shows
  * them, instead of in ~/.cache/pocl. A program whose atmo binary is gone (atmo cache clear, a
- * new atmo build with the same kernels) is then found in PoCL's cache rather than compiled. */
+ * new atmo build with the same kernels) is then found in PoCL's cache rather than compiled.
+ *
+ * POCL_WORK_GROUP_SPECIALIZATION is 0 unless the user set it. PoCL's build compiles one generic
+ * work-group function per kernel (any local size), and by default a kernel's first launch then
+ * compiles it again, specialised to the local size, for a zero global offset, and once more
+ * for a nonzero one (the precompute's slices): three LLVM code generations per kernel, the
+ * last two in the first run's precompute and render. Without the specialisation every launch
+ * uses the generic function: no compile after the build, the same image bit for bit, and no
+ * measurable loss in speed (the time goes into the kernels' arithmetic, not the work-item
+ * loop); docs/notes/speed_io.md has the measurements. */
 #include <cjson/cJSON.h>
 #include <ctype.h>
 #include <stdio.h>
@@ -66,14 +75,15 @@ int atmo_cl_driver_cache_dir(char *dir, size_t size)
     return 0;
 }
 
-/* PoCL reads POCL_CACHE_DIR once, when the ICD loader first opens it: set it before. Without a
- * cache directory PoCL keeps its own default. */
-static void driver_cache_env(void)
+/* PoCL reads its settings once, when the ICD loader first opens it: set them before, each only
+ * where the user has not. Without a cache directory PoCL keeps its own default. */
+static void driver_env(void)
 {
     char dir[1100];
     const char *env = getenv("POCL_CACHE_DIR");
     if ((!env || !*env) && atmo_cl_driver_cache_dir(dir, sizeof dir) == 0)
         setenv("POCL_CACHE_DIR", dir, 1);
+    setenv("POCL_WORK_GROUP_SPECIALIZATION", "0", 0);
 }
 
 typedef struct cl_device_entry {
@@ -86,7 +96,7 @@ static int cl_enumerate(cl_device_entry *out, int *count, atmo_err *e)
 {
     cl_platform_id platforms[16];
     cl_uint np = 0;
-    driver_cache_env();
+    driver_env();
     cl_int err = clGetPlatformIDs(16, platforms, &np);
     if (err == -1001 || (err == CL_SUCCESS && np == 0))
         return atmo_fail(e, ATMO_ERR_RUNTIME,
