@@ -175,8 +175,8 @@ static int write_csv(const char *path, run results[SIZES][CASES], int n_sizes,
         return ATMO_ERR_RUNTIME;
     fprintf(f, "case,width,height,megapixels,wall,device_init,kernel_build,precompute,render,"
                "read_back,write,other,launches,device\n");
-    for (int s = 0; s < n_sizes; s++)
-        for (int c = 0; c < CASES; c++) {
+    for (int c = 0; c < CASES; c++) /* a case's rows together: the chart joins them */
+        for (int s = 0; s < n_sizes; s++) {
             const run *r = &results[s][c];
             double sum = 0.0;
             fprintf(f, "%s,%d,%d,%.6f,%.4f", case_names[c], sizes[s][0], sizes[s][1],
@@ -207,8 +207,8 @@ static int write_chart(const char *csv, const char *svg, const char *device_name
     fprintf(f, "set terminal svg size 800,500 dynamic background rgb 'white'\n"
                "set output '%s'\nset datafile separator ','\nset logscale xy\n"
                "set xlabel 'megapixels (512x256 to 4096x2048 panoramas)'\n"
-               "set ylabel 'whole process, seconds'\nset grid\nset key outside right\n"
-               "set title 'atmo render, fast, 1 sample, EXR (%s)'\n"
+               "set ylabel 'whole process, seconds'\nset grid\nset key left top\n"
+               "set title \"atmo render, fast, 1 sample, EXR\\n%s\"\n"
                "$blender << EOD\n0.131072,0.15\n2.097152,2.07\n8.388608,8.2\nEOD\nplot ",
             svg_tmp, device_name);
     for (int c = 0; c < CASES; c++)
