@@ -8,7 +8,7 @@
 #  - A kernel binary cut by its last byte (this once aborted PoCL with SIGABRT on every later
 #    run), the last 4 KiB of a Mie table overwritten: the next render exits 0 with exactly one
 #    warning line naming the file, writes the same image as the fresh render, and leaves files
-#    that verify. (Whether a render stores a LUT depends on how long it took, > 0.5 s, so damaged
+#    that verify. (Whether a render stores a LUT depends on how long it took, > 20 ms, so damaged
 #    LUT files are tested at the precompute level, in test_cache_files and test_lut_cache.)
 #  - --no-lut-cache writes no Mie table; without it the glory scene's three Mie
 #    tables are cached, and the image is the same.

@@ -9,11 +9,11 @@
  *    moves back to A and renders A in one-launch steps to the end. B's image must equal a fresh
  *    one-call render of B, and A's a fresh render of A, with memcmp: a stale view-dependent LUT,
  *    a leftover sum or a miscounted sample would all break the equality.
- * 2. Cancelling. Oracle: the same contract. A step cancelled from the tile callback after 7
- *    launches stops after the launch in flight (exactly 7 launches); the callback's reports add
- *    up to each tile's sample count; every pixel is finite; each tile holding n samples equals,
- *    bitwise, a complete render of n samples per pixel; the unreached tiles are 0. A step after
- *    the cancel finishes the image, equal to the one-call render.
+ * 2. Cancelling. Oracle: the same contract. A step of one-tile launches cancelled from the tile
+ *    callback after 7 launches stops after the launch in flight (exactly 7 launches); the
+ *    callback's reports add up to each tile's sample count; every pixel is finite; each tile
+ *    holding n samples equals, bitwise, a complete render of n samples per pixel; the unreached
+ *    tiles are 0. A step after the cancel finishes the image, equal to the one-call render.
  * 3. Standard error. Oracle: a statistical test. Two seeds of `reference` (Monte Carlo, n
  *    samples per pixel) give independent estimates of the same pixel mean with the same
  *    per-sample variance sigma^2. With the unbiased sample variances, z = (m_A - m_B) /
@@ -173,23 +173,30 @@ typedef struct cancel_log {
     int tile_samples[64], tile_added[64];
 } cancel_log;
 
+#define CANCEL_TILE 8
+
 static void on_tile(void *user, const atmo_tile *t)
 {
     cancel_log *log = user;
-    log->tile_samples[t->index] = t->samples;
-    log->tile_added[t->index] += t->sample_count;
+    int columns = (W + CANCEL_TILE - 1) / CANCEL_TILE;
+    for (int r = 0; r < t->tiles_down; r++)
+        for (int c = 0; c < t->tiles_across; c++) {
+            log->tile_samples[t->index + r * columns + c] = t->samples;
+            log->tile_added[t->index + r * columns + c] += t->sample_count;
+        }
     if (++log->launches == log->cancel_after)
         atmo_cancel_request(&log->token);
 }
 
 static void check_cancel(void)
 {
-    enum { SPP = 6, TILE = 8 };
+    enum { SPP = 6, TILE = CANCEL_TILE };
     atmo_plan plan;
     atmo_err e;
     plan_view("march", 0, SPP, &plan);
     atmo_render_settings rs;
     settings(&rs, TILE, 2);
+    rs.max_tiles = 1; /* a launch per tile: 7 launches leave most of the image without samples */
     atmo_session *s;
     cancel_log log;
     memset(&log, 0, sizeof log);

@@ -1,5 +1,20 @@
 /* cl_runtime.c — platform and device enumeration, device choice, context and queue
- * (atmo/cl_runtime.h). */
+ * (atmo/cl_runtime.h).
+ *
+ * Before the first OpenCL call, POCL_CACHE_DIR is pointed at "<atmo cache dir>/pocl" unless the
+ * user set it: PoCL then keeps its compiled programs and the work-group functions it compiles
+ * at a kernel's first launch next to atmo's kernel binaries and LUTs, where `atmo cache` shows
+ * them, instead of in ~/.cache/pocl. A program whose atmo binary is gone (atmo cache clear, a
+ * new atmo build with the same kernels) is then found in PoCL's cache rather than compiled.
+ *
+ * POCL_WORK_GROUP_SPECIALIZATION is 0 unless the user set it. PoCL's build compiles one generic
+ * work-group function per kernel (any local size), and by default a kernel's first launch then
+ * compiles it again, specialised to the local size, for a zero global offset, and once more
+ * for a nonzero one (the precompute's slices): three LLVM code generations per kernel, the
+ * last two in the first run's precompute and render. Without the specialisation every launch
+ * uses the generic function: no compile after the build, the same image bit for bit, and no
+ * measurable loss in speed (the time goes into the kernels' arithmetic, not the work-item
+ * loop); docs/notes/speed_io.md has the measurements. */
 #include <cjson/cJSON.h>
 #include <ctype.h>
 #include <stdio.h>
@@ -46,6 +61,31 @@ int atmo_cl_fail(atmo_err *e, const char *call, cl_int err)
 
 #define ATMO_MAX_DEVICES 64
 
+int atmo_cl_driver_cache_dir(char *dir, size_t size)
+{
+    const char *env = getenv("POCL_CACHE_DIR");
+    char base[1024];
+    if (env && *env) {
+        snprintf(dir, size, "%s", env);
+        return 0;
+    }
+    if (atmo_cache_dir(base, sizeof base) != 0)
+        return -1;
+    snprintf(dir, size, "%s/pocl", base);
+    return 0;
+}
+
+/* PoCL reads its settings once, when the ICD loader first opens it: set them before, each only
+ * where the user has not. Without a cache directory PoCL keeps its own default. */
+static void driver_env(void)
+{
+    char dir[1100];
+    const char *env = getenv("POCL_CACHE_DIR");
+    if ((!env || !*env) && atmo_cl_driver_cache_dir(dir, sizeof dir) == 0)
+        setenv("POCL_CACHE_DIR", dir, 1);
+    setenv("POCL_WORK_GROUP_SPECIALIZATION", "0", 0);
+}
+
 typedef struct cl_device_entry {
     cl_platform_id platform;
     cl_device_id device;
@@ -56,6 +96,7 @@ static int cl_enumerate(cl_device_entry *out, int *count, atmo_err *e)
 {
     cl_platform_id platforms[16];
     cl_uint np = 0;
+    driver_env();
     cl_int err = clGetPlatformIDs(16, platforms, &np);
     if (err == -1001 || (err == CL_SUCCESS && np == 0))
         return atmo_fail(e, ATMO_ERR_RUNTIME,

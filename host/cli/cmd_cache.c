@@ -8,7 +8,8 @@
  *   verify  checks every product (header, kind against its name, lengths, checksum), deletes
  *           those that fail and temporary files whose writer is gone; says how many went
  *   clear   deletes every atmo file in the directory (but the temporary files of running
- *           writers, which those writers rename or remove)
+ *           writers, which those writers rename or remove) and says so; PoCL's own cache
+ *           (atmo_cl_driver_cache_dir, by default the folder "pocl" in it) is kept and named
  * Each exits 0 (1 when the directory cannot be read or a file cannot be removed). */
 #include <ctype.h>
 #include <dirent.h>
@@ -40,7 +41,8 @@ static void print_usage(FILE *f)
                "  list     each cached file's kind, size and age, and the total (the default)\n"
                "  verify   check every file and delete the damaged ones (renders also do this\n"
                "           for the files they read)\n"
-               "  clear    delete every atmo file in the cache directory (other files stay)\n"
+               "  clear    delete every atmo file in the cache directory (other files stay,\n"
+               "           among them PoCL's own cache, the folder pocl, which it names)\n"
                "  --help   this text\n");
 }
 
@@ -218,6 +220,10 @@ static int clear_files(const char *dir, const entry *list, int n)
             removed++;
     }
     printf("removed %d file%s from %s\n", removed, removed == 1 ? "" : "s", dir);
+    char driver[1100];
+    if (atmo_cl_driver_cache_dir(driver, sizeof driver) == 0)
+        printf("kept PoCL's own cache in %s (its compiled kernels; delete that folder to "
+               "compile from scratch)\n", driver);
     return rc;
 }
 

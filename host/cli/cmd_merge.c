@@ -68,7 +68,8 @@ static int merge_parts(const char *const *paths, int n, const char *const *outpu
             }
         atmo_part_mean(&merged, rgb);
         atmo_image img = {.width = merged.width, .height = merged.height, .rgb = rgb};
-        rc = render_outputs_write(&scene, &img, scene.image.samples, 0, outputs, n_out, e);
+        rc = render_outputs_write(&scene, &img, scene.image.samples, 0, ATMO_EXR_DEFAULT, outputs,
+                                  n_out, e);
     }
     if (!rc && !quiet)
         fprintf(stderr, "atmo merge: wrote %d image%s (%dx%d, %d samples/pixel) from %d parts\n",

@@ -61,6 +61,8 @@ static const char render_usage[] =
     "output:\n"
     "  --output FILE          image to write (repeatable; default atmo.png)\n"
     "  --report FILE          JSON run report: settings, device, samples, stage timings\n"
+    "  --exr-compression C    EXR codec, all lossless: piz (default: smallest), none (fastest,\n"
+    "                         2x the size), zip, zips, rle\n"
     "device:\n"
     "  --device N|NAME        OpenCL device by index or name part (or ATMO_DEVICE; atmo devices)\n"
     "  --tile-size N          tile edge in pixels (default 64)\n"
@@ -68,7 +70,7 @@ static const char render_usage[] =
     "  --dump-kernels DIR     write the assembled OpenCL source to DIR\n"
     "  --no-kernel-cache      always compile the kernels (cache: ATMO_CACHE_DIR or ~/.cache/atmo)\n"
     "  --no-lut-cache         always precompute LUTs and Mie tables, and store none (LUTs that\n"
-    "                         take over 0.5 s and Mie tables are cached)\n"
+    "                         take over 20 ms and Mie tables are cached)\n"
     "  --quiet                no progress output\n"
     "split and animate (README: Rendering on a cluster):\n"
     "  --part I/N             render part I of N of the image (its rows in bands of 8, band b\n"
@@ -160,6 +162,7 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON_AddNumberToObject(t, "kernel_build", r->seconds_build);
     cJSON_AddNumberToObject(t, "precompute", r->seconds_precompute);
     cJSON_AddNumberToObject(t, "render", r->seconds_render);
+    cJSON_AddNumberToObject(t, "read_back", r->seconds_read);
     cJSON_AddNumberToObject(t, "write", seconds_write);
     cJSON *outs = cJSON_AddArrayToObject(root, "outputs");
     for (int i = 0; i < n_out; i++)
@@ -194,8 +197,8 @@ static int parse_int_arg(const char *opt, const char *v, int lo, int hi, int *ou
 /* Render one scene (a frame) and write its files: the images, or with part_file the part's raw
  * sums (outputs[0]); then the report. Returns the exit status; errors are printed. */
 static int render_frame(const atmo_scene *scene_in, atmo_render_settings *rs_in, int lut_cache,
-                        int quiet, int part_file, const char *const *outputs, int n_out,
-                        const char *report)
+                        int quiet, int part_file, int exr_compression,
+                        const char *const *outputs, int n_out, const char *report)
 {
     atmo_err e = {{0}};
     atmo_scene scene = *scene_in;
@@ -261,7 +264,7 @@ static int render_frame(const atmo_scene *scene_in, atmo_render_settings *rs_in,
     atmo_image img = {.width = res.width, .height = res.height, .rgb = res.rgb};
     rc = part_file ? atmo_part_write(outputs[0], &part, &e)
                    : render_outputs_write(&scene, &img, res.samples_min, res.interrupted,
-                                          outputs, n_out, &e);
+                                          exr_compression, outputs, n_out, &e);
     double seconds_write = atmo_now_seconds() - tw;
     if (!rc && report)
         rc = write_report(report, &scene, &res, &rs, outputs, n_out, seconds_write, &e);
@@ -271,14 +274,14 @@ static int render_frame(const atmo_scene *scene_in, atmo_render_settings *rs_in,
     if (!quiet)
         fprintf(stderr, "atmo render: wrote %d image%s (%dx%d, %d samples/pixel%s) in %.2fs: "
                         "%.2fs device, %.2fs build%s, %.2fs precompute%s, %.2fs render, %.2fs "
-                        "write on %s\n",
+                        "read-back, %.2fs write on %s\n",
                 n_out, n_out > 1 ? "s" : "", res.width, res.height, res.samples_min,
                 spectral ? ", spectral mode" : "",
                 res.seconds_device + res.seconds_build + res.seconds_precompute +
-                    res.seconds_render + seconds_write,
+                    res.seconds_render + res.seconds_read + seconds_write,
                 res.seconds_device, res.seconds_build, res.kernel_cache_hit ? " (cached)" : "",
                 res.seconds_precompute, res.lut_cache_hit ? " (cached)" : "", res.seconds_render,
-                seconds_write, res.device_name);
+                res.seconds_read, seconds_write, res.device_name);
     rc = res.interrupted ? ATMO_INTERRUPTED_PARTIAL : ATMO_OK;
     atmo_render_result_free(&res);
     atmo_part_free(&part);
@@ -361,6 +364,7 @@ int cmd_render(int argc, char **argv)
     char *sets[RENDER_MAX_SETS];
     char set_buffers[RENDER_MAX_SETS][64];
     int n_out = 0, n_set = 0, quiet = 0, lut_cache = 1, rc = ATMO_OK;
+    int exr_compression = ATMO_EXR_DEFAULT;
     output_paths files = {0};
     atmo_render_settings_default(&rs);
 
@@ -388,6 +392,7 @@ int cmd_render(int argc, char **argv)
             "--preset", "--scene", "--set", "--output", "-o", "--report", "--save-scene",
             "--device", "--dump-kernels", "--tile-size", "--launch-budget-ms", "--width",
             "--height", "--samples", "--seed", "--part", "--frames", "--animate", "--scene-end",
+            "--exr-compression",
             "--camera", NULL};
         int known = 0;
         for (int k = 0; with_value[k]; k++)
@@ -426,6 +431,13 @@ int cmd_render(int argc, char **argv)
             rs.device = v;
         else if (strcmp(a, "--dump-kernels") == 0)
             rs.dump_dir = v;
+        else if (strcmp(a, "--exr-compression") == 0) {
+            if ((exr_compression = atmo_exr_compression_from_name(v)) < 0) {
+                rc = atmo_fail(&e, ATMO_ERR_USAGE, "--exr-compression '%s': use piz, none, zip, "
+                               "zips or rle", v);
+                goto usage_error;
+            }
+        }
         else if (strcmp(a, "--tile-size") == 0) {
             if ((rc = parse_int_arg(a, v, 8, 4096, &rs.tile_size, &e)))
                 goto usage_error;
@@ -575,7 +587,8 @@ int cmd_render(int argc, char **argv)
             frames_path(report, f, report_name, sizeof report_name);
         if (frames_text && (rc = frames_scene(&anim, &scene, f, &frame, &e)))
             goto runtime_error;
-        rc = render_frame(&frame, &rs, lut_cache, quiet, part_file, frame_outputs, n_out,
+        rc = render_frame(&frame, &rs, lut_cache, quiet, part_file, exr_compression,
+                          frame_outputs, n_out,
                           frames_text ? (report ? report_name : NULL) : report);
     }
     output_paths_free(&files);

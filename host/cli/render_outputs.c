@@ -10,7 +10,8 @@
 #include "render_outputs.h"
 
 int render_outputs_write(const atmo_scene *scene, const atmo_image *img, int samples_min,
-                         int partial, const char *const *outputs, int n, atmo_err *e)
+                         int partial, int exr_compression, const char *const *outputs, int n,
+                         atmo_err *e)
 {
     int spectral = scene->render.spectral_bands > 0, rc = ATMO_OK;
     atmo_post post = {(float)scene->post.exposure, scene->post.tonemap,
@@ -33,6 +34,7 @@ int render_outputs_write(const atmo_scene *scene, const atmo_image *img, int sam
                            spectral ? 0.0 : scene->render.wavelengths_nm[2]},
         .samples_per_pixel = samples_min,
         .partial = partial,
+        .exr_compression = exr_compression,
         .software = "atmo " ATMO_VERSION};
     for (int i = 0; i < n && !rc; i++)
         rc = atmo_image_write(outputs[i], img, &post, &meta, e);

@@ -1,23 +1,68 @@
 /* image_exr.c — OpenEXR of the linear values: 32-bit float R, G, B and the image's extra
- * layers, scanlines, PIZ.
+ * layers, scanlines, lossless compression, chunks compressed in parallel.
  *
- * Written with OpenEXR's C Core API (OpenEXR 3.1): one scanline part, PIZ compression (32 rows
- * per chunk, lossless; on a 2048x1024 sky panorama it wrote 13.2 MB in 0.70 s where ZIP wrote
- * 16.1 MB in 1.06 s, ZIP at level 1 16.5 MB in 0.95 s, RLE 25.2 MB in 0.20 s), data and display windows (0, 0)-(width-1, height-1), increasing y (row 0
- * at the top, as atmo_image). Each layer's channels are "<layer>.<channel>" (atmo_image_layer),
- * after R, G, B. The description goes into string attributes: "quantity", "unit",
- * "wavelengths", "samplesPerPixel", "software", "renderStatus" ("complete" or "partial"), the
- * standard "comments" with the whole one-line description, and the meta's own attributes. No "chromaticities": in radiance
- * mode the channels are spectral samples, not primaries.
+ * Written with OpenEXR's C Core API (OpenEXR 3.1): one scanline part, data and display windows
+ * (0, 0)-(width-1, height-1), increasing y (row 0 at the top, as atmo_image). Each layer's
+ * channels are "<layer>.<channel>" (atmo_image_layer), after R, G, B. The description goes into
+ * string attributes: "quantity", "unit", "wavelengths", "samplesPerPixel", "software",
+ * "renderStatus" ("complete" or "partial"), the standard "comments" with the whole one-line
+ * description, and the meta's own attributes. No "chromaticities": in radiance mode the
+ * channels are spectral samples, not primaries.
+ *
+ * Compression (meta->exr_compression): the codecs that are lossless for 32-bit floats, none,
+ * rle, zips (1 row per chunk), zip (16 rows) and piz (32 rows; wavelet + Huffman). On a
+ * 2048x1024 `fast` sky panorama (R, G, B) they wrote 25.2, 25.2, 14.3, 13.6 and 11.7 MB; piz is
+ * the smallest and also the quickest of the three that compress (zips and zip take 1.4 and 1.7
+ * times its time), so it is the default; none writes 2.1 times the bytes in a tenth of the
+ * time (the choice for speed: --exr-compression none); rle finds no runs in float noise.
+ * docs/notes/speed_io.md has the measurements.
+ *
+ * Threads: the C API leaves threading to the caller. Every chunk is compressed by its own run
+ * of the library's encode pipeline, one pipeline per thread, the threads (one per online
+ * processor) taking the next chunk from a shared counter; the pipeline's last stage keeps the
+ * compressed bytes instead of writing them, and this thread then writes the chunks in file
+ * order. The file's bytes are the same whichever thread compressed which chunk.
  *
  * The library writes to the temporary path of fileio.h; on success the file is renamed over the
  * target, on any error it is removed. Library messages are collected into the atmo_err instead of
  * being printed. */
+#include <pthread.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include <openexr.h>
 #include "atmo/fileio.h"
 #include "atmo/image.h"
+
+/* The codec ATMO_EXR_DEFAULT stands for. */
+#define EXR_DEFAULT_CODEC ATMO_EXR_PIZ
+
+static const struct {
+    const char *name;
+    exr_compression_t codec;
+} codecs[] = {
+    [ATMO_EXR_NONE] = {"none", EXR_COMPRESSION_NONE}, [ATMO_EXR_RLE] = {"rle", EXR_COMPRESSION_RLE},
+    [ATMO_EXR_ZIPS] = {"zips", EXR_COMPRESSION_ZIPS}, [ATMO_EXR_ZIP] = {"zip", EXR_COMPRESSION_ZIP},
+    [ATMO_EXR_PIZ] = {"piz", EXR_COMPRESSION_PIZ},
+};
+
+int atmo_exr_compression_from_name(const char *name)
+{
+    if (name && strcmp(name, "default") == 0)
+        return ATMO_EXR_DEFAULT;
+    for (int c = ATMO_EXR_NONE; c <= ATMO_EXR_PIZ; c++)
+        if (name && strcmp(name, codecs[c].name) == 0)
+            return c;
+    return -1;
+}
+
+const char *atmo_exr_compression_name(int compression)
+{
+    int c = compression >= ATMO_EXR_NONE && compression <= ATMO_EXR_PIZ ? compression
+                                                                          : EXR_DEFAULT_CODEC;
+    return codecs[c].name;
+}
 
 /* Extra layers one file can carry (each up to 4 channels). */
 #define EXR_MAX_LAYERS 32
@@ -102,54 +147,174 @@ static const exr_source *exr_find(const exr_source *src, int n, const char *name
     return NULL;
 }
 
-/* Encode and write every chunk of rows; the channels point into the interleaved floats of the
- * image and its layers. */
+/* Threads that compress chunks (the writing thread is one of them). */
+#define EXR_MAX_THREADS 16
+
+/* One compressed chunk, as the writing thread stores it in the file. */
+typedef struct {
+    void *data;
+    size_t bytes;
+} exr_chunk_out;
+
+/* What the encoding threads share: the chunks to compress, which one is next, the results. */
+typedef struct {
+    exr_const_context_t ctxt;
+    const atmo_image *img;
+    const exr_source *src;
+    int n_src, chunks;
+    const exr_chunk_info_t *info; /* per chunk */
+    exr_chunk_out *out;           /* per chunk */
+    pthread_mutex_t lock;
+    int next;                     /* the first chunk no thread has taken */
+    exr_result_t r;               /* the first failure, under lock */
+} exr_job;
+
+/* The pipeline's last stage: keep the compressed bytes for the writing thread. */
+static exr_result_t keep_chunk(exr_encode_pipeline_t *pipe)
+{
+    exr_chunk_out *o = pipe->encoding_user_data;
+    o->data = malloc(pipe->compressed_bytes ? pipe->compressed_bytes : 1);
+    if (!o->data)
+        return EXR_ERR_OUT_OF_MEMORY;
+    memcpy(o->data, pipe->compressed_buffer, pipe->compressed_bytes);
+    o->bytes = pipe->compressed_bytes;
+    return EXR_ERR_SUCCESS;
+}
+
+/* The chunks are written by one thread in file order after all are compressed: a thread
+ * never waits for another's chunk. */
+static exr_result_t never_wait(exr_encode_pipeline_t *pipe)
+{
+    (void)pipe;
+    return EXR_ERR_SUCCESS;
+}
+
+/* Point the pipeline's channels at chunk rows of the image and its layers. */
+static exr_result_t point_channels(const exr_job *job, exr_encode_pipeline_t *pipe, int y)
+{
+    for (int c = 0; c < pipe->channel_count; c++) {
+        exr_coding_channel_info_t *ch = &pipe->channels[c];
+        /* The library sorts the channels by name: find each one's source. */
+        const exr_source *from = exr_find(job->src, job->n_src, ch->channel_name);
+        if (!from)
+            return EXR_ERR_INVALID_ARGUMENT;
+        size_t row_floats = (size_t)job->img->width * (size_t)from->stride;
+        ch->encode_from_ptr = (const uint8_t *)(from->base + (size_t)y * row_floats);
+        ch->user_pixel_stride = from->stride * (int32_t)sizeof(float);
+        ch->user_line_stride = (int32_t)(row_floats * sizeof(float));
+        ch->user_bytes_per_element = sizeof(float);
+        ch->user_data_type = EXR_PIXEL_FLOAT;
+    }
+    return EXR_ERR_SUCCESS;
+}
+
+/* An encoding thread: takes the next chunk until none is left or one failed. */
+static void *encode_chunks(void *arg)
+{
+    exr_job *job = arg;
+    exr_encode_pipeline_t pipe = EXR_ENCODE_PIPELINE_INITIALIZER;
+    int initialized = 0;
+    exr_result_t r = EXR_ERR_SUCCESS;
+    for (;;) {
+        pthread_mutex_lock(&job->lock);
+        int k = job->r == EXR_ERR_SUCCESS && job->next < job->chunks ? job->next++ : -1;
+        pthread_mutex_unlock(&job->lock);
+        if (k < 0)
+            break;
+        const exr_chunk_info_t *chunk = &job->info[k];
+        r = initialized ? exr_encoding_update(job->ctxt, 0, chunk, &pipe)
+                        : exr_encoding_initialize(job->ctxt, 0, chunk, &pipe);
+        if (r == EXR_ERR_SUCCESS)
+            r = point_channels(job, &pipe, chunk->start_y);
+        if (r == EXR_ERR_SUCCESS && !initialized) {
+            r = exr_encoding_choose_default_routines(job->ctxt, 0, &pipe);
+            initialized = r == EXR_ERR_SUCCESS;
+            pipe.write_fn = keep_chunk;
+            pipe.yield_until_ready_fn = never_wait;
+        }
+        pipe.encoding_user_data = &job->out[k];
+        if (r == EXR_ERR_SUCCESS)
+            r = exr_encoding_run(job->ctxt, 0, &pipe);
+        if (r != EXR_ERR_SUCCESS)
+            break;
+    }
+    if (initialized) {
+        exr_result_t d = exr_encoding_destroy(job->ctxt, &pipe);
+        r = r == EXR_ERR_SUCCESS ? d : r;
+    }
+    pthread_mutex_lock(&job->lock);
+    if (job->r == EXR_ERR_SUCCESS)
+        job->r = r;
+    pthread_mutex_unlock(&job->lock);
+    return NULL;
+}
+
+/* The number of threads to compress on: the online processors, at most EXR_MAX_THREADS. */
+static int encode_threads(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : n > EXR_MAX_THREADS ? EXR_MAX_THREADS : (int)n;
+}
+
+/* Compress every chunk of rows on all processors, then write them in file order (the chunk
+ * table wants increasing y); the channels point into the interleaved floats of the image and
+ * its layers. */
 static exr_result_t exr_pixels(exr_context_t ctxt, const atmo_image *img, const exr_source *src,
                                int n_src)
 {
     int rows_per_chunk = 0;
     exr_result_t r = exr_get_scanlines_per_chunk(ctxt, 0, &rows_per_chunk);
-    exr_encode_pipeline_t encoder = EXR_ENCODE_PIPELINE_INITIALIZER;
-    int initialized = 0;
-    for (int y = 0; r == EXR_ERR_SUCCESS && y < img->height; y += rows_per_chunk) {
-        exr_chunk_info_t chunk;
-        r = exr_write_scanline_chunk_info(ctxt, 0, y, &chunk);
-        if (r != EXR_ERR_SUCCESS)
-            break;
-        r = initialized ? exr_encoding_update(ctxt, 0, &chunk, &encoder)
-                        : exr_encoding_initialize(ctxt, 0, &chunk, &encoder);
-        if (r != EXR_ERR_SUCCESS)
-            break;
-        for (int c = 0; c < encoder.channel_count; c++) {
-            exr_coding_channel_info_t *ch = &encoder.channels[c];
-            /* The library sorts the channels by name: find each one's source. */
-            const exr_source *from = exr_find(src, n_src, ch->channel_name);
-            if (!from) {
-                r = EXR_ERR_INVALID_ARGUMENT;
-                break;
-            }
-            size_t row_floats = (size_t)img->width * (size_t)from->stride;
-            ch->encode_from_ptr = (const uint8_t *)(from->base + (size_t)y * row_floats);
-            ch->user_pixel_stride = from->stride * (int32_t)sizeof(float);
-            ch->user_line_stride = (int32_t)(row_floats * sizeof(float));
-            ch->user_bytes_per_element = sizeof(float);
-            ch->user_data_type = EXR_PIXEL_FLOAT;
-        }
-        if (r != EXR_ERR_SUCCESS)
-            break;
-        if (!initialized) {
-            r = exr_encoding_choose_default_routines(ctxt, 0, &encoder);
-            if (r != EXR_ERR_SUCCESS)
-                break;
-            initialized = 1;
-        }
-        r = exr_encoding_run(ctxt, 0, &encoder);
+    if (r != EXR_ERR_SUCCESS)
+        return r;
+    exr_job job = {ctxt, img, src, n_src, (img->height + rows_per_chunk - 1) / rows_per_chunk,
+                   NULL, NULL, PTHREAD_MUTEX_INITIALIZER, 0, EXR_ERR_SUCCESS};
+    exr_chunk_info_t *info = calloc((size_t)job.chunks, sizeof *info);
+    job.out = calloc((size_t)job.chunks, sizeof *job.out);
+    job.info = info;
+    if (!info || !job.out)
+        r = EXR_ERR_OUT_OF_MEMORY;
+    /* The library hands out chunk descriptions in file order only, as each is written: the
+     * others follow from the first (all channels are 32-bit floats, no subsampling), and each
+     * is checked against the library's own before its chunk is written. */
+    if (r == EXR_ERR_SUCCESS)
+        r = exr_write_scanline_chunk_info(ctxt, 0, 0, &info[0]);
+    for (int k = 1; r == EXR_ERR_SUCCESS && k < job.chunks; k++) {
+        info[k] = info[0];
+        info[k].idx = k;
+        info[k].start_y = info[0].start_y + k * rows_per_chunk;
+        info[k].height = img->height - k * rows_per_chunk < rows_per_chunk
+                             ? img->height - k * rows_per_chunk
+                             : rows_per_chunk;
+        info[k].unpacked_size = (uint64_t)info[k].width * (uint64_t)info[k].height *
+                                (uint64_t)n_src * sizeof(float);
     }
-    if (initialized) {
-        exr_result_t d = exr_encoding_destroy(ctxt, &encoder);
+    if (r == EXR_ERR_SUCCESS) {
+        pthread_t threads[EXR_MAX_THREADS];
+        int helpers = encode_threads() - 1, started = 0;
+        helpers = helpers < job.chunks - 1 ? helpers : job.chunks - 1;
+        while (started < helpers && pthread_create(&threads[started], NULL, encode_chunks,
+                                                   &job) == 0)
+            started++;
+        encode_chunks(&job); /* this thread too, and alone if none could start */
+        for (int t = 0; t < started; t++)
+            pthread_join(threads[t], NULL);
+        r = job.r;
+    }
+    for (int k = 0; r == EXR_ERR_SUCCESS && k < job.chunks; k++) {
+        exr_chunk_info_t check;
+        r = exr_write_scanline_chunk_info(ctxt, 0, info[k].start_y, &check);
+        if (r == EXR_ERR_SUCCESS && (check.idx != k || check.height != info[k].height ||
+                                     check.unpacked_size != info[k].unpacked_size))
+            r = EXR_ERR_INVALID_ARGUMENT;
         if (r == EXR_ERR_SUCCESS)
-            r = d;
+            r = exr_write_scanline_chunk(ctxt, 0, info[k].start_y, job.out[k].data,
+                                         job.out[k].bytes);
     }
+    for (int k = 0; job.out && k < job.chunks; k++)
+        free(job.out[k].data);
+    free(job.out);
+    free(info);
+    pthread_mutex_destroy(&job.lock);
     return r;
 }
 
@@ -171,9 +336,11 @@ int atmo_image_write_exr(const char *path, const atmo_image *img, const atmo_ima
     exr_result_t r = exr_start_write(&ctxt, tmp, EXR_WRITE_FILE_DIRECTLY, &init);
     if (r == EXR_ERR_SUCCESS)
         r = exr_add_part(ctxt, NULL, EXR_STORAGE_SCANLINE, &part);
+    int compression = meta ? meta->exr_compression : ATMO_EXR_DEFAULT;
+    compression = atmo_exr_compression_from_name(atmo_exr_compression_name(compression));
     if (r == EXR_ERR_SUCCESS)
         r = exr_initialize_required_attr_simple(ctxt, part, img->width, img->height,
-                                                EXR_COMPRESSION_PIZ);
+                                                codecs[compression].codec);
     exr_source src[3 + 4 * EXR_MAX_LAYERS];
     int n_src = exr_sources(img, src, (int)(sizeof src / sizeof src[0]));
     for (int c = 0; c < n_src && r == EXR_ERR_SUCCESS; c++) {

@@ -45,6 +45,8 @@ int atmo_image_read_pfm(const char *path, atmo_image *img, atmo_err *e)
     unsigned char *row = NULL;
     img->rgb = NULL;
     img->width = img->height = 0;
+    img->layers = NULL; /* a PFM holds R, G, B only */
+    img->layer_count = 0;
     FILE *f = fopen(path, "rb");
     if (!f)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "cannot open '%s'", path);

@@ -35,7 +35,9 @@
 #include "atmo/fileio.h"
 #include "atmo/render.h"
 
-#define ATMO_LUT_CACHE_MIN_SECONDS 0.5
+/* Loading a verified product of these sizes takes about 1 ms: what takes longer than this to
+ * compute is worth storing (the transmittance and Psi_ms LUTs of a warm `fast` render). */
+#define ATMO_LUT_CACHE_MIN_SECONDS 0.02
 #define CACHE_MAGIC "atmo-product-3"
 #define FNV_BASIS 1469598103934665603ull
 

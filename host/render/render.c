@@ -28,6 +28,7 @@ void atmo_render_result_from_session(const atmo_session *s, atmo_render_result *
     r->seconds_build = in->seconds_build;
     r->seconds_precompute = in->seconds_precompute;
     r->seconds_render = in->seconds_render;
+    r->seconds_read = in->seconds_read;
     memcpy(r->device_name, in->device_name, sizeof r->device_name);
     memcpy(r->platform_name, in->platform_name, sizeof r->platform_name);
     memcpy(r->driver_version, in->driver_version, sizeof r->driver_version);

@@ -2,10 +2,10 @@
  * once, an image accumulated in budgeted steps, view updates that rerun only the passes that
  * follow the view.
  *
- * Launches: the scheduler (atmo/tiles.h) picks a tile and a batch; the tile is launched with one
- * fixed 8 x 8 local size, its global size padded to it (the kernel bounds-checks), and the step
- * waits for it (clFinish) before timing it, calling the tile callback and checking the cancel
- * token, so a cancel takes effect after the launch in flight. The precompute passes run the same
+ * Launches: the scheduler (atmo/tiles.h) picks a rectangle of tiles and a batch; it is launched
+ * with one fixed 8 x 8 local size, its global size padded to it (the kernel bounds-checks); the
+ * step waits for it (clFinish) before timing it, calling the tile callback and checking the
+ * cancel token, so a cancel takes effect after the launch in flight. The precompute passes run the same
  * way, in slices of about one launch budget with the token checked between them (precompute.c);
  * a precompute that the token stops leaves the session without its data: it returns
  * ATMO_INTERRUPTED_EMPTY, and steps and reads are refused until set_view or set_scene completes.
@@ -359,7 +359,7 @@ int atmo_session_step(atmo_session *s, const atmo_step *step, atmo_step_status *
         if ((rc = launch(s, &t, e)))
             break;
         atmo_tiles_done(&s->tiles, &t, 1e3 * (atmo_now_seconds() - tl), s->settings.launch_budget_ms,
-                        s->settings.max_batch);
+                        s->settings.max_batch, s->settings.max_tiles);
         status->launches++;
         s->info.launches++;
         if (step->on_tile)
@@ -452,37 +452,52 @@ float atmo_session_mean(float sum, int samples)
     return sum * (samples > 0 ? 1.0f / (float)samples : 0.0f);
 }
 
-/* The accumulators, 4 floats per pixel, into s1 and s2 (either may be NULL). */
-static int read_accumulators(atmo_session *s, float *s1, float *s2, atmo_err *e)
+/* The accumulators mapped for reading, 4 floats per pixel (*s2 only when want_s2): mapped, not
+ * copied, since on a CPU device the map is the device's own memory. Release with unmap. */
+static int map_accumulators(atmo_session *s, const float **s1, const float **s2, int want_s2,
+                            atmo_err *e)
 {
     int rc = ATMO_OK;
     size_t bytes = (size_t)s->plan.width * (size_t)s->plan.height * 4 * sizeof(float);
+    *s1 = *s2 = NULL;
     if (s->data_incomplete)
         return incomplete(e);
     if (!s->accum && ((rc = restart(s, e)) || (rc = bind_render(s, e))))
         return rc;
     cl_int err = CL_SUCCESS;
-    if (s1)
-        err = clEnqueueReadBuffer(s->cl.queue, s->accum, CL_TRUE, 0, bytes, s1, 0, NULL, NULL);
-    if (err == CL_SUCCESS && s2)
-        err = clEnqueueReadBuffer(s->cl.queue, s->accum_sq, CL_TRUE, 0, bytes, s2, 0, NULL, NULL);
-    return err == CL_SUCCESS ? ATMO_OK
-                             : atmo_cl_fail(e, "clEnqueueReadBuffer(accumulation image)", err);
+    *s1 = clEnqueueMapBuffer(s->cl.queue, s->accum, CL_TRUE, CL_MAP_READ, 0, bytes, 0, NULL, NULL,
+                             &err);
+    if (err == CL_SUCCESS && want_s2)
+        *s2 = clEnqueueMapBuffer(s->cl.queue, s->accum_sq, CL_TRUE, CL_MAP_READ, 0, bytes, 0,
+                                 NULL, NULL, &err);
+    if (err != CL_SUCCESS)
+        return atmo_cl_fail(e, "clEnqueueMapBuffer(accumulation image)", err);
+    return ATMO_OK;
+}
+
+/* Unmap what map_accumulators mapped; rc is the caller's status so far (kept if not OK). */
+static int unmap_accumulators(atmo_session *s, const float *s1, const float *s2, int rc,
+                              atmo_err *e)
+{
+    cl_int err = s2 ? clEnqueueUnmapMemObject(s->cl.queue, s->accum_sq, (void *)s2, 0, NULL, NULL)
+                    : CL_SUCCESS;
+    cl_int err1 = s1 ? clEnqueueUnmapMemObject(s->cl.queue, s->accum, (void *)s1, 0, NULL, NULL)
+                     : CL_SUCCESS;
+    err = err != CL_SUCCESS ? err : err1;
+    if (err == CL_SUCCESS && s1)
+        err = clFinish(s->cl.queue);
+    if (err != CL_SUCCESS && rc == ATMO_OK)
+        rc = atmo_cl_fail(e, "clEnqueueUnmapMemObject(accumulation image)", err);
+    return rc;
 }
 
 int atmo_session_read(atmo_session *s, float *mean, float *se, int *samples, atmo_err *e)
 {
-    int rc = ATMO_OK, W = s->plan.width, H = s->plan.height;
-    size_t pixels = (size_t)W * (size_t)H;
-    float *s1 = malloc(pixels * 4 * sizeof(float));
-    float *s2 = se ? malloc(pixels * 4 * sizeof(float)) : NULL;
-    if (!s1 || (se && !s2)) {
-        rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for a %dx%d image", W, H);
-        goto cleanup;
-    }
-    if ((rc = read_accumulators(s, s1, s2, e)))
-        goto cleanup;
-    for (int y = 0; y < H; y++)
+    int W = s->plan.width, H = s->plan.height;
+    double t0 = atmo_now_seconds();
+    const float *s1, *s2;
+    int rc = map_accumulators(s, &s1, &s2, se != NULL, e);
+    for (int y = 0; !rc && y < H; y++)
         for (int x = 0; x < W; x++) {
             size_t i = (size_t)y * W + x;
             int n = atmo_tiles_pixel_samples(&s->tiles, x, y);
@@ -499,25 +514,17 @@ int atmo_session_read(atmo_session *s, float *mean, float *se, int *samples, atm
                                       : FLT_MAX;
             }
         }
-cleanup:
-    free(s2);
-    free(s1);
+    rc = unmap_accumulators(s, s1, s2, rc, e);
+    s->info.seconds_read += atmo_now_seconds() - t0;
     return rc;
 }
 
 int atmo_session_read_sums(atmo_session *s, float *s1, float *s2, int *samples, atmo_err *e)
 {
-    int rc = ATMO_OK, W = s->plan.width, H = s->plan.height;
-    size_t pixels = (size_t)W * (size_t)H;
-    float *a = s1 ? malloc(pixels * 4 * sizeof(float)) : NULL;
-    float *b = s2 ? malloc(pixels * 4 * sizeof(float)) : NULL;
-    if ((s1 && !a) || (s2 && !b)) {
-        rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for a %dx%d image", W, H);
-        goto cleanup;
-    }
-    if ((rc = read_accumulators(s, a, b, e)))
-        goto cleanup;
-    for (int y = 0; y < H; y++)
+    int W = s->plan.width, H = s->plan.height;
+    const float *a, *b;
+    int rc = map_accumulators(s, &a, &b, s2 != NULL, e);
+    for (int y = 0; !rc && y < H; y++)
         for (int x = 0; x < W; x++) {
             size_t i = (size_t)y * W + x;
             if (samples)
@@ -529,10 +536,7 @@ int atmo_session_read_sums(atmo_session *s, float *s1, float *s2, int *samples, 
                     s2[3 * i + c] = b[4 * i + c];
             }
         }
-cleanup:
-    free(b);
-    free(a);
-    return rc;
+    return unmap_accumulators(s, a, b, rc, e);
 }
 
 const atmo_session_info *atmo_session_get_info(const atmo_session *s) { return &s->info; }

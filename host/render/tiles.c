@@ -1,4 +1,16 @@
-/* tiles.c — the tile scheduler (atmo/tiles.h). */
+/* tiles.c — the tile scheduler (atmo/tiles.h).
+ *
+ * A launch is a rectangle of whole tiles that all hold the same number of samples: a run of
+ * consecutive tiles within one tile row, or, from a row's first tile, whole tile rows. Its size
+ * follows one adapted quantity, the work per launch in tile-samples (tiles x samples, where an
+ * edge tile counts by its share of a full tile's pixels): after a launch that did u tile-samples
+ * in m ms, the work that fills the budget is u * budget / m. Under the budget the work grows to
+ * that (at most doubled per launch, since one launch's timing is noisy and the first carries
+ * the driver's one-time compile); over it, it shrinks to that. The work goes to tiles first (up
+ * to every tile, or max_tiles), then to samples per launch (up to max_batch): a launch then
+ * covers as much of the image as the budget allows before any pixel gets a second sample, and
+ * a fast scene needs a few launches per sample pass instead of one per tile. Whole tile rows go
+ * into one launch only where they touch (a part's bands are apart: atmo/tiles.h). */
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/tiles.h"
@@ -52,7 +64,6 @@ int atmo_tiles_init_part(atmo_tiles *t, int width, int height, int size, int par
     t->size = size;
     t->part = part;
     t->parts = parts;
-    t->full_h = parts && ATMO_PART_BAND_ROWS < size ? ATMO_PART_BAND_ROWS : size;
     int rc = tile_rows(t, e);
     if (rc) {
         atmo_tiles_free(t);
@@ -61,6 +72,7 @@ int atmo_tiles_init_part(atmo_tiles *t, int width, int height, int size, int par
     t->columns = (width + size - 1) / size;
     t->count = t->columns * t->rows;
     t->batch = 1;
+    t->group = 1;
     t->samples = calloc((size_t)t->count, sizeof *t->samples);
     if (!t->samples) {
         atmo_tiles_free(t);
@@ -78,6 +90,7 @@ void atmo_tiles_get(const atmo_tiles *t, int index, atmo_tile *tile)
 {
     int row = index / t->columns;
     tile->index = index;
+    tile->tiles_across = tile->tiles_down = 1;
     tile->x = index % t->columns * t->size;
     tile->y = t->row_y[row];
     tile->w = t->width - tile->x < t->size ? t->width - tile->x : t->size;
@@ -102,30 +115,74 @@ void atmo_tiles_reset(atmo_tiles *t)
     t->cursor = 0;
 }
 
+/* 1 when every tile of tile row `row` holds n samples. */
+static int row_holds(const atmo_tiles *t, int row, int n)
+{
+    for (int c = 0; c < t->columns; c++)
+        if (t->samples[row * t->columns + c] != n)
+            return 0;
+    return 1;
+}
+
 int atmo_tiles_next(atmo_tiles *t, int target, atmo_tile *launch)
 {
     for (int k = 0; k < t->count; k++) {
         int i = (t->cursor + k) % t->count;
-        int remaining = target - t->samples[i];
+        int n = t->samples[i], remaining = target - n;
         if (remaining <= 0)
             continue;
-        atmo_tiles_get(t, i, launch);
+        int column = i % t->columns, row = i / t->columns, across = 1, down = 1;
+        int h = t->row_h[row];
+        if (column == 0 && t->group >= t->columns && row_holds(t, row, n)) {
+            int want = t->group / t->columns;
+            while (down < want && row + down < t->rows &&
+                   t->row_y[row + down] == t->row_y[row] + h && row_holds(t, row + down, n))
+                h += t->row_h[row + down++];
+            across = t->columns;
+        }
+        if (across == 1)
+            while (across < t->group && column + across < t->columns &&
+                   t->samples[i + across] == n)
+                across++;
+        launch->index = i;
+        launch->tiles_across = across;
+        launch->tiles_down = down;
+        launch->x = column * t->size;
+        launch->y = t->row_y[row];
+        launch->w = t->width - launch->x < across * t->size ? t->width - launch->x
+                                                              : across * t->size;
+        launch->h = h;
+        launch->sample_begin = n;
         launch->sample_count = t->batch < remaining ? t->batch : remaining;
-        launch->samples = t->samples[i] + launch->sample_count;
+        launch->samples = n + launch->sample_count;
         return 1;
     }
     return 0;
 }
 
-void atmo_tiles_done(atmo_tiles *t, atmo_tile *launch, double ms, double budget_ms, int max_batch)
+void atmo_tiles_done(atmo_tiles *t, atmo_tile *launch, double ms, double budget_ms, int max_batch,
+                     int max_tiles)
 {
-    t->samples[launch->index] = launch->samples;
-    t->cursor = (launch->index + 1) % t->count;
-    if (launch->w != t->size || launch->h != t->full_h)
-        return;
-    double target = (double)launch->sample_count * budget_ms / (ms > 1e-3 ? ms : 1e-3);
-    int next = target > 2.0 * t->batch ? 2 * t->batch : (int)target;
-    t->batch = next < 1 ? 1 : next;
+    int first = launch->index;
+    for (int r = 0; r < launch->tiles_down; r++)
+        for (int c = 0; c < launch->tiles_across; c++)
+            t->samples[first + r * t->columns + c] = launch->samples;
+    int last = first + (launch->tiles_down - 1) * t->columns + launch->tiles_across - 1;
+    t->cursor = (last + 1) % t->count;
+
+    double work = (double)t->group * t->batch;
+    double done = (double)launch->w * launch->h * launch->sample_count /
+                  ((double)t->size * t->size);
+    double fill = done * budget_ms / (ms > 1e-3 ? ms : 1e-3);
+    double next = ms > budget_ms ? fill : fill > 2.0 * work ? 2.0 * work : fill > work ? fill : work;
+    int tiles = max_tiles > 0 && max_tiles < t->count ? max_tiles : t->count;
+    if (next <= tiles) {
+        t->group = next < 1.0 ? 1 : (int)next;
+        t->batch = 1;
+    } else {
+        t->group = tiles;
+        t->batch = (int)(next / tiles);
+    }
     if (max_batch > 0 && t->batch > max_batch)
         t->batch = max_batch;
 }

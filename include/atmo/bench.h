@@ -37,4 +37,9 @@ int bench_colour(const char *dir, const char *device, int quick, atmo_err *e);
  * (host/bench_mie.c). Writes DIR/mie.csv, DIR/mie_table.csv and DIR/mie.svg. */
 int bench_mie(const char *dir, int quick, atmo_err *e);
 
+/* `atmo bench panorama`: whole-process stages of a sky panorama to EXR, warm, new atmosphere
+ * and cold, 512x256 to 4096x2048 (host/bench/bench_panorama.c). Writes DIR/panorama.csv and
+ * DIR/panorama.svg. */
+int bench_panorama(const char *dir, const char *device, int quick, atmo_err *e);
+
 #endif

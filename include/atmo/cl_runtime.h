@@ -73,4 +73,10 @@ char *atmo_cl_assemble(const char *prelude, const char *const *fragments, int co
 /* Cache directory (created if missing); returns 0 and fills dir, or -1. */
 int atmo_cache_dir(char *dir, size_t size);
 
+/* PoCL's own cache (the compiled kernels and their work-group functions, which it builds at a
+ * kernel's first launch): POCL_CACHE_DIR when the user set it, else "<atmo_cache_dir>/pocl",
+ * which atmo_cl_open (and every device listing) puts into POCL_CACHE_DIR before the platform is
+ * opened, so both caches live in one place. Returns 0 and fills dir, or -1 (no cache dir). */
+int atmo_cl_driver_cache_dir(char *dir, size_t size);
+
 #endif

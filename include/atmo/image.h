@@ -7,8 +7,9 @@
  *         curve; kernels/post/tonemap.h); the description goes into tEXt chunks.
  *   .hdr  Radiance RGBE of the linear values (shared 8-bit exponent: relative precision 2^-8 of
  *         the pixel's largest channel); the description goes into header comment lines.
- *   .exr  OpenEXR, scanline, PIZ, 32-bit float R, G, B: the linear values exactly, plus the
- *         image's extra layers (below); the description goes into string attributes.
+ *   .exr  OpenEXR, scanline, 32-bit float R, G, B: the linear values exactly, plus the image's
+ *         extra layers (below), in a lossless compression (meta's exr_compression; chunks
+ *         compressed on every processor); the description goes into string attributes.
  *   .pfm  Portable float map, little-endian float32, bottom row first: exact, no metadata.
  * Files are written atomically (include/atmo/fileio.h): complete, or absent.
  *
@@ -62,7 +63,16 @@ typedef struct atmo_image_meta {
      * name, value in attributes[2 k], attributes[2 k + 1] (may be NULL). */
     const char *const *attributes;
     int attribute_count;
+    int exr_compression;      /* ATMO_EXR_* (lossless codecs); 0 = ATMO_EXR_DEFAULT */
 } atmo_image_meta;
+
+/* EXR compression, all lossless for 32-bit floats. ATMO_EXR_DEFAULT is the one chosen by
+ * measurement (image_exr.c's header has the numbers). */
+enum { ATMO_EXR_DEFAULT, ATMO_EXR_NONE, ATMO_EXR_RLE, ATMO_EXR_ZIPS, ATMO_EXR_ZIP, ATMO_EXR_PIZ };
+/* ATMO_EXR_* of "none", "rle", "zips", "zip", "piz" or "default"; -1 for another name. */
+int atmo_exr_compression_from_name(const char *name);
+/* The name of an ATMO_EXR_* ("default" resolved to the codec it stands for). */
+const char *atmo_exr_compression_name(int compression);
 
 enum { ATMO_IMAGE_PNG, ATMO_IMAGE_HDR, ATMO_IMAGE_EXR, ATMO_IMAGE_PFM };
 

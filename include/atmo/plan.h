@@ -69,7 +69,7 @@ typedef struct atmo_plan {
     atmo_plan_pass passes[ATMO_PLAN_MAX_PASSES];
     int pass_count;
     int cache_luts;                /* disk cache of precomputed buffers: 0 off, 1 those whose
-                                      passes took > 0.5 s, 2 all */
+                                      passes took > 20 ms, 2 all */
     int cache_tables;              /* host tables built while planning (Mie phase tables) go
                                       through the disk cache: 0 off, 1 on */
     void *owned[ATMO_PLAN_MAX_OWNED]; /* heap blocks the host tables live in (atmo_plan_own) */

@@ -25,6 +25,7 @@ typedef struct atmo_render_result {
     int kernel_cache_hit;
     int lut_cache_hit;
     double seconds_device, seconds_build, seconds_precompute, seconds_render;
+    double seconds_read;       /* the mean read back from the device (atmo_session_read) */
     char device_name[256], platform_name[256], driver_version[128];
 } atmo_render_result;
 

@@ -41,6 +41,8 @@ typedef struct atmo_render_settings {
     int tile_size;             /* pixels, > 0 */
     double launch_budget_ms;   /* > 0 */
     int max_batch;             /* upper bound on samples per launch (0 = no bound; tests use it) */
+    int max_tiles;             /* upper bound on tiles per launch (0 = no bound, 1 = a launch
+                                  per tile, as the tests of per-tile launches want) */
     int progress;              /* 0 none, 1 plain lines, 2 terminal bar */
     const char *dump_dir;      /* --dump-kernels DIR */
     int use_kernel_cache;
@@ -81,6 +83,7 @@ typedef struct atmo_session_info {
     char device_name[256], platform_name[256], driver_version[128];
     int kernel_cache_hit, lut_cache_hit;
     double seconds_device, seconds_build, seconds_precompute, seconds_render;
+    double seconds_read; /* in atmo_session_read, summed */
     int launches;
     unsigned nonfinite; /* dropped non-finite samples since the last restart (should be 0) */
 } atmo_session_info;

@@ -1,15 +1,16 @@
-/* tiles.h — the tile scheduler of a render session: which tile gets the next launch, and how
+/* tiles.h — the tile scheduler of a render session: which tiles get the next launch, and how
  * many samples.
  *
- * The image is cut into square tiles of one size (the last column and row partial). Samples are
- * added in round-robin passes over the tiles: the next launch goes to the first tile at or after
- * the cursor that has fewer samples than the target, so every tile gets a batch before any gets
- * a second. The batch (samples per launch) adapts so that a launch of a full tile takes about
- * the launch budget: after each full-tile launch of c samples that took m ms it becomes
- * c * budget / m, at most doubled and at least 1 (edge tiles are cheaper and would overshoot,
- * so their timings are not used). The scheduler holds the per-tile sample counts; it never
- * touches the device, so the split of samples into launches is its only effect on the image,
- * and the kernel makes that split invisible (sums in sample order).
+ * The image is cut into square tiles of one size (the last column and row partial), the unit
+ * of the sample counts. Samples are added in round-robin passes over the tiles: the next launch
+ * starts at the first tile at or after the cursor that has fewer samples than the target, so
+ * every tile gets a batch before any gets a second. One launch covers several tiles when tiles
+ * are cheap: a rectangle of tiles that hold the same sample count (a run within a tile row, or
+ * whole tile rows from a row's first tile). How many tiles and how many samples per launch
+ * follow one adapted quantity, the work per launch, so that a launch takes about the launch
+ * budget (tiles.c says how). The scheduler holds the per-tile sample counts; it never touches
+ * the device, so the split of samples into launches is its only effect on the image, and the
+ * kernel makes that split invisible (sums in sample order).
  *
  * Parts. A render can be split into `parts` pieces that separate processes render and
  * `atmo merge` joins (atmo/part.h): the image's rows are cut into bands of ATMO_PART_BAND_ROWS
@@ -20,19 +21,22 @@
  * bands spreads the costly rows (the horizon, the ground, the sun) over all parts. A band is
  * the session's local size high (8), so every tile is still whole work-groups high; on the
  * scenes of docs/notes/split_render.md 8-row bands balance 4 parts within a few per cent of a
- * split of the sample range, which could not merge bit for bit (atmo/part.h). Pixels outside
- * the part have 0 samples. parts = 0 is the whole image, tiled as above. */
+ * split of the sample range, which could not merge bit for bit (atmo/part.h). A launch spans
+ * several tile rows only where they touch, so a part's launches stay within its bands. Pixels
+ * outside the part have 0 samples. parts = 0 is the whole image, tiled as above. */
 #ifndef ATMO_TILES_H
 #define ATMO_TILES_H
 #include "atmo/status.h"
 
 /* One launch, or a finished one as the session's tile callback sees it. */
 typedef struct atmo_tile {
-    int index;          /* tile number, row-major */
-    int x, y, w, h;     /* rectangle in pixels, row 0 = top */
+    int index;          /* the launch's first tile, row-major */
+    int tiles_across;   /* its tiles: tiles_across columns from index's, */
+    int tiles_down;     /* in tiles_down rows from index's */
+    int x, y, w, h;     /* rectangle in pixels of all its tiles, row 0 = top */
     int sample_begin;   /* first sample index of the launch */
     int sample_count;   /* samples in the launch */
-    int samples;        /* samples per pixel the tile has once the launch is done */
+    int samples;        /* samples per pixel its tiles have once the launch is done */
 } atmo_tile;
 
 #define ATMO_PART_BAND_ROWS 8
@@ -43,10 +47,10 @@ typedef struct atmo_tiles {
     int columns, rows, count;
     int *row_y, *row_h; /* the tile rows: top and height in pixels */
     int *row_of_y;      /* per pixel row: its tile row, -1 outside the part */
-    int full_h;         /* height of a full tile (whose timing adapts the batch) */
     int *samples;       /* per tile */
     int cursor;         /* where the next search starts */
     int batch;          /* samples per launch, adapted */
+    int group;          /* tiles per launch, adapted */
 } atmo_tiles;
 
 int atmo_tiles_init(atmo_tiles *t, int width, int height, int size, atmo_err *e);
@@ -59,13 +63,14 @@ int atmo_part_of_row(int y, int parts);
 /* The rectangle of tile `index` (< t->count) and its samples so far. */
 void atmo_tiles_get(const atmo_tiles *t, int index, atmo_tile *tile);
 void atmo_tiles_free(atmo_tiles *t);
-/* Every tile back to 0 samples and the cursor to tile 0 (the adapted batch stays). */
+/* Every tile back to 0 samples and the cursor to tile 0 (the adapted sizes stay). */
 void atmo_tiles_reset(atmo_tiles *t);
 /* The next launch towards `target` samples per pixel; 0 when every tile has them. */
 int atmo_tiles_next(atmo_tiles *t, int target, atmo_tile *launch);
-/* Record a finished launch that took ms milliseconds; adapt the batch to budget_ms (at most
- * max_batch when max_batch > 0). */
-void atmo_tiles_done(atmo_tiles *t, atmo_tile *launch, double ms, double budget_ms, int max_batch);
+/* Record a finished launch that took ms milliseconds; adapt the tiles and samples per launch
+ * to budget_ms (at most max_tiles tiles and max_batch samples where those are > 0). */
+void atmo_tiles_done(atmo_tiles *t, atmo_tile *launch, double ms, double budget_ms, int max_batch,
+                     int max_tiles);
 /* Samples of the tile that holds pixel (x, y); 0 outside the part. */
 int atmo_tiles_pixel_samples(const atmo_tiles *t, int x, int y);
 /* Fewest and most samples over the tiles. */
