@@ -7,7 +7,7 @@
  * validated; only then is anything written. Any failure is one line naming the file or the
  * part, exit status 2, and no output. The pixels are each copied from the part that rendered
  * them and the mean is atmo_session_read's, so with parts rendered on one device the files
- * equal a single-process render's bit for bit (render_outputs.c writes both). Parts from
+ * equal a single-process render's bit for bit (atmo_outputs_write, host/render/outputs.c, writes both). Parts from
  * different devices merge with a warning: each pixel is then its own device's. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,7 +17,7 @@
 #include "atmo/scene.h"
 #include "commands.h"
 #include "output_paths.h"
-#include "render_outputs.h"
+#include "atmo/outputs.h"
 
 #define MERGE_MAX_PARTS 4096
 #define MERGE_MAX_OUTPUTS 8
@@ -68,7 +68,7 @@ static int merge_parts(const char *const *paths, int n, const char *const *outpu
             }
         atmo_part_mean(&merged, rgb);
         atmo_image img = {.width = merged.width, .height = merged.height, .rgb = rgb};
-        rc = render_outputs_write(&scene, &img, scene.image.samples, 0, ATMO_EXR_DEFAULT, outputs,
+        rc = atmo_outputs_write(&scene, &img, scene.image.samples, 0, ATMO_EXR_DEFAULT, outputs,
                                   n_out, e);
     }
     if (!rc && !quiet)

@@ -32,7 +32,7 @@
 #include "commands.h"
 #include "frames.h"
 #include "output_paths.h"
-#include "render_outputs.h"
+#include "atmo/outputs.h"
 
 #define RENDER_MAX_OUTPUTS 8
 #define RENDER_MAX_SETS 256
@@ -263,7 +263,7 @@ static int render_frame(const atmo_scene *scene_in, atmo_render_settings *rs_in,
     double tw = atmo_now_seconds();
     atmo_image img = {.width = res.width, .height = res.height, .rgb = res.rgb};
     rc = part_file ? atmo_part_write(outputs[0], &part, &e)
-                   : render_outputs_write(&scene, &img, res.samples_min, res.interrupted,
+                   : atmo_outputs_write(&scene, &img, res.samples_min, res.interrupted,
                                           exr_compression, outputs, n_out, &e);
     double seconds_write = atmo_now_seconds() - tw;
     if (!rc && report)

@@ -83,12 +83,15 @@ int frames_add_scene_end(frames_animation *a, const atmo_scene *start, const atm
         double v0[3], v1[3];
         atmo_param_get(start, p, v0);
         atmo_param_get(end, p, v1);
-        int n = p->type == ATMO_PARAM_VEC3 ? 3 : 1, same = 1;
-        for (int c = 0; c < n; c++)
+        int n = atmo_param_components(p), same = 1;
+        for (int c = 0; c < (n > 0 ? n : 1); c++)
             same = same && v0[c] == v1[c];
+        if (p->type == ATMO_PARAM_STRING)
+            same = strcmp(atmo_param_text(start, p), atmo_param_text(end, p)) == 0;
         if (same)
             continue;
-        if (p->type != ATMO_PARAM_FLOAT && p->type != ATMO_PARAM_VEC3)
+        if (p->type != ATMO_PARAM_FLOAT && p->type != ATMO_PARAM_VEC2 &&
+            p->type != ATMO_PARAM_VEC3)
             return atmo_fail(e, ATMO_ERR_USAGE,
                              "%s: %s differs from the start scene, but only float and vector "
                              "keys move linearly; give both scenes the same %s",
@@ -115,6 +118,8 @@ int frames_scene(const frames_animation *a, const atmo_scene *start, int frame, 
             v[c] = (1.0 - t) * key->v0[c] + t * key->v1[c];
         if (key->param->type == ATMO_PARAM_VEC3)
             snprintf(shown, sizeof shown, "%.17g,%.17g,%.17g", v[0], v[1], v[2]);
+        else if (key->param->type == ATMO_PARAM_VEC2)
+            snprintf(shown, sizeof shown, "%.17g,%.17g", v[0], v[1]);
         else
             snprintf(shown, sizeof shown, "%.17g", v[0]);
         int rc = atmo_param_store(out, key->param, v, shown, where, e);

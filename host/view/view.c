@@ -24,6 +24,8 @@
 #include "view_mode.h"
 #include "view_overlay.h"
 #include "view_render_thread.h"
+#include "atmo/outputs.h"
+#include "atmo/outputs.h"
 #include "view_save.h"
 #include "view_script.h"
 #include "view_window.h"
@@ -386,7 +388,7 @@ static int loop(view_app *a, atmo_err *e)
         if (a->state.help)
             overlay(a);
         atmo_post post;
-        view_save_post(&a->state.scene, &post);
+        atmo_outputs_post(&a->state.scene, &post);
         view_window_draw(&a->win, &post, a->overlay.vertices, a->state.help ? a->overlay.count : 0);
         a->redraw = 0;
         if (shoot) {

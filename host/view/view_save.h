@@ -7,14 +7,12 @@
 
 #define VIEW_PATH_MAX 4096
 
-/* The display pipeline of a scene's post settings, with the sun's white point. */
-void view_save_post(const atmo_scene *s, atmo_post *post);
 /* "DIR/NAME.EXT" with counter n: "DIR/NAME-NNN.EXT" for the image and "DIR/NAME-NNN.json" for
  * the scene; ATMO_ERR_USAGE if they do not fit VIEW_PATH_MAX. */
 int view_save_names(const char *base, int n, char image[VIEW_PATH_MAX],
                     char scene[VIEW_PATH_MAX], atmo_err *e);
 /* Write img (a render of `rendered`, samples_min samples per pixel, partial when below the
- * target) through atmo_image_write, with the metadata `atmo render` writes. */
+ * target) through atmo_outputs_write: the files `atmo render` writes. */
 int view_save_image(const char *path, const atmo_image *img, const atmo_scene *rendered,
                     int samples_min, int partial, atmo_err *e);
 

@@ -1,4 +1,4 @@
-/* render_outputs.c — the image files of a render from its mean image (render_outputs.h).
+/* outputs.c — the image files of a render from its mean image (atmo/outputs.h).
  *
  * PNG goes through atmo_post with the scene's post.* settings and the sun's white point
  * (colour.h); the linear formats take the values as they are. Every file carries the same
@@ -7,20 +7,28 @@
  * render is partial. */
 #include <stdio.h>
 #include "atmo/colour.h"
-#include "render_outputs.h"
+#include "atmo/outputs.h"
 
-int render_outputs_write(const atmo_scene *scene, const atmo_image *img, int samples_min,
-                         int partial, int exr_compression, const char *const *outputs, int n,
-                         atmo_err *e)
+void atmo_outputs_post(const atmo_scene *scene, atmo_post *post)
 {
-    int spectral = scene->render.spectral_bands > 0, rc = ATMO_OK;
-    atmo_post post = {(float)scene->post.exposure, scene->post.tonemap,
-                      (float)scene->post.white_point, scene->post.white_balance,
-                      {1.0f, 1.0f, 1.0f}, scene->post.transfer};
     double wp[3];
     atmo_solar_white_point(wp);
+    post->exposure = (float)scene->post.exposure;
+    post->tonemap = scene->post.tonemap;
+    post->white_point = (float)scene->post.white_point;
+    post->white_balance = scene->post.white_balance;
     for (int c = 0; c < 3; c++)
-        post.white_balance_rgb[c] = (float)wp[c];
+        post->white_balance_rgb[c] = (float)wp[c];
+    post->transfer = scene->post.transfer;
+}
+
+int atmo_outputs_write(const atmo_scene *scene, const atmo_image *img, int samples_min,
+                       int partial, int exr_compression, const char *const *outputs, int n,
+                       atmo_err *e)
+{
+    int spectral = scene->render.spectral_bands > 0, rc = ATMO_OK;
+    atmo_post post;
+    atmo_outputs_post(scene, &post);
     int lum = spectral || scene->render.quantity == ATMO_QUANTITY_LUMINANCE;
     char spectral_quantity[96];
     snprintf(spectral_quantity, sizeof spectral_quantity,
