@@ -34,15 +34,23 @@ ATMO_FN float atmosphere_ozone_tent(ATMO_GLOBAL const atmo_gpu_atmosphere *a, fl
     return (a->ozone_top - h) / (a->ozone_top - a->ozone_peak);
 }
 
-/* Extinction coefficient (1/m) at altitude h (m above the ground). */
-ATMO_FN vec3 atmosphere_extinction(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float h)
+/* Extinction coefficient (1/m) at altitude h from the relative densities rayleigh =
+ * e^{-h / H_R} and mie = e^{-h / H_M} there (callers that also need the scattering coefficients
+ * compute the exponentials once). */
+ATMO_FN vec3 atmosphere_extinction_at(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float h,
+                                      float rayleigh, float mie)
 {
-    float rayleigh = expf(-h / a->rayleigh_scale_height);
-    float mie = expf(-h / a->mie_scale_height);
     float ozone = atmosphere_ozone_tent(a, h);
     return v3_add(v3_add(v3_scale(v3_from4(a->rayleigh_scattering), rayleigh),
                          v3_scale(v3_from4(a->mie_extinction), mie)),
                   v3_scale(v3_from4(a->ozone_absorption), ozone));
+}
+
+/* Extinction coefficient (1/m) at altitude h (m above the ground). */
+ATMO_FN vec3 atmosphere_extinction(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float h)
+{
+    return atmosphere_extinction_at(a, h, expf(-h / a->rayleigh_scale_height),
+                                    expf(-h / a->mie_scale_height));
 }
 
 ATMO_FN float atmosphere_texcoord_from_unit(float x, int n)
