@@ -6,10 +6,10 @@
  *
  * Oracles (closed forms in double):
  *  1. fast_acos(x) against acos(x) at 2e6 + 1 float x evenly over [-1, 1] and at the ends:
- *     Abramowitz and Stegun's 4.4.46 is within 2e-8 in exact arithmetic; its float evaluation
- *     (one sqrt, eight multiply-adds, pi - y for x < 0) rounds to a few ulp of pi
- *     (ulp(pi) = 2.4e-7): bound 3 ulp(pi) = 7.2e-7 rad. The library's acosf is measured
- *     beside it for comparison.
+ *     its arcsin polynomial (Cephes' single-precision minimax) is within ~1 ulp; the float
+ *     evaluation (one sqrt, five multiply-adds, pi - 2 q or pi/2 -+ q) rounds to a few ulp of
+ *     the result <= pi (ulp(pi) = 2.4e-7): bound 3 ulp(pi) = 7.2e-7 rad. The library's acosf
+ *     is measured beside it for comparison.
  *  2. medium_segment_weight(sigma, dt, e) with e = expf(-sigma dt) against
  *     (1 - e^{-x}) / sigma in double, x = sigma dt log-spaced over 1e-9 .. 1e3 (200 per
  *     decade) for sigma = 1e-6 and 1e-3 1/m: where x > 0.1 the weight is (1 - e) / sigma,
