@@ -35,13 +35,14 @@ int atmo_plan_lut(const atmo_scene *s, atmo_plan *p, atmo_err *e)
         return rc;
 
     int w = n_nu * n_mu_s;
-    if ((rc = atmo_plan_add_pass(p, "lut_single", w, n_mu, n_r, 1, e)))
+    /* lut_single and lut_multiple: one work item per ray (mu, r) for all its nu x mu_s texels */
+    if ((rc = atmo_plan_add_pass(p, "lut_single", n_mu, n_r, 1, 1, e)))
         return rc;
     for (int n = 2; n <= orders; n++)
         if ((rc = atmo_plan_add_pass(p, "lut_grid", (int)G, n_mu_s, n_r, n - 1, e)) ||
             (rc = atmo_plan_add_pass(p, "lut_irradiance", n_mu_s, n_r, 1, n - 1, e)) ||
             (rc = atmo_plan_add_pass(p, "lut_density", w, n_mu, n_r, n, e)) ||
-            (rc = atmo_plan_add_pass(p, "lut_multiple", w, n_mu, n_r, n, e)))
+            (rc = atmo_plan_add_pass(p, "lut_multiple", n_mu, n_r, 1, n, e)))
             return rc;
     return ATMO_OK;
 }

@@ -25,6 +25,9 @@ static void mie_legendre(const atmo_gpu_atmosphere *a, float *g1, float *g2)
     *g2 = (float)s2;
 }
 
+_Static_assert(ATMO_MS_DIRECTIONS_PHI <= ATMO_MS_MAX_DIRECTIONS_PHI,
+               "the Psi_ms passes keep at most ATMO_MS_MAX_DIRECTIONS_PHI azimuths");
+
 int atmo_plan_ms_lut(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 {
     (void)s;

@@ -7,6 +7,9 @@
 #include "common/compat.h"
 #endif
 
+/* Most azimuths a pass takes (the kernels keep per-azimuth sums in private arrays). */
+#define ATMO_MS_MAX_DIRECTIONS_PHI 16
+
 typedef struct atmo_gpu_ms_lut {
     int width, height;         /* texels: mu_s (x) by altitude (y) */
     int directions_mu;         /* cosine bands of the sphere quadrature */

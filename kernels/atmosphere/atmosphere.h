@@ -34,15 +34,23 @@ ATMO_FN float atmosphere_ozone_tent(ATMO_GLOBAL const atmo_gpu_atmosphere *a, fl
     return (a->ozone_top - h) / (a->ozone_top - a->ozone_peak);
 }
 
-/* Extinction coefficient (1/m) at altitude h (m above the ground). */
-ATMO_FN vec3 atmosphere_extinction(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float h)
+/* Extinction coefficient (1/m) at altitude h from the relative densities rayleigh =
+ * e^{-h / H_R} and mie = e^{-h / H_M} there (callers that also need the scattering coefficients
+ * compute the exponentials once). */
+ATMO_FN vec3 atmosphere_extinction_at(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float h,
+                                      float rayleigh, float mie)
 {
-    float rayleigh = expf(-h / a->rayleigh_scale_height);
-    float mie = expf(-h / a->mie_scale_height);
     float ozone = atmosphere_ozone_tent(a, h);
     return v3_add(v3_add(v3_scale(v3_from4(a->rayleigh_scattering), rayleigh),
                          v3_scale(v3_from4(a->mie_extinction), mie)),
                   v3_scale(v3_from4(a->ozone_absorption), ozone));
+}
+
+/* Extinction coefficient (1/m) at altitude h (m above the ground). */
+ATMO_FN vec3 atmosphere_extinction(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float h)
+{
+    return atmosphere_extinction_at(a, h, expf(-h / a->rayleigh_scale_height),
+                                    expf(-h / a->mie_scale_height));
 }
 
 ATMO_FN float atmosphere_texcoord_from_unit(float x, int n)
@@ -55,9 +63,13 @@ ATMO_FN float atmosphere_unit_from_texcoord(float u, int n)
     return (u - 0.5f / (float)n) / (1.0f - 1.0f / (float)n);
 }
 
-/* (r, mu) -> (u, v) in [0, 1]^2, for rays that do not hit the ground. */
-ATMO_FN void atmosphere_transmittance_uv(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r,
-                                         float mu, int width, int height, float *u, float *v)
+/* (r, mu) -> texel position (x, y) in [0, width - 1] x [0, height - 1] (texel centres at whole
+ * positions: x = u width - 1/2 of the (u, v) below), for rays that do not hit the ground. The
+ * lookups take positions directly, which spares the four divisions of the round trip through
+ * (u, v). */
+ATMO_FN void atmosphere_transmittance_position(ATMO_GLOBAL const atmo_gpu_atmosphere *a,
+                                               float r, float mu, int width, int height,
+                                               float *x, float *y)
 {
     float H = sqrtf((a->top_radius - a->bottom_radius) * (a->top_radius + a->bottom_radius));
     float rho = atmo_safe_sqrt((r - a->bottom_radius) * (r + a->bottom_radius));
@@ -65,8 +77,18 @@ ATMO_FN void atmosphere_transmittance_uv(ATMO_GLOBAL const atmo_gpu_atmosphere *
     float d_min = a->top_radius - r;
     float d_max = rho + H;
     float x_mu = d_max > d_min ? clamp((d - d_min) / (d_max - d_min), 0.0f, 1.0f) : 0.0f;
-    *u = atmosphere_texcoord_from_unit(1.0f - sqrtf(1.0f - x_mu), width);
-    *v = atmosphere_texcoord_from_unit(clamp(rho / H, 0.0f, 1.0f), height);
+    *x = (1.0f - sqrtf(1.0f - x_mu)) * (float)(width - 1);
+    *y = clamp(rho / H, 0.0f, 1.0f) * (float)(height - 1);
+}
+
+/* (r, mu) -> (u, v) in [0, 1]^2, for rays that do not hit the ground. */
+ATMO_FN void atmosphere_transmittance_uv(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r,
+                                         float mu, int width, int height, float *u, float *v)
+{
+    float x, y;
+    atmosphere_transmittance_position(a, r, mu, width, height, &x, &y);
+    *u = (x + 0.5f) / (float)width;
+    *v = (y + 0.5f) / (float)height;
 }
 
 /* (u, v) -> (r, mu): the inverse, used to place the LUT's texels. */
@@ -85,13 +107,13 @@ ATMO_FN void atmosphere_transmittance_r_mu(ATMO_GLOBAL const atmo_gpu_atmosphere
     *mu = d == 0.0f ? 1.0f : atmo_clamp_cos((H * H - rho * rho - d * d) / (2.0f * *r * d));
 }
 
-/* Bilinear fetch from a float4 LUT of width x height at (u, v) in [0, 1]^2 (texel centres at
- * (i + 0.5) / n; clamped at the edges). */
-ATMO_FN vec3 atmosphere_lut_bilinear(ATMO_GLOBAL const float4 *lut, int width, int height,
-                                     float u, float v)
+/* Bilinear fetch from a float4 LUT of width x height at the texel position (x, y) (texel
+ * centres at whole positions; clamped at the edges). */
+ATMO_FN vec3 atmosphere_lut_bilinear_at(ATMO_GLOBAL const float4 *lut, int width, int height,
+                                        float x, float y)
 {
-    float x = clamp(u * (float)width - 0.5f, 0.0f, (float)(width - 1));
-    float y = clamp(v * (float)height - 0.5f, 0.0f, (float)(height - 1));
+    x = clamp(x, 0.0f, (float)(width - 1));
+    y = clamp(y, 0.0f, (float)(height - 1));
     int x0 = (int)x, y0 = (int)y;
     int x1 = x0 + 1 < width ? x0 + 1 : x0;
     int y1 = y0 + 1 < height ? y0 + 1 : y0;
@@ -103,15 +125,23 @@ ATMO_FN vec3 atmosphere_lut_bilinear(ATMO_GLOBAL const float4 *lut, int width, i
     return v3_add(v3_scale(top, 1.0f - fy), v3_scale(bottom, fy));
 }
 
+/* The same at (u, v) in [0, 1]^2 (texel centres at (i + 0.5) / n). */
+ATMO_FN vec3 atmosphere_lut_bilinear(ATMO_GLOBAL const float4 *lut, int width, int height,
+                                     float u, float v)
+{
+    return atmosphere_lut_bilinear_at(lut, width, height, u * (float)width - 0.5f,
+                                      v * (float)height - 0.5f);
+}
+
 /* Transmittance from radius r to the top of the atmosphere along mu (a ray that does not hit the
  * ground), from the LUT of optical depths. */
 ATMO_FN vec3 atmosphere_transmittance_to_top(ATMO_GLOBAL const atmo_gpu_atmosphere *a,
                                              ATMO_GLOBAL const float4 *lut, int width,
                                              int height, float r, float mu)
 {
-    float u, v;
-    atmosphere_transmittance_uv(a, r, mu, width, height, &u, &v);
-    return v3_exp(v3_scale(atmosphere_lut_bilinear(lut, width, height, u, v), -1.0f));
+    float x, y;
+    atmosphere_transmittance_position(a, r, mu, width, height, &x, &y);
+    return v3_exp(v3_scale(atmosphere_lut_bilinear_at(lut, width, height, x, y), -1.0f));
 }
 
 /* Transmittance to the sun from radius r with sun cosine mu_s: zero when the planet hides the

@@ -57,7 +57,11 @@ float lut_mean_density(float h, float dh, float dt, float H)
         float lo = fmax(h - ay * H, 0.0f), hi = h + ay * H;
         return H * (exp(-lo / H) - exp(-hi / H)) / (hi - lo);
     }
-    return exp(-h / H) * (ay > 1e-3f ? sinh(y) / y : 1.0f + y * y / 6.0f);
+    if (ay < 0.1f) /* sinh(y) / y by its series (truncation y^6 / 5040 < 2e-10) */
+        return exp(-h / H) * (1.0f + y * y / 6.0f * (1.0f + y * y / 20.0f));
+    /* (e^{y - h/H} - e^{-y - h/H}) / (2 y): two exps cost less than PoCL's sinh (Sleef),
+     * measured ~2.5 exps, and lose at most ~6e-8 / (2 |y|) <= 3e-7 relative to cancellation */
+    return (exp(y - h / H) - exp(-y - h / H)) / (2.0f * y);
 }
 
 /* Mean extinction over such a segment (the ozone tent is linear in h: its midpoint value). */
@@ -87,45 +91,90 @@ int lut_this_texel(__global const atmo_gpu_atmosphere *a, __global const int *di
     return 1;
 }
 
+/* Segments whose media a work item keeps at once (lut_single, lut_multiple): a ray's densities,
+ * extinction and weights depend on its (r, mu) only, so one work item per (r, mu) computes them
+ * once per segment and reuses them for all n_nu x n_mu_s texels of that ray, which differ only
+ * in the sun (its transmittance, the density J's sun cosine). */
+#define LUT_CHUNK 16
+
+/* This work item's ray of the 4-D tables: (r, mu, ground) of texels (., y = its mu, z = its r),
+ * and the first index of their n_nu x n_mu_s texels; 0 for the padding items. */
+int lut_this_ray(__global const atmo_gpu_atmosphere *a, __global const int *dims, int *first,
+                 float *r, float *mu, int *ground)
+{
+    int y = get_global_id(0), z = get_global_id(1);
+    if (y >= dims[2] || z >= dims[3])
+        return 0;
+    *r = lut_r_at(a, (float)z, dims[3]);
+    *mu = lut_mu_at(a, *r, (float)y, dims[2], ground);
+    *first = (z * dims[2] + y) * dims[0] * dims[1];
+    return 1;
+}
+
 __kernel void lut_single(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, int arg)
 {
     __global const atmo_gpu_atmosphere *a = &s->atmosphere;
     __global const int *dims = s->lut.dims;
-    int x = get_global_id(0), z = get_global_id(2), n_mu_s = dims[1], idx, ground;
-    float r, mu, mu_s, nu;
-    if (!lut_this_texel(a, dims, &idx, &r, &mu, &mu_s, &nu, &ground))
+    int n_nu = dims[0], n_mu_s = dims[1], first, ground;
+    float r, mu;
+    if (!lut_this_ray(a, dims, &first, &r, &mu, &ground))
         return;
-    int N = LUT_TEXELS(dims);
+    int N = LUT_TEXELS(dims), texels = n_nu * n_mu_s;
     int n = s->lut.steps;
     float dt = lut_ray_length(a, r, mu, ground) / (float)n;
-    float3 beta_r = a->rayleigh_scattering.xyz, beta_m = a->mie_scattering.xyz;
-    float3 T = (float3)(1.0f), S_r = (float3)(0.0f), S_m = (float3)(0.0f);
-    for (int i = 0; i < n; i++) {
-        float t = ((float)i + 0.5f) * dt;
-        float r_t = geometry_radius_at(r, mu, t);
-        float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
-        float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
-        float mu_t = atmo_clamp_cos((r * mu + t) / r_t);
-        float rayleigh = lut_mean_density(h, mu_t, dt, a->rayleigh_scale_height);
-        float mie = lut_mean_density(h, mu_t, dt, a->mie_scale_height);
-        float3 sigma_t = a->rayleigh_scattering.xyz * rayleigh + a->mie_extinction.xyz * mie +
-                         a->ozone_absorption.xyz * atmosphere_ozone_tent(a, h);
-        float3 e = exp(-sigma_t * dt);
-        float3 lit = T * lut_weights(sigma_t, dt, e) *
-                     atmosphere_sun_transmittance(a, transmittance_lut, s->transmittance_width,
-                                                  s->transmittance_height, r_t, mu_s_t);
-        S_r += lit * rayleigh;
-        S_m += lit * mie;
-        T *= e;
-    }
     float3 E = a->solar_irradiance.xyz;
-    scattering_rayleigh[idx] = (float4)(E * beta_r * S_r, 0.0f);
-    scattering_rayleigh[N + idx] = (float4)(0.0f); /* multiple scattering: orders >= 2 add to it */
-    scattering_mie[idx] = (float4)(E * beta_m * S_m, 0.0f);
-    scattering_mie[LUT_DENSITY_SUM(dims) + idx] = (float4)(0.0f); /* orders >= 2 add to it */
-    /* once per (r, mu_s): clear the total indirect irradiance */
-    if (get_global_id(1) == 0 && x < n_mu_s)
-        scattering_mie[N + z * n_mu_s + x] = (float4)(0.0f);
+    float3 beta_r = E * a->rayleigh_scattering.xyz, beta_m = E * a->mie_scattering.xyz;
+    float3 T = (float3)(1.0f);
+    float ts[LUT_CHUNK], rs[LUT_CHUNK];
+    float3 lit_r[LUT_CHUNK], lit_m[LUT_CHUNK];
+    for (int c0 = 0; c0 < n; c0 += LUT_CHUNK) {
+        int m = n - c0 < LUT_CHUNK ? n - c0 : LUT_CHUNK;
+        for (int i = 0; i < m; i++) {
+            float t = ((float)(c0 + i) + 0.5f) * dt;
+            float r_t = geometry_radius_at(r, mu, t);
+            float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
+            float mu_t = atmo_clamp_cos((r * mu + t) / r_t);
+            float rayleigh = lut_mean_density(h, mu_t, dt, a->rayleigh_scale_height);
+            float mie = lut_mean_density(h, mu_t, dt, a->mie_scale_height);
+            float3 sigma_t = a->rayleigh_scattering.xyz * rayleigh + a->mie_extinction.xyz * mie +
+                             a->ozone_absorption.xyz * atmosphere_ozone_tent(a, h);
+            float3 e = exp(-sigma_t * dt);
+            float3 tw = T * lut_weights(sigma_t, dt, e);
+            ts[i] = t;
+            rs[i] = r_t;
+            lit_r[i] = tw * rayleigh * beta_r;
+            lit_m[i] = tw * mie * beta_m;
+            T *= e;
+        }
+        for (int x = 0; x < texels; x++) {
+            float mu_s = lut_mu_s_at(a, (float)(x % n_mu_s), n_mu_s);
+            float nu = lut_nu_at((float)(x / n_mu_s), n_nu, mu, mu_s);
+            float3 S_r = (float3)(0.0f), S_m = (float3)(0.0f);
+            for (int i = 0; i < m; i++) {
+                float mu_s_t = atmo_clamp_cos((r * mu_s + ts[i] * nu) / rs[i]);
+                float3 sun = atmosphere_sun_transmittance(a, transmittance_lut,
+                                                          s->transmittance_width,
+                                                          s->transmittance_height, rs[i], mu_s_t);
+                S_r += lit_r[i] * sun;
+                S_m += lit_m[i] * sun;
+            }
+            int idx = first + x;
+            if (c0 > 0) {
+                S_r += scattering_rayleigh[idx].xyz;
+                S_m += scattering_mie[idx].xyz;
+            }
+            scattering_rayleigh[idx] = (float4)(S_r, 0.0f);
+            scattering_mie[idx] = (float4)(S_m, 0.0f);
+        }
+    }
+    for (int x = 0; x < texels; x++) { /* orders >= 2 add to these */
+        scattering_rayleigh[N + first + x] = (float4)(0.0f);
+        scattering_mie[LUT_DENSITY_SUM(dims) + first + x] = (float4)(0.0f);
+    }
+    /* once per r: clear the total indirect irradiance of its (r, mu_s) cells */
+    if (get_global_id(0) == 0)
+        for (int x = 0; x < n_mu_s; x++)
+            scattering_mie[N + get_global_id(1) * n_mu_s + x] = (float4)(0.0f);
 }
 
 __kernel void lut_grid(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, int k)
@@ -221,27 +270,71 @@ __kernel void lut_multiple(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS
 {
     __global const atmo_gpu_atmosphere *a = &s->atmosphere;
     __global const int *dims = s->lut.dims;
-    int idx, ground;
-    float r, mu, mu_s, nu;
-    if (!lut_this_texel(a, dims, &idx, &r, &mu, &mu_s, &nu, &ground))
+    int n_nu = dims[0], n_mu_s = dims[1], first, ground;
+    float r, mu;
+    if (!lut_this_ray(a, dims, &first, &r, &mu, &ground))
         return;
-    int N = LUT_TEXELS(dims);
+    int N = LUT_TEXELS(dims), texels = n_nu * n_mu_s;
     int n = s->lut.steps;
     float dt = lut_ray_length(a, r, mu, ground) / (float)n;
-    float3 T = (float3)(1.0f), L = (float3)(0.0f);
-    for (int i = 0; i < n; i++) {
-        float t = ((float)i + 0.5f) * dt;
-        float r_t = geometry_radius_at(r, mu, t);
-        float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
-        float mu_t = atmo_clamp_cos((r * mu + t) / r_t);
-        float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
-        float3 sigma_t = lut_mean_extinction(a, h, mu_t, dt);
-        float3 J =
-            lut_scattering_lookup(a, scattering_scratch + N, dims, r_t, mu_t, mu_s_t, nu, ground);
-        float3 e = exp(-sigma_t * dt);
-        L += T * J * lut_weights(sigma_t, dt, e);
-        T *= e;
+    __global const float4 *J = scattering_scratch + N;
+    float3 T = (float3)(1.0f);
+    int n_mu = dims[2], n_r = dims[3], slab = n_nu * n_mu_s;
+    float ts[LUT_CHUNK], inv_r[LUT_CHUNK];
+    float3 tw[LUT_CHUNK];
+    /* the four (r, mu) corners of each segment's quadrilinear lookup in J (lut_scattering_fetch
+     * with its sums regrouped): their first index and weight */
+    int rows[LUT_CHUNK][4];
+    float w_rm[LUT_CHUNK][4];
+    for (int c0 = 0; c0 < n; c0 += LUT_CHUNK) {
+        int m = n - c0 < LUT_CHUNK ? n - c0 : LUT_CHUNK;
+        for (int i = 0; i < m; i++) {
+            float t = ((float)(c0 + i) + 0.5f) * dt;
+            float r_t = geometry_radius_at(r, mu, t);
+            float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
+            float mu_t = atmo_clamp_cos((r * mu + t) / r_t);
+            float3 sigma_t = lut_mean_extinction(a, h, mu_t, dt);
+            float3 e = exp(-sigma_t * dt);
+            ts[i] = t;
+            inv_r[i] = 1.0f / r_t;
+            float f_mu, f_r;
+            int upper = !ground; /* the ray stays on its side of the horizon */
+            int i_mu = lut_cell(lut_mu_position(a, r_t, mu_t, ground, n_mu),
+                                upper ? n_mu / 2 : 0, upper ? n_mu - 1 : n_mu / 2 - 1, &f_mu);
+            int i_r = lut_cell(lut_r_position(a, r_t, n_r), 0, n_r - 1, &f_r);
+            for (int c = 0; c < 4; c++) {
+                int b_mu = c & 1, b_r = c >> 1;
+                rows[i][c] = ((i_r + b_r) * n_mu + i_mu + b_mu) * slab;
+                w_rm[i][c] = (b_mu ? f_mu : 1.0f - f_mu) * (b_r ? f_r : 1.0f - f_r);
+            }
+            tw[i] = T * lut_weights(sigma_t, dt, e);
+            T *= e;
+        }
+        for (int x = 0; x < texels; x++) {
+            float mu_s = lut_mu_s_at(a, (float)(x % n_mu_s), n_mu_s);
+            float nu = lut_nu_at((float)(x / n_mu_s), n_nu, mu, mu_s);
+            float f_nu, f_mu_s;
+            int o_nu = lut_cell(lut_nu_position(nu, n_nu), 0, n_nu - 1, &f_nu) * n_mu_s;
+            float3 L = (float3)(0.0f);
+            for (int i = 0; i < m; i++) {
+                float mu_s_t = atmo_clamp_cos((r * mu_s + ts[i] * nu) * inv_r[i]);
+                int i_mu_s = lut_cell(lut_mu_s_position(a, mu_s_t, n_mu_s), 0, n_mu_s - 1,
+                                      &f_mu_s);
+                float3 j = (float3)(0.0f);
+                for (int c = 0; c < 4; c++) {
+                    __global const float4 *q = J + rows[i][c] + o_nu + i_mu_s;
+                    float3 near = mix(q[0].xyz, q[1].xyz, f_mu_s);
+                    float3 far = mix(q[n_mu_s].xyz, q[n_mu_s + 1].xyz, f_mu_s);
+                    j += w_rm[i][c] * mix(near, far, f_nu);
+                }
+                L += tw[i] * j;
+            }
+            int idx = first + x;
+            if (c0 > 0)
+                L += scattering_scratch[idx].xyz;
+            scattering_scratch[idx] = (float4)(L, 0.0f);
+        }
     }
-    scattering_scratch[idx] = (float4)(L, 0.0f);
-    scattering_rayleigh[N + idx] += (float4)(L, 0.0f);
+    for (int x = 0; x < texels; x++)
+        scattering_rayleigh[N + first + x] += scattering_scratch[first + x];
 }

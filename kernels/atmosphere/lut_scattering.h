@@ -249,9 +249,9 @@ ATMO_FN vec3 lut_tau_to_top(ATMO_GLOBAL const atmo_gpu_scene *s,
                               ATMO_GLOBAL const float4 *transmittance, float r, float mu)
 {
     int w = s->transmittance_width, h = s->transmittance_height;
-    float u, v;
-    atmosphere_transmittance_uv(&s->atmosphere, r, mu, w, h, &u, &v);
-    return atmosphere_lut_bilinear(transmittance, w, h, u, v);
+    float x, y;
+    atmosphere_transmittance_position(&s->atmosphere, r, mu, w, h, &x, &y);
+    return atmosphere_lut_bilinear_at(transmittance, w, h, x, y);
 }
 
 /* Transmittance from r along mu to the point at distance d, radius r_d, view cosine mu_d there

@@ -144,6 +144,39 @@ ATMO_FN float4 ms_float4(vec3 v, float w)
     return out;
 }
 
+/* The four texels and weights of a bilinear lookup at (u, v), shared by the planes a source
+ * reads at one place (the arithmetic of atmosphere_lut_bilinear). */
+typedef struct ms_taps {
+    int i00, i10, i01, i11;
+    float fx, fy;
+} ms_taps;
+
+ATMO_FN ms_taps ms_lut_taps(int width, int height, float u, float v)
+{
+    ms_taps t;
+    float x = clamp(u * (float)width - 0.5f, 0.0f, (float)(width - 1));
+    float y = clamp(v * (float)height - 0.5f, 0.0f, (float)(height - 1));
+    int x0 = (int)x, y0 = (int)y;
+    int x1 = x0 + 1 < width ? x0 + 1 : x0;
+    int y1 = y0 + 1 < height ? y0 + 1 : y0;
+    t.fx = x - (float)x0;
+    t.fy = y - (float)y0;
+    t.i00 = y0 * width + x0;
+    t.i10 = y0 * width + x1;
+    t.i01 = y1 * width + x0;
+    t.i11 = y1 * width + x1;
+    return t;
+}
+
+ATMO_FN vec3 ms_lut_fetch(ATMO_GLOBAL const float4 *plane, const ms_taps *t)
+{
+    vec3 top = v3_add(v3_scale(v3_from4(plane[t->i00]), 1.0f - t->fx),
+                      v3_scale(v3_from4(plane[t->i10]), t->fx));
+    vec3 bottom = v3_add(v3_scale(v3_from4(plane[t->i01]), 1.0f - t->fx),
+                         v3_scale(v3_from4(plane[t->i11]), t->fx));
+    return v3_add(v3_scale(top, 1.0f - t->fy), v3_scale(bottom, t->fy));
+}
+
 /* The source J = sigma_R (Psi + v^T D v) + sigma_M (Psi + 3 g_1 b.v + 10 g_2 v^T D v) toward
  * the view direction v (radius r, view cosine mu, sun cosine mu_s, view-sun cosine nu: v is the
  * direction a camera looks along, so light arriving from v scatters forward into it) with Psi
@@ -159,12 +192,13 @@ ATMO_FN vec3 ms_lut_source_planes(ATMO_GLOBAL const atmo_gpu_scene *s,
     float u, v;
     int n = width * height;
     ms_lut_uv(&s->atmosphere, r, mu_s, width, height, &u, &v);
-    vec3 psi = atmosphere_lut_bilinear(psi_plane, width, height, u, v);
-    vec3 d_uu = atmosphere_lut_bilinear(aniso, width, height, u, v);
-    vec3 d_ss = atmosphere_lut_bilinear(aniso + n, width, height, u, v);
-    vec3 d_us = atmosphere_lut_bilinear(aniso + 2 * n, width, height, u, v);
-    vec3 b_u = atmosphere_lut_bilinear(aniso + 3 * n, width, height, u, v);
-    vec3 b_s = atmosphere_lut_bilinear(aniso + 4 * n, width, height, u, v);
+    ms_taps taps = ms_lut_taps(width, height, u, v);
+    vec3 psi = ms_lut_fetch(psi_plane, &taps);
+    vec3 d_uu = ms_lut_fetch(aniso, &taps);
+    vec3 d_ss = ms_lut_fetch(aniso + n, &taps);
+    vec3 d_us = ms_lut_fetch(aniso + 2 * n, &taps);
+    vec3 b_u = ms_lut_fetch(aniso + 3 * n, &taps);
+    vec3 b_s = ms_lut_fetch(aniso + 4 * n, &taps);
     float sin_s = atmo_safe_sqrt(1.0f - mu_s * mu_s), across = 1.0f - mu * mu;
     /* the sun-ward component is undefined with the sun at the zenith, where D_ss = D_pp and
      * b_s = 0 */
@@ -269,64 +303,76 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     int tw = s->transmittance_width, th = s->transmittance_height;
     vec3 E = v3_from4(a->solar_irradiance);
-    vec3 beta_r = v3_from4(a->rayleigh_scattering), beta_m = v3_from4(a->mie_scattering);
+    vec3 beta_r = v3_mul(v3_from4(a->rayleigh_scattering), E);
+    vec3 beta_m = v3_mul(v3_from4(a->mie_scattering), E);
     vec3 albedo = v3_from4(a->ground_albedo);
     float sin_s = atmo_safe_sqrt(1.0f - mu_s * mu_s);
-    vec3 mie_absorption = v3_sub(v3_from4(a->mie_extinction), beta_m);
+    vec3 mie_absorption = v3_sub(v3_from4(a->mie_extinction), v3_from4(a->mie_scattering));
     vec3 ozone_absorption = v3_from4(a->ozone_absorption);
     vec3 escape = v3(0.0f, 0.0f, 0.0f), zero = v3(0.0f, 0.0f, 0.0f);
     ms_moments mom = {zero, zero, zero, zero, zero, zero, zero, 0.0f};
     float mu_h = -atmo_safe_sqrt((r - a->bottom_radius) * (r + a->bottom_radius)) / r;
+    n_phi = n_phi < ATMO_MS_MAX_DIRECTIONS_PHI ? n_phi : ATMO_MS_MAX_DIRECTIONS_PHI;
+    float cos_phi[ATMO_MS_MAX_DIRECTIONS_PHI], nu[ATMO_MS_MAX_DIRECTIONS_PHI];
+    float p_r[ATMO_MS_MAX_DIRECTIONS_PHI], p_m[ATMO_MS_MAX_DIRECTIONS_PHI];
+    vec3 L1[ATMO_MS_MAX_DIRECTIONS_PHI];
+    for (int l = 0; l < n_phi; l++)
+        cos_phi[l] = cosf(ATMO_PI * ((float)l + 0.5f) / (float)n_phi);
     for (int k = 0; k < n_mu; k++) {
         float u, mu = ms_band(k, n_mu, mu_h, &u);
-        int up = k >= n_mu / 2;
+        int hits_ground = k < n_mu / 2;
         float sin_v = atmo_safe_sqrt(1.0f - mu * mu);
-        int hits_ground = !up;
         float d = hits_ground ? geometry_distance_to_bottom(r, mu, a->bottom_radius)
                               : geometry_distance_to_top(r, mu, a->top_radius);
         for (int l = 0; l < n_phi; l++) {
-            float phi = ATMO_PI * ((float)l + 0.5f) / (float)n_phi;
-            float nu = atmo_clamp_cos(mu * mu_s + sin_v * sin_s * cosf(phi));
-            vec3 L1 = v3(0.0f, 0.0f, 0.0f), absorbed = v3(0.0f, 0.0f, 0.0f);
-            float p_r = phase_rayleigh(nu), p_m = media_mie_phase(a, nu);
-            vec3 T = v3(1.0f, 1.0f, 1.0f);
-            for (int i = 0; i < n_steps; i++) {
-                /* segments grow as (i/n)^2: short near x, where the density changes
-                 * fastest along rays that start low (most of the light) */
-                float t0 = d * atmo_sq((float)i / (float)n_steps);
-                float t1 = d * atmo_sq((float)(i + 1) / (float)n_steps);
-                float dt = t1 - t0, t = d * atmo_sq(((float)i + 0.5f) / (float)n_steps);
-                float r_t = geometry_radius_at(r, mu, t);
-                float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
-                float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
-                float rho_r = expf(-h / a->rayleigh_scale_height);
-                float rho_m = expf(-h / a->mie_scale_height);
-                vec3 sigma_t = atmosphere_extinction(a, h);
-                vec3 sigma_abs = v3_add(v3_scale(mie_absorption, rho_m),
-                                        v3_scale(ozone_absorption, atmosphere_ozone_tent(a, h)));
-                vec3 scattering = v3_add(v3_scale(beta_r, rho_r * p_r),
-                                         v3_scale(beta_m, rho_m * p_m));
+            nu[l] = atmo_clamp_cos(mu * mu_s + sin_v * sin_s * cos_phi[l]);
+            p_r[l] = phase_rayleigh(nu[l]);
+            p_m[l] = media_mie_phase(a, nu[l]);
+            L1[l] = zero;
+        }
+        /* the densities, extinction and segment weights along the band's rays do not depend
+         * on the azimuth: computed once per segment, the sun's transmittance per azimuth */
+        vec3 T = v3(1.0f, 1.0f, 1.0f), absorbed = zero;
+        for (int i = 0; i < n_steps; i++) {
+            /* segments grow as (i/n)^2: short near x, where the density changes
+             * fastest along rays that start low (most of the light) */
+            float t0 = d * atmo_sq((float)i / (float)n_steps);
+            float t1 = d * atmo_sq((float)(i + 1) / (float)n_steps);
+            float dt = t1 - t0, t = d * atmo_sq(((float)i + 0.5f) / (float)n_steps);
+            float r_t = geometry_radius_at(r, mu, t);
+            float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
+            float rho_r = expf(-h / a->rayleigh_scale_height);
+            float rho_m = expf(-h / a->mie_scale_height);
+            vec3 sigma_t = atmosphere_extinction_at(a, h, rho_r, rho_m);
+            vec3 sigma_abs = v3_add(v3_scale(mie_absorption, rho_m),
+                                    v3_scale(ozone_absorption, atmosphere_ozone_tent(a, h)));
+            vec3 step;
+            vec3 Tw = v3_mul(T, medium_segment_step3(sigma_t, dt, &step));
+            vec3 lit_r = v3_mul(Tw, v3_scale(beta_r, rho_r));
+            vec3 lit_m = v3_mul(Tw, v3_scale(beta_m, rho_m));
+            float rmu_s = r * mu_s, inv_r_t = 1.0f / r_t;
+            for (int l = 0; l < n_phi; l++) {
+                float mu_s_t = atmo_clamp_cos((rmu_s + t * nu[l]) * inv_r_t);
                 vec3 sun_t = atmosphere_sun_transmittance(a, transmittance, tw, th, r_t, mu_s_t);
-                vec3 w = v3(medium_segment_weight(sigma_t.x, dt),
-                            medium_segment_weight(sigma_t.y, dt),
-                            medium_segment_weight(sigma_t.z, dt));
-                vec3 Tw = v3_mul(T, w);
-                L1 = v3_add(L1, v3_mul(Tw, v3_mul(v3_mul(scattering, E), sun_t)));
-                absorbed = v3_add(absorbed, v3_mul(Tw, sigma_abs));
-                T = v3_mul(T, v3_exp(v3_scale(sigma_t, -dt)));
+                vec3 scattered = v3_add(v3_scale(lit_r, p_r[l]), v3_scale(lit_m, p_m[l]));
+                L1[l] = v3_add(L1[l], v3_mul(scattered, sun_t));
             }
+            absorbed = v3_add(absorbed, v3_mul(Tw, sigma_abs));
+            T = v3_mul(T, step);
+        }
+        for (int l = 0; l < n_phi; l++) {
             if (hits_ground) {
-                float mu_s_g = atmo_clamp_cos((r * mu_s + d * nu) / a->bottom_radius);
+                float mu_s_g = atmo_clamp_cos((r * mu_s + d * nu[l]) / a->bottom_radius);
                 vec3 sun_g = atmosphere_sun_transmittance(a, transmittance, tw, th,
                                                           a->bottom_radius, mu_s_g);
                 vec3 radiance = v3_scale(v3_mul(v3_mul(albedo, E), sun_g),
                                          fmaxf(mu_s_g, 0.0f) / ATMO_PI);
-                L1 = v3_add(L1, v3_mul(T, radiance));
+                L1[l] = v3_add(L1[l], v3_mul(T, radiance));
             }
             /* w in the local frame: up component mu, sun-ward horizontal sin_v cos(phi) */
-            ms_moments_add(&mom, L1, u, mu, sin_v * cosf(phi));
-            escape = v3_add(escape, v3_scale(v3_add(T, absorbed), u));
+            ms_moments_add(&mom, L1[l], u, mu, sin_v * cos_phi[l]);
         }
+        escape = v3_add(escape, v3_scale(v3_add(T, absorbed), u * (float)n_phi));
     }
     vec3 L2 = ms_moments_finish(&mom, dev);
     escape = v3_scale(escape, 1.0f / mom.weights);
@@ -356,6 +402,11 @@ ATMO_FN vec3 ms_lut_gather(ATMO_GLOBAL const atmo_gpu_scene *s,
     float mu_h = -atmo_safe_sqrt((r - a->bottom_radius) * (r + a->bottom_radius)) / r;
     vec3 zero = v3(0.0f, 0.0f, 0.0f);
     ms_moments mom = {zero, zero, zero, zero, zero, zero, zero, 0.0f};
+    n_phi = n_phi < ATMO_MS_MAX_DIRECTIONS_PHI ? n_phi : ATMO_MS_MAX_DIRECTIONS_PHI;
+    float cos_phi[ATMO_MS_MAX_DIRECTIONS_PHI], nu[ATMO_MS_MAX_DIRECTIONS_PHI];
+    vec3 acc[ATMO_MS_MAX_DIRECTIONS_PHI];
+    for (int l = 0; l < n_phi; l++)
+        cos_phi[l] = cosf(ATMO_PI * ((float)l + 0.5f) / (float)n_phi);
     for (int k = 0; k < n_mu; k++) {
         float u, mu = ms_band(k, n_mu, mu_h, &u);
         int up = k >= n_mu / 2;
@@ -363,34 +414,39 @@ ATMO_FN vec3 ms_lut_gather(ATMO_GLOBAL const atmo_gpu_scene *s,
         float d = up ? geometry_distance_to_top(r, mu, a->top_radius)
                      : geometry_distance_to_bottom(r, mu, a->bottom_radius);
         for (int l = 0; l < n_phi; l++) {
-            float phi = ATMO_PI * ((float)l + 0.5f) / (float)n_phi;
-            float nu = atmo_clamp_cos(mu * mu_s + sin_v * sin_s * cosf(phi));
-            vec3 T = v3(1.0f, 1.0f, 1.0f), acc = v3(0.0f, 0.0f, 0.0f);
-            for (int i = 0; i < n_steps; i++) {
-                float t0 = d * atmo_sq((float)i / (float)n_steps);
-                float t1 = d * atmo_sq((float)(i + 1) / (float)n_steps);
-                float dt = t1 - t0, t = d * atmo_sq(((float)i + 0.5f) / (float)n_steps);
-                float r_t = geometry_radius_at(r, mu, t);
-                float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
-                float mu_s_t = atmo_clamp_cos((r * mu_s + t * nu) / r_t);
-                vec3 sigma_t = atmosphere_extinction(a, h);
-                vec3 sigma_r = v3_scale(beta_r, expf(-h / a->rayleigh_scale_height));
-                vec3 sigma_m = v3_scale(beta_m, expf(-h / a->mie_scale_height));
-                vec3 w = v3(medium_segment_weight(sigma_t.x, dt),
-                            medium_segment_weight(sigma_t.y, dt),
-                            medium_segment_weight(sigma_t.z, dt));
-                vec3 j = ms_lut_source_planes(s, psi_src, aniso_src, width, height, r_t,
-                                                (r * mu + t) / r_t, mu_s_t, nu, sigma_r,
-                                                sigma_m);
-                acc = v3_add(acc, v3_mul(v3_mul(T, w), j));
-                T = v3_mul(T, v3_exp(v3_scale(sigma_t, -dt)));
+            nu[l] = atmo_clamp_cos(mu * mu_s + sin_v * sin_s * cos_phi[l]);
+            acc[l] = zero;
+        }
+        /* as in ms_lut_texel: the segment's media once, the source per azimuth */
+        vec3 T = v3(1.0f, 1.0f, 1.0f);
+        for (int i = 0; i < n_steps; i++) {
+            float t0 = d * atmo_sq((float)i / (float)n_steps);
+            float t1 = d * atmo_sq((float)(i + 1) / (float)n_steps);
+            float dt = t1 - t0, t = d * atmo_sq(((float)i + 0.5f) / (float)n_steps);
+            float r_t = geometry_radius_at(r, mu, t);
+            float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
+            float rho_r = expf(-h / a->rayleigh_scale_height);
+            float rho_m = expf(-h / a->mie_scale_height);
+            vec3 sigma_t = atmosphere_extinction_at(a, h, rho_r, rho_m);
+            vec3 sigma_r = v3_scale(beta_r, rho_r), sigma_m = v3_scale(beta_m, rho_m);
+            vec3 step;
+            vec3 Tw = v3_mul(T, medium_segment_step3(sigma_t, dt, &step));
+            float rmu_s = r * mu_s, inv_r_t = 1.0f / r_t, mu_t = (r * mu + t) * inv_r_t;
+            for (int l = 0; l < n_phi; l++) {
+                float mu_s_t = atmo_clamp_cos((rmu_s + t * nu[l]) * inv_r_t);
+                vec3 j = ms_lut_source_planes(s, psi_src, aniso_src, width, height, r_t, mu_t,
+                                              mu_s_t, nu[l], sigma_r, sigma_m);
+                acc[l] = v3_add(acc[l], v3_mul(Tw, j));
             }
+            T = v3_mul(T, step);
+        }
+        for (int l = 0; l < n_phi; l++) {
             if (!up) { /* the ground lit by the sky: (rho / pi) E */
-                float mu_s_g = atmo_clamp_cos((r * mu_s + d * nu) / a->bottom_radius);
+                float mu_s_g = atmo_clamp_cos((r * mu_s + d * nu[l]) / a->bottom_radius);
                 vec3 e = ms_lut_lookup(a, sky_e, width, height, a->bottom_radius, mu_s_g);
-                acc = v3_add(acc, v3_mul(T, v3_scale(v3_mul(albedo, e), 1.0f / ATMO_PI)));
+                acc[l] = v3_add(acc[l], v3_mul(T, v3_scale(v3_mul(albedo, e), 1.0f / ATMO_PI)));
             }
-            ms_moments_add(&mom, acc, u, mu, sin_v * cosf(phi));
+            ms_moments_add(&mom, acc[l], u, mu, sin_v * cos_phi[l]);
         }
     }
     vec3 sum = ms_moments_finish(&mom, dev);

@@ -53,11 +53,11 @@ ATMO_FN media_sample media_at(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     media_sample m;
-    m.scattering[MEDIA_RAYLEIGH] =
-        v3_scale(v3_from4(a->rayleigh_scattering), expf(-q->h / a->rayleigh_scale_height));
-    m.scattering[MEDIA_MIE] =
-        v3_scale(v3_from4(a->mie_scattering), expf(-q->h / a->mie_scale_height));
-    m.extinction = atmosphere_extinction(a, q->h);
+    float rho_r = expf(-q->h / a->rayleigh_scale_height);
+    float rho_m = expf(-q->h / a->mie_scale_height);
+    m.scattering[MEDIA_RAYLEIGH] = v3_scale(v3_from4(a->rayleigh_scattering), rho_r);
+    m.scattering[MEDIA_MIE] = v3_scale(v3_from4(a->mie_scattering), rho_m);
+    m.extinction = atmosphere_extinction_at(a, q->h, rho_r, rho_m);
 #ifdef ATMO_CLOUD
     vec3 cloud = cloud_shell_extinction(s, q->h);
     m.scattering[MEDIA_CLOUD] = v3_mul(cloud, v3_from4(s->cloud.albedo));
