@@ -2,7 +2,7 @@
  *
  * Scene assembly, in this order: the defaults; --preset NAME (default: atmo_default_preset) or
  * --scene FILE; then --set KEY=VALUE and the shorthands (--width, --height, --samples, --seed,
- * --camera) in command-line order. Every output's format and path is checked before anything
+ * --time, --camera) in command-line order. Every output's format and path is checked before anything
  * runs (output_paths.h: directory, name, limits, no two outputs in one file), so a bad argument
  * never costs a render.
  *
@@ -53,6 +53,8 @@ static const char render_usage[] =
     "  --width N, --height N, --samples N, --seed N, --camera perspective|panorama\n"
     "                         shorthands for image.width, image.height, image.samples,\n"
     "                         image.seed and camera.kind\n"
+    "  --time SECONDS         shorthand for clouds.time_s: the clouds move with the wind\n"
+    "                         (frames of an animation: --time 0, 1, 2, ... -o NAME.0001.png ...)\n"
     "  --save-scene FILE      write the fully resolved scene as JSON (rendering it reproduces\n"
     "                         the image bit for bit); without --output nothing is rendered\n"
     "output:\n"
@@ -216,7 +218,7 @@ int cmd_render(int argc, char **argv)
         static const char *const with_value[] = {
             "--preset", "--scene", "--set", "--output", "-o", "--report", "--save-scene",
             "--device", "--dump-kernels", "--tile-size", "--launch-budget-ms", "--width",
-            "--height", "--samples", "--seed", "--camera", NULL};
+            "--height", "--samples", "--seed", "--time", "--camera", NULL};
         int known = 0;
         for (int k = 0; with_value[k]; k++)
             known |= strcmp(a, with_value[k]) == 0;
@@ -273,6 +275,8 @@ int cmd_render(int argc, char **argv)
             shorthand = "image.samples";
         else if (strcmp(a, "--seed") == 0)
             shorthand = "image.seed";
+        else if (strcmp(a, "--time") == 0)
+            shorthand = "clouds.time_s";
         else /* --camera, the last of with_value[] */
             shorthand = "camera.kind";
         if (shorthand) {
