@@ -36,7 +36,8 @@ ATMO_FN float noise_lattice(int i, int j, int l, uint seed)
 {
     /* one avalanche over the coordinates spread by odd constants (a lattice point's value
      * only has to look independent of its neighbours'), a second over the seed */
-    uint h = rng_permute((uint)i * 0x8da6b343u ^ (uint)j * 0xd8163841u ^ (uint)l * 0xcb1ab31fu);
+    uint h = rng_permute(((uint)i * 0x8da6b343u ^ (uint)j * 0xd8163841u ^
+                          (uint)l * 0xcb1ab31fu) + 0x9e3779b9u); /* off permute's fixed point 0 */
     h = rng_permute(h ^ seed);
     return (float)(h >> 8) * (1.0f / 16777216.0f);
 }
