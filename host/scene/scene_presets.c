@@ -18,7 +18,9 @@
  * thesis-1 ... thesis-9 are the nine views of shared/reference/presets.md. Their "direction to
  * sun" vectors were converted with z = acos(d_y), a = atan2(d_x, d_z) and written with six
  * decimals of a degree; they reproduce the table's vectors to better than 5e-7 (test_scene.c).
- * Only the sky is rendered so far: terrain, clouds and the thesis objects are not yet in atmo. */
+ * Terrain and the thesis objects are not yet in atmo; thesis 4, 5, 6, 8 and 9 have the fBm cloud
+ * layer (with method march, which it needs, and the thesis' far plane for clouds as
+ * clouds.max_distance_m). */
 #include <string.h>
 #include "atmo/scene.h"
 

@@ -11,8 +11,8 @@
  * above the bottom and below the top, so towers round off). C = CLOUDS_COVERAGE_CONTRAST turns
  * the coverage field into clear regions (c = 0) and cloudy ones, f_c = 1 / coverage_scale_m.
  * The fBm lies in [0, 1) (cloud_noise.h), so d <= density everywhere (the majorant of the
- * Monte Carlo walk) and d = 0 wherever c = 0: the cheap coverage test (4 octaves instead of
- * N + 3) is exact for skipping clear air.
+ * Monte Carlo walk) and d = 0 wherever c = 0: the cheap coverage test (the coverage field
+ * before the fade, 4 octaves instead of N + 3) is exact at its point for skipping clear air.
  * Optics (host/plan/plan_clouds.c): sigma_t = d x extinction per unit density, sigma_s =
  * albedo sigma_t, the phase function the droplet distribution's Mie table (phase_table.h), its
  * Henyey-Greenstein with the table's g, or Jendersie & d'Eon 2023.
@@ -85,20 +85,26 @@ ATMO_FN float clouds_fade(ATMO_GLOBAL const atmo_gpu_clouds *c, float h)
     return f * f * (3.0f - 2.0f * f);
 }
 
+/* The coverage field before the height fade at the world noise point x, 0..1. */
+ATMO_FN float clouds_coverage_field(ATMO_GLOBAL const atmo_gpu_clouds *c, vec3 x)
+{
+    float n = noise_fbm(v3_scale(x, c->frequency.w), CLOUDS_COVERAGE_OCTAVES, c->seed ^ 0x5bd1e995u);
+    return clamp(CLOUDS_COVERAGE_CONTRAST * (n - 0.5f) + c->coverage, 0.0f, 1.0f);
+}
+
 /* The coverage c(x, h) at the world noise point x (0 outside the layer). */
 ATMO_FN float clouds_coverage_world(ATMO_GLOBAL const atmo_gpu_clouds *c, vec3 x, float h)
 {
     if (h <= c->bottom_m || h >= c->top_m)
         return 0.0f;
-    float n = noise_fbm(v3_scale(x, c->frequency.w), CLOUDS_COVERAGE_OCTAVES, c->seed ^ 0x5bd1e995u);
-    return clamp(CLOUDS_COVERAGE_CONTRAST * (n - 0.5f) + c->coverage, 0.0f, 1.0f) *
-           clouds_fade(c, h);
+    return clouds_coverage_field(c, x) * clouds_fade(c, h);
 }
 
-/* The coverage at a camera-relative point p of altitude h. */
-ATMO_FN float clouds_coverage(ATMO_GLOBAL const atmo_gpu_clouds *c, vec3 p, float h)
+/* The cheap test of the marcher: 0 where the coverage field (before the fade, which changes
+ * fast near the layer's bottom and top) leaves no cloud at any altitude of the layer. */
+ATMO_FN float clouds_coverage(ATMO_GLOBAL const atmo_gpu_clouds *c, vec3 p)
 {
-    return clouds_coverage_world(c, v3_add(p, v3_from4(c->origin)), h);
+    return clouds_coverage_field(c, v3_add(p, v3_from4(c->origin)));
 }
 
 /* The density d at the world noise point x of altitude h, given its coverage cov > 0. */

@@ -3,8 +3,9 @@
  * (medium.h) for the part of a ray inside the layer's shell, where it integrates everything:
  * the clouds and the air between and around them.
  *
- * Steps. A step starts with the coverage test at its start (cloud_layer.h: c = 0 means no cloud
- * there, exactly): in clear air the step is CLOUDS_CLEAR_STRIDE times longer, in cloud it is
+ * Steps. A step starts with the coverage test at its start (cloud_layer.h: a coverage field of
+ * 0 means no cloud there at any altitude; the field's features are hundreds of km, so a clear
+ * step rarely cuts into a cloud): in clear air the step is CLOUDS_CLEAR_STRIDE times longer, in cloud it is
  *     dt = step_m + CLOUDS_STEP_GROWTH t_c
  * (t_c the distance from the camera, so the step follows the pixel's footprint), the first one
  * shortened by the sample's jitter so successive samples cover the ray. Each step is sampled at
@@ -142,7 +143,7 @@ ATMO_FN void clouds_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
          i++) {
         float dt = c->step_m + CLOUDS_STEP_GROWTH * (start + t);
         medium_point q = medium_ray_at(m, t, s->atmosphere.bottom_radius);
-        int cloudy = clouds_coverage(c, q.p, q.h) > 0.0f;
+        int cloudy = clouds_coverage(c, q.p) > 0.0f;
         if (!cloudy)
             dt *= CLOUDS_CLEAR_STRIDE;
         if (i == 0) /* a shorter first step: the samples' steps interleave */
