@@ -1,6 +1,6 @@
 /* test_clouds_march — the fBm cloud layer's marcher (kernels/media/cloud_march.h, host build of
  * the shared headers) converges to single scattering through the clouds as its steps shrink.
- * labels: unit
+ * labels: unit slow
  *
  * Oracle: a double-precision host quadrature of the same integral over the same density field
  * (the kernel's clouds_density, evaluated at the quadrature's points),
@@ -14,12 +14,17 @@
  * jitters) at (step, light steps) = (400 m, 4), (200 m, 8), (100 m, 16), (50 m, 32): its
  * relative error must fall at every refinement and end below 1 % (the light march's jittered
  * optical depth over-estimates the transmittance, test_clouds_tracking; the view steps are
- * energy conserving). The errors are printed. */
+ * energy conserving). The errors are printed.
+ * The Monte Carlo reference (method_reference.h's walk through the clouds, host build) on the
+ * same ray with orders 1..1 must agree with the quadrature within 4.5 standard errors (10000
+ * paths); with all orders it must exceed it, and the marcher's octaves are measured against
+ * it (printed: the multiple-scattering model's bias on this ray). */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 #define ATMO_CLOUDS
 #include "media/cloud_march.h"
+#include "atmosphere/method_reference.h"
 #include "testlib.h"
 
 #define LUTS lut, lut, lut, lut, lut, lut, lut, lut, cdf
@@ -138,6 +143,44 @@ int main(void)
         }
         printf("marcher step %.0f m, %d light steps: error %.3f %%\n", lone_step[k],
                c->light_steps, 100.0 * fabs(sum / L - 1.0));
+    }
+
+    /* the Monte Carlo reference on the same ray: single scattering (orders 1..1) must agree
+     * with the quadrature within its standard error; all orders measure the marcher's
+     * multiple-scattering octaves (defaults a = b = c = 0.5, 4 octaves) against it */
+    enum { PATHS = 10000 };
+    for (int all = 0; all < 2; all++) {
+        s.reference.min_order = 1;
+        s.reference.max_order = all ? 0 : 1;
+        double sum = 0.0, sum2 = 0.0;
+        for (int i = 0; i < PATHS; i++) {
+            rng_stream rg = rng_stream_stage(9u, (uint)i, 0u, 0u);
+            vec3 sky, sun, vt;
+            reference_trace(&s, LUTS, &m, INFINITY, &rg, &sky, &sun, &vt);
+            sum += sky.y;
+            sum2 += (double)sky.y * sky.y;
+        }
+        double mean = sum / PATHS, se = sqrt(fmax(sum2 / PATHS - mean * mean, 0.0) / PATHS);
+        if (!all) {
+            printf("reference, single scattering: %.6e +- %.2e (%.2f standard errors from the "
+                   "quadrature)\n",
+                   mean, se, (mean - L) / se);
+            CHECK_ABS(mean, L, 4.5 * se);
+        } else {
+            c->step_m = 50.0f, c->light_steps = 32, c->ms_octaves = 4;
+            c->ms_a = c->ms_b = c->ms_c = 0.5f;
+            double fast = 0.0;
+            for (int j = 0; j < 16; j++) {
+                medium_result r;
+                medium_integrate(&s, LUTS, &m, 0.0f, INFINITY, 8, ((float)j + 0.5f) / 16.0f, 0,
+                                 &r);
+                fast += medium_radiance(&s, LUTS, &r, m.nu).y / 16.0;
+            }
+            printf("reference, all orders: %.6e +- %.2e (single scattering %.1f %% of it); "
+                   "marcher with 4 octaves %.6e: %+.1f %%\n",
+                   mean, se, 100.0 * L / mean, fast, 100.0 * (fast / mean - 1.0));
+            CHECK(mean > L); /* the higher orders add light */
+        }
     }
     return test_finish();
 }
