@@ -2,9 +2,9 @@
  *
  * Scene assembly, in this order: the defaults; --preset NAME (default: atmo_default_preset) or
  * --scene FILE; then --set KEY=VALUE and the shorthands (--width, --height, --samples, --seed,
- * --time, --camera) in command-line order. Every output's format and path is checked before anything
- * runs (output_paths.h: directory, name, limits, no two outputs in one file), so a bad argument
- * never costs a render.
+ * --time, --camera) in command-line order. Every output's format and path is checked before
+ * anything runs (output_paths.h: directory, name, limits, no two outputs in one file), so a bad
+ * argument never costs a render.
  *
  * Interrupts: the first SIGINT or SIGTERM sets the render's cancel token; the precompute or the
  * render stops after the launch in flight. Samples already rendered are written, marked

@@ -19,8 +19,10 @@
  * sun" vectors were converted with z = acos(d_y), a = atan2(d_x, d_z) and written with six
  * decimals of a degree; they reproduce the table's vectors to better than 5e-7 (test_scene.c).
  * Terrain and the thesis objects are not yet in atmo; thesis 4, 5, 6, 8 and 9 have the fBm cloud
- * layer (with method march, which it needs, and the thesis' far plane for clouds as
- * clouds.max_distance_m). */
+ * layer (with method march, which it needs, the thesis' far plane for clouds as
+ * clouds.max_distance_m, and a noise seed that gives each view what the thesis' shows: seed 5
+ * a deck under view 5's glory, seed 47 scattered cumulus around view 6's sun, where seed 0
+ * puts view 6's camera inside a cloud). */
 #include <string.h>
 #include "atmo/scene.h"
 
@@ -66,14 +68,14 @@ const atmo_preset atmo_presets[] = {
            "camera.kind=perspective", "camera.position_m=0,2000000,0", "camera.pitch_deg=-50",
            "camera.yaw_deg=-601", "camera.fov_deg=45", "sun.zenith_deg=88.452425",
            "sun.azimuth_deg=-150.984989",
-           "clouds.enabled=true", "clouds.max_distance_m=4.9e6",
+           "clouds.enabled=true", "clouds.seed=5", "clouds.max_distance_m=4.9e6",
            "atmosphere.method=march"),
     PRESET("thesis-5",
            "thesis view 5: cloud tops away from the sun, glory and fog bow" THESIS_CLOUDS,
            "camera.kind=perspective", "camera.position_m=61950,42398,-83371",
            "camera.pitch_deg=-34", "camera.yaw_deg=-549", "camera.fov_deg=45",
            "sun.zenith_deg=35.396615", "sun.azimuth_deg=0",
-           "clouds.enabled=true", "clouds.max_distance_m=2e5",
+           "clouds.enabled=true", "clouds.seed=5", "clouds.max_distance_m=2e5",
            "atmosphere.method=march"),
     PRESET("thesis-6",
            "thesis view 6: sky with the sun and clouds, lens flare, bright cloud "
@@ -81,7 +83,7 @@ const atmo_preset atmo_presets[] = {
            "camera.kind=perspective", "camera.position_m=23796,2266,16636",
            "camera.pitch_deg=15.038", "camera.yaw_deg=-519", "camera.fov_deg=45",
            "sun.zenith_deg=62.332413", "sun.azimuth_deg=154.698581",
-           "clouds.enabled=true", "clouds.max_distance_m=1.5e5",
+           "clouds.enabled=true", "clouds.seed=47", "clouds.max_distance_m=1.5e5",
            "atmosphere.method=march"),
     PRESET("thesis-7", "thesis view 7: looking +Z into an open box, path traced" THESIS_SKY_ONLY,
            "camera.kind=perspective", "camera.position_m=26631.5,1336.5,10747.5",
@@ -91,13 +93,13 @@ const atmo_preset atmo_presets[] = {
            "camera.kind=perspective", "camera.position_m=7866,5837,-143910", "camera.pitch_deg=-29",
            "camera.yaw_deg=-535", "camera.fov_deg=45", "sun.zenith_deg=81.435892",
            "sun.azimuth_deg=-170.007181",
-           "clouds.enabled=true", "clouds.max_distance_m=1e5",
+           "clouds.enabled=true", "clouds.seed=5", "clouds.max_distance_m=1e5",
            "atmosphere.method=march"),
     PRESET("thesis-9", "thesis view 9: high-altitude sunset over clouds" THESIS_CLOUDS,
            "camera.kind=perspective", "camera.position_m=18181,37415,3431", "camera.pitch_deg=-16",
            "camera.yaw_deg=-556", "camera.fov_deg=45", "sun.zenith_deg=87.476967",
            "sun.azimuth_deg=-150.985019",
-           "clouds.enabled=true", "clouds.max_distance_m=4e5",
+           "clouds.enabled=true", "clouds.seed=5", "clouds.max_distance_m=4e5",
            "atmosphere.method=march"),
     PRESET("glory",
            "above a cloud deck of thesis-disperse drops, looking down at the antisolar point: "
