@@ -16,6 +16,7 @@
 #   lut.*                       lut
 #   reference.*                 reference
 #   cloud.*, observer.*         single and march with the cloud or the observer enabled
+#   clouds.*                    single and march with the fBm cloud layer enabled
 #   image.*, post.*, spectral   single (image.width/height at the maximum with the other 1,
 #                               image.samples at the maximum on 1 x 1)
 #   terrain.heightmap_file_extent_m, _scale_m, _offset_m   single (no heightmap file given)
@@ -97,6 +98,10 @@ while read -r key bound value; do
     observer.*)
         for m in single march; do
             render "$key" $m --set observer.enabled=true --set "$key=$value"
+        done ;;
+    clouds.*)
+        for m in single march; do
+            render "$key" $m --set clouds.enabled=true --set "$key=$value"
         done ;;
     image.width)
         render "$key" single --set "$key=$value" --height 1 ;;

@@ -48,7 +48,10 @@ static const char probe_src[] =
     "  uint i = get_global_id(0); if (i >= n) return;\n"
     "  float4 q = rays[i / per_ray];\n"
     "  rng_stream g = sky_probe_stream(s, i, 0u);\n"
-    "  out[i] = (float4)(reference_transmittance(s, ATMO_LUT_ARGS, q.x, q.y, &g), 0.0f);\n"
+    "  medium_point x;\n" /* the ray's start at radius q.x, toward cosine q.y */
+    "  x.p = v3(0.0f, 0.0f, 0.0f); x.r = q.x; x.h = q.x - s->atmosphere.bottom_radius;\n"
+    "  x.mu = q.y; x.mu_s = q.y;\n"
+    "  out[i] = (float4)(reference_transmittance(s, ATMO_LUT_ARGS, &x, &g), 0.0f);\n"
     "}\n";
 
 typedef struct ctx {

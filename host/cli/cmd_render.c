@@ -2,9 +2,9 @@
  *
  * Scene assembly, in this order: the defaults; --preset NAME (default: atmo_default_preset) or
  * --scene FILE; then --set KEY=VALUE and the shorthands (--width, --height, --samples, --seed,
- * --camera) in command-line order. Every output's format and path is checked before anything
- * runs (output_paths.h: directory, name, limits, no two outputs in one file), so a bad argument
- * never costs a render.
+ * --time, --camera) in command-line order. Every output's format and path is checked before
+ * anything runs (output_paths.h: directory, name, limits, no two outputs in one file), so a bad
+ * argument never costs a render.
  *
  * Interrupts: the first SIGINT or SIGTERM sets the render's cancel token; the precompute or the
  * render stops after the launch in flight. Samples already rendered are written, marked
@@ -56,6 +56,8 @@ static const char render_usage[] =
     "  --width N, --height N, --samples N, --seed N, --camera perspective|panorama\n"
     "                         shorthands for image.width, image.height, image.samples,\n"
     "                         image.seed and camera.kind\n"
+    "  --time SECONDS         shorthand for clouds.time_s: the clouds move with the wind\n"
+    "                         (frames of an animation: --time 0, 1, 2, ... -o NAME.0001.png ...)\n"
     "  --save-scene FILE      write the fully resolved scene as JSON (rendering it reproduces\n"
     "                         the image bit for bit); without --output nothing is rendered\n"
     "output:\n"
@@ -391,7 +393,7 @@ int cmd_render(int argc, char **argv)
         static const char *const with_value[] = {
             "--preset", "--scene", "--set", "--output", "-o", "--report", "--save-scene",
             "--device", "--dump-kernels", "--tile-size", "--launch-budget-ms", "--width",
-            "--height", "--samples", "--seed", "--part", "--frames", "--animate", "--scene-end",
+            "--height", "--samples", "--seed", "--time", "--part", "--frames", "--animate", "--scene-end",
             "--exr-compression",
             "--camera", NULL};
         int known = 0;
@@ -457,6 +459,8 @@ int cmd_render(int argc, char **argv)
             shorthand = "image.samples";
         else if (strcmp(a, "--seed") == 0)
             shorthand = "image.seed";
+        else if (strcmp(a, "--time") == 0)
+            shorthand = "clouds.time_s";
         else if (strcmp(a, "--part") == 0)
             part_text = v;
         else if (strcmp(a, "--frames") == 0)

@@ -4,6 +4,7 @@
 #include <string.h>
 #include "atmo/features.h"
 #include "atmo/plan_cloud.h"
+#include "atmo/plan_clouds.h"
 #include "atmo/plan_fast.h"
 #include "atmo/plan_lut.h"
 #include "atmo/plan_march.h"
@@ -15,6 +16,7 @@ static int ms_methods(const atmo_scene *s)
     return s->atmosphere.method == ATMO_METHOD_MARCH || s->atmosphere.method == ATMO_METHOD_FAST;
 }
 static int cloud_shell(const atmo_scene *s) { return s->cloud.enabled || s->observer.enabled; }
+static int cloud_layer(const atmo_scene *s) { return s->clouds.enabled; }
 static int is_single(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_SINGLE; }
 static int is_march(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_MARCH; }
 static int is_fast(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_FAST; }
@@ -42,7 +44,7 @@ static const char *const atmosphere_fragments[] = {
     "include/atmo/gpu_atmosphere.h",  "include/atmo/gpu_ms_lut.h",
     "include/atmo/gpu_sky_view.h",    "include/atmo/gpu_lut.h",
     "include/atmo/gpu_reference.h",   "include/atmo/gpu_cloud.h",
-    "include/atmo/gpu_types.h",       "kernels/common/rng.h",
+    "include/atmo/gpu_clouds.h",      "include/atmo/gpu_types.h",       "kernels/common/rng.h",
     "kernels/common/geometry.h",      "kernels/common/phase.h",
     "kernels/atmosphere/atmosphere.h", "kernels/common/camera.h",
     "kernels/atmosphere/sky_method.h", "kernels/media/ray.h",
@@ -96,7 +98,12 @@ static const char *const lut_sources[] = {
 
 static const char *const needs_transmittance[] = {"atmosphere", NULL};
 static const char *const cloud_fragments[] = {"kernels/media/observer.h",
+                                              "kernels/media/phase_table.h",
                                               "kernels/media/cloud_shell.h", NULL};
+static const char *const clouds_fragments[] = {"kernels/media/cloud_noise.h",
+                                               "kernels/media/phase_table.h",
+                                               "kernels/media/cloud_layer.h", NULL};
+static const char *const clouds_march_fragments[] = {"kernels/media/cloud_march.h", NULL};
 static const char *const single_fragments[] = {"kernels/atmosphere/method_single.h", NULL};
 static const char *const march_fragments[] = {"kernels/atmosphere/method_march.h", NULL};
 static const char *const fast_fragments[] = {"kernels/atmosphere/method_fast.h",
@@ -111,8 +118,13 @@ const atmo_feature atmo_features[] = {
     /* a medium and a visibility source: before the composition of the media */
     {"cloud", -1, cloud_shell, cloud_fragments, "-DATMO_CLOUD", NULL, NULL, NULL,
      atmo_plan_cloud, 0},
+    /* the fBm cloud layer: a medium and a visibility source (its light march) */
+    {"clouds", -1, cloud_layer, clouds_fragments, "-DATMO_CLOUDS", NULL, NULL, NULL,
+     atmo_plan_clouds, 0},
     /* the medium integrator of single, march, fast and lut; the media of the reference */
     {"medium", -1, always, medium_fragments, "", NULL, NULL, NULL, NULL, 0},
+    /* the layer's marcher, over the integrator's pieces (media.h declares it) */
+    {"clouds_march", -1, cloud_layer, clouds_march_fragments, "", NULL, NULL, NULL, NULL, 0},
     /* Psi_ms, shared by march and fast; the flag compiles the integrator's Psi_ms source in */
     {"ms_lut", -1, ms_methods, ms_lut_fragments, "-DATMO_MS_LUT", ms_lut_params, ms_lut_sources,
      needs_transmittance, atmo_plan_ms_lut, 0},

@@ -33,7 +33,12 @@ _Static_assert(offsetof(atmo_gpu_scene, sky_view) == 320, "atmo_gpu_scene layout
 _Static_assert(offsetof(atmo_gpu_scene, lut) == 336, "atmo_gpu_scene layout");
 _Static_assert(offsetof(atmo_gpu_scene, reference) == 368, "atmo_gpu_scene layout");
 _Static_assert(offsetof(atmo_gpu_scene, cloud) == 384, "atmo_gpu_scene layout");
-_Static_assert(sizeof(atmo_gpu_scene) == 480, "atmo_gpu_scene layout");
+_Static_assert(sizeof(atmo_gpu_clouds) == 176, "atmo_gpu_clouds layout");
+_Static_assert(offsetof(atmo_gpu_clouds, bottom_m) == 80, "atmo_gpu_clouds layout");
+_Static_assert(offsetof(atmo_gpu_clouds, majorant) == 132, "atmo_gpu_clouds layout");
+_Static_assert(offsetof(atmo_gpu_clouds, seed) == 164, "atmo_gpu_clouds layout");
+_Static_assert(offsetof(atmo_gpu_scene, clouds) == 480, "atmo_gpu_scene layout");
+_Static_assert(sizeof(atmo_gpu_scene) == 656, "atmo_gpu_scene layout");
 
 #define DEG (M_PI / 180.0)
 

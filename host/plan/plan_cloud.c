@@ -67,11 +67,49 @@ static int pack_tables(const mie_table t[3], float4 **out, int *count, atmo_err 
     return ATMO_OK;
 }
 
-int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e)
+int atmo_plan_mie_optics(const atmo_scene *s, int dsd, int sun_disc, atmo_plan *p,
+                         atmo_mie_optics *out, atmo_err *e)
 {
     int rc = ATMO_OK;
     mie_table t[3];
     memset(t, 0, sizeof t);
+    memset(out, 0, sizeof *out);
+    const char *dsd_name = atmo_param_find("cloud.dsd")->names[dsd];
+    mie_dsd d;
+    if (mie_dsd_preset(dsd_name, &d))
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "dsd=%s is not a Mie preset (a build bug)",
+                         dsd_name);
+    mie_table_options opt;
+    memset(&opt, 0, sizeof opt);
+    opt.sun_radius_deg = sun_disc ? s->sun.angular_radius_deg : 0.0;
+    for (int i = 0; i < 3; i++) {
+        double n, k, lambda = s->render.wavelengths_nm[i];
+        if ((rc = mie_water_index(lambda, &n, &k, e)) ||
+            (rc = mie_table_get(&d, lambda, n, k, &opt, p->cache_tables, &t[i], NULL, e)))
+            goto cleanup;
+        out->sigma_ext_per_lwc[i] = t[i].bulk.sigma_ext_per_lwc;
+        out->albedo[i] = t[i].bulk.albedo;
+        out->g[i] = t[i].bulk.g;
+    }
+    /* Jendersie-d'Eon's fit holds for 5-50 um */
+    out->diameter_um = fmin(fmax(2.0 * t[1].bulk.r_eff_um, 5.0), 50.0);
+    if ((rc = pack_tables(t, &out->rows, &out->count, e)))
+        goto cleanup;
+    if ((rc = atmo_plan_own(p, out->rows, e)))
+        out->rows = NULL;
+cleanup:
+    for (int i = 0; i < 3; i++)
+        mie_table_free(&t[i]);
+    return rc;
+}
+
+int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e)
+{
+    int rc = ATMO_OK;
+    if (s->cloud.enabled && s->clouds.enabled)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "cloud.enabled (the homogeneous shell) and clouds.enabled (the fBm layer) "
+                         "exclude each other; set one of them to false");
     if (s->atmosphere.method != ATMO_METHOD_SINGLE && s->atmosphere.method != ATMO_METHOD_MARCH)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "cloud.enabled/observer.enabled work with atmosphere.method=single or "
@@ -88,40 +126,20 @@ int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e)
         g->observer = observer_centre(s, &p->gpu);
 
     if (s->cloud.enabled) {
-        const char *dsd_name = atmo_param_find("cloud.dsd")->names[s->cloud.dsd];
-        double sun_radius = s->cloud.sun_disc ? s->sun.angular_radius_deg : 0.0;
-        mie_dsd d;
-        if (mie_dsd_preset(dsd_name, &d))
-            return atmo_fail(e, ATMO_ERR_RUNTIME, "cloud.dsd=%s is not a Mie preset (a build bug)",
-                             dsd_name);
-        mie_table_options opt;
-        memset(&opt, 0, sizeof opt);
-        opt.sun_radius_deg = sun_radius;
-        double diameter_um = 0.0;
+        atmo_mie_optics o;
+        if ((rc = atmo_plan_mie_optics(s, s->cloud.dsd, s->cloud.sun_disc, p, &o, e)))
+            return rc;
         for (int i = 0; i < 3; i++) {
-            double n, k, lambda = s->render.wavelengths_nm[i];
-            if ((rc = mie_water_index(lambda, &n, &k, e)) ||
-                (rc = mie_table_get(&d, lambda, n, k, &opt, p->cache_tables, &t[i], NULL,
-                                    e)))
-                goto cleanup;
-            (&g->extinction.x)[i] = (float)(t[i].bulk.sigma_ext_per_lwc * s->cloud.lwc_g_m3);
-            (&g->albedo.x)[i] = (float)t[i].bulk.albedo;
-            (&g->g.x)[i] = (float)t[i].bulk.g;
-            diameter_um = 2.0 * t[1].bulk.r_eff_um;
+            (&g->extinction.x)[i] = (float)(o.sigma_ext_per_lwc[i] * s->cloud.lwc_g_m3);
+            (&g->albedo.x)[i] = (float)o.albedo[i];
+            (&g->g.x)[i] = (float)o.g[i];
         }
-        /* Jendersie-d'Eon's fit holds for 5-50 um */
-        g->diameter_um = (float)fmin(fmax(diameter_um, 5.0), 50.0);
+        g->diameter_um = (float)o.diameter_um;
         g->base_m = (float)s->cloud.bottom_m;
         g->top_m = (float)s->cloud.top_m;
-        float4 *rows = NULL;
-        int count = 0;
-        if ((rc = pack_tables(t, &rows, &count, e)))
-            goto cleanup;
-        if ((rc = atmo_plan_own(p, rows, e)))
-            goto cleanup;
         rc = atmo_plan_add_buffer(p, "cloud_phase_table", "float4",
-                                  sizeof(float4) * (size_t)count, 0, rows, e);
-        g->table_size = count;
+                                  sizeof(float4) * (size_t)o.count, 0, o.rows, e);
+        g->table_size = o.count;
     } else {
         /* observer only: an empty shell at the ground and a one-row zero table, so the
          * cloud's phase (weighted by its zero scattering) is 0, not a read before the table */
@@ -131,8 +149,5 @@ int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e)
         rc = atmo_plan_add_buffer(p, "cloud_phase_table", "float4", sizeof zero_row, 0,
                                   &zero_row, e);
     }
-cleanup:
-    for (int i = 0; i < 3; i++)
-        mie_table_free(&t[i]);
     return rc;
 }

@@ -403,6 +403,7 @@ int atmo_session_set_view(atmo_session *s, const atmo_plan *plan, atmo_err *e)
     g.camera = s->plan.gpu.camera;
     g.sun_direction = s->plan.gpu.sun_direction;
     g.cloud.observer = s->plan.gpu.cloud.observer;
+    g.clouds.origin = s->plan.gpu.clouds.origin; /* follows the camera (and the time) */
     int same = memcmp(&g, &s->plan.gpu, sizeof g) == 0 && plan->pass_count == s->plan.pass_count &&
                plan->buffer_count == s->plan.buffer_count;
     for (int i = 0; same && i < plan->buffer_count; i++)

@@ -18,7 +18,11 @@
  * thesis-1 ... thesis-9 are the nine views of shared/reference/presets.md. Their "direction to
  * sun" vectors were converted with z = acos(d_y), a = atan2(d_x, d_z) and written with six
  * decimals of a degree; they reproduce the table's vectors to better than 5e-7 (test_scene.c).
- * Only the sky is rendered so far: terrain, clouds and the thesis objects are not yet in atmo. */
+ * Terrain and the thesis objects are not yet in atmo; thesis 4, 5, 6, 8 and 9 have the fBm cloud
+ * layer (with method march, which it needs, the thesis' far plane for clouds as
+ * clouds.max_distance_m, and a noise seed that gives each view what the thesis' shows: seed 5
+ * a deck under view 5's glory, seed 47 scattered cumulus around view 6's sun, where seed 0
+ * puts view 6's camera inside a cloud). */
 #include <string.h>
 #include "atmo/scene.h"
 
@@ -26,6 +30,7 @@ const char *const atmo_default_preset = "sky-sunset";
 
 #define PRESET(name, summary, ...) {name, summary, (const char *const[]){__VA_ARGS__, NULL}}
 #define THESIS_SKY_ONLY " [sky only: terrain, clouds, objects not rendered yet]"
+#define THESIS_CLOUDS " [sky and clouds: terrain and objects not rendered yet]"
 
 const atmo_preset atmo_presets[] = {
     PRESET("sky-noon",
@@ -59,33 +64,43 @@ const atmo_preset atmo_presets[] = {
            "sun.azimuth_deg=-134.254613"),
     PRESET("thesis-4",
            "thesis view 4: the planet from 2000 km, terminator, cloud field, blue "
-           "limb" THESIS_SKY_ONLY,
+           "limb" THESIS_CLOUDS,
            "camera.kind=perspective", "camera.position_m=0,2000000,0", "camera.pitch_deg=-50",
            "camera.yaw_deg=-601", "camera.fov_deg=45", "sun.zenith_deg=88.452425",
-           "sun.azimuth_deg=-150.984989"),
+           "sun.azimuth_deg=-150.984989",
+           "clouds.enabled=true", "clouds.seed=5", "clouds.max_distance_m=4.9e6",
+           "atmosphere.method=march"),
     PRESET("thesis-5",
-           "thesis view 5: cloud tops away from the sun, glory and fog bow" THESIS_SKY_ONLY,
+           "thesis view 5: cloud tops away from the sun, glory and fog bow" THESIS_CLOUDS,
            "camera.kind=perspective", "camera.position_m=61950,42398,-83371",
            "camera.pitch_deg=-34", "camera.yaw_deg=-549", "camera.fov_deg=45",
-           "sun.zenith_deg=35.396615", "sun.azimuth_deg=0"),
+           "sun.zenith_deg=35.396615", "sun.azimuth_deg=0",
+           "clouds.enabled=true", "clouds.seed=5", "clouds.max_distance_m=2e5",
+           "atmosphere.method=march"),
     PRESET("thesis-6",
            "thesis view 6: sky with the sun and clouds, lens flare, bright cloud "
-           "edges" THESIS_SKY_ONLY,
+           "edges" THESIS_CLOUDS,
            "camera.kind=perspective", "camera.position_m=23796,2266,16636",
            "camera.pitch_deg=15.038", "camera.yaw_deg=-519", "camera.fov_deg=45",
-           "sun.zenith_deg=62.332413", "sun.azimuth_deg=154.698581"),
+           "sun.zenith_deg=62.332413", "sun.azimuth_deg=154.698581",
+           "clouds.enabled=true", "clouds.seed=47", "clouds.max_distance_m=1.5e5",
+           "atmosphere.method=march"),
     PRESET("thesis-7", "thesis view 7: looking +Z into an open box, path traced" THESIS_SKY_ONLY,
            "camera.kind=perspective", "camera.position_m=26631.5,1336.5,10747.5",
            "camera.pitch_deg=0", "camera.yaw_deg=0", "camera.fov_deg=45",
            "sun.zenith_deg=86.098524", "sun.azimuth_deg=-134.254613"),
-    PRESET("thesis-8", "thesis view 8: over clouds and terrain at moderate sun" THESIS_SKY_ONLY,
+    PRESET("thesis-8", "thesis view 8: over clouds and terrain at moderate sun" THESIS_CLOUDS,
            "camera.kind=perspective", "camera.position_m=7866,5837,-143910", "camera.pitch_deg=-29",
            "camera.yaw_deg=-535", "camera.fov_deg=45", "sun.zenith_deg=81.435892",
-           "sun.azimuth_deg=-170.007181"),
-    PRESET("thesis-9", "thesis view 9: high-altitude sunset over clouds" THESIS_SKY_ONLY,
+           "sun.azimuth_deg=-170.007181",
+           "clouds.enabled=true", "clouds.seed=5", "clouds.max_distance_m=1e5",
+           "atmosphere.method=march"),
+    PRESET("thesis-9", "thesis view 9: high-altitude sunset over clouds" THESIS_CLOUDS,
            "camera.kind=perspective", "camera.position_m=18181,37415,3431", "camera.pitch_deg=-16",
            "camera.yaw_deg=-556", "camera.fov_deg=45", "sun.zenith_deg=87.476967",
-           "sun.azimuth_deg=-150.985019"),
+           "sun.azimuth_deg=-150.985019",
+           "clouds.enabled=true", "clouds.seed=5", "clouds.max_distance_m=4e5",
+           "atmosphere.method=march"),
     PRESET("glory",
            "above a cloud deck of thesis-disperse drops, looking down at the antisolar point: "
            "the fog bow and the glory's bright centre (its one ring lies within 1 deg, smoothed "

@@ -17,6 +17,7 @@
 #include "atmo/gpu_enums.h"
 #include "atmo/gpu_atmosphere.h"
 #include "atmo/gpu_cloud.h"
+#include "atmo/gpu_clouds.h"
 #include "atmo/gpu_lut.h"
 #include "atmo/gpu_ms_lut.h"
 #include "atmo/gpu_reference.h"
@@ -45,6 +46,7 @@ typedef struct atmo_gpu_scene {
     atmo_gpu_lut lut;             /* method lut */
     atmo_gpu_reference reference; /* method reference */
     atmo_gpu_cloud cloud;         /* the cloud shell and the observer */
+    atmo_gpu_clouds clouds;       /* the fBm cloud layer */
 } atmo_gpu_scene;
 
 #endif

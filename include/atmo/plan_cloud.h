@@ -7,6 +7,21 @@
 /* Steps equal in optical depth per cloud segment of a view ray. */
 #define ATMO_CLOUD_STEPS 32
 
+/* Bulk optics of a droplet size distribution at the render wavelengths (Mie tables built once,
+ * then read from the disk cache) and its phase tables packed in phase_table.h's format. */
+typedef struct atmo_mie_optics {
+    double sigma_ext_per_lwc[3]; /* 1/m per g/m^3 */
+    double albedo[3], g[3];
+    double diameter_um;          /* effective diameter, clamped to Jendersie-d'Eon's 5-50 um */
+    float4 *rows;                /* rows (P_0, P_1, P_2, theta), owned by the plan */
+    int count;
+} atmo_mie_optics;
+
+/* The optics of preset distribution `dsd` (an index into cloud.dsd's names), convolved with the
+ * sun's disc when sun_disc is 1. */
+int atmo_plan_mie_optics(const atmo_scene *s, int dsd, int sun_disc, atmo_plan *p,
+                         atmo_mie_optics *out, atmo_err *e);
+
 /* When the scene enables the cloud or the observer: checks that the method is single or march,
  * builds (or loads from the cache) the Mie tables at the render wavelengths into the buffer
  * cloud_phase_table and fills gpu.cloud (feature "cloud" of features.c, which is planned only

@@ -77,6 +77,33 @@ typedef struct atmo_scene {
         int phase;             /* ATMO_CLOUD_PHASE_* */
         int sun_disc;          /* 0/1: Mie table convolved with the sun's disc */
     } cloud;
+    struct {                   /* the fBm cloud layer (kernels/media/cloud_layer.h) */
+        int enabled;
+        double bottom_m, top_m, fade_m; /* altitudes above sea level; fades inside them */
+        double coverage;       /* mean of the coverage field, 0..1 */
+        double density;        /* density scale */
+        double sharpness;      /* exponent on (coverage - fBm) */
+        double frequency_per_m[3]; /* the shape fBm's base frequency per axis */
+        double coverage_scale_m; /* the coverage field's largest features */
+        int octaves;           /* of the shape fBm */
+        double warp_m;         /* domain-warp amplitude */
+        int seed;              /* the noise's seed */
+        double wind_m_s, wind_azimuth_deg; /* wind speed and the azimuth it blows toward */
+        double time_s;         /* time since the noise's origin: moves it by wind x time */
+        double extinction_per_m; /* sigma_t at unit density; 0: from the droplet distribution */
+        double albedo;         /* with extinction_per_m > 0 */
+        int dsd;               /* index into mie_dsd_preset_names: phase table (and optics) */
+        double lwc_g_m3;       /* liquid water at unit density (extinction_per_m = 0) */
+        int phase;             /* ATMO_CLOUD_PHASE_* */
+        int steps;             /* the marcher's most steps along a view ray */
+        double step_m;         /* its step in cloud near the camera */
+        int light_steps;       /* steps of the light march toward the sun */
+        double light_distance_m; /* its length */
+        double max_distance_m; /* the marcher's far plane */
+        int ms_octaves;        /* multiple-scattering octaves (1: single scattering only) */
+        double ms_a, ms_b, ms_c; /* their extinction, contribution and anisotropy factors */
+        int look;              /* ATMO_CLOUDS_LOOK_* */
+    } clouds;
     struct {                   /* a sphere in the camera's sun plane (Brocken spectre) */
         int enabled;
         double distance_m;     /* horizontally ahead of the camera, toward the antisolar point */

@@ -43,11 +43,23 @@
  * paths would see no tentative point there, and the few that do would carry the whole
  * estimate; 4 points per segment cut its standard error about 2.7 times for about 1.5 times
  * the time (measured on tests/test_aerial.c's rays: docs/notes/reference_segments.md).
- * Interfaces: the coefficients come from media_at (media.h), the planet's shadow from
- * visibility_sun (visibility.h) at each point, the walk from tracking.h. The path lives in its
- * own planet-centred frame (camera at (0, r, 0)); the points it hands the visibility sources
- * are camera-relative in that frame, which is the world's only up to a rotation about the
- * vertical, so the plan refuses the observer (a 3-D source) with this method.
+ * Clouds (-DATMO_CLOUDS): the fBm layer is one more component of media_at; a segment that
+ * reaches its altitudes adds the layer's bound (clouds.majorant x its largest extinction) to
+ * the majorant, so delta, spectral and ratio tracking stay unbiased through it; the sun's
+ * transmittance is ratio-tracked through air and clouds alike (visibility_sun's marched light
+ * march is not used: only the opaque occluders); a scattering by the layer samples its phase
+ * function: the Mie table by its CDF (phase_table.h, with the weight P / q per wavelength),
+ * Henyey-Greenstein by the middle wavelength's g (weights p_c / p_y), Jendersie-d'Eon exactly.
+ * Under the layer's majorant most tentative points are null collisions, so there the sun's
+ * next-event estimate is made only with probability keep = min(1, REFERENCE_NEE_FLOOR +
+ * max sigma_s / sigma_bar) and divided by it (Russian roulette: unbiased), which spares most
+ * of the ratio-tracked shadow rays. The walk stays slow in thick clouds (one global bound for
+ * the layer); a coarse majorant grid would cut its null collisions.
+ * Interfaces: the coefficients come from media_at (media.h), the occluders from
+ * visibility_sun_occluders (visibility.h) at each point, the walk from tracking.h. The path
+ * lives in its own planet-centred frame (the start of the path at (0, r, 0)); reference_frame
+ * maps its points and directions to the world's camera-relative coordinates, so the 3-D media
+ * (the cloud layer) and visibility sources see the positions the other methods see.
  * Random numbers: the caller's rng stream (rng.h), one number per draw in order.
  * Units: radiance W m^-2 sr^-1 nm^-1, lengths m, coefficients 1/m. */
 #ifndef ATMO_METHOD_REFERENCE_H
@@ -68,6 +80,7 @@
 
 #define REFERENCE_ROULETTE_ORDER 4
 #define REFERENCE_SEGMENT_POINTS 4.0f
+#define REFERENCE_NEE_FLOOR 0.05f /* with clouds: least probability of a next-event estimate */
 
 /* Lowest altitude along the ray from r along mu up to distance d (the ray's end). */
 ATMO_FN float reference_min_altitude(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r,
@@ -94,46 +107,138 @@ ATMO_FN float reference_majorant(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float
     return fmaxf(tracking_max3(bound), 1e-12f) * 1.001f;
 }
 
-/* A point at distance t along the ray from the point pos (planet-centred, radius r) along
- * dir, with the ray's cosines mu, mu_s, nu there; `camera` = the camera's planet-centred
- * position (for the camera-relative p). */
-ATMO_FN medium_point reference_point(ATMO_GLOBAL const atmo_gpu_atmosphere *a, vec3 pos,
-                                     vec3 dir, vec3 camera, float r, float mu, float mu_s,
-                                     float nu, float t)
+/* The media's majorant on the segment from radius r with cosine mu to distance d: the air's
+ * above its lowest altitude, plus, where the segment reaches the fBm cloud layer's altitudes,
+ * the layer's bound (its density bound times its largest extinction). */
+ATMO_FN float reference_segment_majorant(ATMO_GLOBAL const atmo_gpu_scene *s, float r, float mu,
+                                         float d)
+{
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    float h_min = reference_min_altitude(a, r, mu, d);
+    float bound = reference_majorant(a, h_min);
+#ifdef ATMO_CLOUDS
+    float h_max = fmaxf(r - a->bottom_radius, geometry_altitude_at(r, mu, d, a->bottom_radius));
+    if (h_min - 10.0f < s->clouds.top_m && h_max + 10.0f > s->clouds.bottom_m)
+        bound += s->clouds.majorant * tracking_max3(v3_from4(s->clouds.extinction)) * 1.001f;
+#endif
+    return bound;
+}
+
+/* The path's frame (see the top of the file) in the world's axes: a path point X (planet-
+ * centred in the path's frame) is at the camera-relative world position
+ *     o + e_x X.x + e_y (X.y - r_e) + e_z X.z
+ * with o the camera-relative position of the point the path's frame puts at (0, r_e, 0). */
+typedef struct reference_frame {
+    vec3 o, e_x, e_y, e_z;
+    float r_e;
+} reference_frame;
+
+ATMO_FN vec3 reference_world_dir(const reference_frame *f, vec3 d)
+{
+    return v3_add(v3_add(v3_scale(f->e_x, d.x), v3_scale(f->e_y, d.y)), v3_scale(f->e_z, d.z));
+}
+
+ATMO_FN vec3 reference_world_point(const reference_frame *f, vec3 x)
+{
+    return v3_add(f->o, reference_world_dir(f, v3(x.x, x.y - f->r_e, x.z)));
+}
+
+/* The frame of a path whose first segment starts t_entry along the ray m, at radius r_e. */
+ATMO_FN reference_frame reference_frame_make(const medium_ray *m, float t_entry, float r_e)
+{
+    reference_frame f;
+    f.o = v3_add(m->origin, v3_scale(m->dir, t_entry));
+    f.e_y = v3_normalize(v3_add(v3_scale(m->up, m->r_c), f.o));
+    f.r_e = r_e;
+    vec3 level = v3_sub(m->dir, v3_scale(f.e_y, v3_dot(m->dir, f.e_y)));
+    if (v3_dot(level, level) < 1e-12f) /* a vertical ray: the path's x axis follows the sun */
+        level = v3_sub(m->sun, v3_scale(f.e_y, v3_dot(m->sun, f.e_y)));
+    if (v3_dot(level, level) < 1e-12f)
+        level = v3_cross(f.e_y, fabsf(f.e_y.x) < 0.6f ? v3(1.0f, 0.0f, 0.0f) : v3(0.0f, 0.0f, 1.0f));
+    f.e_x = v3_normalize(level);
+    f.e_z = v3_cross(f.e_x, f.e_y);
+    if (v3_dot(m->sun, f.e_z) < 0.0f) /* the path's sun has z >= 0 */
+        f.e_z = v3_scale(f.e_z, -1.0f);
+    return f;
+}
+
+/* A point at distance t along the ray from the point pos (planet-centred in the path's frame,
+ * radius r) along dir, with the ray's cosines mu, mu_s, nu there, its 3-D position in the
+ * world's camera-relative coordinates. */
+ATMO_FN medium_point reference_point(ATMO_GLOBAL const atmo_gpu_atmosphere *a,
+                                     const reference_frame *f, vec3 pos, vec3 dir, float r,
+                                     float mu, float mu_s, float nu, float t)
 {
     medium_ray m;
-    m.origin = v3_sub(pos, camera);
-    m.dir = dir;
+    m.origin = reference_world_point(f, pos);
+    m.dir = reference_world_dir(f, dir);
     m.r = r, m.mu = mu, m.mu_s = mu_s, m.nu = nu;
     return medium_ray_at(&m, t, a->bottom_radius);
 }
 
-/* Transmittance along the whole ray from r along mu by ratio tracking (the ray must not hit the
- * ground); unbiased, each factor 1 - sigma_t / sigma_bar in [0, 1]. */
+/* Transmittance toward the sun from the point q to the top of the atmosphere by ratio tracking
+ * (the ray must not hit the ground); unbiased, each factor 1 - sigma_t / sigma_bar in [0, 1]. */
 ATMO_FN vec3 reference_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                                     float r, float mu, rng_stream *g)
+                                     const medium_point *q, rng_stream *g)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    float r = q->r, mu = q->mu_s;
     float d = geometry_distance_to_top(r, mu, a->top_radius);
-    tracking_walk w = tracking_begin(d, reference_majorant(a, reference_min_altitude(a, r, mu, d)));
-    vec3 T = v3(1.0f, 1.0f, 1.0f);
+    tracking_walk w = tracking_begin(d, reference_segment_majorant(s, r, mu, d));
+    vec3 T = v3(1.0f, 1.0f, 1.0f), sun = v3_from4(s->sun_direction);
     while (tracking_next(&w, g)) {
-        medium_point q;
-        q.h = geometry_altitude_at(r, mu, w.t, a->bottom_radius);
-        T = tracking_ratio(&w, T, media_at(s, ATMO_LUT_ARGS, &q).extinction);
+        medium_point x;
+        x.p = v3_add(q->p, v3_scale(sun, w.t));
+        x.h = geometry_altitude_at(r, mu, w.t, a->bottom_radius);
+        T = tracking_ratio(&w, T, media_at(s, ATMO_LUT_ARGS, &x).extinction);
+        if (tracking_max3(T) <= 0.0f)
+            break;
     }
     return T;
 }
 
-/* E T_sun at the point q (zero where a visibility source hides the sun: the planet). */
+/* E T_sun at the point q: zero where an opaque source hides the sun (the planet), else the
+ * media's transmittance by ratio tracking (every medium is tracked, none taken from
+ * visibility_sun's marched estimates). */
 ATMO_FN vec3 reference_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                 const medium_point *q, rng_stream *g)
 {
-    vec3 vis = visibility_sun(s, ATMO_LUT_ARGS, q);
-    if (vis.x <= 0.0f && vis.y <= 0.0f && vis.z <= 0.0f)
+    float vis = visibility_sun_occluders(s, ATMO_LUT_ARGS, q);
+    if (vis <= 0.0f)
         return v3(0.0f, 0.0f, 0.0f);
-    return v3_mul(v3_mul(v3_from4(s->atmosphere.solar_irradiance), vis),
-                  reference_transmittance(s, ATMO_LUT_ARGS, q->r, q->mu_s, g));
+    return v3_scale(v3_mul(v3_from4(s->atmosphere.solar_irradiance),
+                           reference_transmittance(s, ATMO_LUT_ARGS, q, g)),
+                    vis);
+}
+
+/* A new direction's cosine to the old one, sampled from component k's phase function with the
+ * uniform number u1 (and, for Jendersie-d'Eon's mixture, one more from g); *weight multiplies the path's throughput (the phase over the
+ * sampling density: 1 where the sampling is exact). */
+ATMO_FN float reference_sample_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, int k,
+                                     float u1, rng_stream *g, vec3 *weight)
+{
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    *weight = v3(1.0f, 1.0f, 1.0f);
+#ifdef ATMO_CLOUDS
+    if (k == MEDIA_CLOUDS) {
+        ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
+        if (c->phase == ATMO_CLOUD_PHASE_JENDERSIE_DEON)
+            return phase_jendersie_deon_sample(phase_jendersie_deon_params(c->diameter_um), u1,
+                                               rng_next(g));
+        if (c->phase == ATMO_CLOUD_PHASE_HG) { /* sampled by channel y, weighted per channel */
+            float cs = phase_henyey_greenstein_sample(c->g.y, u1);
+            float py = phase_henyey_greenstein(cs, c->g.y);
+            *weight = v3(phase_henyey_greenstein(cs, c->g.x) / py, 1.0f,
+                         phase_henyey_greenstein(cs, c->g.z) / py);
+            return cs;
+        }
+        return phase_rows_sample(clouds_phase_table, clouds_phase_cdf, c->table_size, u1, weight);
+    }
+#endif
+    (void)g;
+    return k == MEDIA_RAYLEIGH ? phase_draine_sample(0.0f, 1.0f, u1)
+           : a->mie_phase == ATMO_PHASE_HENYEY_GREENSTEIN ? phase_henyey_greenstein_sample(a->mie_g, u1)
+                                                          : phase_cornette_shanks_sample(a->mie_g, u1);
 }
 
 /* A unit vector at cosine c to the unit vector n, with azimuth phi around it. */
@@ -165,8 +270,8 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
     *view_t = one;
     int looks_at_sun = nu >= s->sun_direction.w;
 
-    t_max -= atmosphere_entry_distance(a, r, mu);
-    float r_cam = r;
+    float t_entry = atmosphere_entry_distance(a, r, mu);
+    t_max -= t_entry;
     if (!atmosphere_enter(a, &r, &mu, &mu_s, nu)) { /* the ray misses the atmosphere */
         if (looks_at_sun)
             *sun = atmosphere_sun_disc_radiance(a, s->sun_direction.w);
@@ -180,8 +285,8 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
     s_x = clamp(s_x, -1.0f, 1.0f);
     vec3 to_sun = v3_normalize(v3(s_x, mu_s, atmo_safe_sqrt(1.0f - mu_s * mu_s - s_x * s_x)));
 
-    vec3 camera = v3(0.0f, r_cam, 0.0f); /* planet-centred, in the path's frame */
-    vec3 pos = v3(0.0f, r, 0.0f);
+    reference_frame frame = reference_frame_make(m, t_entry, r);
+    vec3 pos = v3(0.0f, r, 0.0f);         /* planet-centred, in the path's frame */
     vec3 w = one;                        /* path throughput */
     vec3 L = v3(0.0f, 0.0f, 0.0f);
     for (int order = 0;; order++) {
@@ -196,7 +301,7 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
         int blocked = order == 0 && t_max < d; /* by the black surface */
         if (blocked)
             d = t_max, ground = 0;
-        float sigma_bar = reference_majorant(a, reference_min_altitude(a, r0, mu0, d));
+        float sigma_bar = reference_segment_majorant(s, r0, mu0, d);
         if (blocked) /* at least REFERENCE_SEGMENT_POINTS tentative points on a short segment */
             sigma_bar = fmaxf(sigma_bar, REFERENCE_SEGMENT_POINTS / d);
         int count = order + 1 >= min_order; /* light reaching the camera through this segment's
@@ -211,14 +316,29 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
         tracking_walk walk = tracking_begin(d, sigma_bar);
         while (tracking_next(&walk, g)) {
             float t = walk.t;
-            medium_point q = reference_point(a, pos, dir, camera, r0, mu0, mus0, nu0, t);
+            medium_point q = reference_point(a, &frame, pos, dir, r0, mu0, mus0, nu0, t);
             media_sample ms = media_at(s, ATMO_LUT_ARGS, &q);
             if (count) {
-                vec3 sun_light = reference_sunlight(s, ATMO_LUT_ARGS, &q, g);
-                vec3 scat = v3_mul(ms.scattering[0], phase[0]);
+                float keep = 1.0f;
+#ifdef ATMO_CLOUDS
+                /* under the clouds' majorant most points are null: the estimate is made with
+                 * probability keep (>= REFERENCE_NEE_FLOOR, more where it scatters) and
+                 * divided by it, which keeps it unbiased and spares most shadow rays */
+                vec3 sigma_s = ms.scattering[0];
                 for (int k = 1; k < MEDIA_COMPONENTS; k++)
-                    scat = v3_add(scat, v3_mul(ms.scattering[k], phase[k]));
-                L = v3_add(L, v3_mul(v3_mul(W, scat), v3_scale(sun_light, 1.0f / sigma_bar)));
+                    sigma_s = v3_add(sigma_s, ms.scattering[k]);
+                keep = fminf(1.0f, REFERENCE_NEE_FLOOR + tracking_max3(sigma_s) / sigma_bar);
+                if (keep < 1.0f && rng_next(g) >= keep)
+                    keep = 0.0f;
+#endif
+                if (keep > 0.0f) {
+                    vec3 sun_light = reference_sunlight(s, ATMO_LUT_ARGS, &q, g);
+                    vec3 scat = v3_mul(ms.scattering[0], phase[0]);
+                    for (int k = 1; k < MEDIA_COMPONENTS; k++)
+                        scat = v3_add(scat, v3_mul(ms.scattering[k], phase[k]));
+                    L = v3_add(L, v3_mul(v3_mul(W, scat),
+                                         v3_scale(sun_light, 1.0f / (sigma_bar * keep))));
+                }
             }
             if (more && !collided) {
                 int k = tracking_spectral_pick(&walk, g, &ws, ms.scattering, MEDIA_COMPONENTS,
@@ -229,7 +349,7 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
             W = tracking_ratio(&walk, W, ms.extinction);
         }
         if (ground && count) { /* the directly lit ground, seen through the segment */
-            medium_point q = reference_point(a, pos, dir, camera, r0, mu0, mus0, nu0, d);
+            medium_point q = reference_point(a, &frame, pos, dir, r0, mu0, mus0, nu0, d);
             q.r = a->bottom_radius;
             q.h = 0.0f;
             q.mu_s = atmo_clamp_cos((r0 * mus0 + d * nu0) / a->bottom_radius);
@@ -247,11 +367,10 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
         if (collided) {
             pos = v3_add(pos, v3_scale(dir, t_hit));
             float u1 = rng_next(g), phi = 2.0f * ATMO_PI * rng_next(g);
-            float c = chosen == MEDIA_RAYLEIGH ? phase_draine_sample(0.0f, 1.0f, u1)
-                      : a->mie_phase == ATMO_PHASE_HENYEY_GREENSTEIN      ? phase_henyey_greenstein_sample(a->mie_g, u1)
-                                               : phase_cornette_shanks_sample(a->mie_g, u1);
+            vec3 phase_weight;
+            float c = reference_sample_phase(s, ATMO_LUT_ARGS, chosen, u1, g, &phase_weight);
             dir = reference_rotate(dir, c, phi);
-            w = ws;
+            w = v3_mul(ws, phase_weight);
         } else {
             pos = v3_add(pos, v3_scale(dir, d));
             vec3 n = v3_normalize(pos);

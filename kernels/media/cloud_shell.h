@@ -5,7 +5,7 @@
  * Medium: extinction sigma (1/m, per wavelength) = (sigma_ext / LWC) x LWC of a droplet size
  * distribution, albedo omega and a phase function p (per steradian): the 4pi-normalised Mie table
  * P(theta) / 4pi of the distribution (host/plan/plan_cloud.c builds it with mie_table_get, rows
- * float4 (P_680, P_550, P_440, theta) ascending in theta, interpolated linearly here), or
+ * float4 (P_680, P_550, P_440, theta) ascending in theta: phase_table.h's format), or
  * Henyey-Greenstein with the table's g, or Jendersie & d'Eon 2023 for the effective diameter.
  *
  * What it gives the integrator: its break points along a ray (the shell's two spheres: at most
@@ -42,6 +42,7 @@
 #include "common/geometry.h"
 #include "common/phase.h"
 #include "media/ray.h"
+#include "media/phase_table.h"
 #include "atmo/gpu_types.h"
 #endif
 
@@ -99,21 +100,7 @@ ATMO_FN vec3 cloud_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const 
         return v3(p, p, p);
     }
     /* the light turns from -sun to -view: the scattering angle's cosine is nu */
-    ATMO_GLOBAL const float4 *rows = table;
-    int n = s->cloud.table_size;
-    float theta = acosf(atmo_clamp_cos(nu));
-    int lo = 0, hi = n - 1; /* rows[lo].w <= theta <= rows[hi].w */
-    while (hi - lo > 1) {
-        int mid = (lo + hi) / 2;
-        if (rows[mid].w <= theta)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    float4 a = rows[lo], b = rows[hi];
-    float f = b.w > a.w ? clamp((theta - a.w) / (b.w - a.w), 0.0f, 1.0f) : 0.0f;
-    float k = 1.0f / (4.0f * ATMO_PI);
-    return v3(mix(a.x, b.x, f) * k, mix(a.y, b.y, f) * k, mix(a.z, b.z, f) * k);
+    return phase_rows_eval(table, s->cloud.table_size, nu);
 }
 
 /* int_0^dt e^{-x(s)} ds for an exponent linear from x0 to x1 (both >= 0):

@@ -7,10 +7,12 @@
  *     sigma_t(x) = sum_m sigma_t,m(x),  sigma_s,k(x) for the components k,  p_k(nu) per steradian
  * The atmosphere is always present (atmosphere.h: Rayleigh and Mie scattering with their scale
  * heights, ozone absorbing); the homogeneous cloud shell (cloud_shell.h) is added under
- * -DATMO_CLOUD; another medium (the fBm clouds) is another module here. A medium that needs its
- * own stepping (the cloud shell's optical-depth steps) also supplies break points: the parts of a
- * ray inside it (media_intervals), which the integrator integrates with that medium's stepping
- * (media_interval) and marches the rest with media_at. Units: 1/m, per steradian. */
+ * -DATMO_CLOUD, the fBm cloud layer (cloud_layer.h, cloud_march.h) under -DATMO_CLOUDS (the two
+ * exclude each other: plan_clouds.c). A medium that needs its own stepping (the cloud shell's
+ * optical-depth steps, the layer's marcher) also supplies break points: the parts of a ray inside
+ * it (media_intervals), which the integrator integrates with that medium's stepping
+ * (media_interval: it adds the light of everything in its part, air included) and marches the
+ * rest with media_at. Units: 1/m, per steradian. */
 #ifndef ATMO_MEDIA_H
 #define ATMO_MEDIA_H
 #ifndef __OPENCL_VERSION__
@@ -22,6 +24,9 @@
 #ifdef ATMO_CLOUD
 #include "media/cloud_shell.h"
 #endif
+#ifdef ATMO_CLOUDS
+#include "media/cloud_layer.h"
+#endif
 #include "atmo/gpu_types.h"
 #endif
 
@@ -30,9 +35,15 @@
 #define MEDIA_MIE 1
 #ifdef ATMO_CLOUD
 #define MEDIA_CLOUD 2
-#define MEDIA_COMPONENTS 3
+#define MEDIA_SHELL_END 3
 #else
-#define MEDIA_COMPONENTS 2
+#define MEDIA_SHELL_END 2
+#endif
+#ifdef ATMO_CLOUDS
+#define MEDIA_CLOUDS MEDIA_SHELL_END
+#define MEDIA_COMPONENTS (MEDIA_SHELL_END + 1)
+#else
+#define MEDIA_COMPONENTS MEDIA_SHELL_END
 #endif
 #define MEDIA_MAX_INTERVALS 2 /* parts of one ray with their own stepping */
 
@@ -63,6 +74,11 @@ ATMO_FN media_sample media_at(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
     m.scattering[MEDIA_CLOUD] = v3_mul(cloud, v3_from4(s->cloud.albedo));
     m.extinction = v3_add(m.extinction, cloud);
 #endif
+#ifdef ATMO_CLOUDS
+    vec3 layer = v3_scale(v3_from4(s->clouds.extinction), clouds_density(&s->clouds, q->p, q->h));
+    m.scattering[MEDIA_CLOUDS] = v3_mul(layer, v3_from4(s->clouds.albedo));
+    m.extinction = v3_add(m.extinction, layer);
+#endif
     return m;
 }
 
@@ -78,6 +94,10 @@ ATMO_FN vec3 media_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, i
     if (k == MEDIA_CLOUD)
         return cloud_phase(s, cloud_phase_table, nu);
 #endif
+#ifdef ATMO_CLOUDS
+    if (k == MEDIA_CLOUDS)
+        return clouds_phase(s, clouds_phase_table, nu);
+#endif
     float p = media_mie_phase(&s->atmosphere, nu);
     return v3(p, p, p);
 }
@@ -87,22 +107,39 @@ ATMO_FN vec3 media_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, i
 ATMO_FN int media_intervals(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m,
                             float t_start, float t_end, float *lo, float *hi)
 {
-#ifdef ATMO_CLOUD
+#if defined(ATMO_CLOUDS)
+    return clouds_shell_parts(s->atmosphere.bottom_radius, s->clouds.bottom_m, s->clouds.top_m,
+                              m->r, m->mu, t_start, t_end, lo, hi);
+#elif defined(ATMO_CLOUD)
     return cloud_shell_intervals(s, m, t_start, t_end, lo, hi);
 #else
     return 0;
 #endif
 }
 
+#ifdef ATMO_CLOUDS
+/* the layer's marcher, in kernels/media/cloud_march.h (after the integrator, whose pieces it
+ * uses) */
+ATMO_FN void clouds_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                             const medium_ray *m, float t0, float t1, float jitter, int use_ms,
+                             int ground, vec3 *L, vec3 *T, vec3 *medium_t);
+#endif
+
 /* Interval [t0, t1] of media_intervals integrated by its medium: adds its light to *L with
  * the running view transmittance *T, and multiplies *medium_t by the transmittance of the
- * media other than the air over it (for the sun disc behind it). */
+ * media other than the air over it (for the sun disc behind it). use_ms and ground are those of
+ * medium_integrate (a medium whose part holds air adds the air's multiple scattering too). */
 ATMO_FN void media_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                            const medium_ray *m, float t0, float t1, float jitter, vec3 *L,
-                            vec3 *T, vec3 *medium_t)
+                            const medium_ray *m, float t0, float t1, float jitter, int use_ms,
+                            int ground, vec3 *L, vec3 *T, vec3 *medium_t)
 {
-#ifdef ATMO_CLOUD
+#if defined(ATMO_CLOUDS)
+    clouds_interval(s, ATMO_LUT_ARGS, m, t0, t1, jitter, use_ms, ground, L, T, medium_t);
+#elif defined(ATMO_CLOUD)
+    (void)use_ms, (void)ground;
     cloud_shell_interval(s, ATMO_LUT_ARGS, m, t0, t1, jitter, L, T, medium_t);
+#else
+    (void)use_ms, (void)ground;
 #endif
 }
 

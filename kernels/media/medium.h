@@ -167,6 +167,9 @@ ATMO_FN void medium_piece(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
 #ifdef ATMO_CLOUD
         j = v3_mul(j, cloud_shell_sun_transmittance(s, &q, s->atmosphere.bottom_radius));
 #endif
+#ifdef ATMO_CLOUDS
+        j = v3_mul(j, clouds_sun_transmittance(s, &q));
+#endif
         out->rest = v3_add(out->rest, v3_mul(v3_mul(*T, w), j));
     }
     *T = v3_mul(*T, step);
@@ -232,8 +235,8 @@ ATMO_FN void medium_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
             if (lo[next] > pos)
                 medium_piece(s, ATMO_LUT_ARGS, &m, pos + jitter * (lo[next] - pos),
                              lo[next] - pos, use_ms, ground, out, &T);
-            media_interval(s, ATMO_LUT_ARGS, &m, lo[next], hi[next], jitter, &out->rest, &T,
-                           &medium_t);
+            media_interval(s, ATMO_LUT_ARGS, &m, lo[next], hi[next], jitter, use_ms, ground,
+                           &out->rest, &T, &medium_t);
             pos = fmaxf(pos, hi[next]);
             next++;
         }

@@ -6,8 +6,10 @@
  * radius r and sun cosine mu_s: shadowed iff mu_s < 0 and r^2 (mu_s^2 - 1) + R^2 >= 0
  * (geometry.h, whose discriminant keeps its precision at planet scale); under -DATMO_CLOUD the
  * observer sphere (observer.h) at the point's camera-relative position, and the cloud shell's
- * transmittance along the sun's chord through it (cloud_shell.h). Terrain (a heightmap march
- * toward the sun) and the fBm clouds (ratio tracking toward the sun) plug in here.
+ * transmittance along the sun's chord through it (cloud_shell.h); under -DATMO_CLOUDS the fBm
+ * layer's light march (cloud_layer.h), so every caller gets cloud shadows in the air (light
+ * shafts through gaps) and on the ground. Terrain (a heightmap march toward the sun) plugs in
+ * here.
  * visibility_sun_occluders is the product of the opaque sources (0 or 1), visibility_sun adds
  * the shadowing media (per wavelength, 0..1); both get the buffers, where a source keeps its
  * data (a heightmap, a density grid). The atmosphere's own transmittance toward the
@@ -52,6 +54,10 @@ ATMO_FN vec3 visibility_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS
 #ifdef ATMO_CLOUD
     if (v > 0.0f)
         vis = v3_scale(cloud_shell_sun_transmittance(s, q, s->atmosphere.bottom_radius), v);
+#endif
+#ifdef ATMO_CLOUDS
+    if (v > 0.0f)
+        vis = v3_mul(vis, clouds_sun_transmittance(s, q));
 #endif
     return vis;
 }

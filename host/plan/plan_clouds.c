@@ -1,0 +1,134 @@
+/* plan_clouds.c — the fBm cloud layer in the plan (atmo/plan_clouds.h).
+ *
+ * Optics at unit density, per render wavelength: sigma_t = clouds.extinction_per_m and the
+ * albedo clouds.albedo (the thesis' 10.354e-3 1/m and 0.9512 by default), or, with
+ * extinction_per_m = 0, sigma_t = (sigma_ext / LWC) x clouds.lwc_g_m3 and the albedo of the
+ * Mie solution of the droplet distribution clouds.dsd (atmo_plan_mie_optics, plan_cloud.c). The
+ * phase table is always the distribution's (phase_table.h's rows), each channel normalised so
+ * that the interpolant the kernels evaluate (linear in theta) integrates to exactly 4 pi, in
+ * closed form per segment (segment_integral), and its sampling CDF C_j of the middle
+ * wavelength is made of the same segment integrals, in double precision.
+ *
+ * Placement: the noise's origin is the camera's world position (double) minus the wind's
+ * displacement v t (direction (sin a, 0, cos a), a = clouds.wind_azimuth_deg), rounded to float
+ * once, so a kernel's noise point p + origin is exact to float rounding of the sum. The majorant
+ * of the Monte Carlo walk is clouds.density (the density's bound, cloud_layer.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "atmo/plan_cloud.h"
+#include "atmo/plan_clouds.h"
+
+void atmo_plan_clouds_origin(const atmo_scene *s, float4 *origin)
+{
+    double a = s->clouds.wind_azimuth_deg * M_PI / 180.0;
+    double shift = s->clouds.wind_m_s * s->clouds.time_s;
+    origin->x = (float)(s->camera.position_m[0] - shift * sin(a));
+    origin->y = (float)s->camera.position_m[1];
+    origin->z = (float)(s->camera.position_m[2] - shift * cos(a));
+    origin->w = 0.0f;
+}
+
+/* int P sin(theta) dtheta over the rows' segment [a, b] of channel k, with P linear in theta
+ * between the rows (as phase_rows_eval interpolates), in closed form:
+ *     P_a (cos a - cos b) + (P_b - P_a) / (b - a) (sin b - sin a - (b - a) cos b) */
+static double segment_integral(const float4 *lo, const float4 *hi, int k)
+{
+    double a = lo->w, b = hi->w, pa = (&lo->x)[k], pb = (&hi->x)[k];
+    double slope = b > a ? (pb - pa) / (b - a) : 0.0;
+    return pa * (cos(a) - cos(b)) + slope * (sin(b) - sin(a) - (b - a) * cos(b));
+}
+
+/* Normalise each channel so its interpolant integrates to exactly 4 pi (the Mie table's
+ * trapezoids leave ~1e-4, which a furnace of many scatterings would see as an albedo above 1),
+ * then fill the sampling CDF of the middle channel from the same segment integrals. */
+static int normalise_and_cdf(float4 *rows, int n, float **out, atmo_err *e)
+{
+    float *cdf = malloc(sizeof *cdf * (size_t)n);
+    if (!cdf)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the clouds' phase CDF");
+    for (int k = 0; k < 3; k++) {
+        double total = 0.0;
+        for (int j = 1; j < n; j++)
+            total += 2.0 * M_PI * segment_integral(&rows[j - 1], &rows[j], k);
+        double scale = total > 0.0 ? 4.0 * M_PI / total : 1.0;
+        for (int j = 0; j < n; j++)
+            (&rows[j].x)[k] = (float)((double)(&rows[j].x)[k] * scale);
+    }
+    double acc = 0.0, total = 0.0;
+    for (int j = 1; j < n; j++)
+        total += segment_integral(&rows[j - 1], &rows[j], 1);
+    cdf[0] = 0.0f;
+    for (int j = 1; j < n; j++) {
+        acc += segment_integral(&rows[j - 1], &rows[j], 1);
+        cdf[j] = (float)(acc / (total > 0.0 ? total : 1.0));
+    }
+    cdf[n - 1] = 1.0f;
+    *out = cdf;
+    return ATMO_OK;
+}
+
+int atmo_plan_clouds(const atmo_scene *s, atmo_plan *p, atmo_err *e)
+{
+    int m = s->atmosphere.method, rc;
+    if (m != ATMO_METHOD_SINGLE && m != ATMO_METHOD_MARCH && m != ATMO_METHOD_REFERENCE)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "clouds.enabled works with atmosphere.method=single, march or reference "
+                         "(got %s); set one of those",
+                         p->method);
+    if (s->cloud.enabled)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "cloud.enabled (the homogeneous shell) and clouds.enabled (the fBm layer) "
+                         "exclude each other; set one of them to false");
+    if (s->clouds.top_m <= s->clouds.bottom_m)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "clouds.top_m (%g) must be above clouds.bottom_m (%g); raise the top",
+                         s->clouds.top_m, s->clouds.bottom_m);
+    atmo_mie_optics o;
+    if ((rc = atmo_plan_mie_optics(s, s->clouds.dsd, 1, p, &o, e)))
+        return rc;
+    atmo_gpu_clouds *g = &p->gpu.clouds;
+    for (int i = 0; i < 3; i++) {
+        int from_dsd = s->clouds.extinction_per_m == 0.0;
+        (&g->extinction.x)[i] = (float)(from_dsd ? o.sigma_ext_per_lwc[i] * s->clouds.lwc_g_m3
+                                                 : s->clouds.extinction_per_m);
+        (&g->albedo.x)[i] = (float)(from_dsd ? o.albedo[i] : s->clouds.albedo);
+        (&g->g.x)[i] = (float)o.g[i];
+    }
+    atmo_plan_clouds_origin(s, &g->origin);
+    g->frequency.x = (float)s->clouds.frequency_per_m[0];
+    g->frequency.y = (float)s->clouds.frequency_per_m[1];
+    g->frequency.z = (float)s->clouds.frequency_per_m[2];
+    g->frequency.w = (float)(1.0 / s->clouds.coverage_scale_m);
+    g->bottom_m = (float)s->clouds.bottom_m;
+    g->top_m = (float)s->clouds.top_m;
+    g->fade_m = (float)s->clouds.fade_m;
+    g->coverage = (float)s->clouds.coverage;
+    g->density = (float)s->clouds.density;
+    g->sharpness = (float)s->clouds.sharpness;
+    g->warp_m = (float)s->clouds.warp_m;
+    g->step_m = (float)s->clouds.step_m;
+    g->light_distance_m = (float)s->clouds.light_distance_m;
+    g->max_distance_m = (float)s->clouds.max_distance_m;
+    g->ms_a = (float)s->clouds.ms_a;
+    g->ms_b = (float)s->clouds.ms_b;
+    g->ms_c = (float)s->clouds.ms_c;
+    g->majorant = (float)s->clouds.density;
+    g->diameter_um = (float)o.diameter_um;
+    g->phase = s->clouds.phase;
+    g->table_size = o.count;
+    g->octaves = s->clouds.octaves;
+    g->steps = s->clouds.steps;
+    g->light_steps = s->clouds.light_steps;
+    g->ms_octaves = s->clouds.ms_octaves;
+    g->look = s->clouds.look;
+    g->seed = (uint)s->clouds.seed;
+    float *cdf = NULL;
+    if ((rc = normalise_and_cdf(o.rows, o.count, &cdf, e)) || (rc = atmo_plan_own(p, cdf, e)))
+        return rc;
+    if ((rc = atmo_plan_add_buffer(p, "clouds_phase_table", "float4",
+                                   sizeof(float4) * (size_t)o.count, 0, o.rows, e)))
+        return rc;
+    return atmo_plan_add_buffer(p, "clouds_phase_cdf", "float", sizeof(float) * (size_t)o.count,
+                                0, cdf, e);
+}

@@ -1,0 +1,17 @@
+/* plan_clouds.h — the plan's part for the fBm cloud layer (kernels/media/cloud_layer.h,
+ * cloud_march.h; host/plan/plan_clouds.c). */
+#ifndef ATMO_PLAN_CLOUDS_H
+#define ATMO_PLAN_CLOUDS_H
+#include "atmo/plan.h"
+
+/* When the scene has clouds.enabled: checks the method (single, march or reference) and the
+ * layer's altitudes, builds (or loads from the cache) the Mie tables of clouds.dsd into the
+ * buffers clouds_phase_table and clouds_phase_cdf and fills gpu.clouds (feature "clouds" of
+ * features.c). */
+int atmo_plan_clouds(const atmo_scene *s, atmo_plan *p, atmo_err *e);
+
+/* The noise's origin: the camera's world position minus the wind's displacement by
+ * clouds.time_s (what gpu.clouds.origin holds; it follows the view). */
+void atmo_plan_clouds_origin(const atmo_scene *s, float4 *origin);
+
+#endif

@@ -1,0 +1,199 @@
+/* cloud_layer.h — the fBm cloud layer: a planet-wide medium of coverage x shaped fBm between two
+ * altitudes, compiled only under -DATMO_CLOUDS. Its density, its optics and the sun's light
+ * through it; its own stepping along view rays is cloud_march.h (after the integrator).
+ *
+ * Density at a camera-relative point p of altitude h (x = p + origin, origin the camera's world
+ * position minus the wind's displacement w t, so the field moves with the wind):
+ *     c(x, h) = clamp(C (fbm_4(f_c x) - 1/2) + coverage, 0, 1) fade(h)
+ *     d(x, h) = density max(c - fbm_N(f * (x + A warp(f x / 4))), 0)^sharpness
+ * (the thesis' model, presets.md: a very-large-scale coverage field minus an N-octave 3-D fBm
+ * of frequency f per axis, domain-warped, raised to a power; fade(h) a smoothstep over fade_m
+ * above the bottom and below the top, so towers round off). C = CLOUDS_COVERAGE_CONTRAST turns
+ * the coverage field into clear regions (c = 0) and cloudy ones, f_c = 1 / coverage_scale_m.
+ * The fBm lies in [0, 1) (cloud_noise.h), so d <= density everywhere (the majorant of the
+ * Monte Carlo walk) and d = 0 wherever c = 0: the cheap coverage test (the coverage field
+ * before the fade, 4 octaves instead of N + 3) is exact at its point for skipping clear air.
+ * Optics (host/plan/plan_clouds.c): sigma_t = d x extinction per unit density, sigma_s =
+ * albedo sigma_t, the phase function the droplet distribution's Mie table (phase_table.h), its
+ * Henyey-Greenstein with the table's g, or Jendersie & d'Eon 2023.
+ *
+ * The light march (the sun's visibility through the layer, a visibility source of
+ * visibility.h): the part of the ray toward the sun inside the layer's shell, cut to
+ * light_distance_m from where it enters, in light_steps steps growing as (i/n)^2 (short near
+ * the point, where the light changes fastest), each sampled at one point:
+ *     D = sum_i d(x_i) dt_i,   T_sun = exp(-extinction D)
+ * The sample's offset inside the steps is a hash of the point's bits: decorrelated from pixel
+ * to pixel and step to step (no banding, no shared pattern between neighbours), and the same
+ * for the same point on every run; it stops once the optical depth passes CLOUDS_TAU_OPAQUE.
+ * exp(-D) of a jittered estimate of the optical depth
+ * over-estimates the transmittance on average (Jensen's inequality; tests/test_clouds_tracking.c
+ * measures how much); the Monte Carlo reference uses ratio tracking instead.
+ *
+ * Parameters (scene keys clouds.*, `atmo params`): bottom_m 1000, top_m 8000, fade_m 2000,
+ * coverage 0.25, density 5, sharpness 1.05, frequency_per_m (8, 16, 8) 1e-5, coverage_scale_m
+ * 500 km, octaves 6, warp_m 3000, extinction 10.354e-3 1/m and albedo 0.9512 at unit density
+ * (the thesis) or from the distribution (extinction_per_m = 0), light_steps 8 over
+ * light_distance_m 8000. The thesis' own layer (500 m to 20 km, 5 km fades, coverage features
+ * to 2500 km) is --set clouds.bottom_m=500 clouds.top_m=20000 clouds.fade_m=5000
+ * clouds.coverage_scale_m=2.5e6: its 13 km towers leave the air below them in shadow, so the
+ * defaults keep its noise and optics in a 7 km layer of fair-weather cumulus instead
+ * (docs/notes/clouds.md). Units: metres, 1/m. */
+#ifndef ATMO_MEDIA_CLOUD_LAYER_H
+#define ATMO_MEDIA_CLOUD_LAYER_H
+#ifndef __OPENCL_VERSION__
+#include <string.h>
+#include "common/compat.h"
+#include "common/geometry.h"
+#include "common/phase.h"
+#include "common/rng.h"
+#include "media/ray.h"
+#include "media/cloud_noise.h"
+#include "media/phase_table.h"
+#include "atmo/gpu_types.h"
+#endif
+
+#define CLOUDS_COVERAGE_OCTAVES 4
+#define CLOUDS_COVERAGE_CONTRAST 3.0f
+#define CLOUDS_WARP_FREQUENCY 0.25f /* of the warp noise, relative to the shape's */
+#define CLOUDS_TAU_OPAQUE 16.0f     /* the light march stops there: e^-16 = 1e-7 */
+
+/* The bits of a float, as an unsigned integer. */
+ATMO_FN uint clouds_bits(float x)
+{
+#ifdef __OPENCL_VERSION__
+    return as_uint(x);
+#else
+    uint u;
+    memcpy(&u, &x, sizeof u);
+    return u;
+#endif
+}
+
+/* A number in [0, 1) that is a hash of the point p (the light march's offset). */
+ATMO_FN float clouds_point_jitter(vec3 p, uint seed)
+{
+    uint h = rng_permute(seed ^ 0x2545f491u ^ clouds_bits(p.x));
+    h = rng_permute(h ^ clouds_bits(p.y));
+    h = rng_permute(h ^ clouds_bits(p.z));
+    return (float)(h >> 8) * (1.0f / 16777216.0f);
+}
+
+/* The height fade: 0 at the bottom and the top, 1 more than fade_m inside, smoothstep between. */
+ATMO_FN float clouds_fade(ATMO_GLOBAL const atmo_gpu_clouds *c, float h)
+{
+    float f = clamp(fminf(h - c->bottom_m, c->top_m - h) / c->fade_m, 0.0f, 1.0f);
+    return f * f * (3.0f - 2.0f * f);
+}
+
+/* The coverage field before the height fade at the world noise point x, 0..1. */
+ATMO_FN float clouds_coverage_field(ATMO_GLOBAL const atmo_gpu_clouds *c, vec3 x)
+{
+    float n = noise_fbm(v3_scale(x, c->frequency.w), CLOUDS_COVERAGE_OCTAVES, c->seed ^ 0x5bd1e995u);
+    return clamp(CLOUDS_COVERAGE_CONTRAST * (n - 0.5f) + c->coverage, 0.0f, 1.0f);
+}
+
+/* The coverage c(x, h) at the world noise point x (0 outside the layer). */
+ATMO_FN float clouds_coverage_world(ATMO_GLOBAL const atmo_gpu_clouds *c, vec3 x, float h)
+{
+    if (h <= c->bottom_m || h >= c->top_m)
+        return 0.0f;
+    return clouds_coverage_field(c, x) * clouds_fade(c, h);
+}
+
+/* The cheap test of the marcher: 0 where the coverage field (before the fade, which changes
+ * fast near the layer's bottom and top) leaves no cloud at any altitude of the layer. */
+ATMO_FN float clouds_coverage(ATMO_GLOBAL const atmo_gpu_clouds *c, vec3 p)
+{
+    return clouds_coverage_field(c, v3_add(p, v3_from4(c->origin)));
+}
+
+/* The density d at the world noise point x of altitude h, given its coverage cov > 0. */
+ATMO_FN float clouds_density_covered(ATMO_GLOBAL const atmo_gpu_clouds *c, vec3 x, float cov)
+{
+    vec3 f = v3_from4(c->frequency);
+    vec3 warp = noise_warp(v3_scale(v3_mul(x, f), CLOUDS_WARP_FREQUENCY), c->seed);
+    vec3 xw = v3_add(x, v3_scale(warp, c->warp_m));
+    float d = cov - noise_fbm(v3_mul(xw, f), c->octaves, c->seed);
+    return d > 0.0f ? c->density * powf(d, c->sharpness) : 0.0f;
+}
+
+/* The density at a camera-relative point p of altitude h (0 outside the layer). */
+ATMO_FN float clouds_density(ATMO_GLOBAL const atmo_gpu_clouds *c, vec3 p, float h)
+{
+    vec3 x = v3_add(p, v3_from4(c->origin));
+    float cov = clouds_coverage_world(c, x, h);
+    return cov > 0.0f ? clouds_density_covered(c, x, cov) : 0.0f;
+}
+
+/* The phase function per steradian at view-sun cosine nu, per wavelength. */
+ATMO_FN vec3 clouds_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *table,
+                          float nu)
+{
+    ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
+    if (c->phase == ATMO_CLOUD_PHASE_HG)
+        return v3(phase_henyey_greenstein(nu, c->g.x), phase_henyey_greenstein(nu, c->g.y),
+                  phase_henyey_greenstein(nu, c->g.z));
+    if (c->phase == ATMO_CLOUD_PHASE_JENDERSIE_DEON) {
+        float p = phase_jendersie_deon(nu, phase_jendersie_deon_params(c->diameter_um));
+        return v3(p, p, p);
+    }
+    return phase_rows_eval(table, c->table_size, nu);
+}
+
+/* The parts of [t_start, t_end] of the ray from radius r with cosine mu (R the ground's radius)
+ * inside the shell between the altitudes base and top, in order: their count (0..2), their
+ * ends in lo[], hi[]. */
+ATMO_FN int clouds_shell_parts(float R, float base, float top, float r, float mu, float t_start,
+                               float t_end, float *lo, float *hi)
+{
+    float h = r - R, b = r * mu, o0, o1, i0, i1;
+    int n = 0;
+    if (!geometry_sphere_roots(b, (h - top) * (r + R + top), &o0, &o1))
+        return 0;
+    float part_lo[2] = {o0, 0.0f}, part_hi[2] = {o1, 0.0f};
+    int parts = 1;
+    if (geometry_sphere_roots(b, (h - base) * (r + R + base), &i0, &i1)) {
+        part_hi[0] = i0, part_lo[1] = i1, part_hi[1] = o1;
+        parts = 2;
+    }
+    for (int k = 0; k < parts; k++) {
+        float l = fmaxf(part_lo[k], t_start), u = fminf(part_hi[k], t_end);
+        if (u > l)
+            lo[n] = l, hi[n] = u, n++;
+    }
+    return n;
+}
+
+/* The light march from the point q toward the sun: the density integral D (m) over the layer,
+ * with the steps' sample offset `jitter` in [0, 1). */
+ATMO_FN float clouds_sun_density(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_point *q,
+                                 float jitter)
+{
+    ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
+    float R = s->atmosphere.bottom_radius, lo[2], hi[2];
+    int parts = clouds_shell_parts(R, c->bottom_m, c->top_m, q->r, q->mu_s, 0.0f, INFINITY, lo, hi);
+    if (parts == 0)
+        return 0.0f;
+    float a = lo[0], len = fminf(hi[parts - 1], a + c->light_distance_m) - a;
+    vec3 sun = v3_from4(s->sun_direction);
+    int n = c->light_steps;
+    float D = 0.0f;
+    for (int i = 0; i < n; i++) {
+        float x0 = (float)i / (float)n, x1 = (float)(i + 1) / (float)n;
+        float dt = len * (x1 * x1 - x0 * x0), t = a + len * x0 * x0 + jitter * dt;
+        float h = geometry_altitude_at(q->r, q->mu_s, t, R);
+        D += clouds_density(c, v3_add(q->p, v3_scale(sun, t)), h) * dt;
+        if (D * c->extinction.y > CLOUDS_TAU_OPAQUE)
+            break;
+    }
+    return D;
+}
+
+/* The sun's transmittance through the layer to the point q (the marched estimate). */
+ATMO_FN vec3 clouds_sun_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_point *q)
+{
+    float D = clouds_sun_density(s, q, clouds_point_jitter(q->p, s->clouds.seed));
+    return v3_exp(v3_scale(v3_from4(s->clouds.extinction), -D));
+}
+
+#endif

@@ -1,0 +1,161 @@
+/* cloud_march.h — the fBm cloud layer's own stepping along a view ray (the fast integrator of
+ * the clouds): the media_interval of cloud_layer.h's medium, called by the medium integrator
+ * (medium.h) for the part of a ray inside the layer's shell, where it integrates everything:
+ * the clouds and the air between and around them.
+ *
+ * Steps. A step starts with the coverage test at its start (cloud_layer.h: a coverage field of
+ * 0 means no cloud there at any altitude; the field's features are hundreds of km, so a clear
+ * step rarely cuts into a cloud): in clear air the step is CLOUDS_CLEAR_STRIDE times longer, in cloud it is
+ *     dt = step_m + CLOUDS_STEP_GROWTH t_c
+ * (t_c the distance from the camera, so the step follows the pixel's footprint), the first one
+ * shortened by the sample's jitter so successive samples cover the ray. Each step is sampled at
+ * the fraction `jitter` of it and integrated exactly for constant coefficients (Hillaire 2015),
+ *     L += T (1 - e^{-sigma_t dt}) / sigma_t S,   T *= e^{-sigma_t dt}
+ * which conserves energy for any step length. Beyond the far plane max_distance_m, after
+ * `steps` steps or once T < CLOUDS_T_MIN, the rest of the part is air only: one long step
+ * (clouds there are not seen; below T_MIN nothing is). The air's light is integrated in every
+ * step, so aerial perspective lies between the cloud segments, not only in front of the first.
+ *
+ * Source S at a point with the sun's light E T_air V (the atmosphere's transmittance toward the
+ * sun, the occluders: planet, observer) and the light march's density integral D toward the sun
+ * (tau_sun = extinction D):
+ *   air:    (sigma_R p_R + sigma_M p_M) E T_air V e^{-tau_sun}  (+ J_ms e^{-tau_sun}, use_ms)
+ *   clouds: sigma_s E T_air V sum_{i<N} b^i p_i(nu) e^{-a^i tau_sun}
+ * the octaves of Wrenninge, Kulla & Lundqvist 2013 ("Oz: the great and volumetric"): octave 0 is
+ * single scattering with the true phase, octave i >= 1 Henyey-Greenstein with the table's g
+ * times c^i; N = ms_octaves, a, b, c = ms_a, ms_b, ms_c (fitted to the reference:
+ * docs/notes/clouds.md). With use_ms (method march) the sky's light is added isotropically,
+ *   sigma_s E_sky(mu_s) / (4 pi) (1 + (h - bottom) / (top - bottom)) / 2
+ * (E_sky the sky's irradiance on a horizontal surface from the ms LUT, halved at the layer's
+ * bottom, where the cloud above shades it). The thesis look (clouds.look = thesis) replaces the
+ * octaves and the sky by the thesis' model: single scattering times the powder factor
+ * 1 - e^{-2 tau_sun}, plus a constant ambient CLOUDS_THESIS_AMBIENT sigma_s E / (4 pi).
+ * Units: radiance W m^-2 sr^-1 nm^-1, metres. */
+#ifndef ATMO_MEDIA_CLOUD_MARCH_H
+#define ATMO_MEDIA_CLOUD_MARCH_H
+#ifndef __OPENCL_VERSION__
+#include "common/compat.h"
+#include "atmosphere/atmosphere.h"
+#include "common/phase.h"
+#include "media/ray.h"
+#include "media/media.h"
+#include "media/visibility.h"
+#include "media/medium.h"
+#include "media/tracking.h"
+#include "media/cloud_layer.h"
+#include "atmo/gpu_types.h"
+#endif
+
+#define CLOUDS_CLEAR_STRIDE 4.0f
+#define CLOUDS_STEP_GROWTH 0.002f
+#define CLOUDS_T_MIN 1e-4f
+#define CLOUDS_THESIS_AMBIENT 0.1f
+
+/* The light of one step of length dt sampled at distance t (coefficients constant over it),
+ * added to *L; *T and *medium_t advance over the step. `cloudy`: the layer is asked there. */
+ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, const medium_ray *m,
+                         float t, float dt, int cloudy, int use_ms, int ground, vec3 *L, vec3 *T,
+                         vec3 *medium_t)
+{
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
+    medium_point q = medium_ray_at(m, t, a->bottom_radius);
+    media_sample ms;
+    if (cloudy) {
+        ms = media_at(s, ATMO_LUT_ARGS, &q);
+    } else { /* the air alone: the coverage test found no cloud */
+        ms.scattering[MEDIA_RAYLEIGH] = v3_scale(v3_from4(a->rayleigh_scattering),
+                                                 expf(-q.h / a->rayleigh_scale_height));
+        ms.scattering[MEDIA_MIE] =
+            v3_scale(v3_from4(a->mie_scattering), expf(-q.h / a->mie_scale_height));
+        for (int k = MEDIA_MIE + 1; k < MEDIA_COMPONENTS; k++)
+            ms.scattering[k] = v3(0.0f, 0.0f, 0.0f);
+        ms.extinction = atmosphere_extinction(a, q.h);
+    }
+    vec3 w = v3(medium_segment_weight(ms.extinction.x, dt),
+                medium_segment_weight(ms.extinction.y, dt),
+                medium_segment_weight(ms.extinction.z, dt));
+    vec3 Tw = v3_mul(*T, w);
+    float occluded = visibility_sun_occluders(s, ATMO_LUT_ARGS, &q);
+    float D = occluded > 0.0f ? clouds_sun_density(s, &q, clouds_point_jitter(q.p, c->seed)) : 0.0f;
+    vec3 tau_sun = v3_scale(v3_from4(c->extinction), D), cloud_t = v3_exp(v3_scale(tau_sun, -1.0f));
+    vec3 sun_e = v3(0.0f, 0.0f, 0.0f);
+    if (occluded > 0.0f)
+        sun_e = v3_scale(v3_mul(v3_from4(a->solar_irradiance),
+                                atmosphere_transmittance_to_top(a, transmittance_lut,
+                                                                s->transmittance_width,
+                                                                s->transmittance_height, q.r,
+                                                                q.mu_s)),
+                         occluded);
+    vec3 air = v3_add(v3_mul(ms.scattering[MEDIA_RAYLEIGH],
+                             media_phase(s, ATMO_LUT_ARGS, MEDIA_RAYLEIGH, m->nu)),
+                      v3_mul(ms.scattering[MEDIA_MIE],
+                             media_phase(s, ATMO_LUT_ARGS, MEDIA_MIE, m->nu)));
+    vec3 S = v3_mul(v3_mul(air, sun_e), cloud_t);
+    if (use_ms)
+        S = v3_add(S, v3_mul(medium_ms_source(s, ATMO_LUT_ARGS, &q, m->nu, &ms, ground), cloud_t));
+    vec3 sigma_c = ms.scattering[MEDIA_CLOUDS];
+    if (cloudy && sigma_c.y > 0.0f) {
+        vec3 cloud = v3(0.0f, 0.0f, 0.0f);
+        vec3 p0 = media_phase(s, ATMO_LUT_ARGS, MEDIA_CLOUDS, m->nu);
+        if (c->look == ATMO_CLOUDS_LOOK_THESIS) {
+            vec3 powder = v3_sub(v3(1.0f, 1.0f, 1.0f), v3_exp(v3_scale(tau_sun, -2.0f)));
+            cloud = v3_add(v3_mul(v3_mul(v3_mul(p0, sun_e), cloud_t), powder),
+                           v3_scale(v3_from4(a->solar_irradiance),
+                                    CLOUDS_THESIS_AMBIENT / (4.0f * ATMO_PI)));
+        } else {
+            float ka = 1.0f, kb = 1.0f, kc = 1.0f;
+            for (int i = 0; i < c->ms_octaves; i++) {
+                vec3 p = i == 0 ? p0
+                                : v3(phase_henyey_greenstein(m->nu, c->g.x * kc),
+                                     phase_henyey_greenstein(m->nu, c->g.y * kc),
+                                     phase_henyey_greenstein(m->nu, c->g.z * kc));
+                vec3 t_i = v3_exp(v3_scale(tau_sun, -ka));
+                cloud = v3_add(cloud, v3_scale(v3_mul(v3_mul(p, sun_e), t_i), kb));
+                ka *= c->ms_a;
+                kb *= c->ms_b;
+                kc *= c->ms_c;
+            }
+            if (use_ms) {
+                float rise = clamp((q.h - c->bottom_m) / (c->top_m - c->bottom_m), 0.0f, 1.0f);
+                vec3 sky = medium_ms_ground_irradiance(s, ATMO_LUT_ARGS, q.mu_s);
+                cloud = v3_add(cloud, v3_scale(sky, 0.5f * (1.0f + rise) / (4.0f * ATMO_PI)));
+            }
+        }
+        S = v3_add(S, v3_mul(sigma_c, cloud));
+        *medium_t = v3_mul(*medium_t, v3_exp(v3_scale(v3_sub(ms.extinction,
+                                                             atmosphere_extinction(a, q.h)),
+                                                      -dt)));
+    }
+    *L = v3_add(*L, v3_mul(Tw, S));
+    *T = v3_mul(*T, v3_exp(v3_scale(ms.extinction, -dt)));
+}
+
+ATMO_FN void clouds_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                             const medium_ray *m, float t0, float t1, float jitter, int use_ms,
+                             int ground, vec3 *L, vec3 *T, vec3 *medium_t)
+{
+    ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
+    float start = v3_length(m->origin); /* the camera's distance to the ray's origin */
+    float far = c->max_distance_m - start;
+    float t = t0;
+    for (int i = 0; i < c->steps && t < t1 && t < far && tracking_max3(*T) >= CLOUDS_T_MIN;
+         i++) {
+        float dt = c->step_m + CLOUDS_STEP_GROWTH * (start + t);
+        medium_point q = medium_ray_at(m, t, s->atmosphere.bottom_radius);
+        int cloudy = clouds_coverage(c, q.p) > 0.0f;
+        if (!cloudy)
+            dt *= CLOUDS_CLEAR_STRIDE;
+        if (i == 0) /* a shorter first step: the samples' steps interleave */
+            dt *= fmaxf(jitter, 1e-3f);
+        dt = fminf(dt, t1 - t);
+        clouds_step(s, ATMO_LUT_ARGS, m, t + jitter * dt, dt, cloudy, use_ms, ground, L, T,
+                    medium_t);
+        t += dt;
+    }
+    if (t < t1 && tracking_max3(*T) >= CLOUDS_T_MIN) /* the rest: air only */
+        clouds_step(s, ATMO_LUT_ARGS, m, t + jitter * (t1 - t), t1 - t, 0, use_ms, ground, L,
+                    T, medium_t);
+}
+
+#endif

@@ -1,0 +1,98 @@
+/* cloud_noise.h — the noise of the fBm cloud layer (cloud_layer.h): lattice value noise from an
+ * integer hash, its fractal sum (fBm) and a domain warp.
+ *
+ * Value noise (Perlin 1985's lattice form with values instead of gradients): at the integer
+ * lattice point k = (i, j, l) the value v_k = hash(i, j, l, seed) / 2^24 in [0, 1), the hash
+ * being rng.h's full-avalanche permutation of the coordinates spread by odd multipliers (as in
+ * Teschner et al. 2003's spatial hash), then of the seed; between lattice
+ * points the eight values are blended trilinearly with the quintic fade
+ *     s(f) = f^3 (f (6 f - 15) + 10)   (Perlin 2002, "Improving noise", eq. 2)
+ * so the noise is C2 and, a convex combination of values in [0, 1), stays in [0, 1).
+ * fBm (Musgrave, in Ebert et al., "Texturing and Modeling", ch. 16):
+ *     fbm(x) = sum_{i<N} 2^-i v(2^i x + o_i) / sum_{i<N} 2^-i,  in [0, 1)
+ * with a lattice offset o_i per octave (from the seed) that keeps the octaves' lattices apart.
+ * The domain warp (Quilez 2002, "domain warping") samples a field at x + A (2 w(x) - 1), w a
+ * vector of three value noises.
+ *
+ * Bitwise the same on every device: the lattice values are integer arithmetic, floor and the
+ * float operations are correctly rounded (+, -, *; the factors 2^i are exact), and contraction
+ * into fused multiply-adds is switched off for this file, so a GPU and PoCL compute the same
+ * bits (tests/test_cloud_noise.c compares the device with the host). */
+#ifndef ATMO_MEDIA_CLOUD_NOISE_H
+#define ATMO_MEDIA_CLOUD_NOISE_H
+#ifndef __OPENCL_VERSION__
+#include "common/compat.h"
+#include "common/rng.h"
+#endif
+
+/* no fused multiply-adds in this file's functions (the compilers' default, on, returns at its
+ * end) */
+#ifdef __OPENCL_VERSION__
+#pragma OPENCL FP_CONTRACT OFF
+#endif
+
+/* The lattice value at (i, j, l), in [0, 1). */
+ATMO_FN float noise_lattice(int i, int j, int l, uint seed)
+{
+    /* one avalanche over the coordinates spread by odd constants (a lattice point's value
+     * only has to look independent of its neighbours'), a second over the seed */
+    uint h = rng_permute(((uint)i * 0x8da6b343u ^ (uint)j * 0xd8163841u ^
+                          (uint)l * 0xcb1ab31fu) + 0x9e3779b9u); /* off permute's fixed point 0 */
+    h = rng_permute(h ^ seed);
+    return (float)(h >> 8) * (1.0f / 16777216.0f);
+}
+
+ATMO_FN float noise_fade(float f)
+{
+    return f * f * f * (f * (f * 6.0f - 15.0f) + 10.0f);
+}
+
+ATMO_FN float noise_lerp(float a, float b, float t)
+{
+    return a + (b - a) * t;
+}
+
+/* Value noise at x (lattice units), in [0, 1). */
+ATMO_FN float noise_value(vec3 x, uint seed)
+{
+    float fx = floorf(x.x), fy = floorf(x.y), fz = floorf(x.z);
+    int i = (int)fx, j = (int)fy, l = (int)fz;
+    float u = noise_fade(x.x - fx), v = noise_fade(x.y - fy), w = noise_fade(x.z - fz);
+    float c000 = noise_lattice(i, j, l, seed), c100 = noise_lattice(i + 1, j, l, seed);
+    float c010 = noise_lattice(i, j + 1, l, seed), c110 = noise_lattice(i + 1, j + 1, l, seed);
+    float c001 = noise_lattice(i, j, l + 1, seed), c101 = noise_lattice(i + 1, j, l + 1, seed);
+    float c011 = noise_lattice(i, j + 1, l + 1, seed);
+    float c111 = noise_lattice(i + 1, j + 1, l + 1, seed);
+    float a = noise_lerp(noise_lerp(c000, c100, u), noise_lerp(c010, c110, u), v);
+    float b = noise_lerp(noise_lerp(c001, c101, u), noise_lerp(c011, c111, u), v);
+    return noise_lerp(a, b, w);
+}
+
+/* fBm of `octaves` octaves at x (lattice units of the first octave), in [0, 1). */
+ATMO_FN float noise_fbm(vec3 x, int octaves, uint seed)
+{
+    float sum = 0.0f, norm = 0.0f, amp = 1.0f;
+    for (int i = 0; i < octaves; i++) {
+        /* a per-octave lattice offset: 1/4 and 1/2-cell multiples are exact in float */
+        float o = (float)(i * 37) + 0.25f * (float)(i & 3);
+        sum += amp * noise_value(v3(x.x + o, x.y - o, x.z + 0.5f * o), seed + (uint)i);
+        norm += amp;
+        amp *= 0.5f;
+        x = v3_scale(x, 2.0f);
+    }
+    return sum / norm;
+}
+
+/* The domain-warp displacement at x (lattice units): 2 w - 1 per axis, in (-1, 1). */
+ATMO_FN vec3 noise_warp(vec3 x, uint seed)
+{
+    return v3(2.0f * noise_value(x, seed ^ 0x1b873593u) - 1.0f,
+              2.0f * noise_value(v3(x.x + 17.0f, x.y, x.z), seed ^ 0xcc9e2d51u) - 1.0f,
+              2.0f * noise_value(v3(x.x, x.y + 31.0f, x.z), seed ^ 0xe6546b64u) - 1.0f);
+}
+
+#ifdef __OPENCL_VERSION__
+#pragma OPENCL FP_CONTRACT ON
+#endif
+
+#endif
