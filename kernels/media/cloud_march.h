@@ -72,9 +72,8 @@ ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, c
             ms.scattering[k] = v3(0.0f, 0.0f, 0.0f);
         ms.extinction = atmosphere_extinction(a, q.h);
     }
-    vec3 w = v3(medium_segment_weight(ms.extinction.x, dt),
-                medium_segment_weight(ms.extinction.y, dt),
-                medium_segment_weight(ms.extinction.z, dt));
+    vec3 step_t;
+    vec3 w = medium_segment_step3(ms.extinction, dt, &step_t);
     vec3 Tw = v3_mul(*T, w);
     float occluded = visibility_sun_occluders(s, ATMO_LUT_ARGS, &q);
     float D = occluded > 0.0f ? clouds_sun_density(s, &q, clouds_point_jitter(q.p, c->seed)) : 0.0f;
@@ -128,7 +127,7 @@ ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, c
                                                       -dt)));
     }
     *L = v3_add(*L, v3_mul(Tw, S));
-    *T = v3_mul(*T, v3_exp(v3_scale(ms.extinction, -dt)));
+    *T = v3_mul(*T, step_t);
 }
 
 ATMO_FN void clouds_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
