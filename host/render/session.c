@@ -259,9 +259,11 @@ int atmo_session_open(atmo_session **out, const atmo_plan *plan, const atmo_rend
         goto cleanup;
     s->info.kernel_cache_hit = bi.cache_hit;
     s->info.seconds_build = bi.seconds;
-    s->render = clCreateKernel(s->program, "sky_render", &err);
+    s->render = clCreateKernel(s->program, plan->render_kernel, &err);
     if (err != CL_SUCCESS) {
-        rc = atmo_cl_fail(e, "clCreateKernel(sky_render)", err);
+        char call[96];
+        snprintf(call, sizeof call, "clCreateKernel(%s)", plan->render_kernel);
+        rc = atmo_cl_fail(e, call, err);
         goto cleanup;
     }
     s->scene = clCreateBuffer(s->cl.context, CL_MEM_READ_ONLY, sizeof plan->gpu, NULL, &err);

@@ -16,6 +16,20 @@
 
 enum { ATMO_QUANTITY_RADIANCE = 0, ATMO_QUANTITY_LUMINANCE = 1 };
 
+/* One object of the scene's list ("objects" in a scene file; scene_objects.c): a Lambertian
+ * sphere or axis-aligned box in world metres, with an albedo and an emitted radiance at the
+ * render wavelengths (W m^-2 sr^-1 nm^-1). */
+#define ATMO_MAX_OBJECTS 32
+typedef struct atmo_object {
+    int type;              /* ATMO_OBJECT_* (gpu_enums.h) */
+    double center_m[3];    /* sphere */
+    double radius_m;       /* sphere, > 0 */
+    double min_m[3];       /* box: the minimum corner */
+    double size_m[3];      /* box: extents, each > 0 */
+    double albedo[3];      /* 0..1 */
+    double emission[3];    /* >= 0 */
+} atmo_object;
+
 typedef struct atmo_scene {
     struct {
         int width, height;
@@ -83,6 +97,23 @@ typedef struct atmo_scene {
         double height_m;       /* of its centre relative to the camera */
         double radius_m;
     } observer;
+    struct {                   /* render.mode = path (kernels/render/path.h) */
+        int mode;              /* ATMO_RENDER_* */
+        int bounces;           /* N_b */
+        int secondary;         /* N_s */
+        int rr_bounce;         /* Russian roulette from this bounce on */
+        int sun_nee, sky_nee;  /* 0/1 */
+        int sky;               /* ATMO_PATH_SKY_* */
+        double uniform_sky[3]; /* the uniform test sky's radiance */
+        int ground;            /* 0/1 */
+        int sampler;           /* ATMO_SAMPLER_* */
+        double filter_radius_px, filter_sigma_px;
+        double aperture_m, focus_m; /* thin lens (aperture 0: pinhole) */
+    } path;
+    struct {
+        int count;
+        atmo_object list[ATMO_MAX_OBJECTS];
+    } objects;
 } atmo_scene;
 
 typedef enum { ATMO_PARAM_INT, ATMO_PARAM_FLOAT, ATMO_PARAM_VEC3, ATMO_PARAM_ENUM, ATMO_PARAM_BOOL }
@@ -143,6 +174,16 @@ int atmo_scene_load_json(atmo_scene *s, const char *path, atmo_err *e);
 /* Whole scene as nested JSON (every key), malloc'd; NULL when out of memory. */
 char *atmo_scene_to_json(const atmo_scene *s);
 int atmo_scene_save_json(const atmo_scene *s, const char *path, atmo_err *e);
+/* The object list from JSON text (an array of objects, scene_objects.c), replacing the
+ * scene's; `where` names the source for one-line errors ("--set", the file). The key
+ * "objects" of --set, presets and scene files comes here. */
+int atmo_scene_set_objects(atmo_scene *s, const char *json, const char *where, atmo_err *e);
+/* Every object's values in range (a scene filled in by code); one-line usage error naming
+ * objects[i] otherwise. */
+int atmo_scene_check_objects(const atmo_scene *s, atmo_err *e);
+/* The object list as a JSON array (malloc'd; "[]" for none), NULL when out of memory. */
+char *atmo_scene_objects_json(const atmo_scene *s);
+
 /* Checks between parameters (e.g. top radius above bottom radius). */
 int atmo_scene_validate(const atmo_scene *s, atmo_err *e);
 
