@@ -4,8 +4,8 @@
  *
  * 1. Furnace (oracle: closed form). A white Lambertian sphere (albedo 1, radius 5 m, 10 m in
  *    front of the camera, filling the 10 x 10 frame) under a uniform sky of radiance
- *    L = (1, 0.5, 0.25) with no air, no sun, no ground (path.sky = uniform, path.ground =
- *    false) reflects exactly L: every bounce off a convex sphere escapes, and the BSDF's
+ *    L = (1, 0.5, 0.25) with no air, no sun, no ground (path.sky = uniform,
+ *    sun.irradiance_scale = 0, path.ground = false) reflects exactly L: every bounce off a convex sphere escapes, and the BSDF's
  *    weight is the albedo, 1. BSDF sampling alone (path.sky_nee = false) returns L in every
  *    sample (zero variance; checked to float rounding, 1e-6 relative); with sky sampling and
  *    MIS the estimator is unbiased with variance: the image mean must lie within 4.4 standard
@@ -97,6 +97,7 @@ static void base_scene(atmo_scene *s)
     test_scene_set(s, "render.mode=path");
     test_scene_set(s, "path.sky=uniform");
     test_scene_set(s, "path.ground=false");
+    test_scene_set(s, "sun.irradiance_scale=0"); /* the uniform world's sun off */
     test_scene_set(s, "camera.position_m=0,100,0");
     test_scene_set(s, "camera.pitch_deg=0");
     test_scene_set(s, "image.width=10");

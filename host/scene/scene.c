@@ -197,7 +197,8 @@ const atmo_param atmo_params[] = {
     ROW_BOOL("path.sky_nee", path.sky_nee, 1,
              "path mode: sample the sky at each hit, combined with BSDF sampling by MIS"),
     ROW_ENUM("path.sky", path.sky, path_skies, ATMO_PATH_SKY_ATMOSPHERE,
-             "path mode: the atmosphere (the method), or a uniform test sky with no air or sun"),
+             "path mode: the atmosphere (the method), or a uniform test sky with no air and an "
+             "unattenuated sun"),
     ROW_VEC3("path.uniform_sky", path.uniform_sky, "W/m^2/sr/nm", 0, 1e6, 1, 1, 1,
              "path mode: radiance of the uniform test sky (path.sky = uniform)"),
     ROW_BOOL("path.ground", path.ground, 1,

@@ -47,7 +47,8 @@ enum { ATMO_RENDER_PREVIEW = 0, ATMO_RENDER_PATH = 1 };
 enum { ATMO_OBJECT_SPHERE = 0, ATMO_OBJECT_BOX = 1 };
 
 /* path.sky: the light a path sees where it leaves the scene: the atmosphere's (the scene's
- * method), or a uniform test sky of radiance path.uniform_sky with no air and no sun */
+ * method), or a uniform test sky of radiance path.uniform_sky with no air, its sun unattenuated
+ * (kernels/render/path.h) */
 enum { ATMO_PATH_SKY_ATMOSPHERE = 0, ATMO_PATH_SKY_UNIFORM = 1 };
 
 /* path.sampler: the primary samples (pixel position): Owen-scrambled Sobol, or the counter

@@ -6,7 +6,7 @@
  * forward peak makes the sky brightest, and the rest uniform over the sphere (every direction
  * possible, so the estimator stays unbiased wherever the sky is lit):
  *     p(w) = c [s . w >= cos theta_c] / (2 pi (1 - cos theta_c)) + (1 - c) / (4 pi).
- * The uniform test sky (path.sky = uniform) has no sun: p(w) = 1 / (4 pi). A sample is drawn
+ * The uniform test sky (path.sky = uniform) is the same in every direction: p(w) = 1 / (4 pi). A sample is drawn
  * from three numbers: u0 picks the component, (u1, u2) the direction in it (light_sun.h's cone
  * sampling; the sphere by z = 1 - 2 u1, phi = 2 pi u2).
  * The estimators are combined by the power heuristic with beta = 2 (Veach 1997, sec. 9.2.4):

@@ -25,8 +25,10 @@
  * with probability 1 - q, q = min(0.95, max beta), and divides beta by q (unbiased).
  * Units: spectral radiance, W m^-2 sr^-1 nm^-1 (the objects' emission too), times the
  * scene's sky_factor (the disc seen directly: sun_factor), as sky_render does.
- * The uniform test sky (path.sky = uniform) has S = L_u on escaping rays and no air, no sun:
- * the furnace tests' world.
+ * The uniform test world (path.sky = uniform) has S = L_u on escaping rays and no air; its
+ * sun is the solar irradiance E (times sun.irradiance_scale; 0 for the furnace tests) with no
+ * atmosphere and no planet in the way, only the objects' shadows: the world of the furnace and
+ * open-box tests, which a host reference can trace exactly.
  * Random numbers: stage 0 of the sample (rng.h) has the lens, the primary segment and the
  * primary hit's direct light; secondary ray j and all its bounces draw from stage 1 + j, in
  * order. The pixel position comes from path_camera.h's sequence. */
@@ -55,7 +57,7 @@ ATMO_FN vec3 path_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                           const medium_ray *m, const path_hit *h, int with_sun, rng_stream *g,
                           vec3 *view_t)
 {
-    if (s->path.sky == ATMO_PATH_SKY_UNIFORM) {
+    if (s->path.sky == ATMO_PATH_SKY_UNIFORM) { /* the sun's disc is left to the NEE here */
         *view_t = v3(1.0f, 1.0f, 1.0f);
         return h->kind == SURFACES_NONE ? v3_from4(s->path.uniform_sky) : v3(0.0f, 0.0f, 0.0f);
     }
@@ -92,13 +94,14 @@ ATMO_FN vec3 path_direct_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
                              const path_vertex *v, rng_stream *g)
 {
     float u1 = rng_next(g), u2 = rng_next(g);
-    if (!s->path.sun_nee || s->path.sky == ATMO_PATH_SKY_UNIFORM)
+    if (!s->path.sun_nee)
         return v3(0.0f, 0.0f, 0.0f);
     vec3 w = light_sun_sample(v3_from4(s->sun_direction), s->sun_direction.w, u1, u2);
     float c = v3_dot(v->n, w);
     if (c <= 0.0f)
         return v3(0.0f, 0.0f, 0.0f);
-    vec3 e = medium_sunlight(s, ATMO_LUT_ARGS, &v->q);
+    vec3 e = s->path.sky == ATMO_PATH_SKY_UNIFORM ? v3_from4(s->atmosphere.solar_irradiance)
+                                                   : medium_sunlight(s, ATMO_LUT_ARGS, &v->q);
     if ((e.x <= 0.0f && e.y <= 0.0f && e.z <= 0.0f) || surfaces_occluded(s, ATMO_LUT_ARGS, v->p, w))
         return v3(0.0f, 0.0f, 0.0f);
     return v3_mul(v3_scale(v3_mul(v->albedo, e), c / ATMO_PI), v3_from4(s->sky_factor));
