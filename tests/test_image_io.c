@@ -12,7 +12,9 @@
  *     tolerance. Negative values must come back as 0.
  *   - EXR: OpenEXR's own C Core API decoder must return the float values bit-exactly (PIZ is
  *     lossless) and the string attributes as written; `exrheader`, when installed, must accept
- *     the file.
+ *     the file. Extra layers ("Depth.Z", "Normal.X/Y/Z") come back bit-exactly through
+ *     atmo_exr_read, whose R, G, B must equal the independent decoder's; +Inf survives in a
+ *     layer that keeps it, NaN is counted and written as 0; a non-EXR file is a usage error.
  *   - PNG: stb_image's stbi_load must return exactly floor(255 d + 1/2) of atmo_post_pixel's
  *     display value d for every channel; the tEXt chunks must carry valid CRCs (the test's CRC is
  *     itself checked against the published CRC of the empty IEND chunk, 0xAE426082).
@@ -61,8 +63,12 @@ static void fill(float *rgb)
     rgb[3 * 4 + 1] = -0.5f;
 }
 
-static const atmo_image_meta meta = {"spectral radiance", "W m^-2 sr^-1 nm^-1", {680, 550, 440},
-                                     64, 1, "atmo test"};
+static const atmo_image_meta meta = {.quantity = "spectral radiance",
+                                     .unit = "W m^-2 sr^-1 nm^-1",
+                                     .wavelengths_nm = {680, 550, 440},
+                                     .samples_per_pixel = 64,
+                                     .partial = 1,
+                                     .software = "atmo test"};
 
 static size_t read_all(const char *path, unsigned char **data)
 {
@@ -104,11 +110,11 @@ static void test_format_names(void)
     CHECK(atmo_image_format_from_path("dir.png/x") == -1);
     atmo_err e = {""};
     float px[3] = {1, 1, 1};
-    atmo_image one = {1, 1, px};
+    atmo_image one = {.width = 1, .height = 1, .rgb = px};
     CHECK(atmo_image_write(in_dir("x.jpg"), &one, NULL, NULL, &e) == ATMO_ERR_USAGE);
     CHECK(strstr(e.msg, ".png") != NULL);
     CHECK(atmo_image_write(in_dir("x.png"), &one, NULL, NULL, &e) == ATMO_ERR_USAGE);
-    atmo_image empty = {0, 3, px};
+    atmo_image empty = {.width = 0, .height = 3, .rgb = px};
     CHECK(atmo_image_write(in_dir("x.pfm"), &empty, NULL, NULL, &e) == ATMO_ERR_USAGE);
     CHECK(access(in_dir("x.png"), F_OK) != 0 && access(in_dir("x.pfm"), F_OK) != 0);
 }
@@ -117,7 +123,7 @@ static void test_pfm(void)
 {
     float rgb[W * H * 3];
     fill(rgb);
-    atmo_image img = {W, H, rgb};
+    atmo_image img = {.width = W, .height = H, .rgb = rgb};
     atmo_err e = {""};
     CHECK(atmo_image_write(in_dir("a.pfm"), &img, NULL, &meta, &e) == ATMO_OK);
     atmo_image back;
@@ -148,7 +154,7 @@ static void test_hdr(void)
 {
     float rgb[W * H * 3];
     fill(rgb);
-    atmo_image img = {W, H, rgb};
+    atmo_image img = {.width = W, .height = H, .rgb = rgb};
     atmo_err e = {""};
     CHECK(atmo_image_write(in_dir("a.hdr"), &img, NULL, &meta, &e) == ATMO_OK);
     int w = 0, h = 0, n = 0;
@@ -241,7 +247,7 @@ static void test_exr(void)
     float rgb[W * H * 3], back[W * H * 3];
     fill(rgb);
     memset(back, 0xff, sizeof back);
-    atmo_image img = {W, H, rgb};
+    atmo_image img = {.width = W, .height = H, .rgb = rgb};
     atmo_err e = {""};
     CHECK(atmo_image_write(in_dir("a.exr"), &img, NULL, &meta, &e) == ATMO_OK);
     char quantity[64] = "", wavelengths[64] = "";
@@ -259,6 +265,65 @@ static void test_exr(void)
         CHECK(txt && strstr((char *)txt, "renderStatus") && strstr((char *)txt, "partial"));
         free(txt);
     }
+}
+
+static void test_exr_layers(void)
+{
+    float rgb[W * H * 3], depth[W * H], normal[W * H * 3], back[W * H * 3];
+    fill(rgb);
+    for (int i = 0; i < W * H; i++) {
+        depth[i] = i % 5 == 0 ? INFINITY : 1.5f * (float)i + 0.25f;
+        for (int c = 0; c < 3; c++)
+            normal[3 * i + c] = (float)(c - 1) * 0.5f + (float)i * 1e-3f;
+    }
+    atmo_image_layer layers[2] = {
+        {.name = "Depth", .channels = 1, .channel_names = {"Z"}, .data = depth,
+         .keep_infinity = 1},
+        {.name = "Normal", .channels = 3, .channel_names = {"X", "Y", "Z"}, .data = normal},
+    };
+    static const char *const attributes[] = {"atmoScene", "{\"seed\": 7}"};
+    atmo_image_meta m = meta;
+    m.attributes = attributes;
+    m.attribute_count = 1;
+    atmo_image img = {.width = W, .height = H, .rgb = rgb, .layers = layers, .layer_count = 2};
+    atmo_err e = {""};
+    CHECK(atmo_image_write(in_dir("layers.exr"), &img, NULL, &m, &e) == ATMO_OK);
+    char quantity[64] = "", wavelengths[64] = "";
+    CHECK(read_exr(in_dir("layers.exr"), back, quantity, wavelengths));
+    atmo_exr_file f;
+    CHECK(atmo_exr_read(in_dir("layers.exr"), &f, &e) == ATMO_OK);
+    CHECK(f.width == W && f.height == H && f.channel_count == 7);
+    const float *r = atmo_exr_channel_data(&f, "R"), *z = atmo_exr_channel_data(&f, "Depth.Z");
+    const float *ny = atmo_exr_channel_data(&f, "Normal.Y");
+    CHECK(r && z && ny && !atmo_exr_channel_data(&f, "Depth.X"));
+    int bad = 0;
+    for (int i = 0; r && z && ny && i < W * H; i++) {
+        bad += memcmp(&r[i], &back[3 * i], sizeof(float)) != 0;
+        bad += memcmp(&r[i], &rgb[3 * i], sizeof(float)) != 0;
+        bad += memcmp(&z[i], &depth[i], sizeof(float)) != 0;
+        bad += memcmp(&ny[i], &normal[3 * i + 1], sizeof(float)) != 0;
+    }
+    CHECK(bad == 0);
+    const char *scene = atmo_exr_attribute_value(&f, "atmoScene");
+    CHECK(scene && strcmp(scene, "{\"seed\": 7}") == 0);
+    CHECK(atmo_exr_attribute_value(&f, "renderStatus") &&
+          strcmp(atmo_exr_attribute_value(&f, "renderStatus"), "partial") == 0);
+    atmo_exr_file_free(&f);
+
+    normal[4] = NAN;
+    depth[3] = NAN;
+    CHECK(atmo_image_write(in_dir("nan.exr"), &img, NULL, &m, &e) == ATMO_ERR_RUNTIME);
+    CHECK(strstr(e.msg, "2 non-finite") != NULL);
+    CHECK(atmo_exr_read(in_dir("nan.exr"), &f, &e) == ATMO_OK);
+    CHECK(f.channel_count == 7 && atmo_exr_channel_data(&f, "Normal.Y")[1] == 0.0f &&
+          atmo_exr_channel_data(&f, "Depth.Z")[3] == 0.0f &&
+          isinf(atmo_exr_channel_data(&f, "Depth.Z")[0]));
+    atmo_exr_file_free(&f);
+
+    CHECK(atmo_image_write(in_dir("x.png"), &img, NULL, NULL, &e) == ATMO_ERR_USAGE);
+    atmo_image_write_pfm(in_dir("not.exr"), &img, &e);
+    CHECK(atmo_exr_read(in_dir("not.exr"), &f, &e) == ATMO_ERR_USAGE);
+    CHECK(atmo_exr_read(in_dir("missing.exr"), &f, &e) == ATMO_ERR_USAGE);
 }
 
 static uint32_t crc32_png(const unsigned char *p, size_t n)
@@ -281,7 +346,7 @@ static void test_png(void)
 {
     float rgb[W * H * 3];
     fill(rgb);
-    atmo_image img = {W, H, rgb};
+    atmo_image img = {.width = W, .height = H, .rgb = rgb};
     atmo_post post = {.exposure = 3.0f,
                       .tonemap = ATMO_TONEMAP_ACES,
                       .white_point = 4.0f,
@@ -334,7 +399,7 @@ static void test_unwritable(void)
 {
     float rgb[W * H * 3];
     fill(rgb);
-    atmo_image img = {W, H, rgb};
+    atmo_image img = {.width = W, .height = H, .rgb = rgb};
     atmo_post post = {1.0f, ATMO_TONEMAP_REINHARD, 4.0f, 0, {1, 1, 1}, ATMO_TRANSFER_SRGB};
     static const char *const names[] = {"missing/a.png", "missing/a.hdr", "missing/a.exr",
                                         "missing/a.pfm", "d.png",         "d.hdr",
@@ -363,7 +428,7 @@ static void test_nonfinite(void)
     rgb[5] = NAN;
     rgb[9] = INFINITY;
     rgb[3 * (W * H - 1)] = -INFINITY;
-    atmo_image img = {W, H, rgb};
+    atmo_image img = {.width = W, .height = H, .rgb = rgb};
     atmo_err e = {""};
 
     CHECK(atmo_image_write(in_dir("nan.pfm"), &img, NULL, &meta, &e) == ATMO_ERR_RUNTIME);
@@ -425,6 +490,7 @@ int main(void)
     test_pfm();
     test_hdr();
     test_exr();
+    test_exr_layers();
     test_png();
     test_unwritable();
     test_nonfinite();

@@ -385,13 +385,16 @@ int cmd_render(int argc, char **argv)
     snprintf(spectral_quantity, sizeof spectral_quantity,
              "luminance (linear sRGB from %d spectral bands, 360-830 nm; no channel wavelengths)",
              scene.render.spectral_bands);
-    atmo_image_meta meta = {spectral ? spectral_quantity : lum ? "luminance" : "spectral radiance",
-                            lum ? "cd m^-2" : "W m^-2 sr^-1 nm^-1",
-                            {spectral ? 0.0 : scene.render.wavelengths_nm[0],
-                             spectral ? 0.0 : scene.render.wavelengths_nm[1],
-                             spectral ? 0.0 : scene.render.wavelengths_nm[2]},
-                            res.samples_min, res.interrupted, "atmo " ATMO_VERSION};
-    atmo_image img = {res.width, res.height, res.rgb};
+    atmo_image_meta meta = {
+        .quantity = spectral ? spectral_quantity : lum ? "luminance" : "spectral radiance",
+        .unit = lum ? "cd m^-2" : "W m^-2 sr^-1 nm^-1",
+        .wavelengths_nm = {spectral ? 0.0 : scene.render.wavelengths_nm[0],
+                           spectral ? 0.0 : scene.render.wavelengths_nm[1],
+                           spectral ? 0.0 : scene.render.wavelengths_nm[2]},
+        .samples_per_pixel = res.samples_min,
+        .partial = res.interrupted,
+        .software = "atmo " ATMO_VERSION};
+    atmo_image img = {.width = res.width, .height = res.height, .rgb = res.rgb};
     for (int i = 0; i < n_out && !rc; i++)
         rc = atmo_image_write(outputs[i], &img, &post, &meta, &e);
     double seconds_write = atmo_now_seconds() - tw;

@@ -42,26 +42,48 @@ void atmo_image_free(atmo_image *img)
     img->width = img->height = 0;
 }
 
-/* Count the non-finite values of img; if there are any, *clean becomes a malloc'ed copy of
- * the pixels with those values set to 0 (NULL when there are none). */
-static long image_sanitize(const atmo_image *img, float **clean, atmo_err *e)
+/* Count the values of n floats that may not reach a file (NaN always, +-Inf unless
+ * keep_infinity); if there are any, *clean becomes a malloc'ed copy with those values set to 0
+ * (NULL when there are none). */
+static long sanitize(const float *v, size_t n, int keep_infinity, float **clean, atmo_err *e)
 {
-    size_t n = (size_t)img->width * (size_t)img->height * 3;
     long bad = 0;
     *clean = NULL;
     for (size_t i = 0; i < n; i++)
-        bad += !isfinite(img->rgb[i]);
+        bad += keep_infinity ? isnan(v[i]) != 0 : !isfinite(v[i]);
     if (bad == 0)
         return 0;
     *clean = malloc(n * sizeof(float));
     if (!*clean) {
-        atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory copying a %dx%d image", img->width,
-                  img->height);
+        atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory copying %zu image values", n);
         return -1;
     }
-    for (size_t i = 0; i < n; i++)
-        (*clean)[i] = isfinite(img->rgb[i]) ? img->rgb[i] : 0.0f;
+    for (size_t i = 0; i < n; i++) {
+        int ok = keep_infinity ? !isnan(v[i]) : isfinite(v[i]);
+        (*clean)[i] = ok ? v[i] : 0.0f;
+    }
     return bad;
+}
+
+static int check_layers(const atmo_image *img, const char *path, atmo_err *e)
+{
+    if (img->layer_count < 0 || (img->layer_count > 0 && !img->layers))
+        return atmo_fail(e, ATMO_ERR_USAGE, "image for '%s' has %d layers and no layer list",
+                         path, img->layer_count);
+    for (int l = 0; l < img->layer_count; l++) {
+        const atmo_image_layer *layer = &img->layers[l];
+        if (!layer->name || !layer->name[0] || layer->channels < 1 || layer->channels > 4 ||
+            !layer->data)
+            return atmo_fail(e, ATMO_ERR_USAGE,
+                             "layer %d of the image for '%s' needs a name, 1-4 channels and data",
+                             l, path);
+        for (int c = 0; c < layer->channels; c++)
+            if (!layer->channel_names[c] || !layer->channel_names[c][0])
+                return atmo_fail(e, ATMO_ERR_USAGE,
+                                 "layer '%s' of the image for '%s' has no name for channel %d",
+                                 layer->name, path, c);
+    }
+    return ATMO_OK;
 }
 
 int atmo_image_write(const char *path, const atmo_image *img, const atmo_post *post,
@@ -78,24 +100,59 @@ int atmo_image_write(const char *path, const atmo_image *img, const atmo_post *p
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "cannot write '%s': PNG output needs the post-processing settings", path);
 
+    int rc = check_layers(img, path, e);
+    if (rc)
+        return rc;
+    size_t pixels = (size_t)img->width * (size_t)img->height;
     float *clean;
-    long bad = image_sanitize(img, &clean, e);
+    long bad = sanitize(img->rgb, pixels * 3, 0, &clean, e);
     if (bad < 0)
         return ATMO_ERR_RUNTIME;
-    atmo_image safe = {img->width, img->height, clean ? clean : img->rgb};
+    atmo_image safe = *img;
+    safe.rgb = clean ? clean : img->rgb;
+    atmo_image_layer *layers = NULL;
+    float **layer_clean = NULL;
+    safe.layers = NULL;
+    safe.layer_count = 0;
+    if (format == ATMO_IMAGE_EXR && img->layer_count > 0) {
+        layers = malloc((size_t)img->layer_count * sizeof *layers);
+        layer_clean = calloc((size_t)img->layer_count, sizeof *layer_clean);
+        if (!layers || !layer_clean) {
+            rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the layers of '%s'", path);
+            goto cleanup;
+        }
+        for (int l = 0; l < img->layer_count; l++) {
+            layers[l] = img->layers[l];
+            long b = sanitize(layers[l].data, pixels * (size_t)layers[l].channels,
+                              layers[l].keep_infinity, &layer_clean[l], e);
+            if (b < 0) {
+                rc = ATMO_ERR_RUNTIME;
+                goto cleanup;
+            }
+            bad += b;
+            if (layer_clean[l])
+                layers[l].data = layer_clean[l];
+        }
+        safe.layers = layers;
+        safe.layer_count = img->layer_count;
+    }
 
-    int rc;
     switch (format) {
     case ATMO_IMAGE_PNG: rc = atmo_image_write_png(path, &safe, post, meta, e); break;
     case ATMO_IMAGE_HDR: rc = atmo_image_write_hdr(path, &safe, meta, e); break;
     case ATMO_IMAGE_EXR: rc = atmo_image_write_exr(path, &safe, meta, e); break;
     default: rc = atmo_image_write_pfm(path, &safe, e); break;
     }
-    free(clean);
     if (rc == ATMO_OK && bad > 0)
         rc = atmo_fail(e, ATMO_ERR_RUNTIME,
                        "%ld non-finite values (NaN/Inf) in the image were written as 0 to '%s': "
                        "a renderer bug, please report it with the scene",
                        bad, path);
+cleanup:
+    for (int l = 0; layer_clean && l < safe.layer_count; l++)
+        free(layer_clean[l]);
+    free(layer_clean);
+    free(layers);
+    free(clean);
     return rc;
 }

@@ -7,8 +7,8 @@
  *         curve; kernels/post/tonemap.h); the description goes into tEXt chunks.
  *   .hdr  Radiance RGBE of the linear values (shared 8-bit exponent: relative precision 2^-8 of
  *         the pixel's largest channel); the description goes into header comment lines.
- *   .exr  OpenEXR, scanline, ZIP, 32-bit float R, G, B: the linear values exactly; the
- *         description goes into string attributes.
+ *   .exr  OpenEXR, scanline, PIZ, 32-bit float R, G, B: the linear values exactly, plus the
+ *         image's extra layers (below); the description goes into string attributes.
  *   .pfm  Portable float map, little-endian float32, bottom row first: exact, no metadata.
  * Files are written atomically (include/atmo/fileio.h): complete, or absent.
  *
@@ -19,9 +19,26 @@
 #define ATMO_IMAGE_H
 #include "atmo/status.h"
 
+/* An extra layer of float channels written beside R, G, B into EXR files (the other formats
+ * hold R, G, B only and ignore it): `channels` values per pixel, interleaved, row-major, row 0 =
+ * top, stored as the channels "<name>.<channel_names[c]>" (layer "Depth" with channel "Z" is
+ * "Depth.Z", layer "Normal" with "X", "Y", "Z" is "Normal.X" ...: the names Blender's compositor
+ * reads as passes). Values are stored exactly. NaN never reaches a file (written as 0 and
+ * counted, as in R, G, B); +-Inf is kept where keep_infinity is set (a depth of +Inf for rays
+ * that hit nothing) and counted as non-finite otherwise. */
+typedef struct atmo_image_layer {
+    const char *name;
+    int channels;                 /* 1 .. 4 */
+    const char *channel_names[4];
+    const float *data;            /* width * height * channels floats */
+    int keep_infinity;
+} atmo_image_layer;
+
 typedef struct atmo_image {
     int width, height;
     float *rgb; /* linear RGB, 3 floats per pixel, row-major, row 0 = top */
+    const atmo_image_layer *layers; /* extra layers for EXR (may be NULL) */
+    int layer_count;
 } atmo_image;
 
 typedef struct atmo_post {
@@ -41,6 +58,10 @@ typedef struct atmo_image_meta {
     int samples_per_pixel;
     int partial;              /* 1 if the render was interrupted: the files say so */
     const char *software;     /* "atmo 0.1.0" */
+    /* Further string attributes for the formats that carry them (EXR): attribute_count pairs
+     * name, value in attributes[2 k], attributes[2 k + 1] (may be NULL). */
+    const char *const *attributes;
+    int attribute_count;
 } atmo_image_meta;
 
 enum { ATMO_IMAGE_PNG, ATMO_IMAGE_HDR, ATMO_IMAGE_EXR, ATMO_IMAGE_PFM };
@@ -72,6 +93,34 @@ int atmo_image_write_hdr(const char *path, const atmo_image *img, const atmo_ima
 int atmo_image_write_exr(const char *path, const atmo_image *img, const atmo_image_meta *meta,
                          atmo_err *e);
 int atmo_image_write_pfm(const char *path, const atmo_image *img, atmo_err *e);
+
+/* An EXR file read back whole: every channel as a float plane (HALF and UINT channels
+ * converted), and its string attributes. For merging partial renders, tools and tests. */
+typedef struct atmo_exr_channel {
+    char name[64];
+    float *data; /* width * height floats, row 0 = top */
+} atmo_exr_channel;
+
+typedef struct atmo_exr_attribute {
+    char name[64];
+    char *value;
+} atmo_exr_attribute;
+
+typedef struct atmo_exr_file {
+    int width, height;
+    int channel_count, attribute_count;
+    atmo_exr_channel *channels;
+    atmo_exr_attribute *attributes; /* the string-typed attributes only */
+} atmo_exr_file;
+
+/* Read the first part of a scanline or tiled EXR file into f (released with
+ * atmo_exr_file_free, also after a failure). ATMO_ERR_USAGE for a file that is missing or not
+ * an EXR image, ATMO_ERR_RUNTIME for a decoding failure. */
+int atmo_exr_read(const char *path, atmo_exr_file *f, atmo_err *e);
+/* The channel or string attribute of that name, NULL if the file has none. */
+const float *atmo_exr_channel_data(const atmo_exr_file *f, const char *name);
+const char *atmo_exr_attribute_value(const atmo_exr_file *f, const char *name);
+void atmo_exr_file_free(atmo_exr_file *f);
 
 /* Read a 3-channel PFM ("PF", either byte order) into img (rows top first, as atmo_image);
  * img->rgb is malloc'ed and released with atmo_image_free. For tests and tools. */
