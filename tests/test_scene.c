@@ -97,6 +97,7 @@ static const char *const spec_defaults[] = {"image.width=640",
                                             "path.filter_sigma_px=0.5",
                                             "path.aperture_m=0",
                                             "path.focus_m=10",
+                                            "path.passes=false",
                                             NULL};
 
 /* Ranges of the specification: key, min, max (enums and bools are checked by name). */

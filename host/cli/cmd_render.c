@@ -30,6 +30,7 @@
 #include "atmo/spectral_render.h"
 #include "commands.h"
 #include "output_paths.h"
+#include "render_passes.h"
 
 #define RENDER_MAX_OUTPUTS 8
 #define RENDER_MAX_SETS 256
@@ -58,6 +59,11 @@ static const char render_usage[] =
     "output:\n"
     "  --output FILE          image to write (repeatable; default atmo.png)\n"
     "  --report FILE          JSON run report: settings, device, samples, stage timings\n"
+    "progressive (path mode, render.mode=path, and every other render):\n"
+    "  --noise P              stop each tile once its relative standard error is at most P\n"
+    "                         (e.g. 1%% or 0.01; checked at 16, 32, 64, ... samples); the\n"
+    "                         image.samples are the most any tile gets\n"
+    "  --time-limit S         no new launch after S seconds; the image has what was rendered\n"
     "device:\n"
     "  --device N|NAME        OpenCL device by index or name part (or ATMO_DEVICE; atmo devices)\n"
     "  --tile-size N          tile edge in pixels (default 64)\n"
@@ -110,7 +116,8 @@ static void handle_signals(int install, struct sigaction old[2])
 
 static int write_report(const char *path, const atmo_scene *s, const atmo_render_result *r,
                           const atmo_render_settings *rs, const char *const *outputs, int n_out,
-                          double seconds_write, atmo_err *e)
+                          double seconds_write, const atmo_image_layer *layers, int n_layers,
+                          atmo_err *e)
 {
     cJSON *root = cJSON_CreateObject();
     char *scene_text = atmo_scene_to_json(s);
@@ -131,6 +138,8 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON_AddBoolToObject(ren, "interrupted", r->interrupted);
     cJSON_AddNumberToObject(ren, "nonfinite_samples_dropped", r->nonfinite);
     cJSON_AddNumberToObject(ren, "launches", r->launches);
+    cJSON_AddNumberToObject(ren, "noise_target", rs->noise_target);
+    cJSON_AddNumberToObject(ren, "time_limit_s", rs->time_limit_s);
     cJSON_AddNumberToObject(ren, "tile_size", rs->tile_size);
     cJSON_AddNumberToObject(ren, "launch_budget_ms", rs->launch_budget_ms);
     cJSON_AddBoolToObject(ren, "kernel_cache_hit", r->kernel_cache_hit);
@@ -149,6 +158,13 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON_AddNumberToObject(t, "precompute", r->seconds_precompute);
     cJSON_AddNumberToObject(t, "render", r->seconds_render);
     cJSON_AddNumberToObject(t, "write", seconds_write);
+    cJSON *passes = cJSON_AddArrayToObject(ren, "passes"); /* the EXR layers' channels */
+    for (int i = 0; i < n_layers; i++)
+        for (int c = 0; c < layers[i].channels; c++) {
+            char name[64];
+            snprintf(name, sizeof name, "%s.%s", layers[i].name, layers[i].channel_names[c]);
+            cJSON_AddItemToArray(passes, cJSON_CreateString(name));
+        }
     cJSON *outs = cJSON_AddArrayToObject(root, "outputs");
     for (int i = 0; i < n_out; i++)
         cJSON_AddItemToArray(outs, cJSON_CreateString(outputs[i]));
@@ -176,6 +192,24 @@ static int parse_int_arg(const char *opt, const char *v, int lo, int hi, int *ou
         return atmo_fail(e, ATMO_ERR_USAGE, "%s needs a whole number in [%d, %d] written as "
                          "decimal digits, got '%s'", opt, lo, hi, v ? v : "");
     *out = (int)x;
+    return ATMO_OK;
+}
+
+/* --noise: "1%" or a fraction "0.01", in (0, 1]. */
+static int parse_noise(const char *v, double *out, atmo_err *e)
+{
+    char *end;
+    double x = strtod(v, &end);
+    if (end != v && *end == '%' && end[1] == 0)
+        x /= 100.0;
+    else if (end == v || *end != 0)
+        x = -1.0;
+    if (!(x > 0.0 && x <= 1.0))
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "--noise needs a relative standard error such as 1%% or 0.01 (above 0, "
+                         "at most 100%%), got '%s'",
+                         v);
+    *out = x;
     return ATMO_OK;
 }
 
@@ -215,7 +249,7 @@ int cmd_render(int argc, char **argv)
         }
         static const char *const with_value[] = {
             "--preset", "--scene", "--set", "--output", "-o", "--report", "--save-scene",
-            "--device", "--dump-kernels", "--tile-size", "--launch-budget-ms", "--width",
+            "--noise", "--time-limit", "--device", "--dump-kernels", "--tile-size", "--launch-budget-ms", "--width",
             "--height", "--samples", "--seed", "--camera", NULL};
         int known = 0;
         for (int k = 0; with_value[k]; k++)
@@ -263,6 +297,17 @@ int cmd_render(int argc, char **argv)
             if (*v == 0 || *end != 0 || !(rs.launch_budget_ms >= 1.0 && rs.launch_budget_ms <= 1e5)) {
                 rc = atmo_fail(&e, ATMO_ERR_USAGE,
                                "--launch-budget-ms needs milliseconds in [1, 100000], got '%s'", v);
+                goto usage_error;
+            }
+        } else if (strcmp(a, "--noise") == 0) {
+            if ((rc = parse_noise(v, &rs.noise_target, &e)))
+                goto usage_error;
+        } else if (strcmp(a, "--time-limit") == 0) {
+            char *end;
+            rs.time_limit_s = strtod(v, &end);
+            if (*v == 0 || *end != 0 || !(rs.time_limit_s > 0.0 && rs.time_limit_s <= 1e7)) {
+                rc = atmo_fail(&e, ATMO_ERR_USAGE,
+                               "--time-limit needs seconds in (0, 1e7], got '%s'", v);
                 goto usage_error;
             }
         } else if (strcmp(a, "--width") == 0)
@@ -395,11 +440,19 @@ int cmd_render(int argc, char **argv)
         .partial = res.interrupted,
         .software = "atmo " ATMO_VERSION};
     atmo_image img = {.width = res.width, .height = res.height, .rgb = res.rgb};
+    atmo_image_layer layers[RENDER_PASS_LAYERS];
+    float *layer_data = NULL;
+    img.layer_count = render_pass_layers(&res, layers, &layer_data);
+    img.layers = layers;
+    if (img.layer_count < 0)
+        rc = atmo_fail(&e, ATMO_ERR_RUNTIME, "out of memory for the render passes");
     for (int i = 0; i < n_out && !rc; i++)
         rc = atmo_image_write(outputs[i], &img, &post, &meta, &e);
-    double seconds_write = atmo_now_seconds() - tw;
     if (!rc && report)
-        rc = write_report(report, &scene, &res, &rs, outputs, n_out, seconds_write, &e);
+        rc = write_report(report, &scene, &res, &rs, outputs, n_out, atmo_now_seconds() - tw,
+                          img.layers, img.layer_count, &e);
+    free(layer_data);
+    double seconds_write = atmo_now_seconds() - tw;
     handle_signals(0, old);
     if (rc)
         goto runtime_error;

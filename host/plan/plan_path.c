@@ -6,7 +6,10 @@
  * c - p_cam and radius, a box's corners min - p_cam and min + size - p_cam. The rows are a host
  * table the plan owns, copied into the buffer `objects` before the passes. The path tracer's
  * settings are copied from the scene's path.* keys; its render kernel is path_render
- * (kernels/render/path.cl), which a session launches in place of sky_render. */
+ * (kernels/render/path.cl), which a session launches in place of sky_render; with path.passes
+ * it is compiled with -DATMO_RENDER_PASSES and sums the render passes into pass_planes more
+ * planes. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/plan_path.h"
@@ -70,6 +73,13 @@ int atmo_plan_path(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     g->aperture_m = (float)s->path.aperture_m;
     g->focus_m = (float)s->path.focus_m;
     p->render_kernel = "path_render";
-    (void)e;
+    if (!s->path.passes)
+        return ATMO_OK;
+    size_t used = strlen(p->defines);
+    int n = snprintf(p->defines + used, sizeof p->defines - used, "%s-DATMO_RENDER_PASSES",
+                     used ? " " : "");
+    if (n < 0 || (size_t)n >= sizeof p->defines - used)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "plan text overflows (a build bug)");
+    p->pass_planes = ATMO_PATH_PASS_PLANES;
     return ATMO_OK;
 }

@@ -16,7 +16,8 @@ int atmo_tiles_init(atmo_tiles *t, int width, int height, int size, atmo_err *e)
     t->count = t->columns * ((height + size - 1) / size);
     t->batch = 1;
     t->samples = calloc((size_t)t->count, sizeof *t->samples);
-    if (!t->samples)
+    t->converged = calloc((size_t)t->count, 1);
+    if (!t->samples || !t->converged)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for %d tiles", t->count);
     return ATMO_OK;
 }
@@ -24,13 +25,31 @@ int atmo_tiles_init(atmo_tiles *t, int width, int height, int size, atmo_err *e)
 void atmo_tiles_free(atmo_tiles *t)
 {
     free(t->samples);
+    free(t->converged);
     memset(t, 0, sizeof *t);
 }
 
 void atmo_tiles_reset(atmo_tiles *t)
 {
     memset(t->samples, 0, sizeof *t->samples * (size_t)t->count);
+    memset(t->converged, 0, (size_t)t->count);
     t->cursor = 0;
+}
+
+int atmo_tiles_is_checkpoint(int n)
+{
+    return n >= ATMO_TILES_FIRST_CHECKPOINT && (n & (n - 1)) == 0;
+}
+
+void atmo_tiles_converge(atmo_tiles *t, int index) { t->converged[index] = 1; }
+
+/* The first checkpoint after n samples. */
+static int next_checkpoint(int n)
+{
+    int c = ATMO_TILES_FIRST_CHECKPOINT;
+    while (c <= n && c < (1 << 30))
+        c *= 2;
+    return c;
 }
 
 int atmo_tiles_next(atmo_tiles *t, int target, atmo_tile *launch)
@@ -38,8 +57,10 @@ int atmo_tiles_next(atmo_tiles *t, int target, atmo_tile *launch)
     for (int k = 0; k < t->count; k++) {
         int i = (t->cursor + k) % t->count;
         int remaining = target - t->samples[i];
-        if (remaining <= 0)
+        if (remaining <= 0 || t->converged[i])
             continue;
+        if (t->checkpoints && next_checkpoint(t->samples[i]) - t->samples[i] < remaining)
+            remaining = next_checkpoint(t->samples[i]) - t->samples[i];
         launch->index = i;
         launch->x = i % t->columns * t->size;
         launch->y = i / t->columns * t->size;

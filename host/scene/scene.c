@@ -213,6 +213,9 @@ const atmo_param atmo_params[] = {
               "path mode: thin-lens aperture radius in metres (0: pinhole, no depth of field)"),
     ROW_FLOAT("path.focus_m", path.focus_m, "m", 0.01, 1e7, 10,
               "path mode: distance of the plane in focus in metres (path.aperture_m > 0)"),
+    ROW_BOOL("path.passes", path.passes, 0,
+             "path mode: render passes as EXR layers (Env, Emit, Volume, Sun, Sky, Depth, "
+             "Normal, DiffCol, samples and standard error)"),
     {NULL, ATMO_PARAM_INT, 0, NULL, 0, 0, {0, 0, 0}, NULL, NULL},
 };
 

@@ -13,6 +13,11 @@
 #include "common/compat.h"
 #endif
 
+/* The path tracer's render passes (kernels/render/path.h, path.cl): five light passes, then
+ * the primary hit's normal and depth, then its albedo, one float4 plane each. */
+#define ATMO_PATH_LIGHT_PASSES 5
+#define ATMO_PATH_PASS_PLANES (ATMO_PATH_LIGHT_PASSES + 2)
+
 typedef struct atmo_gpu_object {
     float4 a;        /* sphere: centre (xyz), radius (w); box: minimum corner (xyz) */
     float4 b;        /* box: maximum corner (xyz); sphere: unused */

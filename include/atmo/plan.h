@@ -59,6 +59,8 @@ typedef struct atmo_plan {
     const char *method;            /* the atmosphere method's name, for reports */
     const char *render_kernel;     /* the kernel a session renders with: sky_render, or
                                       path_render in path mode (same arguments) */
+    int pass_planes;               /* render passes: float4 planes the kernel also sums into
+                                      (an argument after nonfinite), 0 for none */
     const struct atmo_feature *features[ATMO_PLAN_MAX_FEATURES]; /* in registry order */
     int feature_count;
     const char *fragments[ATMO_PLAN_MAX_FRAGMENTS];

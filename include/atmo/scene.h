@@ -109,6 +109,7 @@ typedef struct atmo_scene {
         int sampler;           /* ATMO_SAMPLER_* */
         double filter_radius_px, filter_sigma_px;
         double aperture_m, focus_m; /* thin lens (aperture 0: pinhole) */
+        int passes;            /* 0/1: render passes (EXR layers) */
     } path;
     struct {
         int count;

@@ -9,7 +9,14 @@
  * c * budget / m, at most doubled and at least 1 (edge tiles are cheaper and would overshoot,
  * so their timings are not used). The scheduler holds the per-tile sample counts; it never
  * touches the device, so the split of samples into launches is its only effect on the image,
- * and the kernel makes that split invisible (sums in sample order). */
+ * and the kernel makes that split invisible (sums in sample order).
+ *
+ * Noise target (the progressive mode): a tile can be marked converged (atmo_tiles_converge)
+ * and then gets no more launches whatever the target. So that the decision does not depend on
+ * the batches, the caller asks it only at checkpoints, the sample counts 2^k >= 16
+ * (ATMO_TILES_FIRST_CHECKPOINT), and with `checkpoints` set the scheduler ends every launch at
+ * or before the tile's next checkpoint: a tile is then judged on the same sums whatever the
+ * tile size or launch budget, and a noise-targeted image is as deterministic as any other. */
 #ifndef ATMO_TILES_H
 #define ATMO_TILES_H
 #include "atmo/status.h"
@@ -29,13 +36,24 @@ typedef struct atmo_tiles {
     int *samples;       /* per tile */
     int cursor;         /* where the next search starts */
     int batch;          /* samples per launch, adapted */
+    unsigned char *converged; /* per tile: 1 once its noise target is met */
+    int checkpoints;    /* 1: launches end at the checkpoints (noise target) */
 } atmo_tiles;
+
+#define ATMO_TILES_FIRST_CHECKPOINT 16
+
+/* 1 when n samples is a checkpoint: a power of two >= ATMO_TILES_FIRST_CHECKPOINT. */
+int atmo_tiles_is_checkpoint(int n);
+/* Mark tile `index` converged: no more launches for it until atmo_tiles_reset. */
+void atmo_tiles_converge(atmo_tiles *t, int index);
 
 int atmo_tiles_init(atmo_tiles *t, int width, int height, int size, atmo_err *e);
 void atmo_tiles_free(atmo_tiles *t);
-/* Every tile back to 0 samples and the cursor to tile 0 (the adapted batch stays). */
+/* Every tile back to 0 samples, not converged, and the cursor to tile 0 (the adapted batch
+ * stays). */
 void atmo_tiles_reset(atmo_tiles *t);
-/* The next launch towards `target` samples per pixel; 0 when every tile has them. */
+/* The next launch towards `target` samples per pixel; 0 when every tile has them or has
+ * converged. */
 int atmo_tiles_next(atmo_tiles *t, int target, atmo_tile *launch);
 /* Record a finished launch that took ms milliseconds; adapt the batch to budget_ms (at most
  * max_batch when max_batch > 0). */

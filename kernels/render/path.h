@@ -29,6 +29,11 @@
  * sun is the solar irradiance E (times sun.irradiance_scale; 0 for the furnace tests) with no
  * atmosphere and no planet in the way, only the objects' shadows: the world of the furnace and
  * open-box tests, which a host reference can trace exactly.
+ * Passes: every contribution goes to one light pass (PATH_PASS_*: the sky seen directly, the
+ * objects' emission, the air in front of surfaces, reflected sunlight, reflected skylight), and
+ * the sample's radiance is their sum, so the passes add up to the beauty image; the primary
+ * hit's distance, normal and albedo come with them (render/path.cl stores them when the scene
+ * asks for passes).
  * Random numbers: stage 0 of the sample (rng.h) has the lens, the primary segment and the
  * primary hit's direct light; secondary ray j and all its bounces draw from stage 1 + j, in
  * order. The pixel position comes from path_camera.h's sequence. */
@@ -45,6 +50,33 @@
 #include "render/light_sun.h"
 #include "render/light_sky.h"
 #endif
+
+/* The light passes (render passes, path.passes): a partition of a sample's radiance by where the
+ * light was last scattered toward the camera, so they sum to it. */
+enum {
+    PATH_PASS_ENV = 0, /* the sky and the sun's disc seen directly (primary rays that escape) */
+    PATH_PASS_EMIT,    /* emission of the objects, at any bounce */
+    PATH_PASS_VOLUME,  /* the air's in-scattered light in front of surfaces, every segment */
+    PATH_PASS_SUN,     /* sunlight reflected by surfaces (next-event estimation), every bounce */
+    PATH_PASS_SKY,     /* skylight reflected by surfaces (sky sampling and escaping bounces) */
+    PATH_LIGHT_PASSES
+};
+
+/* A sample's parts: the light passes and, at the primary hit, the distance, the normal on the
+ * ray's side and the albedo (PATH_NO_HIT_DEPTH, zero and zero where the ray escapes). */
+typedef struct path_parts {
+    vec3 light[PATH_LIGHT_PASSES];
+    float depth;
+    vec3 normal, albedo;
+} path_parts;
+
+/* The depth of rays that hit nothing: Blender's value for the background in its Z pass. */
+#define PATH_NO_HIT_DEPTH 1e10f
+
+ATMO_FN void path_add(path_parts *parts, int pass, vec3 L)
+{
+    parts->light[pass] = v3_add(parts->light[pass], L);
+}
 
 /* A segment that ends at a surface stops the air this fraction of its length short of it, so
  * the method never counts the surface itself (its own ground or surface term): 1e-5 of the
@@ -129,10 +161,9 @@ ATMO_FN vec3 path_direct_sky(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
 
 /* The light of a path that leaves vertex v (depth: its bounce, 0 the primary hit) with
  * throughput beta, its first continuation weighed against n_bsdf BSDF samples. */
-ATMO_FN vec3 path_continue(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, path_vertex v,
-                           vec3 beta, int depth, float n_bsdf, rng_stream *g)
+ATMO_FN void path_continue(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, path_vertex v,
+                           vec3 beta, int depth, float n_bsdf, rng_stream *g, path_parts *parts)
 {
-    vec3 L = v3(0.0f, 0.0f, 0.0f);
     for (;;) {
         float u_rr = rng_next(g), u1 = rng_next(g), u2 = rng_next(g);
         if (depth >= s->path.rr_bounce) {
@@ -151,47 +182,66 @@ ATMO_FN vec3 path_continue(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                            ? light_sky_power(n_bsdf, bsdf_pdf_cosine(v.n, w), 1.0f,
                                              light_sky_pdf(s, w))
                            : 1.0f;
-        L = v3_add(L, v3_mul(beta, v3_scale(S, weight)));
+        path_add(parts, h.kind == SURFACES_NONE ? PATH_PASS_SKY : PATH_PASS_VOLUME,
+                 v3_mul(beta, v3_scale(S, weight)));
         if (h.kind == SURFACES_NONE)
             break;
         beta = v3_mul(beta, view_t);
-        L = v3_add(L, v3_mul(beta, v3_mul(h.emission, v3_from4(s->sky_factor))));
+        path_add(parts, PATH_PASS_EMIT, v3_mul(beta, v3_mul(h.emission, v3_from4(s->sky_factor))));
         if (++depth > s->path.bounces)
             break;
         v = path_vertex_at(s, &r, &h);
-        L = v3_add(L, v3_mul(beta, v3_add(path_direct_sun(s, ATMO_LUT_ARGS, &v, g),
-                                          path_direct_sky(s, ATMO_LUT_ARGS, &v, 1.0f, g))));
+        path_add(parts, PATH_PASS_SUN, v3_mul(beta, path_direct_sun(s, ATMO_LUT_ARGS, &v, g)));
+        path_add(parts, PATH_PASS_SKY,
+                 v3_mul(beta, path_direct_sky(s, ATMO_LUT_ARGS, &v, 1.0f, g)));
         n_bsdf = 1.0f;
     }
-    return L;
 }
 
-/* One sample of pixel (x, y): its radiance. */
-ATMO_FN vec3 path_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, int x, int y,
-                           uint pixel, uint sample)
+/* The parts of one sample of pixel (x, y) (path_parts above). */
+ATMO_FN void path_sample(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, int x, int y,
+                         uint pixel, uint sample, path_parts *parts)
 {
+    for (int k = 0; k < PATH_LIGHT_PASSES; k++)
+        parts->light[k] = v3(0.0f, 0.0f, 0.0f);
+    parts->depth = PATH_NO_HIT_DEPTH;
+    parts->normal = v3(0.0f, 0.0f, 0.0f);
+    parts->albedo = v3(0.0f, 0.0f, 0.0f);
     rng_stream g = rng_stream_stage(s->seed, pixel, sample, 0u);
     vec3 origin;
     vec3 d = path_camera_sample(s, x, y, pixel, sample, &g, &origin);
     if (v3_dot(d, d) == 0.0f)
-        return v3(0.0f, 0.0f, 0.0f);
+        return;
     medium_ray ray = s->path.aperture_m > 0.0f ? medium_ray_make(s, origin, d)
                                                : medium_ray_from_camera(s, d);
     path_hit h = surfaces_hit(s, ATMO_LUT_ARGS, &ray, INFINITY);
     vec3 view_t;
-    vec3 L = path_segment(s, ATMO_LUT_ARGS, &ray, &h, 1, &g, &view_t);
+    vec3 S = path_segment(s, ATMO_LUT_ARGS, &ray, &h, 1, &g, &view_t);
+    path_add(parts, h.kind == SURFACES_NONE ? PATH_PASS_ENV : PATH_PASS_VOLUME, S);
     if (h.kind == SURFACES_NONE)
-        return L;
-    L = v3_add(L, v3_mul(view_t, v3_mul(h.emission, v3_from4(s->sky_factor))));
+        return;
+    path_add(parts, PATH_PASS_EMIT, v3_mul(view_t, v3_mul(h.emission, v3_from4(s->sky_factor))));
     path_vertex v = path_vertex_at(s, &ray, &h);
+    parts->depth = h.t;
+    parts->normal = v.n;
+    parts->albedo = v.albedo;
     int n_s = s->path.secondary;
-    L = v3_add(L, v3_mul(view_t, v3_add(path_direct_sun(s, ATMO_LUT_ARGS, &v, &g),
-                                        path_direct_sky(s, ATMO_LUT_ARGS, &v, (float)n_s, &g))));
+    path_add(parts, PATH_PASS_SUN, v3_mul(view_t, path_direct_sun(s, ATMO_LUT_ARGS, &v, &g)));
+    path_add(parts, PATH_PASS_SKY,
+             v3_mul(view_t, path_direct_sky(s, ATMO_LUT_ARGS, &v, (float)n_s, &g)));
     vec3 beta = v3_scale(view_t, 1.0f / (float)n_s);
     for (int j = 0; j < n_s; j++) {
         rng_stream gj = rng_stream_stage(s->seed, pixel, sample, 1u + (uint)j);
-        L = v3_add(L, path_continue(s, ATMO_LUT_ARGS, v, beta, 0, (float)n_s, &gj));
+        path_continue(s, ATMO_LUT_ARGS, v, beta, 0, (float)n_s, &gj, parts);
     }
+}
+
+/* A sample's radiance: the sum of its light passes, in pass order. */
+ATMO_FN vec3 path_total(const path_parts *parts)
+{
+    vec3 L = parts->light[0];
+    for (int k = 1; k < PATH_LIGHT_PASSES; k++)
+        L = v3_add(L, parts->light[k]);
     return L;
 }
 
