@@ -15,6 +15,7 @@
  * that signal at once. Exit statuses: 0 done, 1 runtime error, 2 usage, 3 interrupted with a
  * partial image written, 4 interrupted with nothing written. */
 #include <cjson/cJSON.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,6 +24,7 @@
 #include "atmo/clock.h"
 #include "atmo/colour.h"
 #include "atmo/fileio.h"
+#include "atmo/flare.h"
 #include "atmo/image.h"
 #include "atmo/plan.h"
 #include "atmo/render.h"
@@ -117,7 +119,7 @@ static void handle_signals(int install, struct sigaction old[2])
 static int write_report(const char *path, const atmo_scene *s, const atmo_render_result *r,
                           const atmo_render_settings *rs, const char *const *outputs, int n_out,
                           double seconds_write, const atmo_image_layer *layers, int n_layers,
-                          atmo_err *e)
+                          const atmo_flare_info *flare, atmo_err *e)
 {
     cJSON *root = cJSON_CreateObject();
     char *scene_text = atmo_scene_to_json(s);
@@ -165,6 +167,17 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
             snprintf(name, sizeof name, "%s.%s", layers[i].name, layers[i].channel_names[c]);
             cJSON_AddItemToArray(passes, cJSON_CreateString(name));
         }
+    if (s->post.flare) { /* what the lens flare measured and added */
+        cJSON *fl = cJSON_AddObjectToObject(ren, "flare");
+        cJSON_AddNumberToObject(fl, "sun_x_px", flare->sun_x);
+        cJSON_AddNumberToObject(fl, "sun_y_px", flare->sun_y);
+        cJSON *irr = cJSON_AddArrayToObject(fl, "sun_irradiance");
+        cJSON *add = cJSON_AddArrayToObject(fl, "added_irradiance");
+        for (int c = 0; c < 3; c++) {
+            cJSON_AddItemToArray(irr, cJSON_CreateNumber(flare->irradiance[c]));
+            cJSON_AddItemToArray(add, cJSON_CreateNumber(flare->added[c]));
+        }
+    }
     cJSON *outs = cJSON_AddArrayToObject(root, "outputs");
     for (int i = 0; i < n_out; i++)
         cJSON_AddItemToArray(outs, cJSON_CreateString(outputs[i]));
@@ -417,6 +430,18 @@ int cmd_render(int argc, char **argv)
         fprintf(stderr, "atmo render: warning: %u non-finite samples were dropped (a bug; please "
                         "report it with the scene)\n", res.nonfinite);
 
+    /* post: the lens flare, on the linear image every output gets */
+    atmo_flare_info flare = {0};
+    if (scene.post.flare && scene.camera.kind == ATMO_CAMERA_PERSPECTIVE) {
+        atmo_flare_camera fc = {.width = res.width, .height = res.height,
+                                .tan_half_fov = tan(0.5 * scene.camera.fov_deg * M_PI / 180.0),
+                                .sun_radius_rad = scene.sun.angular_radius_deg * M_PI / 180.0};
+        atmo_camera_basis(scene.camera.pitch_deg, scene.camera.yaw_deg, fc.forward, fc.right,
+                          fc.up);
+        atmo_sun_direction(scene.sun.zenith_deg, scene.sun.azimuth_deg, fc.sun);
+        atmo_flare_apply(res.rgb, &fc, scene.post.flare_strength, &flare);
+    }
+
     /* outputs */
     double tw = atmo_now_seconds();
     atmo_post post = {(float)scene.post.exposure, scene.post.tonemap, (float)scene.post.white_point,
@@ -450,7 +475,7 @@ int cmd_render(int argc, char **argv)
         rc = atmo_image_write(outputs[i], &img, &post, &meta, &e);
     if (!rc && report)
         rc = write_report(report, &scene, &res, &rs, outputs, n_out, atmo_now_seconds() - tw,
-                          img.layers, img.layer_count, &e);
+                          img.layers, img.layer_count, &flare, &e);
     free(layer_data);
     double seconds_write = atmo_now_seconds() - tw;
     handle_signals(0, old);

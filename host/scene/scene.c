@@ -183,6 +183,11 @@ const atmo_param atmo_params[] = {
              "divide by the sun's colour so sunlight is white"),
     ROW_ENUM("post.transfer", post.transfer, transfer_names, ATMO_TRANSFER_SRGB,
              "PNG encoding curve: sRGB or a pure 2.2 gamma"),
+    ROW_BOOL("post.flare", post.flare, 0,
+             "lens flare from the sun's light in the image (perspective camera only; every "
+             "output)"),
+    ROW_FLOAT("post.flare_strength", post.flare_strength, "", 0, 1e3, 1,
+              "lens flare brightness relative to the default lens"),
     ROW_ENUM("render.mode", path.mode, render_modes, ATMO_RENDER_PREVIEW,
              "preview: primary rays with the method (objects lit by sun and sky irradiance); "
              "path: the progressive path tracer with bounces (kernels/render/path.h)"),

@@ -95,7 +95,7 @@ const atmo_preset atmo_presets[] = {
            "edges" THESIS_SKY_ONLY,
            "camera.kind=perspective", "camera.position_m=23796,2266,16636",
            "camera.pitch_deg=15.038", "camera.yaw_deg=-519", "camera.fov_deg=45",
-           "sun.zenith_deg=62.332413", "sun.azimuth_deg=154.698581"),
+           "sun.zenith_deg=62.332413", "sun.azimuth_deg=154.698581", "post.flare=true"),
     PRESET("thesis-7", "thesis view 7: looking +Z into an open box, path traced" THESIS_NO_TERRAIN,
            "camera.kind=perspective", "camera.position_m=26631.5,1336.5,10747.5",
            "camera.pitch_deg=0", "camera.yaw_deg=0", "camera.fov_deg=45",

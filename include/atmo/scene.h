@@ -82,6 +82,8 @@ typedef struct atmo_scene {
         double white_point;    /* for reinhard-white */
         int white_balance;     /* 0/1: divide by the sun's white point */
         int transfer;          /* ATMO_TRANSFER_*: PNG encoding curve */
+        int flare;             /* 0/1: lens flare (perspective cameras; host/image/flare.c) */
+        double flare_strength; /* its brightness relative to the default lens */
     } post;
     struct {                   /* homogeneous cloud/fog shell (kernels/media/cloud_shell.h) */
         int enabled;
