@@ -83,6 +83,13 @@ ATMO_FN void path_add(path_parts *parts, int pass, vec3 L)
  * distance is far below any change in the air. */
 #define PATH_SEGMENT_SHORTEN 0.99999f
 
+/* A segment between surfaces shorter than this has no air: over d = 10 m the sea-level air
+ * scatters and absorbs sigma_t d ~ (1.2e-5 + 4.4e-6) / m x 10 m < 2e-4 of the light through it
+ * (Rayleigh at 680-440 nm and the aerosols: atmosphere.* defaults), below the noise of any
+ * path-traced pixel, while the method's march over it costs as much as over a long one: the
+ * bounces inside an open box are all this short. */
+#define PATH_AIR_MIN_M 10.0f
+
 /* The light S that segment m brings to its origin, up to the hit h or out of the scene (the
  * sun disc only with_sun), and its view transmittance. */
 ATMO_FN vec3 path_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
@@ -92,6 +99,10 @@ ATMO_FN vec3 path_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
     if (s->path.sky == ATMO_PATH_SKY_UNIFORM) { /* the sun's disc is left to the NEE here */
         *view_t = v3(1.0f, 1.0f, 1.0f);
         return h->kind == SURFACES_NONE ? v3_from4(s->path.uniform_sky) : v3(0.0f, 0.0f, 0.0f);
+    }
+    if (h->kind != SURFACES_NONE && h->t < PATH_AIR_MIN_M) {
+        *view_t = v3(1.0f, 1.0f, 1.0f);
+        return v3(0.0f, 0.0f, 0.0f);
     }
     vec3 sky, sun;
     float t_max = h->kind == SURFACES_NONE ? INFINITY : h->t * PATH_SEGMENT_SHORTEN;
