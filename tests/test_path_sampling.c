@@ -11,14 +11,15 @@
  *     (test_chi2_critical_1e4, B - 1 degrees of freedom). Cosine hemisphere around a tilted
  *     normal: bins of sin^2(theta) x phi (each 1/B); sun cone (half-angle 5 degrees, wide
  *     enough that float spacing of cos near 1 does not quantise the bins): bins of
- *     (1 - cos)/(1 - cos alpha) x phi; sky mixture with the sun at +Y: bins of y x phi, each
- *     one's probability in closed form ((1 - c) dy / 2 + c |[y0, y1] n [cos theta_c, 1]| /
- *     (1 - cos theta_c)) dphi / 2 pi; pixel filter: bins of the truncated Gaussian's radial
- *     CDF x phi.
+ *     (1 - cos)/(1 - cos alpha) x phi; the sky table's sampling (a synthetic sky: a bright
+ *     patch, a gradient, black below the horizon) over its own texels, each expected with the
+ *     mixture's probability c p_texel + (1 - c) Omega_texel / (4 pi) (which must sum to 1,
+ *     1e-5), every direction the table's CDFs chose lying in a texel they can choose; pixel
+ *     filter: bins of the truncated Gaussian's radial CDF x phi.
  *   - Pdf round trips: for samples w ~ p, E[g(w) / p(w)] = int g dw (importance-sampling
  *     identity), with g = cos^2 for the cosine sampler (2 pi / 3), g = 1 for the sun cone
- *     (its solid angle; 1/p is constant, so exact to float rounding) and the sky mixture
- *     (4 pi); the mean must lie within 5 standard errors of the integral (the estimator's own
+ *     (its solid angle; 1/p is constant, so exact to float rounding) and the sky table's
+ *     mixture (4 pi; with the uniform sky or an empty table 1/p = 4 pi exactly); the mean must lie within 5 standard errors of the integral (the estimator's own
  *     sample variance). Every sample is a unit vector inside its support.
  *   - Stratification: the first 2^k samples of a pixel's scrambled Sobol points form a
  *     (0, k, 2)-net: every elementary interval [a 2^-j, (a+1) 2^-j) x [b 2^-(k-j), (b+1)
@@ -33,7 +34,8 @@
  *     ray of any pixel back to that pixel; the fisheye: the centre along forward, the top
  *     edge's middle at fov/2 from it, a point as many pixels to the side at the same angle (round
  *     whatever the aspect), the angle at radius rho 2 asin(rho sin(fov/4)) (equal-area), and
- *     the zero vector outside the circle. Tolerance 2e-6 on unit vectors (float rounding). */
+ *     the zero vector outside the circle. Tolerance 2e-6 on unit vectors (float rounding).
+ *   - The thin lens (path.aperture_m > 0): closed form, see test_thin_lens. */
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
@@ -147,35 +149,57 @@ static void test_sun_cone(void)
 
 static void test_sky(void)
 {
-    enum { BY = 20, BP = 16 };
-    static double count[BY * BP], p[BY * BP];
+    enum { B = LIGHT_SKY_TEXELS };
+    static double count[B], p[B];
+    static float4 env[LIGHT_SKY_TEXELS + LIGHT_SKY_H];
     atmo_gpu_scene g;
     memset(&g, 0, sizeof g);
-    g.sun_direction.y = 1.0f;
+    vec3 up = v3_normalize(v3(0.1f, 0.98f, -0.05f));
+    g.camera.local_up = (float4){up.x, up.y, up.z, 6.36e6f};
     g.path.sky = ATMO_PATH_SKY_ATMOSPHERE;
-    double c = LIGHT_SKY_CONE_WEIGHT, cc = cos((double)LIGHT_SKY_CONE_RAD);
-    for (int i = 0; i < BY; i++) {
-        double y0 = -1.0 + 2.0 * i / BY, y1 = -1.0 + 2.0 * (i + 1) / BY;
-        double overlap = fmax(0.0, fmin(y1, 1.0) - fmax(y0, cc));
-        for (int j = 0; j < BP; j++)
-            p[i * BP + j] = ((1.0 - c) * (y1 - y0) / 2.0 + c * overlap / (1.0 - cc)) / BP;
-    }
-    double sum = 0.0, sum2 = 0.0;
+    /* a sky bright in a patch near the zenith, dim elsewhere, black below the horizon */
+    for (int j = 0; j < LIGHT_SKY_H; j++)
+        for (int i = 0; i < LIGHT_SKY_W; i++) {
+            double L = j >= LIGHT_SKY_H / 2 ? 0.0 : (j < 4 && i >= 8 && i < 12) ? 20.0 : 1.0 + j;
+            env[j * LIGHT_SKY_W + i].w = (float)(L * light_sky_texel_omega(j));
+        }
+    light_sky_build(env);
+    double c = LIGHT_SKY_TABLE;
+    for (int k = 0; k < B; k++)
+        p[k] = c * light_sky_texel_p(env, k) +
+               (1.0 - c) * light_sky_texel_omega(k / LIGHT_SKY_W) / (4.0 * M_PI);
+    double sum = 0.0, sum2 = 0.0, psum = 0.0;
+    for (int k = 0; k < B; k++)
+        psum += p[k];
+    int own = 0, table_draws = 0;
     for (int i = 0; i < N; i++) {
-        vec3 w = light_sky_sample(&g, uniform(), uniform(), uniform());
-        count[clampi((int)((w.y + 1.0) / 2.0 * BY), BY) * BP + phi_bin(atan2(w.z, w.x), BP)] += 1.0;
-        double q = 1.0 / light_sky_pdf(&g, w);
+        float u0 = uniform(), u1 = uniform(), u2 = uniform();
+        vec3 w = light_sky_sample(&g, env, u0, u1, u2);
+        int k = light_sky_texel(up, w);
+        count[k] += 1.0;
+        double q = 1.0 / light_sky_pdf(&g, env, w);
         sum += q;
         sum2 += q * q;
+        if (u0 < c) { /* the texel the CDFs picked must be the texel the direction lies in */
+            table_draws++;
+            own += light_sky_texel_p(env, k) > 0.0f;
+        }
     }
-    double x = chi2(count, p, BY * BP, N);
-    printf("sky mixture: chi2 %.1f (critical %.1f)\n", x, test_chi2_critical_1e4(BY * BP - 1));
-    CHECK(x < test_chi2_critical_1e4(BY * BP - 1));
+    double x = chi2(count, p, B, N);
+    printf("sky table: chi2 %.1f (critical %.1f), probabilities sum to %.7f\n", x,
+           test_chi2_critical_1e4(B - 1), psum);
+    CHECK(x < test_chi2_critical_1e4(B - 1));
+    CHECK_ABS(psum, 1.0, 1e-5);
+    CHECK(own == table_draws);
     double mean = sum / N, se = sqrt((sum2 / N - mean * mean) / N);
     CHECK_ABS(mean, 4.0 * M_PI, 5.0 * se);
-    /* the uniform test sky: the plain sphere, 1/p = 4 pi exactly */
+    /* the uniform test sky, or an empty table: the plain sphere, 1/p = 4 pi exactly */
     g.path.sky = ATMO_PATH_SKY_UNIFORM;
-    CHECK_REL(1.0 / light_sky_pdf(&g, v3(0.0f, 1.0f, 0.0f)), 4.0 * M_PI, 1e-6);
+    CHECK_REL(1.0 / light_sky_pdf(&g, env, v3(0.0f, 1.0f, 0.0f)), 4.0 * M_PI, 1e-6);
+    g.path.sky = ATMO_PATH_SKY_ATMOSPHERE;
+    memset(env, 0, sizeof env);
+    light_sky_build(env);
+    CHECK_REL(1.0 / light_sky_pdf(&g, env, v3(0.0f, 1.0f, 0.0f)), 4.0 * M_PI, 1e-6);
 }
 
 static void test_filter(void)
@@ -317,6 +341,49 @@ static void test_cameras(void)
     CHECK(corner.x == 0.0f && corner.y == 0.0f && corner.z == 0.0f);
 }
 
+/* The thin lens: every ray of a pixel, whatever its point on the aperture, passes through the
+ * pinhole ray's point on the plane in focus (closed form of the thin lens), starts within the
+ * aperture disc in the camera's right/up plane, and the aperture's points fill the disc
+ * (their mean radius^2 is R^2 / 2 for a uniform disc, within 5 standard errors). */
+static void test_thin_lens(void)
+{
+    atmo_gpu_scene g;
+    memset(&g, 0, sizeof g);
+    g.camera = camera(ATMO_CAMERA_PERSPECTIVE, -10.0, 25.0, 45.0, 64, 36);
+    g.path.sampler = ATMO_SAMPLER_SOBOL;
+    g.path.filter_sigma = 0.5f;
+    g.path.filter_radius = 1.5f;
+    g.path.aperture_m = 0.05f;
+    g.path.focus_m = 7.0f;
+    vec3 f = v3_from4(g.camera.forward), r = v3_from4(g.camera.right), u = v3_from4(g.camera.up);
+    double worst = 0.0, worst_plane = 0.0, sum = 0.0, sum2 = 0.0;
+    int outside = 0, n = 4096;
+    for (int i = 0; i < n; i++) {
+        rng_stream st = rng_stream_stage(1u, 77u, (uint)i, 0u);
+        vec3 o, d = path_camera_sample(&g, 20, 11, 77u, (uint)i, &st, &o);
+        /* the pinhole ray of the same sample: same pixel position, aperture 0 */
+        g.path.aperture_m = 0.0f;
+        rng_stream st0 = rng_stream_stage(1u, 77u, (uint)i, 0u);
+        vec3 o0, d0 = path_camera_sample(&g, 20, 11, 77u, (uint)i, &st0, &o0);
+        g.path.aperture_m = 0.05f;
+        vec3 want = v3_scale(d0, 7.0f / v3_dot(d0, f));
+        float t = (7.0f - v3_dot(o, f)) / v3_dot(d, f);
+        vec3 got = v3_add(o, v3_scale(d, t));
+        worst = fmax(worst, v3_length(v3_sub(got, want)));
+        worst_plane = fmax(worst_plane, fabs(v3_dot(o, f)));
+        double rr = (double)v3_dot(o, r) * v3_dot(o, r) + (double)v3_dot(o, u) * v3_dot(o, u);
+        outside += rr > 0.05 * 0.05 * (1.0 + 1e-5);
+        sum += rr;
+        sum2 += rr * rr;
+    }
+    double mean = sum / n, se = sqrt((sum2 / n - mean * mean) / n);
+    printf("thin lens: focus points within %.2g m, origins %.2g m off the lens plane, mean r^2 "
+           "%.4g (want %.4g)\n",
+           worst, worst_plane, mean, 0.05 * 0.05 / 2.0);
+    CHECK(worst < 2e-5 && worst_plane < 1e-7 && outside == 0);
+    CHECK_ABS(mean, 0.05 * 0.05 / 2.0, 5.0 * se);
+}
+
 int main(void)
 {
     test_cosine();
@@ -325,5 +392,6 @@ int main(void)
     test_filter();
     test_sobol();
     test_cameras();
+    test_thin_lens();
     return test_finish();
 }

@@ -73,6 +73,15 @@ int atmo_plan_path(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     g->aperture_m = (float)s->path.aperture_m;
     g->focus_m = (float)s->path.focus_m;
     p->render_kernel = "path_render";
+    /* the sky's radiance table of the sky sampling (kernels/render/light_sky.h): 32 x 16
+     * texels and 16 rows of CDF, made for this camera and sun */
+    int texels = ATMO_PATH_SKY_TEXELS + ATMO_PATH_SKY_ROWS, rc;
+    if ((rc = atmo_plan_add_buffer(p, "sky_env", "float4", sizeof(float4) * (size_t)texels, 1,
+                                   NULL, e)) ||
+        (rc = atmo_plan_add_pass(p, "path_sky_env", ATMO_PATH_SKY_COLUMNS, ATMO_PATH_SKY_ROWS, 1,
+                                 0, e)) ||
+        (rc = atmo_plan_add_pass(p, "path_sky_cdf", 1, 1, 1, 0, e)))
+        return rc;
     if (!s->path.passes)
         return ATMO_OK;
     size_t used = strlen(p->defines);

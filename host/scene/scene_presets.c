@@ -30,7 +30,7 @@
 const char *const atmo_default_preset = "sky-sunset";
 
 #define PRESET(name, summary, ...) {name, summary, (const char *const[]){__VA_ARGS__, NULL}}
-#define THESIS_SKY_ONLY " [sky only: terrain, clouds, objects not rendered yet]"
+#define THESIS_SKY_ONLY " [sky only: terrain and clouds not rendered yet]"
 #define THESIS_NO_TERRAIN " [objects and sky: terrain and clouds not rendered yet]"
 /* presets.md's objects (albedo in linear RGB; the small spheres' (38, 25, 17)/255 written out) */
 #define THESIS_VIEW2_OBJECTS                                                                       \

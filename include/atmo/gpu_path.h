@@ -18,6 +18,12 @@
 #define ATMO_PATH_LIGHT_PASSES 5
 #define ATMO_PATH_PASS_PLANES (ATMO_PATH_LIGHT_PASSES + 2)
 
+/* The sky's radiance table of the sky sampling (kernels/render/light_sky.h's LIGHT_SKY_W x
+ * LIGHT_SKY_H), in the buffer sky_env with one more float4 per row for the CDF of the rows. */
+#define ATMO_PATH_SKY_COLUMNS 32
+#define ATMO_PATH_SKY_ROWS 16
+#define ATMO_PATH_SKY_TEXELS (ATMO_PATH_SKY_COLUMNS * ATMO_PATH_SKY_ROWS)
+
 typedef struct atmo_gpu_object {
     float4 a;        /* sphere: centre (xyz), radius (w); box: minimum corner (xyz) */
     float4 b;        /* box: maximum corner (xyz); sphere: unused */

@@ -9,7 +9,9 @@
  * PATH_PASS_SLOTS planes of W x H float4 sums, plane k at passes[k W H + pixel], built in
  * the same order: the light passes (planes 0 .. PATH_LIGHT_PASSES - 1, xyz), then the primary
  * hit's normal (xyz) with its distance (w), then its albedo (xyz). A scene without passes has
- * neither the argument nor the stores. */
+ * neither the argument nor the stores.
+ * path_sky_env and path_sky_cdf are the precompute passes of the sky's radiance table that
+ * the sky sampling reads (render/light_sky.h); they follow the view (camera, sun). */
 
 #define PATH_PASS_SLOTS (PATH_LIGHT_PASSES + 2)
 /* the host sizes the buffer by gpu_path.h's count: the two must agree */
@@ -59,4 +61,32 @@ __kernel void path_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
     for (int k = 0; k < PATH_PASS_SLOTS; k++)
         passes[k * plane + pixel] = part[k];
 #endif
+}
+
+/* path_sky_env: texel (x, y) of the sky's radiance table (render/light_sky.h) from the camera,
+ * by the scene's method along the ray through its centre (without the sun's disc; the stream
+ * of "pixel" y W + x, sample 0), and its weight (L_R + L_G + L_B) Omega_texel. */
+__kernel void path_sky_env(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PARAMS, int arg)
+{
+    int i = get_global_id(0), j = get_global_id(1);
+    if (i >= LIGHT_SKY_W || j >= LIGHT_SKY_H)
+        return;
+    float3 L = (float3)(0.0f);
+    if (scene->path.sky == ATMO_PATH_SKY_ATMOSPHERE) {
+        float3 d = light_sky_direction(scene->camera.local_up.xyz, i, j, 0.5f, 0.5f);
+        medium_ray ray = medium_ray_from_camera(scene, d);
+        rng_stream g = rng_stream_stage(scene->seed, (uint)(j * LIGHT_SKY_W + i), 0u, 0u);
+        float3 sky, sun, view_t;
+        sky_trace(scene, ATMO_LUT_ARGS, &ray, INFINITY, &g, &sky, &sun, &view_t);
+        L = sky * scene->sky_factor.xyz;
+    }
+    float w = (L.x + L.y + L.z) * light_sky_texel_omega(j);
+    sky_env[j * LIGHT_SKY_W + i] = (float4)(L, isfinite(w) && w > 0.0f ? w : 0.0f);
+}
+
+/* path_sky_cdf: the table's CDFs from its weights (one work item). */
+__kernel void path_sky_cdf(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PARAMS, int arg)
+{
+    if (get_global_id(0) == 0 && get_global_id(1) == 0)
+        light_sky_build(sky_env);
 }

@@ -157,11 +157,11 @@ ATMO_FN vec3 path_direct_sky(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
     float u0 = rng_next(g), u1 = rng_next(g), u2 = rng_next(g);
     if (!s->path.sky_nee)
         return v3(0.0f, 0.0f, 0.0f);
-    vec3 w = light_sky_sample(s, u0, u1, u2);
+    vec3 w = light_sky_sample(s, sky_env, u0, u1, u2);
     float c = v3_dot(v->n, w);
     if (c <= 0.0f)
         return v3(0.0f, 0.0f, 0.0f);
-    float p_l = light_sky_pdf(s, w), p_b = c / ATMO_PI;
+    float p_l = light_sky_pdf(s, sky_env, w), p_b = c / ATMO_PI;
     medium_ray r = medium_ray_make(s, v->p, w);
     path_hit h = surfaces_hit(s, ATMO_LUT_ARGS, &r, INFINITY);
     vec3 view_t;
@@ -191,7 +191,7 @@ ATMO_FN void path_continue(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
         vec3 S = path_segment(s, ATMO_LUT_ARGS, &r, &h, !s->path.sun_nee, g, &view_t);
         float weight = s->path.sky_nee
                            ? light_sky_power(n_bsdf, bsdf_pdf_cosine(v.n, w), 1.0f,
-                                             light_sky_pdf(s, w))
+                                             light_sky_pdf(s, sky_env, w))
                            : 1.0f;
         path_add(parts, h.kind == SURFACES_NONE ? PATH_PASS_SKY : PATH_PASS_VOLUME,
                  v3_mul(beta, v3_scale(S, weight)));
