@@ -38,7 +38,7 @@ expect_usage "unknown command" "unknown command" bogus
 expect_usage "misspelt key" "did you mean 'sun.zenith_deg'" render "${small[@]}" --set sun.zenit=5 --output out/a.png
 expect_usage "NaN value" "sun.zenith_deg" render "${small[@]}" --set sun.zenith_deg=nan --output out/a.png
 expect_usage "out of range" "0 .. 180|range" render "${small[@]}" --set sun.zenith_deg=200 --output out/a.png
-expect_usage "wrong type" "camera.kind" render "${small[@]}" --set camera.kind=fisheye --output out/a.png
+expect_usage "wrong type" "camera.kind" render "${small[@]}" --set camera.kind=orthographic --output out/a.png
 expect_usage "vec3 syntax" "camera.position_m" render "${small[@]}" --set camera.position_m=1,2 --output out/a.png
 expect_usage "set without =" "--set|=" render "${small[@]}" --set sun.zenith_deg --output out/a.png
 expect_usage "bad width" "image.width" render --width 0 --output out/a.png

@@ -1,5 +1,6 @@
 /* test_gpu_layout — the structs of include/atmo/gpu_types.h and of each feature's header
- * (gpu_atmosphere.h, gpu_ms_lut.h, gpu_sky_view.h, gpu_lut.h, gpu_reference.h, gpu_cloud.h, gpu_clouds.h) have
+ * (gpu_atmosphere.h, gpu_ms_lut.h, gpu_sky_view.h, gpu_lut.h, gpu_reference.h, gpu_cloud.h,
+ * gpu_clouds.h, gpu_path.h) have
  * the same size and field offsets in the OpenCL C compiler as on the host.
  * labels: kernel
  *
@@ -23,7 +24,9 @@
     X(atmo_gpu_reference, max_order) X(atmo_gpu_cloud, observer) X(atmo_gpu_cloud, base_m)        \
     X(atmo_gpu_cloud, phase) X(atmo_gpu_cloud, steps) X(atmo_gpu_scene, clouds)                  \
     X(atmo_gpu_clouds, origin) X(atmo_gpu_clouds, bottom_m) X(atmo_gpu_clouds, majorant)          \
-    X(atmo_gpu_clouds, phase) X(atmo_gpu_clouds, seed)
+    X(atmo_gpu_clouds, phase) X(atmo_gpu_clouds, seed) X(atmo_gpu_scene, path)                    \
+    X(atmo_gpu_path, object_count) X(atmo_gpu_path, sampler) X(atmo_gpu_path, filter_radius)      \
+    X(atmo_gpu_path, focus_m) X(atmo_gpu_object, emission) X(atmo_gpu_object, kind)
 
 #define HOST_OFFSET(type, field) (uint)offsetof(type, field),
 #define DEVICE_OFFSET(type, field) "out[n++] = (uint)__builtin_offsetof(" #type ", " #field ");\n"
@@ -39,14 +42,18 @@ static const char probe[] =
     "  out[n++] = (uint)sizeof(atmo_gpu_lut);\n"
     "  out[n++] = (uint)sizeof(atmo_gpu_reference);\n"
     "  out[n++] = (uint)sizeof(atmo_gpu_cloud);\n"
-    "  out[n++] = (uint)sizeof(atmo_gpu_clouds);\n" FIELDS(DEVICE_OFFSET) "}\n";
+    "  out[n++] = (uint)sizeof(atmo_gpu_clouds);\n"
+    "  out[n++] = (uint)sizeof(atmo_gpu_path);\n"
+    "  out[n++] = (uint)sizeof(atmo_gpu_object);\n" FIELDS(DEVICE_OFFSET) "}\n";
 
 int main(void)
 {
     uint want[] = {(uint)sizeof(atmo_gpu_atmosphere), (uint)sizeof(atmo_gpu_camera),
                    (uint)sizeof(atmo_gpu_scene), (uint)sizeof(atmo_gpu_ms_lut),
                    (uint)sizeof(atmo_gpu_sky_view), (uint)sizeof(atmo_gpu_lut),
-                   (uint)sizeof(atmo_gpu_reference), (uint)sizeof(atmo_gpu_cloud), (uint)sizeof(atmo_gpu_clouds),
+                   (uint)sizeof(atmo_gpu_reference), (uint)sizeof(atmo_gpu_cloud),
+                   (uint)sizeof(atmo_gpu_clouds), (uint)sizeof(atmo_gpu_path),
+                   (uint)sizeof(atmo_gpu_object),
                    FIELDS(HOST_OFFSET)};
     enum { N = sizeof want / sizeof want[0] };
     atmo_cl cl;
@@ -55,8 +62,9 @@ int main(void)
                                "include/atmo/gpu_atmosphere.h", "include/atmo/gpu_ms_lut.h",
                                "include/atmo/gpu_sky_view.h",   "include/atmo/gpu_lut.h",
                                "include/atmo/gpu_reference.h",  "include/atmo/gpu_cloud.h",
-                               "include/atmo/gpu_clouds.h",     "include/atmo/gpu_types.h"};
-    cl_program prog = test_cl_build(&cl, fragments, 10, probe);
+                               "include/atmo/gpu_clouds.h",     "include/atmo/gpu_path.h",
+                               "include/atmo/gpu_types.h"};
+    cl_program prog = test_cl_build(&cl, fragments, 11, probe);
     cl_int err;
     cl_kernel k = clCreateKernel(prog, "probe", &err);
     cl_mem out = test_cl_buffer(&cl, sizeof want, NULL);

@@ -17,6 +17,7 @@
 #   reference.*                 reference
 #   cloud.*, observer.*         single and march with the cloud or the observer enabled
 #   clouds.*                    single and march with the fBm cloud layer enabled
+#   path.*                      single and fast in path mode, with a sphere in view
 #   image.*, post.*, spectral   single (image.width/height at the maximum with the other 1,
 #                               image.samples at the maximum on 1 x 1)
 #   terrain.heightmap_file_extent_m, _scale_m, _offset_m   single (no heightmap file given)
@@ -102,6 +103,11 @@ while read -r key bound value; do
     clouds.*)
         for m in single march; do
             render "$key" $m --set clouds.enabled=true --set "$key=$value"
+        done ;;
+    path.*)
+        for m in single fast; do
+            render "$key" $m --set render.mode=path --set "$key=$value" \
+                --set 'objects=[{"type": "sphere", "center_m": [0, 1.7, 4], "radius_m": 1}]'
         done ;;
     image.width)
         render "$key" single --set "$key=$value" --height 1 ;;

@@ -120,6 +120,23 @@ static const char *const spec_defaults[] = {"image.width=640",
                                             "terrain.heightmap_offset_m=0",
                                             "terrain.heightmap_detail=false",
                                             "terrain.heightmap_nodata=neighbours",
+                                            "post.flare=false",
+                                            "post.flare_strength=1",
+                                            "render.mode=preview",
+                                            "path.bounces=5",
+                                            "path.secondary=1",
+                                            "path.rr_bounce=3",
+                                            "path.sun_nee=true",
+                                            "path.sky_nee=true",
+                                            "path.sky=atmosphere",
+                                            "path.uniform_sky=1,1,1",
+                                            "path.ground=true",
+                                            "path.sampler=sobol",
+                                            "path.filter_radius_px=1.5",
+                                            "path.filter_sigma_px=0.5",
+                                            "path.aperture_m=0",
+                                            "path.focus_m=10",
+                                            "path.passes=false",
                                             NULL};
 
 /* Ranges of the specification: key, min, max (enums and bools are checked by name). */
@@ -356,7 +373,8 @@ static void test_set_rejections(void)
     check_set_rejected("camera.position_m=1,,3", "camera.position_m", "x,y,z");
     check_set_rejected("camera.position_m=1,nan,3", "camera.position_m", "finite");
     check_set_rejected("render.wavelengths_nm=680,550,300", "render.wavelengths_nm", "360 .. 830");
-    check_set_rejected("camera.kind=fisheye", "camera.kind", "perspective, panorama");
+    check_set_rejected("camera.kind=orthographic", "camera.kind",
+                       "perspective, panorama, fisheye");
     check_set_rejected("post.tonemap=filmic", "post.tonemap", "reinhard-white");
     check_set_rejected("post.white_balance=maybe", "post.white_balance", "true or false");
     /* whole numbers in decimal digits only, the accepted form named */
@@ -585,6 +603,8 @@ static void test_json(void)
                         "terrain.heightmap_center_m", "an array of 2 numbers");
     check_json_rejected("{\"camera\": {\"kind\": \"fisheye\"}}", "camera.kind",
                         "perspective, panorama");
+    check_json_rejected("{\"camera\": {\"kind\": \"orthographic\"}}", "camera.kind",
+                        "perspective, panorama, fisheye");
     check_json_rejected("{\"post\": {\"white_balance\": 1}}", "post.white_balance",
                         "true or false");
     check_json_rejected("{\"sun\": {\"zenith_deg\": 1}, \"sun.zenith_deg\": 2}", "sun.zenith_deg",

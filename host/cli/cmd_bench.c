@@ -26,7 +26,10 @@ static const char bench_usage[] =
     "  colour      colour difference (CIE76) of the 3-wavelength mode from the spectral mode\n"
     "              with 15, 30 and 48 bands, by sun zenith; and their time\n"
     "  panorama    whole-process stages of a fast sky panorama to EXR, warm, new atmosphere\n"
-    "              and cold, 512x256 to 4096x2048 (wall seconds, not error)\n";
+    "              and cold, 512x256 to 4096x2048 (wall seconds, not error)\n"
+    "  render      the path tracer: time to 1% noise of thesis views 1, 6 and 7 at 1280x720\n"
+    "              (extrapolated from a central crop), its split between the atmosphere and\n"
+    "              the bounces, and the cost of an unused objects feature\n";
 
 int cmd_bench(int argc, char **argv)
 {
@@ -53,13 +56,15 @@ int cmd_bench(int argc, char **argv)
         }
     }
     if (!suite) {
-        fprintf(stderr, "atmo bench: name a suite (sky, atmosphere, mie, colour, panorama); atmo bench --help\n");
+        fprintf(stderr, "atmo bench: name a suite (sky, atmosphere, mie, colour, panorama, "
+                        "render); atmo bench --help\n");
         return ATMO_ERR_USAGE;
     }
     if (strcmp(suite, "sky") != 0 && strcmp(suite, "mie") != 0 &&
         strcmp(suite, "atmosphere") != 0 && strcmp(suite, "colour") != 0 &&
-        strcmp(suite, "panorama") != 0) {
-        fprintf(stderr, "atmo bench: unknown suite '%s' (suites: sky, atmosphere, mie, colour, panorama)\n",
+        strcmp(suite, "panorama") != 0 && strcmp(suite, "render") != 0) {
+        fprintf(stderr, "atmo bench: unknown suite '%s' (suites: sky, atmosphere, mie, colour, "
+                        "panorama, render)\n",
                 suite);
         return ATMO_ERR_USAGE;
     }
@@ -73,6 +78,7 @@ int cmd_bench(int argc, char **argv)
              : strcmp(suite, "sky") == 0 ? bench_sky(dir, device, quick, &e)
              : strcmp(suite, "colour") == 0 ? bench_colour(dir, device, quick, &e)
              : strcmp(suite, "panorama") == 0 ? bench_panorama(dir, device, quick, &e)
+             : strcmp(suite, "render") == 0 ? bench_path(dir, device, quick, &e)
                                          : bench_atmosphere(dir, device, reference, quick, &e);
     if (rc)
         fprintf(stderr, "atmo bench: %s\n", e.msg);

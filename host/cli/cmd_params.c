@@ -141,5 +141,11 @@ int cmd_params(int argc, char **argv)
         printf("%-36s %-9s %-16s %-44s %s\n", p->key, p->unit[0] ? p->unit : "-", def, range,
                p->help);
     }
+    /* the object list is not one value but a JSON array (host/scene/scene_objects.c) */
+    printf("%-36s %-9s %-16s %-44s %s\n", "objects", "m", "[]",
+           "JSON array of up to 32 spheres and boxes",
+           "objects: {\"type\": \"sphere\", \"center_m\": [x,y,z], \"radius_m\": r} or "
+           "{\"type\": \"box\", \"min_m\": [...], \"size_m\": [...]}, each with \"albedo\" "
+           "(0..1, default 0.8) and \"emission\" (W/m^2/sr/nm, default 0)");
     return ATMO_OK;
 }

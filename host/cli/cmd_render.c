@@ -15,6 +15,7 @@
  * that signal at once. Exit statuses: 0 done, 1 runtime error, 2 usage, 3 interrupted with a
  * partial image written, 4 interrupted with nothing written. */
 #include <cjson/cJSON.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,6 +24,7 @@
 #include "atmo/clock.h"
 #include "atmo/colour.h"
 #include "atmo/fileio.h"
+#include "atmo/flare.h"
 #include "atmo/image.h"
 #include "atmo/part.h"
 #include "atmo/plan.h"
@@ -32,6 +34,7 @@
 #include "commands.h"
 #include "frames.h"
 #include "output_paths.h"
+#include "render_passes.h"
 #include "atmo/outputs.h"
 
 #define RENDER_MAX_OUTPUTS 8
@@ -65,6 +68,11 @@ static const char render_usage[] =
     "  --report FILE          JSON run report: settings, device, samples, stage timings\n"
     "  --exr-compression C    EXR codec, all lossless: piz (default: smallest), none (fastest,\n"
     "                         2x the size), zip, zips, rle\n"
+    "progressive (path mode, render.mode=path, and every other render):\n"
+    "  --noise P              stop each tile once its relative standard error is at most P\n"
+    "                         (e.g. 1%% or 0.01; checked at 16, 32, 64, ... samples); the\n"
+    "                         image.samples are the most any tile gets\n"
+    "  --time-limit S         no new launch after S seconds; the image has what was rendered\n"
     "device:\n"
     "  --device N|NAME        OpenCL device by index or name part (or ATMO_DEVICE; atmo devices)\n"
     "  --tile-size N          tile edge in pixels (default 64)\n"
@@ -126,7 +134,8 @@ static void handle_signals(int install, struct sigaction old[2])
 
 static int write_report(const char *path, const atmo_scene *s, const atmo_render_result *r,
                           const atmo_render_settings *rs, const char *const *outputs, int n_out,
-                          double seconds_write, atmo_err *e)
+                          double seconds_write, const atmo_image_layer *layers, int n_layers,
+                          const atmo_flare_info *flare, atmo_err *e)
 {
     cJSON *root = cJSON_CreateObject();
     char *scene_text = atmo_scene_to_json(s);
@@ -147,6 +156,8 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON_AddBoolToObject(ren, "interrupted", r->interrupted);
     cJSON_AddNumberToObject(ren, "nonfinite_samples_dropped", r->nonfinite);
     cJSON_AddNumberToObject(ren, "launches", r->launches);
+    cJSON_AddNumberToObject(ren, "noise_target", rs->noise_target);
+    cJSON_AddNumberToObject(ren, "time_limit_s", rs->time_limit_s);
     cJSON_AddNumberToObject(ren, "tile_size", rs->tile_size);
     cJSON_AddNumberToObject(ren, "launch_budget_ms", rs->launch_budget_ms);
     cJSON_AddBoolToObject(ren, "kernel_cache_hit", r->kernel_cache_hit);
@@ -166,6 +177,24 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON_AddNumberToObject(t, "render", r->seconds_render);
     cJSON_AddNumberToObject(t, "read_back", r->seconds_read);
     cJSON_AddNumberToObject(t, "write", seconds_write);
+    cJSON *passes = cJSON_AddArrayToObject(ren, "passes"); /* the EXR layers' channels */
+    for (int i = 0; i < n_layers; i++)
+        for (int c = 0; c < layers[i].channels; c++) {
+            char name[64];
+            snprintf(name, sizeof name, "%s.%s", layers[i].name, layers[i].channel_names[c]);
+            cJSON_AddItemToArray(passes, cJSON_CreateString(name));
+        }
+    if (s->post.flare) { /* what the lens flare measured and added */
+        cJSON *fl = cJSON_AddObjectToObject(ren, "flare");
+        cJSON_AddNumberToObject(fl, "sun_x_px", flare->sun_x);
+        cJSON_AddNumberToObject(fl, "sun_y_px", flare->sun_y);
+        cJSON *irr = cJSON_AddArrayToObject(fl, "sun_irradiance");
+        cJSON *add = cJSON_AddArrayToObject(fl, "added_irradiance");
+        for (int c = 0; c < 3; c++) {
+            cJSON_AddItemToArray(irr, cJSON_CreateNumber(flare->irradiance[c]));
+            cJSON_AddItemToArray(add, cJSON_CreateNumber(flare->added[c]));
+        }
+    }
     cJSON *outs = cJSON_AddArrayToObject(root, "outputs");
     for (int i = 0; i < n_out; i++)
         cJSON_AddItemToArray(outs, cJSON_CreateString(outputs[i]));
@@ -193,6 +222,24 @@ static int parse_int_arg(const char *opt, const char *v, int lo, int hi, int *ou
         return atmo_fail(e, ATMO_ERR_USAGE, "%s needs a whole number in [%d, %d] written as "
                          "decimal digits, got '%s'", opt, lo, hi, v ? v : "");
     *out = (int)x;
+    return ATMO_OK;
+}
+
+/* --noise: "1%" or a fraction "0.01", in (0, 1]. */
+static int parse_noise(const char *v, double *out, atmo_err *e)
+{
+    char *end;
+    double x = strtod(v, &end);
+    if (end != v && *end == '%' && end[1] == 0)
+        x /= 100.0;
+    else if (end == v || *end != 0)
+        x = -1.0;
+    if (!(x > 0.0 && x <= 1.0))
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "--noise needs a relative standard error such as 1%% or 0.01 (above 0, "
+                         "at most 100%%), got '%s'",
+                         v);
+    *out = x;
     return ATMO_OK;
 }
 
@@ -261,15 +308,36 @@ static int render_frame(const atmo_scene *scene_in, atmo_render_settings *rs_in,
         fprintf(stderr, "atmo render: warning: %u non-finite samples were dropped (a bug; please "
                         "report it with the scene)\n", res.nonfinite);
 
-    /* outputs */
+    /* post: the lens flare, on the linear image every output gets */
+    atmo_flare_info flare = {0};
+    if (!part_file && scene.post.flare && scene.camera.kind == ATMO_CAMERA_PERSPECTIVE) {
+        atmo_flare_camera fc = {.width = res.width, .height = res.height,
+                                .tan_half_fov = tan(0.5 * scene.camera.fov_deg * M_PI / 180.0),
+                                .sun_radius_rad = scene.sun.angular_radius_deg * M_PI / 180.0};
+        atmo_camera_basis(scene.camera.pitch_deg, scene.camera.yaw_deg, fc.forward, fc.right,
+                          fc.up);
+        atmo_sun_direction(scene.sun.zenith_deg, scene.sun.azimuth_deg, fc.sun);
+        atmo_flare_apply(res.rgb, &fc, scene.post.flare_strength, &flare);
+    }
+
+    /* outputs: the images with the render passes as EXR layers, or the part's raw sums */
     double tw = atmo_now_seconds();
     atmo_image img = {.width = res.width, .height = res.height, .rgb = res.rgb};
-    rc = part_file ? atmo_part_write(outputs[0], &part, &e)
-                   : atmo_outputs_write(&scene, &img, res.samples_min, res.interrupted,
-                                          exr_compression, outputs, n_out, &e);
+    atmo_image_layer layers[RENDER_PASS_LAYERS];
+    float *layer_data = NULL;
+    img.layer_count = part_file ? 0 : render_pass_layers(&res, layers, &layer_data);
+    img.layers = layers;
+    if (img.layer_count < 0)
+        rc = atmo_fail(&e, ATMO_ERR_RUNTIME, "out of memory for the render passes");
+    else
+        rc = part_file ? atmo_part_write(outputs[0], &part, &e)
+                       : atmo_outputs_write(&scene, &img, res.samples_min, res.interrupted,
+                                            exr_compression, outputs, n_out, &e);
     double seconds_write = atmo_now_seconds() - tw;
     if (!rc && report)
-        rc = write_report(report, &scene, &res, &rs, outputs, n_out, seconds_write, &e);
+        rc = write_report(report, &scene, &res, &rs, outputs, n_out, seconds_write, img.layers,
+                          img.layer_count > 0 ? img.layer_count : 0, &flare, &e);
+    free(layer_data);
     handle_signals(0, old);
     if (rc)
         goto runtime_error;
@@ -323,6 +391,12 @@ static int check_part(const atmo_scene *s, int parts, int frames, const char *co
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "--part: the spectral mode (render.spectral_bands) cannot be split; "
                          "render it whole");
+    if (s->post.flare || s->path.passes)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "--part: a split render keeps no %s (atmo merge could not write it); "
+                         "render it whole, or set %s=false",
+                         s->post.flare ? "lens flare" : "render passes",
+                         s->post.flare ? "post.flare" : "path.passes");
     if (n_out != 1 || atmo_image_format_from_path(outputs[0]) != ATMO_IMAGE_EXR)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "--part writes the part's sums to one --output FILE.exr (got %d "
@@ -392,7 +466,7 @@ int cmd_render(int argc, char **argv)
         }
         static const char *const with_value[] = {
             "--preset", "--scene", "--set", "--output", "-o", "--report", "--save-scene",
-            "--device", "--dump-kernels", "--tile-size", "--launch-budget-ms", "--width",
+            "--noise", "--time-limit", "--device", "--dump-kernels", "--tile-size", "--launch-budget-ms", "--width",
             "--height", "--samples", "--seed", "--time", "--part", "--frames", "--animate", "--scene-end",
             "--exr-compression",
             "--camera", NULL};
@@ -449,6 +523,17 @@ int cmd_render(int argc, char **argv)
             if (*v == 0 || *end != 0 || !(rs.launch_budget_ms >= 1.0 && rs.launch_budget_ms <= 1e5)) {
                 rc = atmo_fail(&e, ATMO_ERR_USAGE,
                                "--launch-budget-ms needs milliseconds in [1, 100000], got '%s'", v);
+                goto usage_error;
+            }
+        } else if (strcmp(a, "--noise") == 0) {
+            if ((rc = parse_noise(v, &rs.noise_target, &e)))
+                goto usage_error;
+        } else if (strcmp(a, "--time-limit") == 0) {
+            char *end;
+            rs.time_limit_s = strtod(v, &end);
+            if (*v == 0 || *end != 0 || !(rs.time_limit_s > 0.0 && rs.time_limit_s <= 1e7)) {
+                rc = atmo_fail(&e, ATMO_ERR_USAGE,
+                               "--time-limit needs seconds in (0, 1e7], got '%s'", v);
                 goto usage_error;
             }
         } else if (strcmp(a, "--width") == 0)

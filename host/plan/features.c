@@ -8,6 +8,7 @@
 #include "atmo/plan_fast.h"
 #include "atmo/plan_lut.h"
 #include "atmo/plan_march.h"
+#include "atmo/plan_path.h"
 #include "atmo/plan_reference.h"
 
 static int always(const atmo_scene *s) { return s != NULL; }
@@ -17,6 +18,8 @@ static int ms_methods(const atmo_scene *s)
 }
 static int cloud_shell(const atmo_scene *s) { return s->cloud.enabled || s->observer.enabled; }
 static int cloud_layer(const atmo_scene *s) { return s->clouds.enabled; }
+static int has_objects(const atmo_scene *s) { return s->objects.count > 0; }
+static int path_mode(const atmo_scene *s) { return s->path.mode == ATMO_RENDER_PATH; }
 static int is_single(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_SINGLE; }
 static int is_march(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_MARCH; }
 static int is_fast(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_FAST; }
@@ -44,7 +47,8 @@ static const char *const atmosphere_fragments[] = {
     "include/atmo/gpu_atmosphere.h",  "include/atmo/gpu_ms_lut.h",
     "include/atmo/gpu_sky_view.h",    "include/atmo/gpu_lut.h",
     "include/atmo/gpu_reference.h",   "include/atmo/gpu_cloud.h",
-    "include/atmo/gpu_clouds.h",      "include/atmo/gpu_types.h",       "kernels/common/rng.h",
+    "include/atmo/gpu_clouds.h",      "include/atmo/gpu_path.h",
+    "include/atmo/gpu_types.h",       "kernels/common/rng.h",
     "kernels/common/geometry.h",      "kernels/common/phase.h",
     "kernels/atmosphere/atmosphere.h", "kernels/common/camera.h",
     "kernels/atmosphere/sky_method.h", "kernels/media/ray.h",
@@ -111,6 +115,11 @@ static const char *const fast_fragments[] = {"kernels/atmosphere/method_fast.h",
 static const char *const reference_fragments[] = {"kernels/atmosphere/method_reference.h", NULL};
 static const char *const render_fragments[] = {"kernels/atmosphere/sky_cosines.h",
                                                "kernels/render/sky.cl", NULL};
+static const char *const objects_fragments[] = {"kernels/render/objects.h", NULL};
+static const char *const path_fragments[] = {
+    "kernels/render/path_camera.h", "kernels/render/surfaces.h", "kernels/render/bsdf.h",
+    "kernels/render/light_sun.h",   "kernels/render/light_sky.h", "kernels/render/path.h",
+    "kernels/render/path.cl",       NULL};
 
 const atmo_feature atmo_features[] = {
     {"atmosphere", -1, always, atmosphere_fragments, "", atmosphere_params, atmosphere_sources,
@@ -121,6 +130,10 @@ const atmo_feature atmo_features[] = {
     /* the fBm cloud layer: a medium and a visibility source (its light march) */
     {"clouds", -1, cloud_layer, clouds_fragments, "-DATMO_CLOUDS", NULL, NULL, NULL,
      atmo_plan_clouds, 0},
+    /* the scene's spheres and boxes: sun occluders and the preview's surfaces (visibility.h),
+     * the path tracer's surfaces */
+    {"objects", -1, has_objects, objects_fragments, "-DATMO_OBJECTS", NULL, NULL, NULL,
+     atmo_plan_objects, 0},
     /* the medium integrator of single, march, fast and lut; the media of the reference */
     {"medium", -1, always, medium_fragments, "", NULL, NULL, NULL, NULL, 0},
     /* the layer's marcher, over the integrator's pieces (media.h declares it) */
@@ -140,6 +153,8 @@ const atmo_feature atmo_features[] = {
      atmo_plan_reference, 0},
     /* the kernels that render with whichever method was assembled */
     {"render", -1, always, render_fragments, "", NULL, NULL, NULL, NULL, 0},
+    /* the path tracer's stages and its kernel path_render, over whichever method was assembled */
+    {"path", -1, path_mode, path_fragments, "-DATMO_PATH", NULL, NULL, NULL, atmo_plan_path, 0},
 };
 const int atmo_feature_count = (int)(sizeof atmo_features / sizeof atmo_features[0]);
 

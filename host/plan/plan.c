@@ -38,7 +38,13 @@ _Static_assert(offsetof(atmo_gpu_clouds, bottom_m) == 80, "atmo_gpu_clouds layou
 _Static_assert(offsetof(atmo_gpu_clouds, majorant) == 132, "atmo_gpu_clouds layout");
 _Static_assert(offsetof(atmo_gpu_clouds, seed) == 164, "atmo_gpu_clouds layout");
 _Static_assert(offsetof(atmo_gpu_scene, clouds) == 480, "atmo_gpu_scene layout");
-_Static_assert(sizeof(atmo_gpu_scene) == 656, "atmo_gpu_scene layout");
+_Static_assert(sizeof(atmo_gpu_object) == 80, "atmo_gpu_object layout");
+_Static_assert(offsetof(atmo_gpu_object, kind) == 64, "atmo_gpu_object layout");
+_Static_assert(sizeof(atmo_gpu_path) == 80, "atmo_gpu_path layout");
+_Static_assert(offsetof(atmo_gpu_path, object_count) == 16, "atmo_gpu_path layout");
+_Static_assert(offsetof(atmo_gpu_path, filter_radius) == 52, "atmo_gpu_path layout");
+_Static_assert(offsetof(atmo_gpu_scene, path) == 656, "atmo_gpu_scene layout");
+_Static_assert(sizeof(atmo_gpu_scene) == 736, "atmo_gpu_scene layout");
 
 #define DEG (M_PI / 180.0)
 
@@ -96,7 +102,7 @@ static void fill_camera(const atmo_scene *s, const atmo_atmosphere *a, atmo_gpu_
         c->kind = ATMO_CAMERA_PANORAMA;
     } else {
         atmo_camera_basis(s->camera.pitch_deg, s->camera.yaw_deg, forward, right, up);
-        c->kind = ATMO_CAMERA_PERSPECTIVE;
+        c->kind = s->camera.kind;
     }
     c->forward = f4(forward, 0.0);
     c->right = f4(right, 0.0);
@@ -109,7 +115,10 @@ static void fill_camera(const atmo_scene *s, const atmo_atmosphere *a, atmo_gpu_
     c->local_up = f4(n, r);
     c->width = s->image.width;
     c->height = s->image.height;
-    c->tan_half_fov = (float)tan(0.5 * s->camera.fov_deg * DEG);
+    /* the perspective's tan(fov/2), the fisheye's sin(fov/4) (kernels/common/camera.h) */
+    c->tan_half_fov = (float)(s->camera.kind == ATMO_CAMERA_FISHEYE
+                                  ? sin(0.25 * s->camera.fov_deg * DEG)
+                                  : tan(0.5 * s->camera.fov_deg * DEG));
 }
 
 static int append(char *dst, size_t size, const char *fmt, const char *a, const char *b,
@@ -273,6 +282,7 @@ static int plan_features(const atmo_scene *s, atmo_plan *p, atmo_err *e)
         return atmo_fail(e, ATMO_ERR_USAGE, "atmosphere.method is not implemented (available: %s)",
                          atmo_plan_available_methods());
     p->method = m->name;
+    p->render_kernel = "sky_render";
     for (int i = 0; i < atmo_feature_count; i++)
         if (atmo_features[i].wanted(s) && (rc = add_feature(s, &atmo_features[i], p, e)))
             return rc;

@@ -8,7 +8,11 @@
 void atmo_render_result_free(atmo_render_result *r)
 {
     free(r->rgb);
-    r->rgb = NULL;
+    free(r->passes);
+    free(r->se);
+    free(r->samples);
+    r->rgb = r->passes = r->se = NULL;
+    r->samples = NULL;
 }
 
 void atmo_render_result_from_session(const atmo_session *s, atmo_render_result *r)
@@ -38,19 +42,37 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
                 atmo_render_result *res, atmo_err *e)
 {
     atmo_session *s = NULL;
-    atmo_step step = {plan->samples, 0.0, NULL, NULL, settings->cancel};
+    atmo_step step = {plan->samples, settings->time_limit_s, NULL, NULL, settings->cancel};
     atmo_step_status st;
     memset(res, 0, sizeof *res);
     int rc = atmo_session_open(&s, plan, settings, e);
-    if (!rc)
+    if (!rc) {
+        atmo_session_set_noise_target(s, settings->noise_target);
         rc = atmo_session_step(s, &step, &st, e);
+    }
     if (!rc && !(res->rgb = malloc(sizeof(float) * 3 * (size_t)plan->width * plan->height)))
         rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for a %dx%d image", plan->width,
                        plan->height);
+    if (!rc && plan->pass_planes > 0) { /* the passes, with the samples and errors per pixel */
+        size_t pixels = (size_t)plan->width * plan->height;
+        res->pass_planes = plan->pass_planes;
+        res->passes = malloc(sizeof(float) * 4 * pixels * (size_t)plan->pass_planes);
+        res->se = malloc(sizeof(float) * 3 * pixels);
+        res->samples = malloc(sizeof(int) * pixels);
+        if (!res->passes || !res->se || !res->samples)
+            rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the render passes");
+        if (!rc)
+            rc = atmo_session_read_passes(s, res->passes, e);
+    }
     if (!rc)
-        rc = atmo_session_read(s, res->rgb, NULL, NULL, e);
-    if (!rc)
+        rc = atmo_session_read(s, res->rgb, res->se, res->samples, e);
+    if (!rc) {
         atmo_render_result_from_session(s, res);
+        /* with a noise target or a time limit, fewer samples than requested are the point;
+         * only the cancel token makes the result partial */
+        if (settings->noise_target > 0.0 || settings->time_limit_s > 0.0)
+            res->interrupted = st.cancelled;
+    }
     else
         atmo_render_result_free(res);
     atmo_session_close(s);

@@ -33,6 +33,8 @@ struct atmo_session {
     cl_kernel render;
     cl_mem scene, buffers[ATMO_PLAN_MAX_BUFFERS]; /* the plan's named buffers, in plan order */
     cl_mem accum, accum_sq, nonfinite; /* created at the first step or read */
+    cl_mem passes; /* the render passes' sums (plan.pass_planes planes), or none */
+    double noise;  /* the noise target, 0 for none */
     atmo_plan plan;
     atmo_render_settings settings;
     atmo_tiles tiles;
@@ -67,7 +69,8 @@ static void report_progress(atmo_session *s, int target, int finished)
     for (int i = 0; i < s->tiles.count; i++) {
         atmo_tile tile;
         atmo_tiles_get(&s->tiles, i, &tile);
-        done += (double)(tile.samples < target ? tile.samples : target) * tile.w * tile.h;
+        int n = s->tiles.converged[i] ? target : tile.samples; /* converged: met the noise target */
+        done += (double)(n < target ? n : target) * tile.w * tile.h;
         total += (double)target * tile.w * tile.h;
     }
     /* The first launch carries one-time costs (the driver finishing the kernel's compilation,
@@ -139,6 +142,20 @@ static int precompute_all(atmo_session *s, atmo_err *e)
     return ATMO_OK;
 }
 
+/* The render passes' buffer (created once) cleared: plan.pass_planes planes of `plane` bytes. */
+static cl_int restart_passes(atmo_session *s, size_t plane)
+{
+    cl_int err = CL_SUCCESS;
+    size_t bytes = plane * (size_t)s->plan.pass_planes;
+    if (!s->passes)
+        s->passes = clCreateBuffer(s->cl.context, CL_MEM_READ_WRITE, bytes, NULL, &err);
+    float zero4[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    if (err == CL_SUCCESS)
+        err = clEnqueueFillBuffer(s->cl.queue, s->passes, zero4, sizeof zero4, 0, bytes, 0, NULL,
+                                  NULL);
+    return err;
+}
+
 /* The render kernel's buffers: accumulators created (once) and cleared, counts to zero. */
 static int restart(atmo_session *s, atmo_err *e)
 {
@@ -168,6 +185,8 @@ static int restart(atmo_session *s, atmo_err *e)
                                    NULL, NULL);
     if (err != CL_SUCCESS)
         return atmo_cl_fail(e, "clear accumulation image", err);
+    if (s->plan.pass_planes > 0 && (err = restart_passes(s, bytes)) != CL_SUCCESS)
+        return atmo_cl_fail(e, "create and clear the render passes", err);
     atmo_tiles_reset(&s->tiles);
     s->info.nonfinite = 0;
     s->progress_start = atmo_now_seconds();
@@ -186,7 +205,9 @@ static int bind_render(atmo_session *s, atmo_err *e)
     if (err == CL_SUCCESS)
         err = clSetKernelArg(s->render, arg++, sizeof s->accum_sq, &s->accum_sq);
     if (err == CL_SUCCESS)
-        err = clSetKernelArg(s->render, arg, sizeof s->nonfinite, &s->nonfinite);
+        err = clSetKernelArg(s->render, arg++, sizeof s->nonfinite, &s->nonfinite);
+    if (err == CL_SUCCESS && s->passes)
+        err = clSetKernelArg(s->render, arg, sizeof s->passes, &s->passes);
     return err == CL_SUCCESS ? ATMO_OK : atmo_cl_fail(e, "clSetKernelArg(sky_render)", err);
 }
 
@@ -201,7 +222,8 @@ static int check_device_memory(const atmo_session *s, atmo_err *e)
     if (err != CL_SUCCESS)
         return atmo_cl_fail(e, "clGetDeviceInfo(CL_DEVICE_MAX_MEM_ALLOC_SIZE)", err);
     cl_ulong image = (cl_ulong)s->plan.width * (cl_ulong)s->plan.height * 4 * sizeof(float);
-    cl_ulong total = 2 * image + sizeof s->plan.gpu + sizeof(cl_uint);
+    cl_ulong total = (2 + (cl_ulong)s->plan.pass_planes) * image + sizeof s->plan.gpu +
+                     sizeof(cl_uint);
     if (image > max_alloc)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "a %dx%d image needs %.2f GiB per accumulation buffer, more than the "
@@ -259,9 +281,11 @@ int atmo_session_open(atmo_session **out, const atmo_plan *plan, const atmo_rend
         goto cleanup;
     s->info.kernel_cache_hit = bi.cache_hit;
     s->info.seconds_build = bi.seconds;
-    s->render = clCreateKernel(s->program, "sky_render", &err);
+    s->render = clCreateKernel(s->program, plan->render_kernel, &err);
     if (err != CL_SUCCESS) {
-        rc = atmo_cl_fail(e, "clCreateKernel(sky_render)", err);
+        char call[96];
+        snprintf(call, sizeof call, "clCreateKernel(%s)", plan->render_kernel);
+        rc = atmo_cl_fail(e, call, err);
         goto cleanup;
     }
     s->scene = clCreateBuffer(s->cl.context, CL_MEM_READ_ONLY, sizeof plan->gpu, NULL, &err);
@@ -282,6 +306,8 @@ void atmo_session_close(atmo_session *s)
 {
     if (!s)
         return;
+    if (s->passes)
+        clReleaseMemObject(s->passes);
     if (s->nonfinite)
         clReleaseMemObject(s->nonfinite);
     if (s->accum_sq)
@@ -312,7 +338,7 @@ static int incomplete(atmo_err *e)
 static int launch(atmo_session *s, const atmo_tile *t, atmo_err *e)
 {
     cl_uint begin = (cl_uint)t->sample_begin, count = (cl_uint)t->sample_count;
-    cl_uint arg = 1 + (cl_uint)s->plan.buffer_count + 3;
+    cl_uint arg = 1 + (cl_uint)s->plan.buffer_count + 3 + (s->passes ? 1 : 0);
     cl_int err = clSetKernelArg(s->render, arg++, sizeof(int), &t->x);
     if (err == CL_SUCCESS)
         err = clSetKernelArg(s->render, arg++, sizeof(int), &t->y);
@@ -335,6 +361,37 @@ static int launch(atmo_session *s, const atmo_tile *t, atmo_err *e)
     return err == CL_SUCCESS ? ATMO_OK : atmo_cl_fail(e, "clFinish(render)", err);
 }
 
+/* The relative standard error of tile t from its sums (atmo/session.h's noise target). */
+static int tile_error(atmo_session *s, const atmo_tile *t, double *rse, atmo_err *e)
+{
+    size_t row = (size_t)s->plan.width * 4 * sizeof(float), n = (size_t)t->w * t->h * 4;
+    float *s1 = malloc(2 * n * sizeof(float)), *s2 = s1 + n;
+    if (!s1)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for a tile");
+    size_t origin[3] = {(size_t)t->x * 4 * sizeof(float), (size_t)t->y, 0};
+    size_t region[3] = {(size_t)t->w * 4 * sizeof(float), (size_t)t->h, 1};
+    size_t zero[3] = {0, 0, 0};
+    cl_int err = clEnqueueReadBufferRect(s->cl.queue, s->accum, CL_TRUE, origin, zero, region,
+                                         row, 0, region[0], 0, s1, 0, NULL, NULL);
+    if (err == CL_SUCCESS)
+        err = clEnqueueReadBufferRect(s->cl.queue, s->accum_sq, CL_TRUE, origin, zero, region,
+                                      row, 0, region[0], 0, s2, 0, NULL, NULL);
+    if (err != CL_SUCCESS) {
+        free(s1);
+        return atmo_cl_fail(e, "clEnqueueReadBufferRect(tile)", err);
+    }
+    double k = t->samples, var = 0.0, mean = 0.0;
+    for (size_t i = 0; i < n; i += 4)
+        for (int c = 0; c < 3; c++) {
+            double a = s1[i + c], b = s2[i + c];
+            var += fmax(b - a * a / k, 0.0) / (k * (k - 1.0));
+            mean += a / k;
+        }
+    free(s1);
+    *rse = mean > 0.0 ? sqrt(var / (double)(3 * n / 4)) / (mean / (double)(3 * n / 4)) : 0.0;
+    return ATMO_OK;
+}
+
 int atmo_session_step(atmo_session *s, const atmo_step *step, atmo_step_status *status,
                       atmo_err *e)
 {
@@ -346,6 +403,7 @@ int atmo_session_step(atmo_session *s, const atmo_step *step, atmo_step_status *
         return rc;
     int target = step->samples > 0 ? step->samples : s->plan.samples;
     double t0 = atmo_now_seconds();
+    s->tiles.checkpoints = s->noise > 0.0;
     atmo_tile t;
     while (!atmo_cancel_requested(step->cancel)) {
         if (!atmo_tiles_next(&s->tiles, target, &t)) {
@@ -362,6 +420,20 @@ int atmo_session_step(atmo_session *s, const atmo_step *step, atmo_step_status *
                         s->settings.max_batch, s->settings.max_tiles);
         status->launches++;
         s->info.launches++;
+        /* each tile of the launch is judged on its own sums, as a launch of it alone would be */
+        for (int r = 0; s->noise > 0.0 && atmo_tiles_is_checkpoint(t.samples) &&
+                        r < t.tiles_down && !rc; r++)
+            for (int c = 0; c < t.tiles_across && !rc; c++) {
+                atmo_tile one;
+                double rse = 0.0;
+                atmo_tiles_get(&s->tiles, t.index + r * s->tiles.columns + c, &one);
+                if ((rc = tile_error(s, &one, &rse, e)))
+                    break;
+                if (rse <= s->noise)
+                    atmo_tiles_converge(&s->tiles, one.index);
+            }
+        if (rc)
+            break;
         if (step->on_tile)
             step->on_tile(step->user, &t);
         report_progress(s, target, 0);
@@ -538,6 +610,34 @@ int atmo_session_read_sums(atmo_session *s, float *s1, float *s2, int *samples, 
             }
         }
     return unmap_accumulators(s, a, b, rc, e);
+}
+
+void atmo_session_set_noise_target(atmo_session *s, double noise) { s->noise = noise; }
+
+int atmo_session_read_passes(atmo_session *s, float *out, atmo_err *e)
+{
+    int W = s->plan.width, H = s->plan.height;
+    size_t floats = (size_t)W * H * 4 * (size_t)s->plan.pass_planes;
+    if (s->plan.pass_planes == 0)
+        return atmo_fail(e, ATMO_ERR_USAGE, "the session's plan has no render passes");
+    if (s->data_incomplete)
+        return incomplete(e);
+    int rc;
+    if (!s->accum && ((rc = restart(s, e)) || (rc = bind_render(s, e))))
+        return rc;
+    cl_int err = clEnqueueReadBuffer(s->cl.queue, s->passes, CL_TRUE, 0, floats * sizeof(float),
+                                     out, 0, NULL, NULL);
+    if (err != CL_SUCCESS)
+        return atmo_cl_fail(e, "clEnqueueReadBuffer(render passes)", err);
+    for (int k = 0; k < s->plan.pass_planes; k++)
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                int n = atmo_tiles_pixel_samples(&s->tiles, x, y);
+                float inv = n > 0 ? 1.0f / (float)n : 0.0f, *v = out + 4 * (((size_t)k * H + y) * W + x);
+                for (int c = 0; c < 4; c++)
+                    v[c] *= inv;
+            }
+    return ATMO_OK;
 }
 
 const atmo_session_info *atmo_session_get_info(const atmo_session *s) { return &s->info; }

@@ -74,7 +74,8 @@ int atmo_tiles_init_part(atmo_tiles *t, int width, int height, int size, int par
     t->batch = 1;
     t->group = 1;
     t->samples = calloc((size_t)t->count, sizeof *t->samples);
-    if (!t->samples) {
+    t->converged = calloc((size_t)t->count, 1);
+    if (!t->samples || !t->converged) {
         atmo_tiles_free(t);
         return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for %d tiles", t->count);
     }
@@ -106,20 +107,37 @@ void atmo_tiles_free(atmo_tiles *t)
     free(t->row_of_y);
     free(t->row_h);
     free(t->row_y);
+    free(t->converged);
     memset(t, 0, sizeof *t);
 }
 
 void atmo_tiles_reset(atmo_tiles *t)
 {
     memset(t->samples, 0, sizeof *t->samples * (size_t)t->count);
+    memset(t->converged, 0, (size_t)t->count);
     t->cursor = 0;
 }
 
-/* 1 when every tile of tile row `row` holds n samples. */
+int atmo_tiles_is_checkpoint(int n)
+{
+    return n >= ATMO_TILES_FIRST_CHECKPOINT && (n & (n - 1)) == 0;
+}
+
+void atmo_tiles_converge(atmo_tiles *t, int index) { t->converged[index] = 1; }
+
+/* The first checkpoint after n samples. */
+static int next_checkpoint(int n)
+{
+    int c = ATMO_TILES_FIRST_CHECKPOINT;
+    while (c <= n && c < (1 << 30))
+        c *= 2;
+    return c;
+
+/* 1 when every tile of tile row `row` holds n samples and none has converged. */
 static int row_holds(const atmo_tiles *t, int row, int n)
 {
     for (int c = 0; c < t->columns; c++)
-        if (t->samples[row * t->columns + c] != n)
+        if (t->samples[row * t->columns + c] != n || t->converged[row * t->columns + c])
             return 0;
     return 1;
 }
@@ -129,8 +147,10 @@ int atmo_tiles_next(atmo_tiles *t, int target, atmo_tile *launch)
     for (int k = 0; k < t->count; k++) {
         int i = (t->cursor + k) % t->count;
         int n = t->samples[i], remaining = target - n;
-        if (remaining <= 0)
+        if (remaining <= 0 || t->converged[i])
             continue;
+        if (t->checkpoints && next_checkpoint(n) - n < remaining)
+            remaining = next_checkpoint(n) - n;
         int column = i % t->columns, row = i / t->columns, across = 1, down = 1;
         int h = t->row_h[row];
         if (column == 0 && t->group >= t->columns && row_holds(t, row, n)) {
@@ -142,7 +162,7 @@ int atmo_tiles_next(atmo_tiles *t, int target, atmo_tile *launch)
         }
         if (across == 1)
             while (across < t->group && column + across < t->columns &&
-                   t->samples[i + across] == n)
+                   t->samples[i + across] == n && !t->converged[i + across])
                 across++;
         launch->index = i;
         launch->tiles_across = across;

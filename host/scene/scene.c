@@ -46,7 +46,7 @@
      NULL, help}
 
 /* Enum names in the order of the ATMO_* constants of scene.h and atmosphere.h. */
-static const char *const camera_kinds[] = {"perspective", "panorama", NULL};
+static const char *const camera_kinds[] = {"perspective", "panorama", "fisheye", NULL};
 static const char *const phase_names[] = {"cornette-shanks", "henyey-greenstein", NULL};
 static const char *const method_names[] = {"single", "march", "fast", "lut", "reference", NULL};
 static const char *const quantity_names[] = {"radiance", "luminance", NULL};
@@ -61,7 +61,12 @@ static const char *const cloud_phase_names[] = {"mie", "hg", "jendersie-deon", N
 /* ATMO_DEM_NODATA_* of dem.h, in order */
 static const char *const dem_nodata_names[] = {"neighbours", "sea-level", NULL};
 static const char *const clouds_look_names[] = {"physical", "thesis", NULL};
-_Static_assert(ATMO_CAMERA_PANORAMA == 1 && ATMO_PHASE_HENYEY_GREENSTEIN == 1 &&
+static const char *const render_modes[] = {"preview", "path", NULL};
+static const char *const path_skies[] = {"atmosphere", "uniform", NULL};
+static const char *const sampler_names[] = {"sobol", "random", NULL};
+_Static_assert(ATMO_RENDER_PATH == 1 && ATMO_PATH_SKY_UNIFORM == 1 && ATMO_SAMPLER_RANDOM == 1,
+               "enum name tables follow the order of the constants");
+_Static_assert(ATMO_CAMERA_PANORAMA == 1 && ATMO_CAMERA_FISHEYE == 2 && ATMO_PHASE_HENYEY_GREENSTEIN == 1 &&
                    ATMO_QUANTITY_LUMINANCE == 1 && ATMO_TONEMAP_LOTTES == 7 &&
                    ATMO_TRANSFER_GAMMA22 == 1,
                "enum name tables follow the order of the constants");
@@ -74,7 +79,8 @@ const atmo_param atmo_params[] = {
     ROW_INT("image.seed", image.seed, "", 0, 2147483647, 0,
             "random-number seed; the same seed and scene give the same image"),
     ROW_ENUM("camera.kind", camera.kind, camera_kinds, ATMO_CAMERA_PERSPECTIVE,
-             "perspective pinhole, or a 360-degree equirectangular panorama (environment map)"),
+             "perspective pinhole, a 360-degree equirectangular panorama (environment map, "
+             "Blender's layout), or an equal-area fisheye of vertical field camera.fov_deg"),
     ROW_VEC3("camera.position_m", camera.position_m, "m", -1e9, 1e9, 0, 1.7, 0,
              "camera position in metres: Y up, origin at sea level, planet centre (0,-R,0)"),
     ROW_FLOAT("camera.pitch_deg", camera.pitch_deg, "deg", -90, 90, 0,
@@ -267,6 +273,44 @@ const atmo_param atmo_params[] = {
              "the procedural fBm adds detail below the heightmap's cell size"),
     ROW_ENUM("terrain.heightmap_nodata", dem.nodata, dem_nodata_names, 0,
              "heightmap samples without data: filled from their neighbours, or sea level (0 m)"),
+    ROW_BOOL("post.flare", post.flare, 0,
+             "lens flare from the sun's light in the image (perspective camera only; every "
+             "output)"),
+    ROW_FLOAT("post.flare_strength", post.flare_strength, "", 0, 1e3, 1,
+              "lens flare brightness relative to the default lens"),
+    ROW_ENUM("render.mode", path.mode, render_modes, ATMO_RENDER_PREVIEW,
+             "preview: primary rays with the method (objects lit by sun and sky irradiance); "
+             "path: the progressive path tracer with bounces (kernels/render/path.h)"),
+    ROW_INT("path.bounces", path.bounces, "", 0, 64, 5,
+            "path mode: diffuse bounces after the primary hit (N_b)"),
+    ROW_INT("path.secondary", path.secondary, "", 1, 64, 1,
+            "path mode: secondary rays per primary hit (N_s)"),
+    ROW_INT("path.rr_bounce", path.rr_bounce, "", 0, 64, 3,
+            "path mode: Russian roulette from this bounce on"),
+    ROW_BOOL("path.sun_nee", path.sun_nee, 1,
+             "path mode: next-event estimation to the sun disc (soft shadows)"),
+    ROW_BOOL("path.sky_nee", path.sky_nee, 1,
+             "path mode: sample the sky at each hit, combined with BSDF sampling by MIS"),
+    ROW_ENUM("path.sky", path.sky, path_skies, ATMO_PATH_SKY_ATMOSPHERE,
+             "path mode: the atmosphere (the method), or a uniform test sky with no air and an "
+             "unattenuated sun"),
+    ROW_VEC3("path.uniform_sky", path.uniform_sky, "W/m^2/sr/nm", 0, 1e6, 1, 1, 1,
+             "path mode: radiance of the uniform test sky (path.sky = uniform)"),
+    ROW_BOOL("path.ground", path.ground, 1,
+             "path mode: the planet's ground sphere is a surface (off: only objects)"),
+    ROW_ENUM("path.sampler", path.sampler, sampler_names, ATMO_SAMPLER_SOBOL,
+             "path mode: primary samples from Owen-scrambled Sobol or independent random"),
+    ROW_FLOAT("path.filter_radius_px", path.filter_radius_px, "px", 0.5, 4, 1.5,
+              "path mode: pixel filter (truncated Gaussian) radius in pixels"),
+    ROW_FLOAT("path.filter_sigma_px", path.filter_sigma_px, "px", 0.1, 2, 0.5,
+              "path mode: pixel filter standard deviation in pixels"),
+    ROW_FLOAT("path.aperture_m", path.aperture_m, "m", 0, 10, 0,
+              "path mode: thin-lens aperture radius in metres (0: pinhole, no depth of field)"),
+    ROW_FLOAT("path.focus_m", path.focus_m, "m", 0.01, 1e7, 10,
+              "path mode: distance of the plane in focus in metres (path.aperture_m > 0)"),
+    ROW_BOOL("path.passes", path.passes, 0,
+             "path mode: render passes as EXR layers (Env, Emit, Volume, Sun, Sky, Depth, "
+             "Normal, DiffCol, samples and standard error)"),
     {NULL, ATMO_PARAM_INT, 0, NULL, 0, 0, {0, 0, 0}, NULL, NULL},
 };
 
@@ -584,6 +628,8 @@ static int parse_value(const atmo_param *p, const char *value, double v[3])
 int atmo_scene_set(atmo_scene *s, const char *key, const char *value, const char *where,
                    atmo_err *e)
 {
+    if (strcmp(key, "objects") == 0)
+        return atmo_scene_set_objects(s, value, where, e);
     const atmo_param *p = atmo_param_find(key);
     if (!p)
         return unknown_key(key, where, e);
@@ -686,7 +732,7 @@ int atmo_scene_validate(const atmo_scene *s, atmo_err *e)
             return rc;
     }
     int rc = atmo_scene_check_spectral_bands(s->render.spectral_bands, e);
-    if (rc)
+    if (rc || (rc = atmo_scene_check_objects(s, e)))
         return rc;
     double bottom = s->atmosphere.bottom_radius_m, top = s->atmosphere.top_radius_m;
     double oz_bottom = s->atmosphere.ozone_bottom_m, oz_peak = s->atmosphere.ozone_peak_m,

@@ -7,7 +7,8 @@
  * (the caller starts from the defaults or a preset); unknown keys, duplicates and values of the
  * wrong JSON type are errors naming the key and the file.
  *
- * Saving writes every key, nested, in registry order, each number with the fewest significant
+ * The key "objects" holds the object list, an array (scene_objects.c); saving writes it after
+ * the registry's keys when the scene has objects. Saving writes every key, nested, in registry order, each number with the fewest significant
  * digits (15 to 17) that read back exactly, so save -> load restores the scene bit for bit (a
  * render of the saved scene reproduces the image) and a second save gives the same text. */
 #include <cjson/cJSON.h>
@@ -171,7 +172,14 @@ static int load_object(atmo_scene *s, const cJSON *obj, const char *prefix, cons
             return atmo_fail(e, ATMO_ERR_USAGE,
                              "key '%.60s...' in %s is too long to be a parameter", key, path);
         const atmo_param *p = atmo_param_find(key);
-        if (p) {
+        if (strcmp(key, "objects") == 0) { /* the object list (scene_objects.c) */
+            char *text = cJSON_PrintUnformatted(item);
+            int rc = text ? atmo_scene_set_objects(s, text, path, e)
+                          : atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory reading '%s'", path);
+            cJSON_free(text);
+            if (rc)
+                return rc;
+        } else if (p) {
             size_t index = (size_t)(p - atmo_params);
             if (seen[index])
                 return atmo_fail(e, ATMO_ERR_USAGE,
@@ -340,6 +348,15 @@ char *atmo_scene_to_json(const atmo_scene *s)
         }
         if (!obj || !item || !cJSON_AddItemToObject(obj, leaf, item)) {
             cJSON_Delete(item);
+            goto cleanup;
+        }
+    }
+    if (s->objects.count > 0) { /* the object list, after the registry's keys */
+        char *text = atmo_scene_objects_json(s);
+        cJSON *list = text ? cJSON_Parse(text) : NULL;
+        free(text);
+        if (!list || !cJSON_AddItemToObject(root, "objects", list)) {
+            cJSON_Delete(list);
             goto cleanup;
         }
     }

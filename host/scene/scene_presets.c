@@ -18,19 +18,41 @@
  * thesis-1 ... thesis-9 are the nine views of shared/reference/presets.md. Their "direction to
  * sun" vectors were converted with z = acos(d_y), a = atan2(d_x, d_z) and written with six
  * decimals of a degree; they reproduce the table's vectors to better than 5e-7 (test_scene.c).
- * Terrain and the thesis objects are not yet in atmo; thesis 4, 5, 6, 8 and 9 have the fBm cloud
- * layer (with method march, which it needs, the thesis' far plane for clouds as
- * clouds.max_distance_m, and a noise seed that gives each view what the thesis' shows: seed 5
- * a deck under view 5's glory, seed 47 scattered cumulus around view 6's sun, where seed 0
- * puts view 6's camera inside a cloud). */
+ * The thesis objects (presets.md) are in the views that show them: the sphere and the blue box
+ * of view 2, the open box (four boxes: left, right, floor, back wall; no ceiling, no front) and
+ * its three small spheres in views 3 and 7, at the thesis' world positions (they sat on its
+ * terrain; over the sea-level ground of a scene without terrain they stand in the air where
+ * the thesis put them). View 7 is path traced (render.mode = path, 4 bounces): light enters
+ * the open box from above and bounces inside it.
+ * Thesis 4, 5, 6, 8 and 9 have the fBm cloud layer (with method march, which it needs, the
+ * thesis' far plane for clouds as clouds.max_distance_m, and a noise seed that gives each view
+ * what the thesis' shows: seed 5 a deck under view 5's glory, seed 47 scattered cumulus around
+ * view 6's sun, where seed 0 puts view 6's camera inside a cloud). */
 #include <string.h>
 #include "atmo/scene.h"
 
 const char *const atmo_default_preset = "sky-sunset";
 
 #define PRESET(name, summary, ...) {name, summary, (const char *const[]){__VA_ARGS__, NULL}}
-#define THESIS_SKY_ONLY " [sky only: terrain, clouds, objects not rendered yet]"
-#define THESIS_CLOUDS " [sky and clouds: terrain and objects not rendered yet]"
+#define THESIS_SKY_ONLY " [sky only: terrain and clouds not rendered yet]"
+#define THESIS_NO_TERRAIN " [objects and sky: terrain not rendered yet]"
+#define THESIS_CLOUDS " [sky and clouds: terrain not rendered yet]"
+/* presets.md's objects (albedo in linear RGB; the small spheres' (38, 25, 17)/255 written out) */
+#define THESIS_VIEW2_OBJECTS                                                                       \
+    "objects=[{\"type\": \"sphere\", \"center_m\": [22832, 2022, 13326], \"radius_m\": 1, "    \
+    "\"albedo\": [1, 1, 1]}, {\"type\": \"box\", \"min_m\": [22832.2, 2022, 13326.7], "           \
+    "\"size_m\": [2, 2, 2], \"albedo\": [0, 0, 1]}]"
+#define THESIS_OPEN_BOX_OBJECTS                                                                    \
+    "objects=[{\"type\": \"box\", \"min_m\": [26630, 1336, 10749], \"size_m\": [1, 1, 1], "     \
+    "\"albedo\": [0.9, 0.1, 0.1]}, {\"type\": \"box\", \"min_m\": [26632, 1336, 10749], "        \
+    "\"size_m\": [1, 1, 1], \"albedo\": [0.1, 0.9, 0.1]}, {\"type\": \"box\", \"min_m\": "      \
+    "[26630, 1335, 10749], \"size_m\": [3, 1, 1], \"albedo\": [0.7, 0.7, 0.7]}, {\"type\": "      \
+    "\"box\", \"min_m\": [26630, 1336, 10750], \"size_m\": [3, 1, 1], \"albedo\": [0.7, 0.7, "   \
+    "0.7]}, {\"type\": \"sphere\", \"center_m\": [26631.33, 1336.12, 10749.66], \"radius_m\": "  \
+    "0.12, \"albedo\": [0.149019608, 0.098039216, 0.066666667]}, {\"type\": \"sphere\", "        \
+    "\"center_m\": [26631.66, 1336.12, 10749.66], \"radius_m\": 0.12, \"albedo\": [1, 0.5, "     \
+    "0.15]}, {\"type\": \"sphere\", \"center_m\": [26631.5, 1336.12, 10749.33], \"radius_m\": "  \
+    "0.12, \"albedo\": [1, 1, 1]}]"
 
 const atmo_preset atmo_presets[] = {
     PRESET("sky-noon",
@@ -53,15 +75,15 @@ const atmo_preset atmo_presets[] = {
            "camera.pitch_deg=-4.962", "camera.yaw_deg=-550", "camera.fov_deg=45",
            "sun.zenith_deg=87.476967", "sun.azimuth_deg=-150.985019"),
     PRESET("thesis-2",
-           "thesis view 2: looking down at a small sphere and box, shadows" THESIS_SKY_ONLY,
+           "thesis view 2: looking down at a small sphere and box, shadows" THESIS_NO_TERRAIN,
            "camera.kind=perspective", "camera.position_m=22831,2028,13332",
            "camera.pitch_deg=-51.5", "camera.yaw_deg=-518", "camera.fov_deg=45",
-           "sun.zenith_deg=83.222271", "sun.azimuth_deg=171.887327"),
+           "sun.zenith_deg=83.222271", "sun.azimuth_deg=171.887327", THESIS_VIEW2_OBJECTS),
     PRESET("thesis-3",
-           "thesis view 3: low sun near the open-box site, sun in frame" THESIS_SKY_ONLY,
+           "thesis view 3: low sun near the open-box site, sun in frame" THESIS_NO_TERRAIN,
            "camera.kind=perspective", "camera.position_m=26632,1337,10748", "camera.pitch_deg=-5",
            "camera.yaw_deg=-575", "camera.fov_deg=45", "sun.zenith_deg=86.098524",
-           "sun.azimuth_deg=-134.254613"),
+           "sun.azimuth_deg=-134.254613", THESIS_OPEN_BOX_OBJECTS),
     PRESET("thesis-4",
            "thesis view 4: the planet from 2000 km, terminator, cloud field, blue "
            "limb" THESIS_CLOUDS,
@@ -82,13 +104,14 @@ const atmo_preset atmo_presets[] = {
            "edges" THESIS_CLOUDS,
            "camera.kind=perspective", "camera.position_m=23796,2266,16636",
            "camera.pitch_deg=15.038", "camera.yaw_deg=-519", "camera.fov_deg=45",
-           "sun.zenith_deg=62.332413", "sun.azimuth_deg=154.698581",
+           "sun.zenith_deg=62.332413", "sun.azimuth_deg=154.698581", "post.flare=true",
            "clouds.enabled=true", "clouds.seed=47", "clouds.max_distance_m=1.5e5",
            "atmosphere.method=march"),
-    PRESET("thesis-7", "thesis view 7: looking +Z into an open box, path traced" THESIS_SKY_ONLY,
+    PRESET("thesis-7", "thesis view 7: looking +Z into an open box, path traced" THESIS_NO_TERRAIN,
            "camera.kind=perspective", "camera.position_m=26631.5,1336.5,10747.5",
            "camera.pitch_deg=0", "camera.yaw_deg=0", "camera.fov_deg=45",
-           "sun.zenith_deg=86.098524", "sun.azimuth_deg=-134.254613"),
+           "sun.zenith_deg=86.098524", "sun.azimuth_deg=-134.254613", THESIS_OPEN_BOX_OBJECTS,
+           "render.mode=path", "path.bounces=4"),
     PRESET("thesis-8", "thesis view 8: over clouds and terrain at moderate sun" THESIS_CLOUDS,
            "camera.kind=perspective", "camera.position_m=7866,5837,-143910", "camera.pitch_deg=-29",
            "camera.yaw_deg=-535", "camera.fov_deg=45", "sun.zenith_deg=81.435892",

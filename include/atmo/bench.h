@@ -42,4 +42,9 @@ int bench_mie(const char *dir, int quick, atmo_err *e);
  * DIR/panorama.svg. */
 int bench_panorama(const char *dir, const char *device, int quick, atmo_err *e);
 
+/* `atmo bench render`: the path tracer's time to 1 % noise per thesis view (1280 x 720,
+ * extrapolated from a central crop), its split between the atmosphere and the bounces, and the
+ * cost of an unused feature (host/bench/bench_path.c). Writes DIR/render.csv, DIR/render.svg. */
+int bench_path(const char *dir, const char *device, int quick, atmo_err *e);
+
 #endif

@@ -5,8 +5,9 @@
 #ifndef ATMO_GPU_ENUMS_H
 #define ATMO_GPU_ENUMS_H
 
-/* camera.kind: a pinhole, or an equirectangular panorama of the full sphere */
-enum { ATMO_CAMERA_PERSPECTIVE = 0, ATMO_CAMERA_PANORAMA = 1 };
+/* camera.kind: a pinhole, an equirectangular panorama of the full sphere, or an equal-area
+ * fisheye (kernels/common/camera.h) */
+enum { ATMO_CAMERA_PERSPECTIVE = 0, ATMO_CAMERA_PANORAMA = 1, ATMO_CAMERA_FISHEYE = 2 };
 
 /* atmosphere.mie_phase: the aerosol phase function */
 enum { ATMO_PHASE_CORNETTE_SHANKS = 0, ATMO_PHASE_HENYEY_GREENSTEIN = 1 };
@@ -41,5 +42,21 @@ enum {
     ATMO_METHOD_LUT,        /* precomputed 4-D scattering LUTs (Bruneton 2017 style) */
     ATMO_METHOD_REFERENCE,  /* Monte Carlo volumetric path tracer, all orders: the oracle */
 };
+
+/* render.mode: the preview (sky_render: primary rays, surfaces lit by the sun and the sky's
+ * irradiance) or the path tracer (path_render, kernels/render/path.h) */
+enum { ATMO_RENDER_PREVIEW = 0, ATMO_RENDER_PATH = 1 };
+
+/* objects[].type (gpu_path.h) */
+enum { ATMO_OBJECT_SPHERE = 0, ATMO_OBJECT_BOX = 1 };
+
+/* path.sky: the light a path sees where it leaves the scene: the atmosphere's (the scene's
+ * method), or a uniform test sky of radiance path.uniform_sky with no air, its sun unattenuated
+ * (kernels/render/path.h) */
+enum { ATMO_PATH_SKY_ATMOSPHERE = 0, ATMO_PATH_SKY_UNIFORM = 1 };
+
+/* path.sampler: the primary samples (pixel position): Owen-scrambled Sobol, or the counter
+ * hash of rng.h (independent random numbers, for comparison) */
+enum { ATMO_SAMPLER_SOBOL = 0, ATMO_SAMPLER_RANDOM = 1 };
 
 #endif

@@ -20,6 +20,7 @@
 #include "atmo/gpu_clouds.h"
 #include "atmo/gpu_lut.h"
 #include "atmo/gpu_ms_lut.h"
+#include "atmo/gpu_path.h"
 #include "atmo/gpu_reference.h"
 #include "atmo/gpu_sky_view.h"
 #endif
@@ -29,7 +30,7 @@ typedef struct atmo_gpu_camera {
     float4 local_up;           /* xyz: unit vector from the planet centre to the camera; w: r (m) */
     int kind;                  /* ATMO_CAMERA_* (gpu_enums.h) */
     int width, height;         /* image size in pixels */
-    float tan_half_fov;        /* perspective: tan(vertical fov / 2) */
+    float tan_half_fov;        /* perspective: tan(vertical fov / 2); fisheye: sin(fov / 4) */
 } atmo_gpu_camera;
 
 typedef struct atmo_gpu_scene {
@@ -47,6 +48,7 @@ typedef struct atmo_gpu_scene {
     atmo_gpu_reference reference; /* method reference */
     atmo_gpu_cloud cloud;         /* the cloud shell and the observer */
     atmo_gpu_clouds clouds;       /* the fBm cloud layer */
+    atmo_gpu_path path;           /* the path tracer and the objects (render.mode = path) */
 } atmo_gpu_scene;
 
 #endif

@@ -24,7 +24,7 @@
 #include "atmo/scene.h"
 #include "atmo/status.h"
 
-#define ATMO_PLAN_MAX_FRAGMENTS 32
+#define ATMO_PLAN_MAX_FRAGMENTS 48
 #define ATMO_PLAN_MAX_PASSES 64
 #define ATMO_PLAN_MAX_BUFFERS 8
 #define ATMO_PLAN_MAX_FEATURES 12
@@ -58,6 +58,10 @@ typedef struct atmo_plan {
     atmo_gpu_scene gpu;
     atmo_atmosphere atmosphere;
     const char *method;            /* the atmosphere method's name, for reports */
+    const char *render_kernel;     /* the kernel a session renders with: sky_render, or
+                                      path_render in path mode (same arguments) */
+    int pass_planes;               /* render passes: float4 planes the kernel also sums into
+                                      (an argument after nonfinite), 0 for none */
     const struct atmo_feature *features[ATMO_PLAN_MAX_FEATURES]; /* in registry order */
     int feature_count;
     const char *fragments[ATMO_PLAN_MAX_FRAGMENTS];

@@ -17,6 +17,11 @@
 typedef struct atmo_render_result {
     int width, height;
     float *rgb;                /* width x height x 3, mean over samples, row 0 = top */
+    int pass_planes;           /* render passes (plan.pass_planes; 0: none, and the next three
+                                  are NULL) */
+    float *passes;             /* pass_planes x width x height x 4 means (atmo_session_read_passes) */
+    float *se;                 /* width x height x 3 standard errors of rgb */
+    int *samples;              /* width x height samples per pixel */
     int samples_requested;
     int samples_min, samples_max; /* per pixel, equal unless interrupted */
     int interrupted;

@@ -16,6 +16,20 @@
 
 enum { ATMO_QUANTITY_RADIANCE = 0, ATMO_QUANTITY_LUMINANCE = 1 };
 
+/* One object of the scene's list ("objects" in a scene file; scene_objects.c): a Lambertian
+ * sphere or axis-aligned box in world metres, with an albedo and an emitted radiance at the
+ * render wavelengths (W m^-2 sr^-1 nm^-1). */
+#define ATMO_MAX_OBJECTS 32
+typedef struct atmo_object {
+    int type;              /* ATMO_OBJECT_* (gpu_enums.h) */
+    double center_m[3];    /* sphere */
+    double radius_m;       /* sphere, > 0 */
+    double min_m[3];       /* box: the minimum corner */
+    double size_m[3];      /* box: extents, each > 0 */
+    double albedo[3];      /* 0..1 */
+    double emission[3];    /* >= 0 */
+} atmo_object;
+
 typedef struct atmo_scene {
     struct {
         int width, height;
@@ -68,6 +82,8 @@ typedef struct atmo_scene {
         double white_point;    /* for reinhard-white */
         int white_balance;     /* 0/1: divide by the sun's white point */
         int transfer;          /* ATMO_TRANSFER_*: PNG encoding curve */
+        int flare;             /* 0/1: lens flare (perspective cameras; host/image/flare.c) */
+        double flare_strength; /* its brightness relative to the default lens */
     } post;
     struct {                   /* homogeneous cloud/fog shell (kernels/media/cloud_shell.h) */
         int enabled;
@@ -118,6 +134,24 @@ typedef struct atmo_scene {
         int detail;            /* 0/1: the procedural fBm adds detail below the file's cells */
         int nodata;            /* ATMO_DEM_NODATA_* (dem.h): how missing samples are filled */
     } dem;
+    struct {                   /* render.mode = path (kernels/render/path.h) */
+        int mode;              /* ATMO_RENDER_* */
+        int bounces;           /* N_b */
+        int secondary;         /* N_s */
+        int rr_bounce;         /* Russian roulette from this bounce on */
+        int sun_nee, sky_nee;  /* 0/1 */
+        int sky;               /* ATMO_PATH_SKY_* */
+        double uniform_sky[3]; /* the uniform test sky's radiance */
+        int ground;            /* 0/1 */
+        int sampler;           /* ATMO_SAMPLER_* */
+        double filter_radius_px, filter_sigma_px;
+        double aperture_m, focus_m; /* thin lens (aperture 0: pinhole) */
+        int passes;            /* 0/1: render passes (EXR layers) */
+    } path;
+    struct {
+        int count;
+        atmo_object list[ATMO_MAX_OBJECTS];
+    } objects;
 } atmo_scene;
 
 typedef enum {
@@ -200,6 +234,16 @@ int atmo_scene_load_json_text(atmo_scene *s, const char *text, size_t length, co
 /* Whole scene as nested JSON (every key), malloc'd; NULL when out of memory. */
 char *atmo_scene_to_json(const atmo_scene *s);
 int atmo_scene_save_json(const atmo_scene *s, const char *path, atmo_err *e);
+/* The object list from JSON text (an array of objects, scene_objects.c), replacing the
+ * scene's; `where` names the source for one-line errors ("--set", the file). The key
+ * "objects" of --set, presets and scene files comes here. */
+int atmo_scene_set_objects(atmo_scene *s, const char *json, const char *where, atmo_err *e);
+/* Every object's values in range (a scene filled in by code); one-line usage error naming
+ * objects[i] otherwise. */
+int atmo_scene_check_objects(const atmo_scene *s, atmo_err *e);
+/* The object list as a JSON array (malloc'd; "[]" for none), NULL when out of memory. */
+char *atmo_scene_objects_json(const atmo_scene *s);
+
 /* Checks between parameters (e.g. top radius above bottom radius). */
 int atmo_scene_validate(const atmo_scene *s, atmo_err *e);
 

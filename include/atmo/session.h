@@ -24,6 +24,15 @@
  * evaluated in double from the float sums (negative rounding residues clamp to 0); a pixel with
  * fewer than 2 samples has no variance estimate and reports se = FLT_MAX.
  *
+ * Noise target (atmo_session_set_noise_target). At each of its checkpoints (atmo/tiles.h: 16, 32, 64, ...
+ * samples) a tile's relative standard error is measured from its sums,
+ *     e = sqrt(mean over its pixels and channels of se^2) / mean over them of the mean,
+ * (the RMS standard error of its pixels relative to its mean radiance), and the tile stops
+ * when e <= the target; the others continue up to the step's sample target. A step with a noise
+ * target is complete when every tile has converged or reached the target. The decision is
+ * taken on the same sums whatever the tile size or launch budget, so the image stays
+ * deterministic.
+ *
  * Cancelling. An atmo_cancel is owned by the caller; atmo_cancel_request only stores to a
  * volatile sig_atomic_t, so a signal handler may call it. The session checks the token between
  * launches: a step stops after the launch in flight, and the image is then the mean of the
@@ -49,6 +58,8 @@ typedef struct atmo_render_settings {
     struct atmo_cancel *cancel; /* token for atmo_render / atmo_spectral_render (may be NULL) */
     int part, parts;           /* render only part `part` (1 .. parts) of the image's bands
                                   (atmo/tiles.h); parts = 0: the whole image */
+    double noise_target;       /* atmo_render: the step's noise target (0: none) */
+    double time_limit_s;       /* atmo_render: no new launch after this long (0: none) */
 } atmo_render_settings;
 
 void atmo_render_settings_default(atmo_render_settings *s);
@@ -95,6 +106,9 @@ int atmo_session_open(atmo_session **out, const atmo_plan *plan, const atmo_rend
                       atmo_err *e);
 int atmo_session_step(atmo_session *s, const atmo_step *step, atmo_step_status *status,
                       atmo_err *e);
+/* The noise target of the following steps (relative standard error per tile, e.g. 0.01; 0:
+ * none). */
+void atmo_session_set_noise_target(atmo_session *s, double noise);
 /* Same scene, other camera and/or sun: only gpu.camera, gpu.sun_direction and gpu.observer
  * may differ from the session's plan (ATMO_ERR_USAGE otherwise). */
 int atmo_session_set_view(atmo_session *s, const atmo_plan *plan, atmo_err *e);
@@ -108,6 +122,10 @@ int atmo_session_read(atmo_session *s, float *mean, float *se, int *samples, atm
 int atmo_session_read_sums(atmo_session *s, float *s1, float *s2, int *samples, atmo_err *e);
 /* The mean atmo_session_read gives for a sum of `samples` samples: sum * (1/samples), 0 for none. */
 float atmo_session_mean(float sum, int samples);
+/* The render passes' means (plan.pass_planes planes of W x H x 4 floats, plane k at
+ * out + 4 W H k, row 0 = top; what each plane holds: kernels/render/path.cl); usage error when
+ * the plan has none. */
+int atmo_session_read_passes(atmo_session *s, float *out, atmo_err *e);
 void atmo_session_close(atmo_session *s); /* NULL is fine */
 
 const atmo_session_info *atmo_session_get_info(const atmo_session *s);

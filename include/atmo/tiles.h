@@ -23,7 +23,14 @@
  * scenes of docs/notes/split_render.md 8-row bands balance 4 parts within a few per cent of a
  * split of the sample range, which could not merge bit for bit (atmo/part.h). A launch spans
  * several tile rows only where they touch, so a part's launches stay within its bands. Pixels
- * outside the part have 0 samples. parts = 0 is the whole image, tiled as above. */
+ * outside the part have 0 samples. parts = 0 is the whole image, tiled as above.
+ *
+ * Noise target (the progressive mode): a tile can be marked converged (atmo_tiles_converge)
+ * and then gets no more launches whatever the target. So that the decision does not depend on
+ * the batches, the caller asks it only at checkpoints, the sample counts 2^k >= 16
+ * (ATMO_TILES_FIRST_CHECKPOINT), and with `checkpoints` set the scheduler ends every launch at
+ * or before the tile's next checkpoint: a tile is then judged on the same sums whatever the
+ * tile size or launch budget, and a noise-targeted image is as deterministic as any other. */
 #ifndef ATMO_TILES_H
 #define ATMO_TILES_H
 #include "atmo/status.h"
@@ -51,7 +58,16 @@ typedef struct atmo_tiles {
     int cursor;         /* where the next search starts */
     int batch;          /* samples per launch, adapted */
     int group;          /* tiles per launch, adapted */
+    unsigned char *converged; /* per tile: 1 once its noise target is met */
+    int checkpoints;    /* 1: launches end at the checkpoints (noise target) */
 } atmo_tiles;
+
+#define ATMO_TILES_FIRST_CHECKPOINT 16
+
+/* 1 when n samples is a checkpoint: a power of two >= ATMO_TILES_FIRST_CHECKPOINT. */
+int atmo_tiles_is_checkpoint(int n);
+/* Mark tile `index` converged: no more launches for it until atmo_tiles_reset. */
+void atmo_tiles_converge(atmo_tiles *t, int index);
 
 int atmo_tiles_init(atmo_tiles *t, int width, int height, int size, atmo_err *e);
 /* Only the tiles of part `part` of `parts` (parts = 0: the whole image). Usage error when the
@@ -63,9 +79,11 @@ int atmo_part_of_row(int y, int parts);
 /* The rectangle of tile `index` (< t->count) and its samples so far. */
 void atmo_tiles_get(const atmo_tiles *t, int index, atmo_tile *tile);
 void atmo_tiles_free(atmo_tiles *t);
-/* Every tile back to 0 samples and the cursor to tile 0 (the adapted sizes stay). */
+/* Every tile back to 0 samples, not converged, and the cursor to tile 0 (the adapted sizes
+ * stay). */
 void atmo_tiles_reset(atmo_tiles *t);
-/* The next launch towards `target` samples per pixel; 0 when every tile has them. */
+/* The next launch towards `target` samples per pixel; 0 when every tile has them or has
+ * converged. */
 int atmo_tiles_next(atmo_tiles *t, int target, atmo_tile *launch);
 /* Record a finished launch that took ms milliseconds; adapt the tiles and samples per launch
  * to budget_ms (at most max_tiles tiles and max_batch samples where those are > 0). */

@@ -8,8 +8,10 @@
  * observer sphere (observer.h) at the point's camera-relative position, and the cloud shell's
  * transmittance along the sun's chord through it (cloud_shell.h); under -DATMO_CLOUDS the fBm
  * layer's light march (cloud_layer.h), so every caller gets cloud shadows in the air (light
- * shafts through gaps) and on the ground. Terrain (a heightmap march toward the sun) plugs in
- * here.
+ * shafts through gaps) and on the ground; under -DATMO_OBJECTS the scene's spheres and boxes
+ * (render/objects.h, buffer `objects`) block the ray toward the sun (a point sun: binary
+ * shadows; the path tracer, -DATMO_PATH, samples the disc itself and casts soft ones, so there
+ * they are left out here). Terrain (a heightmap march toward the sun) plugs in here.
  * visibility_sun_occluders is the product of the opaque sources (0 or 1), visibility_sun adds
  * the shadowing media (per wavelength, 0..1); both get the buffers, where a source keeps its
  * data (a heightmap, a density grid). The atmosphere's own transmittance toward the
@@ -26,7 +28,17 @@
 #ifdef ATMO_CLOUD
 #include "media/observer.h"
 #endif
+#ifdef ATMO_OBJECTS
+#include "render/objects.h"
+#endif
 #include "atmo/gpu_types.h"
+#endif
+
+#if defined(ATMO_OBJECTS) && !defined(ATMO_PATH)
+/* the preview's objects: lit by the method's sky irradiance (media/medium.h, after this file) */
+#define VISIBILITY_OBJECTS 1
+ATMO_FN vec3 medium_ms_ground_irradiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                         float mu_s);
 #endif
 
 /* 1 where the planet leaves the sun visible from the point, 0 in its shadow. */
@@ -41,6 +53,11 @@ ATMO_FN float visibility_sun_occluders(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO
     float v = visibility_planet(&s->atmosphere, q);
 #ifdef ATMO_CLOUD
     if (observer_blocks(s->cloud.observer, q->p, v3_from4(s->sun_direction)))
+        v = 0.0f;
+#endif
+#ifdef VISIBILITY_OBJECTS
+    if (v > 0.0f && objects_occluded(objects, s->path.object_count, q->p,
+                                     v3_from4(s->sun_direction), 0.0f, INFINITY))
         v = 0.0f;
 #endif
     return v;
@@ -62,26 +79,77 @@ ATMO_FN vec3 visibility_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS
     return vis;
 }
 
-/* Distance along the ray to the first opaque surface other than the ground (the observer), or
- * -1 when there is none. */
-ATMO_FN float visibility_surface_hit(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m)
+/* Distance along the ray to the first opaque surface other than the ground (the observer, the
+ * preview's objects), or -1 when there is none. */
+ATMO_FN float visibility_surface_hit(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                     const medium_ray *m)
 {
+    float t = -1.0f;
 #ifdef ATMO_CLOUD
-    return observer_hit(s->cloud.observer, m);
-#else
-    return -1.0f;
+    t = observer_hit(s->cloud.observer, m);
 #endif
+#ifdef VISIBILITY_OBJECTS
+    float t_obj;
+    if (objects_hit(objects, s->path.object_count, m->origin, m->dir, 0.0f,
+                    t >= 0.0f ? t : INFINITY, &t_obj) >= 0)
+        t = t_obj;
+#endif
+    return t;
 }
+
+#ifdef VISIBILITY_OBJECTS
+/* The preview's light from an object at distance t along the ray, or -1 in x when the surface
+ * there is not an object: albedo / pi (E T_sun V max(0, n . s) + E_sky (1 + n . up) / 2), the
+ * sun with binary shadows from the occluders (the point offset along the normal so it does not
+ * shadow itself), the sky's irradiance E_sky that of the ground at the point's sun cosine from
+ * the method's tables, weighted by the fraction of the sky a tilted surface sees (1 + n . up)/2
+ * (an isotropic sky; zero for method single, which has no sky irradiance). */
+ATMO_FN vec3 visibility_object_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                        const medium_ray *m, float t)
+{
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    float t_obj;
+    int k = objects_hit(objects, s->path.object_count, m->origin, m->dir, 0.0f, t * 1.0001f,
+                        &t_obj);
+    if (k < 0)
+        return v3(-1.0f, 0.0f, 0.0f);
+    ATMO_GLOBAL const atmo_gpu_object *ob = &objects[k];
+    medium_point q = medium_ray_at(m, t_obj, a->bottom_radius);
+    vec3 n = objects_normal(ob, q.p);
+    if (v3_dot(n, m->dir) > 0.0f) /* seen from inside */
+        n = v3_scale(n, -1.0f);
+    q.p = v3_add(q.p, v3_scale(n, 1e-4f + 1e-6f * v3_length(q.p)));
+    vec3 sun = v3_from4(s->sun_direction), up_q = v3_normalize(v3_add(v3_scale(m->up, m->r_c), q.p));
+    float cos_sun = fmaxf(v3_dot(n, sun), 0.0f);
+    vec3 e = v3(0.0f, 0.0f, 0.0f);
+    if (cos_sun > 0.0f && visibility_sun_occluders(s, ATMO_LUT_ARGS, &q) > 0.0f)
+        e = v3_scale(v3_mul(v3_from4(a->solar_irradiance),
+                            atmosphere_transmittance_to_top(a, transmittance_lut,
+                                                            s->transmittance_width,
+                                                            s->transmittance_height, q.r,
+                                                            q.mu_s)),
+                     cos_sun);
+    vec3 sky = medium_ms_ground_irradiance(s, ATMO_LUT_ARGS, q.mu_s);
+    e = v3_add(e, v3_scale(sky, 0.5f * (1.0f + v3_dot(n, up_q))));
+    return v3_add(v3_scale(v3_mul(v3_from4(ob->albedo), e), 1.0f / ATMO_PI),
+                  v3_from4(ob->emission));
+}
+#endif
 
 /* Radiance leaving that surface toward the ray's origin, at distance t along the ray (without
  * the air in between). The observer is small, so it is lit like the camera's surroundings:
  * sunlight with the atmosphere's and the shell's transmittance at the ray's origin (its own
  * shadow test would block it). */
-ATMO_FN vec3 visibility_surface_radiance(ATMO_GLOBAL const atmo_gpu_scene *s,
-                                         ATMO_GLOBAL const float4 *transmittance,
+ATMO_FN vec3 visibility_surface_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                          const medium_ray *m, float t)
 {
+#ifdef VISIBILITY_OBJECTS
+    vec3 lit = visibility_object_radiance(s, ATMO_LUT_ARGS, m, t);
+    if (lit.x >= 0.0f)
+        return lit;
+#endif
 #ifdef ATMO_CLOUD
+    ATMO_GLOBAL const float4 *transmittance = transmittance_lut;
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     medium_point q = medium_ray_at(m, 0.0f, a->bottom_radius);
     vec3 sun_t = v3_mul(atmosphere_sun_transmittance(a, transmittance, s->transmittance_width,

@@ -12,10 +12,38 @@
  * in the pixel (the camera's CAMERA_RNG_DIMS numbers) and goes on to the method's sky_trace
  * along the camera-relative ray.
  *
+ * Objects (-DATMO_OBJECTS, the preview) end a pixel's ray at the object: the air in front plus
+ * the object's light (sky_object_distance below).
+ *
  * sky_probe: the mean of `samples` samples of sky_radiance (sky_cosines.h) for a list of rays
  * given as (r, mu, mu_s, nu), for `atmo radiance` and the tests; ray i uses pixel index i.
  * sky_probe_segment: the same for sky_segment, ray i ending at distance[i] (m): the mean
  * in-scattered radiance in inscatter[i] and the mean transmittance in transmittance[i]. */
+
+/* The preview's objects (visibility.h): every method's pixel that sees one gets the air in
+ * front from sky_trace, stopped this fraction of the distance short of the object so a method
+ * that ends its own segments at surfaces (single, march) does not count it twice, plus the
+ * object's light times the view transmittance. */
+#define SKY_OBJECT_SHORTEN 0.99999f
+
+/* The distance to the object a camera ray sees before the ground, or -1. */
+float sky_object_distance(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
+                          const medium_ray *ray)
+{
+#ifdef VISIBILITY_OBJECTS
+    float t;
+    if (objects_hit(objects, scene->path.object_count, ray->origin, ray->dir, 0.0f, INFINITY,
+                    &t) < 0)
+        return -1.0f;
+    float R = scene->atmosphere.bottom_radius;
+    if (geometry_ray_hits_ground(ray->r, ray->mu, R) &&
+        geometry_distance_to_bottom(ray->r, ray->mu, R) < t)
+        return -1.0f;
+    return t;
+#else
+    return -1.0f;
+#endif
+}
 
 __kernel void sky_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
                          __global float4 *accum, __global float4 *accum_sq,
@@ -33,11 +61,22 @@ __kernel void sky_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
         rng_stream g = rng_stream_stage(scene->seed, pixel, sample_begin + k, 0u);
         float jx = rng_next(&g);
         float jy = rng_next(&g);
-        medium_ray ray =
-            medium_ray_from_camera(scene, camera_ray(cam, (float)x + jx, (float)y + jy));
-        float3 sky, sun, view_t;
-        sky_trace(scene, ATMO_LUT_ARGS, &ray, INFINITY, &g, &sky, &sun, &view_t);
-        float3 L = sky * scene->sky_factor.xyz + sun * scene->sun_factor.xyz;
+        float3 dir = camera_ray(cam, (float)x + jx, (float)y + jy);
+        float3 L = (float3)(0.0f); /* a fisheye's corners outside its circle see nothing */
+        if (dot(dir, dir) > 0.0f) {
+            medium_ray ray = medium_ray_from_camera(scene, dir);
+            float3 sky, sun, view_t;
+            float t_obj = sky_object_distance(scene, ATMO_LUT_ARGS, &ray);
+            if (t_obj > 0.0f) {
+                sky_trace(scene, ATMO_LUT_ARGS, &ray, t_obj * SKY_OBJECT_SHORTEN, &g, &sky, &sun,
+                          &view_t);
+                sky += view_t * visibility_surface_radiance(scene, ATMO_LUT_ARGS, &ray, t_obj);
+                sun = (float3)(0.0f);
+            } else {
+                sky_trace(scene, ATMO_LUT_ARGS, &ray, INFINITY, &g, &sky, &sun, &view_t);
+            }
+            L = sky * scene->sky_factor.xyz + sun * scene->sun_factor.xyz;
+        }
         if (any(isnan(L)) || any(isinf(L))) {
             atomic_inc(nonfinite);
             L = (float3)(0.0f);

@@ -1,0 +1,259 @@
+/* path.h — the path tracer's loop: one sample of a pixel's radiance, through the stages of
+ * kernels/render/ (path_camera.h, surfaces.h, bsdf.h, light_sun.h, light_sky.h) and the scene's
+ * atmosphere method (sky_trace, atmosphere/sky_method.h) for the air along every segment.
+ *
+ * The estimator of the rendering equation with participating media reduced to the
+ * single-scattering form the methods integrate (the air's in-scattered light along each
+ * segment comes from the method; the path's bounces are off surfaces, Lambertian):
+ *   primary ray from the camera (path_camera_sample): the first surface h along it
+ *   (surfaces_hit); the segment's light S = sky_trace(t_max = t_h) (the air in front, view
+ *   transmittance T) or, where the ray leaves the scene, sky_trace(INFINITY) (the sky, and the
+ *   sun's disc seen directly); L = S + T (L_e + L_surface);
+ *   at a surface vertex with throughput beta and albedo a:
+ *     sun: beta a/pi E T_sun V max(0, n . w_sun)      (light_sun.h: the disc sampled)
+ *     sky: beta a/pi S(w_l) cos / p_l * w_l           (light_sky.h, MIS weight w_l)
+ *     continuation: w_b ~ cos / pi (bsdf.h), beta *= a; its segment's light S(w_b) counts with
+ *     the MIS weight w_b, then the next vertex (emission counted there with weight 1).
+ *   S of a direction is the air up to the first surface along it plus, where the ray escapes,
+ *   the sky behind: both strategies estimate the same integral of S, so their weights sum to 1
+ *   and the sum is unbiased (Veach 1997). The sun's disc is left to next-event estimation: a
+ *   continuation ray that finds it adds nothing there (path.sun_nee = 0: it adds the disc).
+ * N_s = path.secondary continuation rays leave the primary hit, each with beta / N_s (the
+ * primary's direct light once, its sky MIS weighed against N_s BSDF samples); a path bounces
+ * at most N_b = path.bounces times after the primary hit (the last continuation's segment and
+ * the emission it finds still count); from bounce path.rr_bounce on, Russian roulette ends it
+ * with probability 1 - q, q = min(0.95, max beta), and divides beta by q (unbiased).
+ * Units: spectral radiance, W m^-2 sr^-1 nm^-1 (the objects' emission too), times the
+ * scene's sky_factor (the disc seen directly: sun_factor), as sky_render does.
+ * The uniform test world (path.sky = uniform) has S = L_u on escaping rays and no air; its
+ * sun is the solar irradiance E (times sun.irradiance_scale; 0 for the furnace tests) with no
+ * atmosphere and no planet in the way, only the objects' shadows: the world of the furnace and
+ * open-box tests, which a host reference can trace exactly.
+ * Passes: every contribution goes to one light pass (PATH_PASS_*: the sky seen directly, the
+ * objects' emission, the air in front of surfaces, reflected sunlight, reflected skylight), and
+ * the sample's radiance is their sum, so the passes add up to the beauty image; the primary
+ * hit's distance, normal and albedo come with them (render/path.cl stores them when the scene
+ * asks for passes).
+ * Random numbers: stage 0 of the sample (rng.h) has the lens, the primary segment and the
+ * primary hit's direct light; secondary ray j and all its bounces draw from stage 1 + j, in
+ * order. The pixel position comes from path_camera.h's sequence. */
+#ifndef ATMO_RENDER_PATH_H
+#define ATMO_RENDER_PATH_H
+#ifndef __OPENCL_VERSION__
+#include "common/compat.h"
+#include "common/rng.h"
+#include "atmosphere/sky_method.h"
+#include "media/medium.h"
+#include "render/path_camera.h"
+#include "render/surfaces.h"
+#include "render/bsdf.h"
+#include "render/light_sun.h"
+#include "render/light_sky.h"
+#endif
+
+/* The light passes (render passes, path.passes): a partition of a sample's radiance by where the
+ * light was last scattered toward the camera, so they sum to it. */
+enum {
+    PATH_PASS_ENV = 0, /* the sky and the sun's disc seen directly (primary rays that escape) */
+    PATH_PASS_EMIT,    /* emission of the objects, at any bounce */
+    PATH_PASS_VOLUME,  /* the air's in-scattered light in front of surfaces, every segment */
+    PATH_PASS_SUN,     /* sunlight reflected by surfaces (next-event estimation), every bounce */
+    PATH_PASS_SKY,     /* skylight reflected by surfaces (sky sampling and escaping bounces) */
+    PATH_LIGHT_PASSES
+};
+
+/* A sample's parts: the light passes and, at the primary hit, the distance, the normal on the
+ * ray's side and the albedo (PATH_NO_HIT_DEPTH, zero and zero where the ray escapes). */
+typedef struct path_parts {
+    vec3 light[PATH_LIGHT_PASSES];
+    float depth;
+    vec3 normal, albedo;
+} path_parts;
+
+/* The depth of rays that hit nothing: Blender's value for the background in its Z pass. */
+#define PATH_NO_HIT_DEPTH 1e10f
+
+ATMO_FN void path_add(path_parts *parts, int pass, vec3 L)
+{
+    parts->light[pass] = v3_add(parts->light[pass], L);
+}
+
+/* A segment that ends at a surface stops the air this fraction of its length short of it, so
+ * the method never counts the surface itself (its own ground or surface term): 1e-5 of the
+ * distance is far below any change in the air. */
+#define PATH_SEGMENT_SHORTEN 0.99999f
+
+/* A segment between surfaces shorter than this has no air: over d = 10 m the sea-level air
+ * scatters and absorbs sigma_t d ~ (1.2e-5 + 4.4e-6) / m x 10 m < 2e-4 of the light through it
+ * (Rayleigh at 680-440 nm and the aerosols: atmosphere.* defaults), below the noise of any
+ * path-traced pixel, while the method's march over it costs as much as over a long one: the
+ * bounces inside an open box are all this short. */
+#define PATH_AIR_MIN_M 10.0f
+
+/* The light S that segment m brings to its origin, up to the hit h or out of the scene (the
+ * sun disc only with_sun), and its view transmittance. */
+ATMO_FN vec3 path_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                          const medium_ray *m, const path_hit *h, int with_sun, rng_stream *g,
+                          vec3 *view_t)
+{
+    if (s->path.sky == ATMO_PATH_SKY_UNIFORM) { /* the sun's disc is left to the NEE here */
+        *view_t = v3(1.0f, 1.0f, 1.0f);
+        return h->kind == SURFACES_NONE ? v3_from4(s->path.uniform_sky) : v3(0.0f, 0.0f, 0.0f);
+    }
+    if (h->kind != SURFACES_NONE && h->t < PATH_AIR_MIN_M) {
+        *view_t = v3(1.0f, 1.0f, 1.0f);
+        return v3(0.0f, 0.0f, 0.0f);
+    }
+    vec3 sky, sun;
+    float t_max = h->kind == SURFACES_NONE ? INFINITY : h->t * PATH_SEGMENT_SHORTEN;
+    sky_trace(s, ATMO_LUT_ARGS, m, t_max, g, &sky, &sun, view_t);
+    vec3 L = v3_mul(sky, v3_from4(s->sky_factor));
+    if (with_sun)
+        L = v3_add(L, v3_mul(sun, v3_from4(s->sun_factor)));
+    return L;
+}
+
+/* A vertex: the hit of ray m, its facing normal and the offset origin of rays leaving it. */
+typedef struct path_vertex {
+    medium_point q; /* the hit point (for the visibility sources) */
+    vec3 p;         /* origin for new rays, off the surface */
+    vec3 n;         /* unit normal on the ray's side */
+    vec3 albedo;
+} path_vertex;
+
+ATMO_FN path_vertex path_vertex_at(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m,
+                                   const path_hit *h)
+{
+    path_vertex v;
+    v.q = medium_ray_at(m, h->t, s->atmosphere.bottom_radius);
+    v.n = v3_dot(h->normal, m->dir) > 0.0f ? v3_scale(h->normal, -1.0f) : h->normal;
+    v.p = surfaces_offset(v.q.p, v.n);
+    v.albedo = h->albedo;
+    return v;
+}
+
+/* Sunlight reflected at v toward the ray (without the throughput). */
+ATMO_FN vec3 path_direct_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                             const path_vertex *v, rng_stream *g)
+{
+    float u1 = rng_next(g), u2 = rng_next(g);
+    if (!s->path.sun_nee)
+        return v3(0.0f, 0.0f, 0.0f);
+    vec3 w = light_sun_sample(v3_from4(s->sun_direction), s->sun_direction.w, u1, u2);
+    float c = v3_dot(v->n, w);
+    if (c <= 0.0f)
+        return v3(0.0f, 0.0f, 0.0f);
+    vec3 e = s->path.sky == ATMO_PATH_SKY_UNIFORM ? v3_from4(s->atmosphere.solar_irradiance)
+                                                   : medium_sunlight(s, ATMO_LUT_ARGS, &v->q);
+    if ((e.x <= 0.0f && e.y <= 0.0f && e.z <= 0.0f) || surfaces_occluded(s, ATMO_LUT_ARGS, v->p, w))
+        return v3(0.0f, 0.0f, 0.0f);
+    return v3_mul(v3_scale(v3_mul(v->albedo, e), c / ATMO_PI), v3_from4(s->sky_factor));
+}
+
+/* Skylight reflected at v by the sky's sampling, weighed against n_bsdf BSDF samples. */
+ATMO_FN vec3 path_direct_sky(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                             const path_vertex *v, float n_bsdf, rng_stream *g)
+{
+    float u0 = rng_next(g), u1 = rng_next(g), u2 = rng_next(g);
+    if (!s->path.sky_nee)
+        return v3(0.0f, 0.0f, 0.0f);
+    vec3 w = light_sky_sample(s, sky_env, u0, u1, u2);
+    float c = v3_dot(v->n, w);
+    if (c <= 0.0f)
+        return v3(0.0f, 0.0f, 0.0f);
+    float p_l = light_sky_pdf(s, sky_env, w), p_b = c / ATMO_PI;
+    medium_ray r = medium_ray_make(s, v->p, w);
+    path_hit h = surfaces_hit(s, ATMO_LUT_ARGS, &r, INFINITY);
+    vec3 view_t;
+    vec3 S = path_segment(s, ATMO_LUT_ARGS, &r, &h, 0, g, &view_t);
+    float weight = light_sky_power(1.0f, p_l, n_bsdf, p_b);
+    return v3_scale(v3_mul(v->albedo, S), c / ATMO_PI * weight / p_l);
+}
+
+/* The light of a path that leaves vertex v (depth: its bounce, 0 the primary hit) with
+ * throughput beta, its first continuation weighed against n_bsdf BSDF samples. */
+ATMO_FN void path_continue(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, path_vertex v,
+                           vec3 beta, int depth, float n_bsdf, rng_stream *g, path_parts *parts)
+{
+    for (;;) {
+        float u_rr = rng_next(g), u1 = rng_next(g), u2 = rng_next(g);
+        if (depth >= s->path.rr_bounce) {
+            float q = fminf(0.95f, fmaxf(beta.x, fmaxf(beta.y, beta.z)));
+            if (u_rr >= q)
+                break;
+            beta = v3_scale(beta, 1.0f / q);
+        }
+        vec3 w = bsdf_sample_cosine(v.n, u1, u2);
+        beta = v3_mul(beta, v.albedo); /* f cos / p = albedo */
+        medium_ray r = medium_ray_make(s, v.p, w);
+        path_hit h = surfaces_hit(s, ATMO_LUT_ARGS, &r, INFINITY);
+        vec3 view_t;
+        vec3 S = path_segment(s, ATMO_LUT_ARGS, &r, &h, !s->path.sun_nee, g, &view_t);
+        float weight = s->path.sky_nee
+                           ? light_sky_power(n_bsdf, bsdf_pdf_cosine(v.n, w), 1.0f,
+                                             light_sky_pdf(s, sky_env, w))
+                           : 1.0f;
+        path_add(parts, h.kind == SURFACES_NONE ? PATH_PASS_SKY : PATH_PASS_VOLUME,
+                 v3_mul(beta, v3_scale(S, weight)));
+        if (h.kind == SURFACES_NONE)
+            break;
+        beta = v3_mul(beta, view_t);
+        path_add(parts, PATH_PASS_EMIT, v3_mul(beta, v3_mul(h.emission, v3_from4(s->sky_factor))));
+        if (++depth > s->path.bounces)
+            break;
+        v = path_vertex_at(s, &r, &h);
+        path_add(parts, PATH_PASS_SUN, v3_mul(beta, path_direct_sun(s, ATMO_LUT_ARGS, &v, g)));
+        path_add(parts, PATH_PASS_SKY,
+                 v3_mul(beta, path_direct_sky(s, ATMO_LUT_ARGS, &v, 1.0f, g)));
+        n_bsdf = 1.0f;
+    }
+}
+
+/* The parts of one sample of pixel (x, y) (path_parts above). */
+ATMO_FN void path_sample(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, int x, int y,
+                         uint pixel, uint sample, path_parts *parts)
+{
+    for (int k = 0; k < PATH_LIGHT_PASSES; k++)
+        parts->light[k] = v3(0.0f, 0.0f, 0.0f);
+    parts->depth = PATH_NO_HIT_DEPTH;
+    parts->normal = v3(0.0f, 0.0f, 0.0f);
+    parts->albedo = v3(0.0f, 0.0f, 0.0f);
+    rng_stream g = rng_stream_stage(s->seed, pixel, sample, 0u);
+    vec3 origin;
+    vec3 d = path_camera_sample(s, x, y, pixel, sample, &g, &origin);
+    if (v3_dot(d, d) == 0.0f)
+        return;
+    medium_ray ray = s->path.aperture_m > 0.0f ? medium_ray_make(s, origin, d)
+                                               : medium_ray_from_camera(s, d);
+    path_hit h = surfaces_hit(s, ATMO_LUT_ARGS, &ray, INFINITY);
+    vec3 view_t;
+    vec3 S = path_segment(s, ATMO_LUT_ARGS, &ray, &h, 1, &g, &view_t);
+    path_add(parts, h.kind == SURFACES_NONE ? PATH_PASS_ENV : PATH_PASS_VOLUME, S);
+    if (h.kind == SURFACES_NONE)
+        return;
+    path_add(parts, PATH_PASS_EMIT, v3_mul(view_t, v3_mul(h.emission, v3_from4(s->sky_factor))));
+    path_vertex v = path_vertex_at(s, &ray, &h);
+    parts->depth = h.t;
+    parts->normal = v.n;
+    parts->albedo = v.albedo;
+    int n_s = s->path.secondary;
+    path_add(parts, PATH_PASS_SUN, v3_mul(view_t, path_direct_sun(s, ATMO_LUT_ARGS, &v, &g)));
+    path_add(parts, PATH_PASS_SKY,
+             v3_mul(view_t, path_direct_sky(s, ATMO_LUT_ARGS, &v, (float)n_s, &g)));
+    vec3 beta = v3_scale(view_t, 1.0f / (float)n_s);
+    for (int j = 0; j < n_s; j++) {
+        rng_stream gj = rng_stream_stage(s->seed, pixel, sample, 1u + (uint)j);
+        path_continue(s, ATMO_LUT_ARGS, v, beta, 0, (float)n_s, &gj, parts);
+    }
+}
+
+/* A sample's radiance: the sum of its light passes, in pass order. */
+ATMO_FN vec3 path_total(const path_parts *parts)
+{
+    vec3 L = parts->light[0];
+    for (int k = 1; k < PATH_LIGHT_PASSES; k++)
+        L = v3_add(L, parts->light[k]);
+    return L;
+}
+
+#endif
