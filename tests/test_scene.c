@@ -601,8 +601,6 @@ static void test_json(void)
                         "a string");
     check_json_rejected("{\"terrain\": {\"heightmap_center_m\": [1, 2, 3]}}",
                         "terrain.heightmap_center_m", "an array of 2 numbers");
-    check_json_rejected("{\"camera\": {\"kind\": \"fisheye\"}}", "camera.kind",
-                        "perspective, panorama");
     check_json_rejected("{\"camera\": {\"kind\": \"orthographic\"}}", "camera.kind",
                         "perspective, panorama, fisheye");
     check_json_rejected("{\"post\": {\"white_balance\": 1}}", "post.white_balance",

@@ -132,6 +132,7 @@ static int next_checkpoint(int n)
     while (c <= n && c < (1 << 30))
         c *= 2;
     return c;
+}
 
 /* 1 when every tile of tile row `row` holds n samples and none has converged. */
 static int row_holds(const atmo_tiles *t, int row, int n)
