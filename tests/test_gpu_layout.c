@@ -1,5 +1,5 @@
 /* test_gpu_layout — the structs of include/atmo/gpu_types.h and of each feature's header
- * (gpu_atmosphere.h, gpu_ms_lut.h, gpu_sky_view.h, gpu_lut.h, gpu_reference.h, gpu_cloud.h) have
+ * (gpu_atmosphere.h, gpu_ms_lut.h, gpu_sky_view.h, gpu_lut.h, gpu_reference.h, gpu_cloud.h, gpu_terrain.h) have
  * the same size and field offsets in the OpenCL C compiler as on the host.
  * labels: kernel
  *
@@ -21,7 +21,10 @@
     X(atmo_gpu_ms_lut, steps) X(atmo_gpu_ms_lut, higher_anisotropy) X(atmo_gpu_ms_lut, g2)        \
     X(atmo_gpu_sky_view, steps) X(atmo_gpu_lut, steps) X(atmo_gpu_lut, orders)                    \
     X(atmo_gpu_reference, max_order) X(atmo_gpu_cloud, observer) X(atmo_gpu_cloud, base_m)        \
-    X(atmo_gpu_cloud, phase) X(atmo_gpu_cloud, steps)
+    X(atmo_gpu_cloud, phase) X(atmo_gpu_cloud, steps) X(atmo_gpu_scene, terrain)                 \
+    X(atmo_gpu_terrain_field, seed) X(atmo_gpu_terrain_field, heightmap_extent_m)                \
+    X(atmo_gpu_terrain, camera) X(atmo_gpu_terrain, steps) X(atmo_gpu_terrain, shafts)          \
+    X(atmo_gpu_terrain, pixel_angle)
 
 #define HOST_OFFSET(type, field) (uint)offsetof(type, field),
 #define DEVICE_OFFSET(type, field) "out[n++] = (uint)__builtin_offsetof(" #type ", " #field ");\n"
@@ -36,7 +39,9 @@ static const char probe[] =
     "  out[n++] = (uint)sizeof(atmo_gpu_sky_view);\n"
     "  out[n++] = (uint)sizeof(atmo_gpu_lut);\n"
     "  out[n++] = (uint)sizeof(atmo_gpu_reference);\n"
-    "  out[n++] = (uint)sizeof(atmo_gpu_cloud);\n" FIELDS(DEVICE_OFFSET) "}\n";
+    "  out[n++] = (uint)sizeof(atmo_gpu_cloud);\n"
+    "  out[n++] = (uint)sizeof(atmo_gpu_terrain_field);\n"
+    "  out[n++] = (uint)sizeof(atmo_gpu_terrain);\n" FIELDS(DEVICE_OFFSET) "}\n";
 
 int main(void)
 {
@@ -44,7 +49,7 @@ int main(void)
                    (uint)sizeof(atmo_gpu_scene), (uint)sizeof(atmo_gpu_ms_lut),
                    (uint)sizeof(atmo_gpu_sky_view), (uint)sizeof(atmo_gpu_lut),
                    (uint)sizeof(atmo_gpu_reference), (uint)sizeof(atmo_gpu_cloud),
-                   FIELDS(HOST_OFFSET)};
+                   (uint)sizeof(atmo_gpu_terrain_field), (uint)sizeof(atmo_gpu_terrain), FIELDS(HOST_OFFSET)};
     enum { N = sizeof want / sizeof want[0] };
     atmo_cl cl;
     test_cl_open(&cl);
@@ -52,8 +57,8 @@ int main(void)
                                "include/atmo/gpu_atmosphere.h", "include/atmo/gpu_ms_lut.h",
                                "include/atmo/gpu_sky_view.h",   "include/atmo/gpu_lut.h",
                                "include/atmo/gpu_reference.h",  "include/atmo/gpu_cloud.h",
-                               "include/atmo/gpu_types.h"};
-    cl_program prog = test_cl_build(&cl, fragments, 9, probe);
+                               "include/atmo/gpu_terrain.h",    "include/atmo/gpu_types.h"};
+    cl_program prog = test_cl_build(&cl, fragments, 10, probe);
     cl_int err;
     cl_kernel k = clCreateKernel(prog, "probe", &err);
     cl_mem out = test_cl_buffer(&cl, sizeof want, NULL);

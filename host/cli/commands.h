@@ -17,5 +17,6 @@ int cmd_bench(int argc, char **argv);
 int cmd_mie(int argc, char **argv);
 int cmd_radiance(int argc, char **argv);
 int cmd_cache(int argc, char **argv);
+int cmd_terrain(int argc, char **argv);
 
 #endif

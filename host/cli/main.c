@@ -13,6 +13,7 @@ static const atmo_command commands[] = {
     {"bench", "measure error against time of the rendering methods", cmd_bench},
     {"radiance", "print sky radiance and luminance for view directions", cmd_radiance},
     {"cache", "list, verify or clear the cache of kernels, LUTs and Mie tables", cmd_cache},
+    {"terrain", "print the terrain's height, normal, coverage and materials at points", cmd_terrain},
 };
 
 static void usage(FILE *f)

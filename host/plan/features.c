@@ -8,6 +8,7 @@
 #include "atmo/plan_lut.h"
 #include "atmo/plan_march.h"
 #include "atmo/plan_reference.h"
+#include "atmo/plan_terrain.h"
 
 static int always(const atmo_scene *s) { return s != NULL; }
 static int ms_methods(const atmo_scene *s)
@@ -15,6 +16,12 @@ static int ms_methods(const atmo_scene *s)
     return s->atmosphere.method == ATMO_METHOD_MARCH || s->atmosphere.method == ATMO_METHOD_FAST;
 }
 static int cloud_shell(const atmo_scene *s) { return s->cloud.enabled || s->observer.enabled; }
+static int has_terrain(const atmo_scene *s) { return s->terrain.enabled; }
+static int terrain_stage(const atmo_scene *s)
+{
+    return s->terrain.enabled && (s->atmosphere.method == ATMO_METHOD_FAST ||
+                                  s->atmosphere.method == ATMO_METHOD_LUT);
+}
 static int is_single(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_SINGLE; }
 static int is_march(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_MARCH; }
 static int is_fast(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_FAST; }
@@ -42,7 +49,7 @@ static const char *const atmosphere_fragments[] = {
     "include/atmo/gpu_atmosphere.h",  "include/atmo/gpu_ms_lut.h",
     "include/atmo/gpu_sky_view.h",    "include/atmo/gpu_lut.h",
     "include/atmo/gpu_reference.h",   "include/atmo/gpu_cloud.h",
-    "include/atmo/gpu_types.h",       "kernels/common/rng.h",
+    "include/atmo/gpu_terrain.h",     "include/atmo/gpu_types.h",       "kernels/common/rng.h",
     "kernels/common/geometry.h",      "kernels/common/phase.h",
     "kernels/atmosphere/atmosphere.h", "kernels/common/camera.h",
     "kernels/atmosphere/sky_method.h", "kernels/media/ray.h",
@@ -97,6 +104,22 @@ static const char *const lut_sources[] = {
 static const char *const needs_transmittance[] = {"atmosphere", NULL};
 static const char *const cloud_fragments[] = {"kernels/media/observer.h",
                                               "kernels/media/cloud_shell.h", NULL};
+/* The terrain: the height field, the tracer and shadows, the surface's light, and the
+ * heightmap pass, which reads only the field (the camera's placement stays out of the key). */
+static const char *const terrain_fragments[] = {"kernels/terrain/noise.h",
+                                                "kernels/terrain/terrain.h",
+                                                "kernels/terrain/water.h",
+                                                "kernels/terrain/terrain_material.h",
+                                                "kernels/terrain/terrain_shade.h",
+                                                "kernels/terrain/heightmap.cl", NULL};
+static const atmo_gpu_field terrain_params[] = {ATMO_GPU_FIELD(terrain.field), {0, 0}};
+static const char *const terrain_sources[] = {
+    "kernels/common/compat.h",   "include/atmo/gpu_enums.h",   "include/atmo/gpu_terrain.h",
+    "include/atmo/gpu_types.h",  "kernels/terrain/noise.h",    "kernels/terrain/heightmap.cl",
+    NULL};
+/* methods fast and lut read whole rays from tables that know no terrain: a render stage finds
+ * the hit first and asks the method for the air in front of it */
+static const char *const terrain_stage_fragments[] = {"kernels/render/terrain_stage.h", NULL};
 static const char *const single_fragments[] = {"kernels/atmosphere/method_single.h", NULL};
 static const char *const march_fragments[] = {"kernels/atmosphere/method_march.h", NULL};
 static const char *const fast_fragments[] = {"kernels/atmosphere/method_fast.h",
@@ -111,6 +134,9 @@ const atmo_feature atmo_features[] = {
     /* a medium and a visibility source: before the composition of the media */
     {"cloud", -1, cloud_shell, cloud_fragments, "-DATMO_CLOUD", NULL, NULL, NULL,
      atmo_plan_cloud, 0},
+    /* an opaque surface and a visibility source: before the composition of the media */
+    {"terrain", -1, has_terrain, terrain_fragments, "-DATMO_TERRAIN", terrain_params,
+     terrain_sources, NULL, atmo_plan_terrain, 0},
     /* the medium integrator of single, march, fast and lut; the media of the reference */
     {"medium", -1, always, medium_fragments, "", NULL, NULL, NULL, NULL, 0},
     /* Psi_ms, shared by march and fast; the flag compiles the integrator's Psi_ms source in */
@@ -126,6 +152,8 @@ const atmo_feature atmo_features[] = {
      1},
     {"reference", ATMO_METHOD_REFERENCE, is_reference, reference_fragments, "", NULL, NULL, NULL,
      atmo_plan_reference, 0},
+    {"terrain_stage", -1, terrain_stage, terrain_stage_fragments, "-DATMO_TERRAIN_STAGE", NULL,
+     NULL, NULL, NULL, 0},
     /* the kernels that render with whichever method was assembled */
     {"render", -1, always, render_fragments, "", NULL, NULL, NULL, NULL, 0},
 };

@@ -13,12 +13,15 @@
  *                  8 degrees below the centre of a frame pitched up by 10.
  *   space          2000 km above the origin, pitch -50; sun zenith 70 at azimuth 120 (behind
  *                  and to the right), so the day side fills the view and the terminator crosses
- *                  the upper left of the disc.
+ *                  the upper left of the disc; terrain with its land/sea field: continents and
+ *                  oceans.
  *
  * thesis-1 ... thesis-9 are the nine views of shared/reference/presets.md. Their "direction to
  * sun" vectors were converted with z = acos(d_y), a = atan2(d_x, d_z) and written with six
  * decimals of a degree; they reproduce the table's vectors to better than 5e-7 (test_scene.c).
- * Only the sky is rendered so far: terrain, clouds and the thesis objects are not yet in atmo. */
+ * Views 1, 2, 3, 8 and 9 and `space` have the procedural terrain; its seed 46 puts land under
+ * every thesis camera (thesis-1's camera 630 m and thesis-3's 90 m above the ground: `atmo
+ * terrain --at X,Z`). Clouds and the thesis objects are not yet in atmo. */
 #include <string.h>
 #include "atmo/scene.h"
 
@@ -26,6 +29,7 @@ const char *const atmo_default_preset = "sky-sunset";
 
 #define PRESET(name, summary, ...) {name, summary, (const char *const[]){__VA_ARGS__, NULL}}
 #define THESIS_SKY_ONLY " [sky only: terrain, clouds, objects not rendered yet]"
+#define THESIS_TERRAIN " [terrain; clouds and objects not rendered yet]"
 
 const atmo_preset atmo_presets[] = {
     PRESET("sky-noon",
@@ -39,24 +43,29 @@ const atmo_preset atmo_presets[] = {
            "sunset looking toward the sun, 2 degrees above the horizon, low in the frame",
            "camera.kind=perspective", "camera.position_m=0,1.7,0", "camera.pitch_deg=10",
            "camera.yaw_deg=0", "sun.zenith_deg=88", "sun.azimuth_deg=0"),
-    PRESET("space", "the planet from 2000 km: day side, terminator at the upper left, blue limb",
+    PRESET("space", "the planet from 2000 km: day side with continents and oceans, terminator at the upper "
+                    "left, blue limb",
            "camera.kind=perspective", "camera.position_m=0,2e6,0", "camera.pitch_deg=-50",
-           "camera.yaw_deg=0", "camera.fov_deg=45", "sun.zenith_deg=70", "sun.azimuth_deg=120"),
+           "camera.yaw_deg=0", "camera.fov_deg=45", "sun.zenith_deg=70", "sun.azimuth_deg=120",
+           "terrain.enabled=true", "terrain.seed=46"),
     PRESET("thesis-1",
-           "thesis view 1: sunset over snowy mountains, light shafts, clouds" THESIS_SKY_ONLY,
+           "thesis view 1: sunset over snowy mountains, light shafts, clouds" THESIS_TERRAIN,
            "camera.kind=perspective", "camera.position_m=23796,2266,16636",
            "camera.pitch_deg=-4.962", "camera.yaw_deg=-550", "camera.fov_deg=45",
-           "sun.zenith_deg=87.476967", "sun.azimuth_deg=-150.985019"),
+           "sun.zenith_deg=87.476967", "sun.azimuth_deg=-150.985019",
+           "terrain.enabled=true", "terrain.seed=46"),
     PRESET("thesis-2",
-           "thesis view 2: looking down at a small sphere and box, shadows" THESIS_SKY_ONLY,
+           "thesis view 2: looking down at a small sphere and box, shadows" THESIS_TERRAIN,
            "camera.kind=perspective", "camera.position_m=22831,2028,13332",
            "camera.pitch_deg=-51.5", "camera.yaw_deg=-518", "camera.fov_deg=45",
-           "sun.zenith_deg=83.222271", "sun.azimuth_deg=171.887327"),
+           "sun.zenith_deg=83.222271", "sun.azimuth_deg=171.887327",
+           "terrain.enabled=true", "terrain.seed=46"),
     PRESET("thesis-3",
-           "thesis view 3: low sun near the open-box site, sun in frame" THESIS_SKY_ONLY,
+           "thesis view 3: low sun near the open-box site, sun in frame" THESIS_TERRAIN,
            "camera.kind=perspective", "camera.position_m=26632,1337,10748", "camera.pitch_deg=-5",
            "camera.yaw_deg=-575", "camera.fov_deg=45", "sun.zenith_deg=86.098524",
-           "sun.azimuth_deg=-134.254613"),
+           "sun.azimuth_deg=-134.254613",
+           "terrain.enabled=true", "terrain.seed=46"),
     PRESET("thesis-4",
            "thesis view 4: the planet from 2000 km, terminator, cloud field, blue "
            "limb" THESIS_SKY_ONLY,
@@ -78,14 +87,16 @@ const atmo_preset atmo_presets[] = {
            "camera.kind=perspective", "camera.position_m=26631.5,1336.5,10747.5",
            "camera.pitch_deg=0", "camera.yaw_deg=0", "camera.fov_deg=45",
            "sun.zenith_deg=86.098524", "sun.azimuth_deg=-134.254613"),
-    PRESET("thesis-8", "thesis view 8: over clouds and terrain at moderate sun" THESIS_SKY_ONLY,
+    PRESET("thesis-8", "thesis view 8: over clouds and terrain at moderate sun" THESIS_TERRAIN,
            "camera.kind=perspective", "camera.position_m=7866,5837,-143910", "camera.pitch_deg=-29",
            "camera.yaw_deg=-535", "camera.fov_deg=45", "sun.zenith_deg=81.435892",
-           "sun.azimuth_deg=-170.007181"),
-    PRESET("thesis-9", "thesis view 9: high-altitude sunset over clouds" THESIS_SKY_ONLY,
+           "sun.azimuth_deg=-170.007181",
+           "terrain.enabled=true", "terrain.seed=46"),
+    PRESET("thesis-9", "thesis view 9: high-altitude sunset over clouds" THESIS_TERRAIN,
            "camera.kind=perspective", "camera.position_m=18181,37415,3431", "camera.pitch_deg=-16",
            "camera.yaw_deg=-556", "camera.fov_deg=45", "sun.zenith_deg=87.476967",
-           "sun.azimuth_deg=-150.985019"),
+           "sun.azimuth_deg=-150.985019",
+           "terrain.enabled=true", "terrain.seed=46"),
     PRESET("glory",
            "above a cloud deck of thesis-disperse drops, looking down at the antisolar point: "
            "the fog bow and the glory's bright centre (its one ring lies within 1 deg, smoothed "

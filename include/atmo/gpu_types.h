@@ -21,6 +21,7 @@
 #include "atmo/gpu_ms_lut.h"
 #include "atmo/gpu_reference.h"
 #include "atmo/gpu_sky_view.h"
+#include "atmo/gpu_terrain.h"
 #endif
 
 typedef struct atmo_gpu_camera {
@@ -45,6 +46,7 @@ typedef struct atmo_gpu_scene {
     atmo_gpu_lut lut;             /* method lut */
     atmo_gpu_reference reference; /* method reference */
     atmo_gpu_cloud cloud;         /* the cloud shell and the observer */
+    atmo_gpu_terrain terrain;     /* the procedural terrain */
 } atmo_gpu_scene;
 
 #endif

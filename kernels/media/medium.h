@@ -184,8 +184,8 @@ ATMO_FN void medium_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
     int ground = geometry_ray_hits_ground(m.r, m.mu, a->bottom_radius);
     float d = ground ? geometry_distance_to_bottom(m.r, m.mu, a->bottom_radius)
                      : geometry_distance_to_top(m.r, m.mu, a->top_radius);
-    float t_surface = visibility_surface_hit(s, &m);
-    int hits_surface = t_surface >= 0.0f && t_surface < d;
+    float t_surface = visibility_surface_hit(s, ATMO_LUT_ARGS, &m);
+    int hits_surface = t_surface >= 0.0f && t_surface <= d; /* a surface on the ground wins */
     if (hits_surface)
         d = t_surface;
     int blocked = t_max < d; /* by the black surface at t_max */
@@ -226,7 +226,7 @@ ATMO_FN void medium_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
 
     if (hits_surface) {
         out->rest = v3_add(out->rest,
-                           v3_mul(T, visibility_surface_radiance(s, transmittance_lut, &m, d)));
+                           v3_mul(T, visibility_surface_radiance(s, ATMO_LUT_ARGS, &m, d)));
     } else if (hits_ground) {
         medium_point g;
         g.p = v3_add(m.origin, v3_scale(m.dir, d));

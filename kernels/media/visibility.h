@@ -6,8 +6,11 @@
  * radius r and sun cosine mu_s: shadowed iff mu_s < 0 and r^2 (mu_s^2 - 1) + R^2 >= 0
  * (geometry.h, whose discriminant keeps its precision at planet scale); under -DATMO_CLOUD the
  * observer sphere (observer.h) at the point's camera-relative position, and the cloud shell's
- * transmittance along the sun's chord through it (cloud_shell.h). Terrain (a heightmap march
- * toward the sun) and the fBm clouds (ratio tracking toward the sun) plug in here.
+ * transmittance along the sun's chord through it (cloud_shell.h); under -DATMO_TERRAIN the
+ * terrain (kernels/terrain/terrain.h): a shadow ray from the point toward the sun's centre (a
+ * point sun, as for the planet) with the shortcuts of terrain.shafts, and the terrain's
+ * surface with its light (terrain_shade.h). The fBm clouds (ratio tracking toward the sun)
+ * plug in here.
  * visibility_sun_occluders is the product of the opaque sources (0 or 1), visibility_sun adds
  * the shadowing media (per wavelength, 0..1); both get the buffers, where a source keeps its
  * data (a heightmap, a density grid). The atmosphere's own transmittance toward the
@@ -24,7 +27,29 @@
 #ifdef ATMO_CLOUD
 #include "media/observer.h"
 #endif
+#ifdef ATMO_TERRAIN
+#include "terrain/terrain.h"
+#include "terrain/terrain_shade.h"
+#endif
 #include "atmo/gpu_types.h"
+#endif
+
+#ifdef ATMO_TERRAIN
+/* The terrain's shadow at a point of a ray, 0 or 1 (the shortcuts: gpu_enums.h). */
+ATMO_FN float visibility_terrain(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                 ATMO_GLOBAL const float *heightmap, const medium_point *q)
+{
+    ATMO_GLOBAL const atmo_gpu_terrain *tr = &s->terrain;
+    if ((tr->shafts & ATMO_TERRAIN_SHAFT_BELOW_HORIZON) && q->mu_s < 0.0f)
+        return 0.0f;
+    if ((tr->shafts & ATMO_TERRAIN_SHAFT_FAR) && v3_dot(q->p, q->p) > atmo_sq(tr->shadow_far_m))
+        return 1.0f;
+    float t;
+    return terrain_trace(s, heightmap, q->p, v3_from4(s->sun_direction), 0.0f, tr->shadow_far_m,
+                         tr->shadow_steps, &t, 0)
+               ? 0.0f
+               : 1.0f;
+}
 #endif
 
 /* 1 where the planet leaves the sun visible from the point, 0 in its shadow. */
@@ -41,6 +66,10 @@ ATMO_FN float visibility_sun_occluders(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO
     if (observer_blocks(s->cloud.observer, q->p, v3_from4(s->sun_direction)))
         v = 0.0f;
 #endif
+#ifdef ATMO_TERRAIN
+    if (v > 0.0f)
+        v *= visibility_terrain(s, heightmap, q);
+#endif
     return v;
 }
 
@@ -56,26 +85,46 @@ ATMO_FN vec3 visibility_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS
     return vis;
 }
 
-/* Distance along the ray to the first opaque surface other than the ground (the observer), or
- * -1 when there is none. */
-ATMO_FN float visibility_surface_hit(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m)
+/* Distance along the ray to the first opaque surface other than the ground (the observer, the
+ * terrain), or -1 when there is none. */
+ATMO_FN float visibility_surface_hit(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                     const medium_ray *m)
 {
+    float hit = -1.0f;
 #ifdef ATMO_CLOUD
-    return observer_hit(s->cloud.observer, m);
-#else
-    return -1.0f;
+    hit = observer_hit(s->cloud.observer, m);
 #endif
+#ifdef ATMO_TERRAIN
+    /* the terrain covers the ground sphere (its surface lies at or above sea level >= 0): a
+     * hit is never beyond the ground's distance, computed as the integrator computes it */
+    float t;
+    if (terrain_trace(s, heightmap, m->origin, m->dir, 0.0f, hit >= 0.0f ? hit : INFINITY,
+                      s->terrain.steps, &t, 0)) {
+        ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+        if (geometry_ray_hits_ground(m->r, m->mu, a->bottom_radius))
+            t = fminf(t, geometry_distance_to_bottom(m->r, m->mu, a->bottom_radius));
+        hit = t;
+    }
+#endif
+    return hit;
 }
 
 /* Radiance leaving that surface toward the ray's origin, at distance t along the ray (without
  * the air in between). The observer is small, so it is lit like the camera's surroundings:
  * sunlight with the atmosphere's and the shell's transmittance at the ray's origin (its own
- * shadow test would block it). */
-ATMO_FN vec3 visibility_surface_radiance(ATMO_GLOBAL const atmo_gpu_scene *s,
-                                         ATMO_GLOBAL const float4 *transmittance,
+ * shadow test would block it). The terrain's light is terrain_radiance (terrain_shade.h). */
+ATMO_FN vec3 visibility_surface_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                          const medium_ray *m, float t)
 {
+#ifdef ATMO_TERRAIN
 #ifdef ATMO_CLOUD
+    float t_observer = observer_hit(s->cloud.observer, m);
+    if (!(t_observer >= 0.0f && t_observer <= t))
+#endif
+        return terrain_radiance(s, ATMO_LUT_ARGS, m, t);
+#endif
+#ifdef ATMO_CLOUD
+    ATMO_GLOBAL const float4 *transmittance = transmittance_lut;
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     medium_point q = medium_ray_at(m, 0.0f, a->bottom_radius);
     vec3 sun_t = v3_mul(atmosphere_sun_transmittance(a, transmittance, s->transmittance_width,

@@ -10,7 +10,7 @@
  * size and any split of samples into launches. A non-finite sample (which should never happen)
  * is dropped and counted in `nonfinite`. The sample's stage-0 random stream (rng.h) places it
  * in the pixel (the camera's CAMERA_RNG_DIMS numbers) and goes on to the method's sky_trace
- * along the camera-relative ray.
+ * along the camera-relative ray (with terrain under fast or lut, through terrain_stage.h).
  *
  * sky_probe: the mean of `samples` samples of sky_radiance (sky_cosines.h) for a list of rays
  * given as (r, mu, mu_s, nu), for `atmo radiance` and the tests; ray i uses pixel index i.
@@ -36,7 +36,11 @@ __kernel void sky_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
         medium_ray ray =
             medium_ray_from_camera(scene, camera_ray(cam, (float)x + jx, (float)y + jy));
         float3 sky, sun, view_t;
+#ifdef ATMO_TERRAIN_STAGE
+        terrain_stage_trace(scene, ATMO_LUT_ARGS, &ray, &g, &sky, &sun, &view_t);
+#else
         sky_trace(scene, ATMO_LUT_ARGS, &ray, INFINITY, &g, &sky, &sun, &view_t);
+#endif
         float3 L = sky * scene->sky_factor.xyz + sun * scene->sun_factor.xyz;
         if (any(isnan(L)) || any(isinf(L))) {
             atomic_inc(nonfinite);

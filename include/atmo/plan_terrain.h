@@ -1,0 +1,18 @@
+/* plan_terrain.h — the plan's part for the procedural terrain (kernels/terrain/;
+ * host/plan/plan_terrain.c). */
+#ifndef ATMO_PLAN_TERRAIN_H
+#define ATMO_PLAN_TERRAIN_H
+#include "atmo/plan.h"
+
+/* Device memory at most given to the heightmap (a usage error beyond it). */
+#define ATMO_TERRAIN_HEIGHTMAP_MAX_BYTES ((size_t)1 << 30)
+
+/* Fills gpu.terrain from the scene's terrain.* keys and the camera, declares the buffer
+ * heightmap (a 16-byte placeholder for direct evaluation) and, with a heightmap, its pass
+ * terrain_heightmap (feature "terrain" of features.c, planned when terrain.enabled). */
+int atmo_plan_terrain(const atmo_scene *s, atmo_plan *p, atmo_err *e);
+
+/* The bound on |grad h| the sphere tracer sizes its steps by (plan_terrain.c). */
+double atmo_terrain_slope_bound(const atmo_gpu_terrain_field *f);
+
+#endif
