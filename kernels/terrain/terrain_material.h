@@ -69,6 +69,22 @@ ATMO_FN float terrain_detail(uint seed, float u, float v, float footprint)
     return sum;
 }
 
+/* The weights of grass, dirt, rock and snow at altitude a above sea level, slope cosine c and
+ * detail noise dn (see the top of the file); water 0. */
+ATMO_FN void terrain_material_weights(float a, float c, float dn, float w[TERRAIN_MATERIALS])
+{
+    float flat = terrain_smoothstep(0.70f, 0.85f, c);
+    float low = 1.0f - terrain_smoothstep(700.0f, 1000.0f, a + 150.0f * dn);
+    float snow = terrain_smoothstep(2500.0f, 3100.0f, a + 200.0f * dn) *
+                 terrain_smoothstep(0.55f, 0.70f, c);
+    float rest = 1.0f - snow;
+    w[TERRAIN_GRASS] = rest * low * flat;
+    w[TERRAIN_DIRT] = rest * (1.0f - low) * flat * 0.5f * (1.0f + dn);
+    w[TERRAIN_ROCK] = rest * ((1.0f - flat) + (1.0f - low) * flat * 0.5f * (1.0f - dn));
+    w[TERRAIN_SNOW] = snow;
+    w[TERRAIN_WATER] = 0.0f;
+}
+
 /* The surface at the camera-relative point p on it, seen from `distance` metres: normal,
  * material weights and albedo (the path tracer's terrain_material). */
 ATMO_FN terrain_surface_point terrain_material(ATMO_GLOBAL const atmo_gpu_scene *s,
@@ -81,22 +97,14 @@ ATMO_FN terrain_surface_point terrain_material(ATMO_GLOBAL const atmo_gpu_scene 
     m.vertical = terrain_vertical(s, p);
     m.normal = terrain_normal(s, hm, p);
     m.altitude_m = fmaxf(h.h, s->terrain.sea_level_m);
-    for (int k = 0; k < TERRAIN_MATERIALS; k++)
-        m.weight[k] = 0.0f;
     if (h.h <= s->terrain.sea_level_m) {
+        for (int k = 0; k < TERRAIN_MATERIALS; k++)
+            m.weight[k] = 0.0f;
         m.weight[TERRAIN_WATER] = 1.0f;
     } else {
         float dn = terrain_detail(s->terrain.field.seed, q.u, q.v, distance * s->terrain.pixel_angle);
-        float c = v3_dot(m.normal, m.vertical), a = h.h - s->terrain.sea_level_m;
-        float flat = terrain_smoothstep(0.70f, 0.85f, c);
-        float low = 1.0f - terrain_smoothstep(700.0f, 1000.0f, a + 150.0f * dn);
-        float snow = terrain_smoothstep(2500.0f, 3100.0f, a + 200.0f * dn) *
-                     terrain_smoothstep(0.55f, 0.70f, c);
-        float rest = 1.0f - snow;
-        m.weight[TERRAIN_GRASS] = rest * low * flat;
-        m.weight[TERRAIN_DIRT] = rest * (1.0f - low) * flat * 0.5f * (1.0f + dn);
-        m.weight[TERRAIN_ROCK] = rest * ((1.0f - flat) + (1.0f - low) * flat * 0.5f * (1.0f - dn));
-        m.weight[TERRAIN_SNOW] = snow;
+        terrain_material_weights(h.h - s->terrain.sea_level_m, v3_dot(m.normal, m.vertical), dn,
+                                 m.weight);
     }
     m.albedo = v3(0.0f, 0.0f, 0.0f);
     for (int k = 0; k < TERRAIN_MATERIALS; k++)
