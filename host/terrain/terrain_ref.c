@@ -175,6 +175,11 @@ int terrain_ref_hit(const atmo_gpu_terrain_field *f, double R, double sea_level_
         }
         lo_g = fmin(lo_g, g1);
         t0 = t1, g0 = g1;
+        /* above the highest terrain and rising: it never comes back down */
+        double q[3] = {p[0], p[1] + R, p[2]}, r = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+        if (r - R > fmax((double)f->max_height_m, sea_level_m) &&
+            q[0] * d[0] + q[1] * d[1] + q[2] * d[2] > 0)
+            break;
     }
     if (min_clearance)
         *min_clearance = lo_g;

@@ -17,7 +17,8 @@ double terrain_ref_clearance(const atmo_gpu_terrain_field *f, double R, double s
 
 /* The first hit of the world ray o + t d (d unit), 0 < t <= t_max, found by marching steps of
  * `step` metres (shorter where the clearance allows none smaller) and bisecting the bracket to
- * 1e-9 relative; returns 1 and *t on a hit. *min_clearance gets the smallest clearance seen
+ * 1e-9 relative (a ray above the highest terrain and rising ends there); returns 1 and *t on a
+ * hit. *min_clearance gets the smallest clearance seen
  * along a ray that misses (how close it skimmed). */
 int terrain_ref_hit(const atmo_gpu_terrain_field *f, double R, double sea_level_m,
                     const double o[3], const double d[3], double t_max, double step, double *t,

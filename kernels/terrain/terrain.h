@@ -34,9 +34,11 @@
  * t). A point within the distance-dependent tolerance eps(t) = 0.01 m + tolerance t above the
  * surface (a pixel's footprint at t) is a hit. Tracing is confined to the shell between sea
  * level and the highest terrain; the ray's end at sea level is a hit by construction. A ray
- * that has used `steps` steps is resolved by TERRAIN_FALLBACK_STEPS more steps of at least
- * 1/TERRAIN_FALLBACK_STEPS of the remaining shell, with the same back-stepping and bisection,
- * so it ends as a hit or leaves the shell: never as sky by exhaustion.
+ * that has used `steps` steps is resolved by TERRAIN_FALLBACK_STEPS = 112 more steps, each
+ * at least a minimum that starts at the clearance plus eps(t) and grows by a factor 1.5 per
+ * step up to U = 1/64 of the rest of the shell (at most 48 steps to reach U from 1 cm for any
+ * U below 1e6 m, then 64 of U), with the same back-stepping and bisection, so it ends as a hit
+ * or leaves the shell: never as sky by exhaustion.
  *
  * Shadows, from a point toward the sun (unit vector s, angular radius alpha, within
  * shadow_far_m): ATMO_TERRAIN_SHADOW_EXACT traces shadow_rays rays toward points of the sun
@@ -58,7 +60,8 @@
 #include "atmo/gpu_types.h"
 #endif
 
-#define TERRAIN_FALLBACK_STEPS 64
+#define TERRAIN_FALLBACK_STEPS 112
+#define TERRAIN_FALLBACK_GROWTH 1.5f
 #define TERRAIN_BISECTIONS 24
 #define TERRAIN_EPS_M 0.01f
 #define TERRAIN_GOLDEN_ANGLE 2.39996323f
@@ -235,11 +238,15 @@ ATMO_FN int terrain_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const
         *t_hit = t;
         return 1;
     }
-    float omega = tr->optimism, t_prev = t, g_prev = g, min_step = 0.0f;
+    float omega = tr->optimism, t_prev = t, g_prev = g, min_step = 0.0f, uniform = 0.0f;
     int total = steps + TERRAIN_FALLBACK_STEPS, hit = 0;
     for (n = 0; n < total; n++) {
-        if (n == steps) /* the fallback: bounded steps through the rest of the shell */
-            min_step = (t_end - t) / (float)TERRAIN_FALLBACK_STEPS;
+        if (n == steps) { /* the fallback: steps from the clearance up to a 64th of the rest */
+            min_step = g + TERRAIN_EPS_M + tr->tolerance * t;
+            uniform = (t_end - t) / 64.0f;
+        } else if (n > steps) {
+            min_step = fminf(min_step * TERRAIN_FALLBACK_GROWTH, uniform);
+        }
         if (g < TERRAIN_EPS_M + tr->tolerance * t) {
             hit = 1;
             break;
