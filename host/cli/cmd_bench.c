@@ -24,7 +24,10 @@ static const char bench_usage[] =
     "              (tests/data/reference_sky.csv; --reference FILE to use another)\n"
     "  mie         cloud phase options against the tabulated Mie phase; phase table build time\n"
     "  colour      colour difference (CIE76) of the 3-wavelength mode from the spectral mode\n"
-    "              with 15, 30 and 48 bands, by sun zenith; and their time\n";
+    "              with 15, 30 and 48 bands, by sun zenith; and their time\n"
+    "  terrain     heightmap sizes and formats against direct evaluation, sphere-tracing\n"
+    "              optimism and steps, exact against estimated shadows, light-shaft shortcuts,\n"
+    "              thesis-1's time per sample\n";
 
 int cmd_bench(int argc, char **argv)
 {
@@ -51,12 +54,14 @@ int cmd_bench(int argc, char **argv)
         }
     }
     if (!suite) {
-        fprintf(stderr, "atmo bench: name a suite (sky, atmosphere, mie, colour); atmo bench --help\n");
+        fprintf(stderr, "atmo bench: name a suite (sky, atmosphere, mie, colour, terrain); atmo bench --help\n");
         return ATMO_ERR_USAGE;
     }
     if (strcmp(suite, "sky") != 0 && strcmp(suite, "mie") != 0 &&
-        strcmp(suite, "atmosphere") != 0 && strcmp(suite, "colour") != 0) {
-        fprintf(stderr, "atmo bench: unknown suite '%s' (suites: sky, atmosphere, mie, colour)\n",
+        strcmp(suite, "atmosphere") != 0 && strcmp(suite, "colour") != 0 &&
+        strcmp(suite, "terrain") != 0) {
+        fprintf(stderr, "atmo bench: unknown suite '%s' (suites: sky, atmosphere, mie, colour, "
+                        "terrain)\n",
                 suite);
         return ATMO_ERR_USAGE;
     }
@@ -69,6 +74,7 @@ int cmd_bench(int argc, char **argv)
     int rc = strcmp(suite, "mie") == 0   ? bench_mie(dir, quick, &e)
              : strcmp(suite, "sky") == 0 ? bench_sky(dir, device, quick, &e)
              : strcmp(suite, "colour") == 0 ? bench_colour(dir, device, quick, &e)
+             : strcmp(suite, "terrain") == 0 ? bench_terrain(dir, device, quick, &e)
                                          : bench_atmosphere(dir, device, reference, quick, &e);
     if (rc)
         fprintf(stderr, "atmo bench: %s\n", e.msg);

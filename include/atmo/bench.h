@@ -37,4 +37,10 @@ int bench_colour(const char *dir, const char *device, int quick, atmo_err *e);
  * (host/bench_mie.c). Writes DIR/mie.csv, DIR/mie_table.csv and DIR/mie.svg. */
 int bench_mie(const char *dir, int quick, atmo_err *e);
 
+/* `atmo bench terrain`: heightmap sizes and formats against direct evaluation, sphere-tracing
+ * optimism and steps, exact against estimated shadows, light-shaft shortcuts, and thesis-1's
+ * time (host/bench/bench_terrain.c). Writes DIR/terrain.csv, DIR/terrain.svg and
+ * DIR/terrain_thesis1.csv. */
+int bench_terrain(const char *dir, const char *device, int quick, atmo_err *e);
+
 #endif

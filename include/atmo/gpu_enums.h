@@ -41,9 +41,10 @@ enum { ATMO_TERRAIN_SHADOW_NONE = 0, ATMO_TERRAIN_SHADOW_EXACT, ATMO_TERRAIN_SHA
  * sample of the medium integrator asks the terrain's shadow */
 enum {
     ATMO_TERRAIN_SHAFT_BELOW_HORIZON = 1, /* sun below the sample's horizon: shadowed */
-    ATMO_TERRAIN_SHAFT_ABOVE_TERRAIN = 2, /* sample above the highest terrain toward the sun: lit */
-    ATMO_TERRAIN_SHAFT_FAR = 4,           /* sample beyond the shadow far plane: lit */
+    ATMO_TERRAIN_SHAFT_FAR = 2,           /* sample beyond the shadow far plane: lit */
 };
+/* (A sample above the highest terrain whose sun ray rises is lit without a shortcut: the
+ * tracer's shell test, kernels/terrain/terrain.h, returns at once.) */
 
 /* atmosphere.method, in the order of the scene registry's names */
 enum {
