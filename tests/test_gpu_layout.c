@@ -23,6 +23,7 @@
     X(atmo_gpu_reference, max_order) X(atmo_gpu_cloud, observer) X(atmo_gpu_cloud, base_m)        \
     X(atmo_gpu_cloud, phase) X(atmo_gpu_cloud, steps) X(atmo_gpu_scene, terrain)                 \
     X(atmo_gpu_terrain_field, seed) X(atmo_gpu_terrain_field, heightmap_extent_m)                \
+    X(atmo_gpu_terrain_field, base_rect) X(atmo_gpu_terrain_field, base_detail)                  \
     X(atmo_gpu_terrain, camera) X(atmo_gpu_terrain, steps) X(atmo_gpu_terrain, shafts)          \
     X(atmo_gpu_terrain, pixel_angle)
 

@@ -23,7 +23,11 @@
  *     interpolation, in double, of the double reference at the four surrounding texel centres:
  *     bound 2 at those centres plus 1e-6 H for the interpolation's own rounding. Its distance
  *     to the true field (the interpolation error, which the detail below a texel sets) is
- *     printed, not asserted: atmo bench terrain charts it. */
+ *     printed, not asserted: atmo bench terrain charts it.
+ *  5. A host-supplied height grid (atmo_plan_terrain_base; 33 x 33 samples of a smooth
+ *     surface over the heightmap's square, detail 0.25): each texel against the grid's bilinear
+ *     interpolation in double plus 0.25 times the double fBm, within bound 2 plus 1e-6 of the
+ *     grid's heights (the interpolation's float rounding). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -183,6 +187,50 @@ int main(void)
         free(map2);
         test_release_luts(luts);
         test_release_luts(again);
+        clReleaseMemObject(scene);
+        clReleaseProgram(prog);
+        atmo_plan_free(&p);
+    }
+    /* 5: a height grid under the heightmap */
+    {
+        atmo_plan p;
+        terrain_plan(0, &p);
+        enum { G = 33 };
+        static float grid[G * G];
+        double x0 = -0.5 * EXTENT, dx = EXTENT / (G - 1);
+        for (int j = 0; j < G; j++)
+            for (int i = 0; i < G; i++)
+                grid[j * G + i] = (float)(1000.0 + 300.0 * sin((x0 + i * dx) / 1500.0) *
+                                                       cos((x0 + j * dx) / 1100.0));
+        atmo_err e;
+        CHECK(atmo_plan_terrain_base(&p, grid, G, G, x0, x0, dx, dx, 0.25, &e) == ATMO_OK);
+        cl_program prog = test_plan_program(&cl, &p, "");
+        cl_int err;
+        cl_mem scene = clCreateBuffer(cl.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                      sizeof p.gpu, &p.gpu, &err);
+        cl_mem luts[ATMO_PLAN_MAX_BUFFERS];
+        test_precompute(&cl, prog, scene, &p, luts);
+        float *map = malloc(sizeof(float) * MAP * MAP);
+        test_cl_read(&cl, test_plan_buffer(&p, luts, "heightmap"), sizeof(float) * MAP * MAP, map);
+        const atmo_gpu_terrain_field *pf = &p.gpu.terrain.field;
+        double worst = 0, texel = EXTENT / MAP;
+        for (int j = 0; j < MAP; j++)
+            for (int i = 0; i < MAP; i++) {
+                double u = (double)(float)(-0.5 * EXTENT + (i + 0.5) * texel);
+                double v = (double)(float)(-0.5 * EXTENT + (j + 0.5) * texel);
+                double gx = (u - x0) / dx, gz = (v - x0) / dx;
+                int a = (int)gx, b = (int)gz;
+                double fx = gx - a, fz = gz - b;
+                double want = (1 - fz) * ((1 - fx) * grid[b * G + a] + fx * grid[b * G + a + 1]) +
+                              fz * ((1 - fx) * grid[(b + 1) * G + a] + fx * grid[(b + 1) * G + a + 1]);
+                want += 0.25 * terrain_ref_height(pf, u, v, NULL, NULL);
+                double bound = float_bound(pf, L, u, v) + 1e-6 * 1300.0;
+                worst = fmax(worst, fabs(map[j * MAP + i] - want) / bound);
+                CHECK(fabs(map[j * MAP + i] - want) <= bound);
+            }
+        printf("height grid under the heightmap: texels worst %.3f of their bound\n", worst);
+        free(map);
+        test_release_luts(luts);
         clReleaseMemObject(scene);
         clReleaseProgram(prog);
         atmo_plan_free(&p);

@@ -33,13 +33,15 @@ _Static_assert(offsetof(atmo_gpu_scene, sky_view) == 320, "atmo_gpu_scene layout
 _Static_assert(offsetof(atmo_gpu_scene, lut) == 336, "atmo_gpu_scene layout");
 _Static_assert(offsetof(atmo_gpu_scene, reference) == 368, "atmo_gpu_scene layout");
 _Static_assert(offsetof(atmo_gpu_scene, cloud) == 384, "atmo_gpu_scene layout");
-_Static_assert(sizeof(atmo_gpu_terrain_field) == 48, "atmo_gpu_terrain_field layout");
+_Static_assert(sizeof(atmo_gpu_terrain_field) == 80, "atmo_gpu_terrain_field layout");
 _Static_assert(offsetof(atmo_gpu_terrain_field, seed) == 24, "atmo_gpu_terrain_field layout");
-_Static_assert(sizeof(atmo_gpu_terrain) == 112, "atmo_gpu_terrain layout");
-_Static_assert(offsetof(atmo_gpu_terrain, camera) == 48, "atmo_gpu_terrain layout");
-_Static_assert(offsetof(atmo_gpu_terrain, shafts) == 100, "atmo_gpu_terrain layout");
+_Static_assert(offsetof(atmo_gpu_terrain_field, base_rect) == 48, "atmo_gpu_terrain_field");
+_Static_assert(offsetof(atmo_gpu_terrain_field, base_detail) == 64, "atmo_gpu_terrain_field");
+_Static_assert(sizeof(atmo_gpu_terrain) == 144, "atmo_gpu_terrain layout");
+_Static_assert(offsetof(atmo_gpu_terrain, camera) == 80, "atmo_gpu_terrain layout");
+_Static_assert(offsetof(atmo_gpu_terrain, shafts) == 132, "atmo_gpu_terrain layout");
 _Static_assert(offsetof(atmo_gpu_scene, terrain) == 480, "atmo_gpu_scene layout");
-_Static_assert(sizeof(atmo_gpu_scene) == 592, "atmo_gpu_scene layout");
+_Static_assert(sizeof(atmo_gpu_scene) == 624, "atmo_gpu_scene layout");
 
 #define DEG (M_PI / 180.0)
 

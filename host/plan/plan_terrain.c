@@ -82,7 +82,31 @@ int atmo_plan_terrain(const atmo_scene *s, atmo_plan *p, atmo_err *e)
                          "a smaller size, the float format, or 0 (direct evaluation)",
                          n, bytes / 1048576.0, ATMO_TERRAIN_HEIGHTMAP_MAX_BYTES / 1048576.0);
     int rc = atmo_plan_add_buffer(p, "heightmap", "float", bytes, 0, NULL, e);
+    if (!rc)
+        rc = atmo_plan_add_buffer(p, "terrain_base", "float", 0, 0, NULL, e);
     if (!rc && n > 0)
         rc = atmo_plan_add_pass(p, "terrain_heightmap", n, n, 1, 0, e);
     return rc;
+}
+
+int atmo_plan_terrain_base(atmo_plan *p, const float *heights, int nx, int nz, double x0,
+                           double z0, double dx, double dz, double detail, atmo_err *e)
+{
+    atmo_plan_buffer *b = atmo_plan_buffer_find(p, "terrain_base");
+    atmo_gpu_terrain_field *f = &p->gpu.terrain.field;
+    if (!b || f->heightmap_size < 2)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "a height grid needs terrain.enabled and terrain.heightmap_size >= 2 "
+                         "(the heightmap resamples it); set them");
+    if (nx < 2 || nz < 2 || !(dx > 0.0) || !(dz > 0.0) || !isfinite(x0) || !isfinite(z0))
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "a height grid needs at least 2 x 2 samples and positive spacing (got "
+                         "%d x %d, %g x %g m)", nx, nz, dx, dz);
+    b->bytes = sizeof(float) * (size_t)nx * (size_t)nz;
+    b->host_data = heights;
+    f->base_nx = nx, f->base_nz = nz;
+    f->base_rect.x = (float)x0, f->base_rect.y = (float)z0;
+    f->base_rect.z = (float)dx, f->base_rect.w = (float)dz;
+    f->base_detail = (float)detail;
+    return ATMO_OK;
 }

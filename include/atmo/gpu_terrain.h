@@ -3,7 +3,9 @@
  * tests/test_gpu_layout.c).
  *
  * `field` is the height field itself, the only part the heightmap pass reads (its cache key);
- * the rest is the camera's placement over it (follows the view) and the tracing, shading and
+ * with a host-supplied height grid (a digital elevation model in metres, atmo_plan_terrain_base)
+ * the heightmap pass resamples the grid and adds base_detail times the fBm; the rest is the
+ * camera's placement over it (follows the view) and the tracing, shading and
  * shadow settings. Heights are in metres above the ground sphere (sea level), a function of
  * the planar coordinates (u, v) of a point's foot on the sphere (kernels/terrain/terrain.h). */
 #ifndef ATMO_GPU_TERRAIN_H
@@ -23,7 +25,12 @@ typedef struct atmo_gpu_terrain_field {
     int heightmap_size;             /* texels per side; 0: direct evaluation, no heightmap */
     int heightmap_format;           /* ATMO_TERRAIN_FORMAT_* (gpu_enums.h) */
     float heightmap_extent_m;       /* side of the square it covers, centred on the origin */
-    int pad0, pad1;
+    int base_nx, base_nz;           /* a host-supplied height grid (buffer terrain_base, row-major
+                                       in z), 0 x 0: none */
+    float4 base_rect;               /* its first sample's planar (u, v) and its spacing, m:
+                                       x0, z0, dx, dz */
+    float base_detail;              /* the fBm's share added over the grid (0: the grid alone) */
+    int pad0, pad1, pad2;
 } atmo_gpu_terrain_field;
 
 typedef struct atmo_gpu_terrain {
