@@ -139,7 +139,8 @@ const atmo_param atmo_params[] = {
     ROW_FLOAT("terrain.coverage_frequency_per_m", terrain.coverage_frequency_per_m, "1/m", 1e-9,
               1e-3, 2e-7, "first octave of the land/sea field (thesis: 2e-7)"),
     ROW_FLOAT("terrain.land_fraction", terrain.land_fraction, "", 0, 1, 0.6,
-              "about the fraction of the planet that is land (1: no sea)"),
+              "land/sea threshold: 1 all land, 0 all sea (the land's share rises steeply "
+              "between 0.3 and 0.45)"),
     ROW_INT("terrain.octaves", terrain.octaves, "", 1, 16, 9, "octaves of the height fBm"),
     ROW_INT("terrain.coverage_octaves", terrain.coverage_octaves, "", 1, 12, 6,
             "octaves of the land/sea field"),

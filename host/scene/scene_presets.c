@@ -13,8 +13,8 @@
  *                  8 degrees below the centre of a frame pitched up by 10.
  *   space          2000 km above the origin, pitch -50; sun zenith 70 at azimuth 120 (behind
  *                  and to the right), so the day side fills the view and the terminator crosses
- *                  the upper left of the disc; terrain with its land/sea field: continents and
- *                  oceans.
+ *                  the upper left of the disc; terrain with its land/sea field at threshold 0.35:
+ *                  continents and oceans (about 28 % sea within 2800 km of the origin).
  *
  * thesis-1 ... thesis-9 are the nine views of shared/reference/presets.md. Their "direction to
  * sun" vectors were converted with z = acos(d_y), a = atan2(d_x, d_z) and written with six
@@ -47,7 +47,8 @@ const atmo_preset atmo_presets[] = {
                     "left, blue limb",
            "camera.kind=perspective", "camera.position_m=0,2e6,0", "camera.pitch_deg=-50",
            "camera.yaw_deg=0", "camera.fov_deg=45", "sun.zenith_deg=70", "sun.azimuth_deg=120",
-           "terrain.enabled=true", "terrain.seed=46"),
+           "terrain.enabled=true", "terrain.seed=46",
+           "terrain.land_fraction=0.35"),
     PRESET("thesis-1",
            "thesis view 1: sunset over snowy mountains, light shafts, clouds" THESIS_TERRAIN,
            "camera.kind=perspective", "camera.position_m=23796,2266,16636",

@@ -83,11 +83,10 @@ static double fbm(double x, double y, int octaves, unsigned seed, double *ex, do
         b *= 0.5;
         next_octave(&x, &y, j);
     }
-    double k = RELIEF / norm, e = a * k + 0.5;
-    int inside = e > 0 && e < 1;
-    *ex = inside ? ax * k : 0;
-    *ey = inside ? ay * k : 0;
-    return e < 0 ? 0 : e > 1 ? 1 : e;
+    double k = RELIEF / norm, th = tanh(2 * k * a), slope = k * (1 - th * th);
+    *ex = ax * slope;
+    *ey = ay * slope;
+    return 0.5 + 0.5 * th;
 }
 
 static double coverage(const atmo_gpu_terrain_field *f, double u, double v, double *cu, double *cv)

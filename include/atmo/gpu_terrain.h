@@ -18,7 +18,7 @@ typedef struct atmo_gpu_terrain_field {
     float max_height_m;             /* H: heights lie in [0, H] */
     float frequency_per_m;          /* the fBm's first octave */
     float coverage_frequency_per_m; /* the land/sea field's first octave */
-    float land_fraction;            /* about the fraction of the planet that is land, 0..1 */
+    float land_fraction;            /* land/sea threshold: 1 all land, 0 all sea */
     int octaves;                    /* of the height fBm (9) */
     int coverage_octaves;           /* of the land/sea field (6) */
     uint seed;                      /* of the integer hash */

@@ -89,7 +89,7 @@ typedef struct atmo_scene {
         double sea_level_m;    /* water at and below this altitude */
         double frequency_per_m;          /* first octave of the height fBm */
         double coverage_frequency_per_m; /* first octave of the land/sea field */
-        double land_fraction;  /* about the fraction of the planet that is land */
+        double land_fraction;  /* land/sea threshold: 1 all land, 0 all sea */
         int octaves, coverage_octaves;
         int seed;
         int heightmap_size;    /* texels per side; 0: direct evaluation */

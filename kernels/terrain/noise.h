@@ -20,9 +20,10 @@
  * with J_i = (2 M)^i and H_j the Hessian of octave j,
  *     grad a = sum_i b_i [J_i^T g_i (1 + |D_i|^2) - 2 n_i (sum_{j<=i} J_j^T H_j) D_i]
  *              / (1 + |D_i|^2)^2.
- * The terrain's elevation is e = clamp(1/2 + TERRAIN_RELIEF a / sum b_i, 0, 1): a relief of
- * 0.8 spreads the fBm's narrow distribution over about [0.1, 0.9] (valleys and snowy peaks
- * under a 4 km maximum), the rare values beyond saturating into flats.
+ * The terrain's elevation is e = (1 + tanh(2 TERRAIN_RELIEF a / sum b_i)) / 2 in (0, 1): a
+ * relief of 0.8 spreads the fBm's narrow distribution over about [0.1, 0.9] (valleys and snowy
+ * peaks under a 4 km maximum) with slope 0.8 / sum b_i at the middle, the rare values beyond
+ * saturating smoothly (a clamp would leave flat plateaus whose edges trace the lattice).
  *
  * Coverage (land and sea): plain fBm c0 of `coverage_octaves` octaves (no erosion), normalised
  * to [0, 1] the same way, then smoothstep(t - 0.05, t + 0.05, c0) with t = 1 - land_fraction.
@@ -128,11 +129,10 @@ ATMO_FN float terrain_fbm(float x, float y, int octaves, uint seed, float *ex, f
         float n11 = 2.0f * (TERRAIN_ROT_S * j01 + TERRAIN_ROT_C * j11);
         j00 = n00, j01 = n01, j10 = n10, j11 = n11;
     }
-    float k = TERRAIN_RELIEF / norm, e = a * k + 0.5f;
-    int inside = e > 0.0f && e < 1.0f;
-    *ex = inside ? ax * k : 0.0f;
-    *ey = inside ? ay * k : 0.0f;
-    return clamp(e, 0.0f, 1.0f);
+    float k = TERRAIN_RELIEF / norm, th = tanhf(2.0f * k * a), slope = k * (1.0f - th * th);
+    *ex = ax * slope;
+    *ey = ay * slope;
+    return 0.5f + 0.5f * th;
 }
 
 /* The land/sea coverage in [0, 1] at (u, v) metres and its gradient. */
