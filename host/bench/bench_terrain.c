@@ -330,7 +330,7 @@ static int shafts(const char *device, int quick, bench_row *rows, int *n, atmo_e
 static int thesis_time(const char *dir, const char *device, int quick, const char *dev_name,
                        atmo_err *e)
 {
-    static const char *const parts[] = {"sky only", "terrain, no shadows or shafts",
+    static const char *const parts[] = {"sky only", "terrain without shadows or shafts",
                                         "terrain + surface shadows", "terrain + shadows + shafts"};
     bench_row rows[4];
     int rc, w = quick ? 64 : 160, h = quick ? 36 : 90;
