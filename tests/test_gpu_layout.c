@@ -1,6 +1,6 @@
 /* test_gpu_layout — the structs of include/atmo/gpu_types.h and of each feature's header
  * (gpu_atmosphere.h, gpu_ms_lut.h, gpu_sky_view.h, gpu_lut.h, gpu_reference.h, gpu_cloud.h,
- * gpu_clouds.h, gpu_path.h) have
+ * gpu_clouds.h, gpu_path.h, gpu_terrain.h) have
  * the same size and field offsets in the OpenCL C compiler as on the host.
  * labels: kernel
  *
@@ -26,7 +26,12 @@
     X(atmo_gpu_clouds, origin) X(atmo_gpu_clouds, bottom_m) X(atmo_gpu_clouds, majorant)          \
     X(atmo_gpu_clouds, phase) X(atmo_gpu_clouds, seed) X(atmo_gpu_scene, path)                    \
     X(atmo_gpu_path, object_count) X(atmo_gpu_path, sampler) X(atmo_gpu_path, filter_radius)      \
-    X(atmo_gpu_path, focus_m) X(atmo_gpu_object, emission) X(atmo_gpu_object, kind)
+    X(atmo_gpu_path, focus_m) X(atmo_gpu_object, emission) X(atmo_gpu_object, kind) \
+    X(atmo_gpu_scene, terrain)                 \
+    X(atmo_gpu_terrain_field, seed) X(atmo_gpu_terrain_field, heightmap_extent_m)                \
+    X(atmo_gpu_terrain_field, base_rect) X(atmo_gpu_terrain_field, base_detail)                  \
+    X(atmo_gpu_terrain, camera) X(atmo_gpu_terrain, steps) X(atmo_gpu_terrain, shafts)          \
+    X(atmo_gpu_terrain, pixel_angle)
 
 #define HOST_OFFSET(type, field) (uint)offsetof(type, field),
 #define DEVICE_OFFSET(type, field) "out[n++] = (uint)__builtin_offsetof(" #type ", " #field ");\n"
@@ -44,7 +49,9 @@ static const char probe[] =
     "  out[n++] = (uint)sizeof(atmo_gpu_cloud);\n"
     "  out[n++] = (uint)sizeof(atmo_gpu_clouds);\n"
     "  out[n++] = (uint)sizeof(atmo_gpu_path);\n"
-    "  out[n++] = (uint)sizeof(atmo_gpu_object);\n" FIELDS(DEVICE_OFFSET) "}\n";
+    "  out[n++] = (uint)sizeof(atmo_gpu_object);\n"
+    "  out[n++] = (uint)sizeof(atmo_gpu_terrain_field);\n"
+    "  out[n++] = (uint)sizeof(atmo_gpu_terrain);\n" FIELDS(DEVICE_OFFSET) "}\n";
 
 int main(void)
 {
@@ -54,6 +61,7 @@ int main(void)
                    (uint)sizeof(atmo_gpu_reference), (uint)sizeof(atmo_gpu_cloud),
                    (uint)sizeof(atmo_gpu_clouds), (uint)sizeof(atmo_gpu_path),
                    (uint)sizeof(atmo_gpu_object),
+                   (uint)sizeof(atmo_gpu_terrain_field), (uint)sizeof(atmo_gpu_terrain),
                    FIELDS(HOST_OFFSET)};
     enum { N = sizeof want / sizeof want[0] };
     atmo_cl cl;
@@ -63,8 +71,8 @@ int main(void)
                                "include/atmo/gpu_sky_view.h",   "include/atmo/gpu_lut.h",
                                "include/atmo/gpu_reference.h",  "include/atmo/gpu_cloud.h",
                                "include/atmo/gpu_clouds.h",     "include/atmo/gpu_path.h",
-                               "include/atmo/gpu_types.h"};
-    cl_program prog = test_cl_build(&cl, fragments, 11, probe);
+                               "include/atmo/gpu_terrain.h",    "include/atmo/gpu_types.h"};
+    cl_program prog = test_cl_build(&cl, fragments, 12, probe);
     cl_int err;
     cl_kernel k = clCreateKernel(prog, "probe", &err);
     cl_mem out = test_cl_buffer(&cl, sizeof want, NULL);

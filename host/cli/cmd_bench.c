@@ -29,7 +29,10 @@ static const char bench_usage[] =
     "              and cold, 512x256 to 4096x2048 (wall seconds, not error)\n"
     "  render      the path tracer: time to 1% noise of thesis views 1, 6 and 7 at 1280x720\n"
     "              (extrapolated from a central crop), its split between the atmosphere and\n"
-    "              the bounces, and the cost of an unused objects feature\n";
+    "              the bounces, and the cost of an unused objects feature\n"
+    "  terrain     heightmap sizes and formats against direct evaluation, sphere-tracing\n"
+    "              optimism and steps, exact against estimated shadows, light-shaft shortcuts,\n"
+    "              thesis-1's time per sample\n";
 
 int cmd_bench(int argc, char **argv)
 {
@@ -57,14 +60,15 @@ int cmd_bench(int argc, char **argv)
     }
     if (!suite) {
         fprintf(stderr, "atmo bench: name a suite (sky, atmosphere, mie, colour, panorama, "
-                        "render); atmo bench --help\n");
+                        "render, terrain); atmo bench --help\n");
         return ATMO_ERR_USAGE;
     }
     if (strcmp(suite, "sky") != 0 && strcmp(suite, "mie") != 0 &&
         strcmp(suite, "atmosphere") != 0 && strcmp(suite, "colour") != 0 &&
-        strcmp(suite, "panorama") != 0 && strcmp(suite, "render") != 0) {
+        strcmp(suite, "panorama") != 0 && strcmp(suite, "render") != 0 &&
+        strcmp(suite, "terrain") != 0) {
         fprintf(stderr, "atmo bench: unknown suite '%s' (suites: sky, atmosphere, mie, colour, "
-                        "panorama, render)\n",
+                        "panorama, render, terrain)\n",
                 suite);
         return ATMO_ERR_USAGE;
     }
@@ -79,6 +83,7 @@ int cmd_bench(int argc, char **argv)
              : strcmp(suite, "colour") == 0 ? bench_colour(dir, device, quick, &e)
              : strcmp(suite, "panorama") == 0 ? bench_panorama(dir, device, quick, &e)
              : strcmp(suite, "render") == 0 ? bench_path(dir, device, quick, &e)
+             : strcmp(suite, "terrain") == 0 ? bench_terrain(dir, device, quick, &e)
                                          : bench_atmosphere(dir, device, reference, quick, &e);
     if (rc)
         fprintf(stderr, "atmo bench: %s\n", e.msg);

@@ -20,5 +20,6 @@ int cmd_cache(int argc, char **argv);
 int cmd_view(int argc, char **argv);
 int cmd_merge(int argc, char **argv);
 int cmd_dem(int argc, char **argv);
+int cmd_terrain(int argc, char **argv);
 
 #endif

@@ -16,6 +16,7 @@ static const atmo_command commands[] = {
     {"radiance", "print sky radiance and luminance for view directions", cmd_radiance},
     {"cache", "list, verify or clear the cache of kernels, LUTs and Mie tables", cmd_cache},
     {"dem", "read a digital elevation model (GeoTIFF, PNG, EXR): size, extent, heights", cmd_dem},
+    {"terrain", "print the terrain's height, normal, coverage and materials at points", cmd_terrain},
 };
 
 static void usage(FILE *f)

@@ -10,6 +10,7 @@
 #include "atmo/plan_march.h"
 #include "atmo/plan_path.h"
 #include "atmo/plan_reference.h"
+#include "atmo/plan_terrain.h"
 
 static int always(const atmo_scene *s) { return s != NULL; }
 static int ms_methods(const atmo_scene *s)
@@ -20,6 +21,12 @@ static int cloud_shell(const atmo_scene *s) { return s->cloud.enabled || s->obse
 static int cloud_layer(const atmo_scene *s) { return s->clouds.enabled; }
 static int has_objects(const atmo_scene *s) { return s->objects.count > 0; }
 static int path_mode(const atmo_scene *s) { return s->path.mode == ATMO_RENDER_PATH; }
+static int has_terrain(const atmo_scene *s) { return s->terrain.enabled; }
+static int terrain_stage(const atmo_scene *s)
+{
+    return s->terrain.enabled && (s->atmosphere.method == ATMO_METHOD_FAST ||
+                                  s->atmosphere.method == ATMO_METHOD_LUT);
+}
 static int is_single(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_SINGLE; }
 static int is_march(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_MARCH; }
 static int is_fast(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_FAST; }
@@ -48,6 +55,7 @@ static const char *const atmosphere_fragments[] = {
     "include/atmo/gpu_sky_view.h",    "include/atmo/gpu_lut.h",
     "include/atmo/gpu_reference.h",   "include/atmo/gpu_cloud.h",
     "include/atmo/gpu_clouds.h",      "include/atmo/gpu_path.h",
+    "include/atmo/gpu_terrain.h",
     "include/atmo/gpu_types.h",       "kernels/common/rng.h",
     "kernels/common/geometry.h",      "kernels/common/phase.h",
     "kernels/atmosphere/atmosphere.h", "kernels/common/camera.h",
@@ -108,6 +116,22 @@ static const char *const clouds_fragments[] = {"kernels/media/cloud_noise.h",
                                                "kernels/media/phase_table.h",
                                                "kernels/media/cloud_layer.h", NULL};
 static const char *const clouds_march_fragments[] = {"kernels/media/cloud_march.h", NULL};
+/* The terrain: the height field, the tracer and shadows, the surface's light, and the
+ * heightmap pass, which reads only the field (the camera's placement stays out of the key). */
+static const char *const terrain_fragments[] = {"kernels/terrain/noise.h",
+                                                "kernels/terrain/terrain.h",
+                                                "kernels/terrain/water.h",
+                                                "kernels/terrain/terrain_material.h",
+                                                "kernels/terrain/terrain_shade.h",
+                                                "kernels/terrain/heightmap.cl", NULL};
+static const atmo_gpu_field terrain_params[] = {ATMO_GPU_FIELD(terrain.field), {0, 0}};
+static const char *const terrain_sources[] = {
+    "kernels/common/compat.h",   "include/atmo/gpu_enums.h",   "include/atmo/gpu_terrain.h",
+    "include/atmo/gpu_types.h",  "kernels/terrain/noise.h",    "kernels/terrain/heightmap.cl",
+    NULL};
+/* methods fast and lut read whole rays from tables that know no terrain: a render stage finds
+ * the hit first and asks the method for the air in front of it */
+static const char *const terrain_stage_fragments[] = {"kernels/render/terrain_stage.h", NULL};
 static const char *const single_fragments[] = {"kernels/atmosphere/method_single.h", NULL};
 static const char *const march_fragments[] = {"kernels/atmosphere/method_march.h", NULL};
 static const char *const fast_fragments[] = {"kernels/atmosphere/method_fast.h",
@@ -134,6 +158,9 @@ const atmo_feature atmo_features[] = {
      * the path tracer's surfaces */
     {"objects", -1, has_objects, objects_fragments, "-DATMO_OBJECTS", NULL, NULL, NULL,
      atmo_plan_objects, 0},
+    /* an opaque surface and a visibility source: before the composition of the media */
+    {"terrain", -1, has_terrain, terrain_fragments, "-DATMO_TERRAIN", terrain_params,
+     terrain_sources, NULL, atmo_plan_terrain, 0},
     /* the medium integrator of single, march, fast and lut; the media of the reference */
     {"medium", -1, always, medium_fragments, "", NULL, NULL, NULL, NULL, 0},
     /* the layer's marcher, over the integrator's pieces (media.h declares it) */
@@ -151,6 +178,8 @@ const atmo_feature atmo_features[] = {
      1},
     {"reference", ATMO_METHOD_REFERENCE, is_reference, reference_fragments, "", NULL, NULL, NULL,
      atmo_plan_reference, 0},
+    {"terrain_stage", -1, terrain_stage, terrain_stage_fragments, "-DATMO_TERRAIN_STAGE", NULL,
+     NULL, NULL, NULL, 0},
     /* the kernels that render with whichever method was assembled */
     {"render", -1, always, render_fragments, "", NULL, NULL, NULL, NULL, 0},
     /* the path tracer's stages and its kernel path_render, over whichever method was assembled */

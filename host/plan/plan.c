@@ -44,7 +44,15 @@ _Static_assert(sizeof(atmo_gpu_path) == 80, "atmo_gpu_path layout");
 _Static_assert(offsetof(atmo_gpu_path, object_count) == 16, "atmo_gpu_path layout");
 _Static_assert(offsetof(atmo_gpu_path, filter_radius) == 52, "atmo_gpu_path layout");
 _Static_assert(offsetof(atmo_gpu_scene, path) == 656, "atmo_gpu_scene layout");
-_Static_assert(sizeof(atmo_gpu_scene) == 736, "atmo_gpu_scene layout");
+_Static_assert(sizeof(atmo_gpu_terrain_field) == 80, "atmo_gpu_terrain_field layout");
+_Static_assert(offsetof(atmo_gpu_terrain_field, seed) == 24, "atmo_gpu_terrain_field layout");
+_Static_assert(offsetof(atmo_gpu_terrain_field, base_rect) == 48, "atmo_gpu_terrain_field");
+_Static_assert(offsetof(atmo_gpu_terrain_field, base_detail) == 64, "atmo_gpu_terrain_field");
+_Static_assert(sizeof(atmo_gpu_terrain) == 144, "atmo_gpu_terrain layout");
+_Static_assert(offsetof(atmo_gpu_terrain, camera) == 80, "atmo_gpu_terrain layout");
+_Static_assert(offsetof(atmo_gpu_terrain, shafts) == 132, "atmo_gpu_terrain layout");
+_Static_assert(offsetof(atmo_gpu_scene, terrain) == 736, "atmo_gpu_scene layout");
+_Static_assert(sizeof(atmo_gpu_scene) == 880, "atmo_gpu_scene layout");
 
 #define DEG (M_PI / 180.0)
 

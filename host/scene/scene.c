@@ -66,6 +66,8 @@ static const char *const path_skies[] = {"atmosphere", "uniform", NULL};
 static const char *const sampler_names[] = {"sobol", "random", NULL};
 _Static_assert(ATMO_RENDER_PATH == 1 && ATMO_PATH_SKY_UNIFORM == 1 && ATMO_SAMPLER_RANDOM == 1,
                "enum name tables follow the order of the constants");
+static const char *const terrain_format_names[] = {"float", "derivatives", NULL};
+static const char *const terrain_shadow_names[] = {"none", "exact", "estimate", NULL};
 _Static_assert(ATMO_CAMERA_PANORAMA == 1 && ATMO_CAMERA_FISHEYE == 2 && ATMO_PHASE_HENYEY_GREENSTEIN == 1 &&
                    ATMO_QUANTITY_LUMINANCE == 1 && ATMO_TONEMAP_LOTTES == 7 &&
                    ATMO_TRANSFER_GAMMA22 == 1,
@@ -206,6 +208,47 @@ const atmo_param atmo_params[] = {
               "observer's centre: height relative to the camera"),
     ROW_FLOAT("observer.radius_m", observer.radius_m, "m", 0.01, 1e3, 1,
               "observer sphere's radius"),
+    ROW_BOOL("terrain.enabled", terrain.enabled, 0,
+             "procedural terrain on the planet (kernels/terrain/; methods single, march, fast, lut)"),
+    ROW_FLOAT("terrain.max_height_m", terrain.max_height_m, "m", 0, 2e4, 4000,
+              "terrain heights lie between 0 and this above sea level"),
+    ROW_FLOAT("terrain.sea_level_m", terrain.sea_level_m, "m", 0, 2e4, 0,
+              "water covers the terrain up to this altitude"),
+    ROW_FLOAT("terrain.frequency_per_m", terrain.frequency_per_m, "1/m", 1e-7, 1e-2, 3e-5,
+              "first octave of the height fBm (thesis: 3e-5, a 33 km period)"),
+    ROW_FLOAT("terrain.coverage_frequency_per_m", terrain.coverage_frequency_per_m, "1/m", 1e-9,
+              1e-3, 2e-7, "first octave of the land/sea field (thesis: 2e-7)"),
+    ROW_FLOAT("terrain.land_fraction", terrain.land_fraction, "", 0, 1, 0.6,
+              "land/sea threshold: 1 all land, 0 all sea (the land's share rises steeply "
+              "between 0.3 and 0.45)"),
+    ROW_INT("terrain.octaves", terrain.octaves, "", 1, 16, 9, "octaves of the height fBm"),
+    ROW_INT("terrain.coverage_octaves", terrain.coverage_octaves, "", 1, 12, 6,
+            "octaves of the land/sea field"),
+    ROW_INT("terrain.seed", terrain.seed, "", 0, 2147483647, 0, "seed of the terrain's noise"),
+    ROW_INT("terrain.heightmap_size", terrain.heightmap_size, "", 0, 16384, 0,
+            "heightmap texels per side (0: evaluate the fBm directly, no memory)"),
+    ROW_ENUM("terrain.heightmap_format", terrain.heightmap_format, terrain_format_names,
+             ATMO_TERRAIN_FORMAT_FLOAT,
+             "heightmap texels: float height, or height and derivatives (3 floats)"),
+    ROW_FLOAT("terrain.heightmap_extent_m", terrain.heightmap_extent_m, "m", 1, 1e7, 65536,
+              "side of the square the heightmap covers, centred on the origin"),
+    ROW_INT("terrain.steps", terrain.steps, "", 1, 4096, 300,
+            "sphere-tracing steps per ray (then a bounded fallback march)"),
+    ROW_FLOAT("terrain.optimism", terrain.optimism, "", 0.1, 10, 3,
+              "sphere-tracing step relaxation (1: within the slope bound; more: faster, "
+              "back-steps on overshoot)"),
+    ROW_ENUM("terrain.shadow", terrain.shadow, terrain_shadow_names, ATMO_TERRAIN_SHADOW_EXACT,
+             "terrain shadows on the surface: none, exact (rays to the sun disc) or estimate "
+             "(Quilez penumbra)"),
+    ROW_INT("terrain.shadow_rays", terrain.shadow_rays, "", 1, 256, 4,
+            "exact shadows: rays toward points of the sun disc"),
+    ROW_INT("terrain.shadow_steps", terrain.shadow_steps, "", 1, 4096, 96,
+            "steps of one shadow ray"),
+    ROW_FLOAT("terrain.shadow_far_m", terrain.shadow_far_m, "m", 1, 1e7, 40000,
+              "shadow rays and light shafts look this far toward the sun"),
+    ROW_INT("terrain.shafts", terrain.shafts, "", 0, 3, 3,
+            "light-shaft shortcuts, a bit set: 1 sun below the sample's horizon = shadowed, "
+            "2 samples beyond terrain.shadow_far_m = lit"),
     ROW_INT("lut.orders", atmosphere.lut_orders, "", 1, 15, 7,
             "lut method: scattering orders precomputed (1 = single scattering only)"),
     ROW_INT("lut.r_size", atmosphere.lut_r_size, "", 2, 1024, 32,

@@ -13,7 +13,8 @@
  *                  8 degrees below the centre of a frame pitched up by 10.
  *   space          2000 km above the origin, pitch -50; sun zenith 70 at azimuth 120 (behind
  *                  and to the right), so the day side fills the view and the terminator crosses
- *                  the upper left of the disc.
+ *                  the upper left of the disc; terrain with its land/sea field at threshold 0.35:
+ *                  continents and oceans (about 28 % sea within 2800 km of the origin).
  *
  * thesis-1 ... thesis-9 are the nine views of shared/reference/presets.md. Their "direction to
  * sun" vectors were converted with z = acos(d_y), a = atan2(d_x, d_z) and written with six
@@ -21,22 +22,27 @@
  * The thesis objects (presets.md) are in the views that show them: the sphere and the blue box
  * of view 2, the open box (four boxes: left, right, floor, back wall; no ceiling, no front) and
  * its three small spheres in views 3 and 7, at the thesis' world positions (they sat on its
- * terrain; over the sea-level ground of a scene without terrain they stand in the air where
- * the thesis put them). View 7 is path traced (render.mode = path, 4 bounces): light enters
+ * terrain). View 7 is path traced (render.mode = path, 4 bounces): light enters
  * the open box from above and bounces inside it.
  * Thesis 4, 5, 6, 8 and 9 have the fBm cloud layer (with method march, which it needs, the
  * thesis' far plane for clouds as clouds.max_distance_m, and a noise seed that gives each view
  * what the thesis' shows: seed 5 a deck under view 5's glory, seed 47 scattered cumulus around
- * view 6's sun, where seed 0 puts view 6's camera inside a cloud). */
+ * view 6's sun, where seed 0 puts view 6's camera inside a cloud).
+ * Views 1, 2, 3, 8 and 9 and `space` have the procedural terrain; its seed 46 puts land under
+ * every thesis camera (thesis-1's camera 630 m and thesis-3's 90 m above the ground: `atmo
+ * terrain --at X,Z`). The objects keep the thesis' absolute heights, which do not sit on this
+ * terrain (view 2's 440 m above it, view 3's open box 53 m). */
 #include <string.h>
 #include "atmo/scene.h"
 
 const char *const atmo_default_preset = "sky-sunset";
 
 #define PRESET(name, summary, ...) {name, summary, (const char *const[]){__VA_ARGS__, NULL}}
-#define THESIS_SKY_ONLY " [sky only: terrain and clouds not rendered yet]"
-#define THESIS_NO_TERRAIN " [objects and sky: terrain not rendered yet]"
-#define THESIS_CLOUDS " [sky and clouds: terrain not rendered yet]"
+#define THESIS_TERRAIN " [terrain; its clouds not rendered yet]"
+#define THESIS_TERRAIN_OBJECTS " [terrain and objects; the objects at the thesis' heights, above this terrain]"
+#define THESIS_OBJECTS " [objects over the sea-level ground, path traced]"
+#define THESIS_CLOUDS " [clouds]"
+#define THESIS_CLOUDS_TERRAIN " [clouds and terrain]"
 /* presets.md's objects (albedo in linear RGB; the small spheres' (38, 25, 17)/255 written out) */
 #define THESIS_VIEW2_OBJECTS                                                                       \
     "objects=[{\"type\": \"sphere\", \"center_m\": [22832, 2022, 13326], \"radius_m\": 1, "    \
@@ -66,24 +72,30 @@ const atmo_preset atmo_presets[] = {
            "sunset looking toward the sun, 2 degrees above the horizon, low in the frame",
            "camera.kind=perspective", "camera.position_m=0,1.7,0", "camera.pitch_deg=10",
            "camera.yaw_deg=0", "sun.zenith_deg=88", "sun.azimuth_deg=0"),
-    PRESET("space", "the planet from 2000 km: day side, terminator at the upper left, blue limb",
+    PRESET("space", "the planet from 2000 km: day side with continents and oceans, terminator at the upper "
+                    "left, blue limb",
            "camera.kind=perspective", "camera.position_m=0,2e6,0", "camera.pitch_deg=-50",
-           "camera.yaw_deg=0", "camera.fov_deg=45", "sun.zenith_deg=70", "sun.azimuth_deg=120"),
+           "camera.yaw_deg=0", "camera.fov_deg=45", "sun.zenith_deg=70", "sun.azimuth_deg=120",
+           "terrain.enabled=true", "terrain.seed=46",
+           "terrain.land_fraction=0.35"),
     PRESET("thesis-1",
-           "thesis view 1: sunset over snowy mountains, light shafts, clouds" THESIS_SKY_ONLY,
+           "thesis view 1: sunset over snowy mountains, light shafts, clouds" THESIS_TERRAIN,
            "camera.kind=perspective", "camera.position_m=23796,2266,16636",
            "camera.pitch_deg=-4.962", "camera.yaw_deg=-550", "camera.fov_deg=45",
-           "sun.zenith_deg=87.476967", "sun.azimuth_deg=-150.985019"),
+           "sun.zenith_deg=87.476967", "sun.azimuth_deg=-150.985019",
+           "terrain.enabled=true", "terrain.seed=46"),
     PRESET("thesis-2",
-           "thesis view 2: looking down at a small sphere and box, shadows" THESIS_NO_TERRAIN,
+           "thesis view 2: looking down at a small sphere and box, shadows" THESIS_TERRAIN_OBJECTS,
            "camera.kind=perspective", "camera.position_m=22831,2028,13332",
            "camera.pitch_deg=-51.5", "camera.yaw_deg=-518", "camera.fov_deg=45",
-           "sun.zenith_deg=83.222271", "sun.azimuth_deg=171.887327", THESIS_VIEW2_OBJECTS),
+           "sun.zenith_deg=83.222271", "sun.azimuth_deg=171.887327", THESIS_VIEW2_OBJECTS,
+           "terrain.enabled=true", "terrain.seed=46"),
     PRESET("thesis-3",
-           "thesis view 3: low sun near the open-box site, sun in frame" THESIS_NO_TERRAIN,
+           "thesis view 3: low sun near the open-box site, sun in frame" THESIS_TERRAIN_OBJECTS,
            "camera.kind=perspective", "camera.position_m=26632,1337,10748", "camera.pitch_deg=-5",
            "camera.yaw_deg=-575", "camera.fov_deg=45", "sun.zenith_deg=86.098524",
-           "sun.azimuth_deg=-134.254613", THESIS_OPEN_BOX_OBJECTS),
+           "sun.azimuth_deg=-134.254613", THESIS_OPEN_BOX_OBJECTS,
+           "terrain.enabled=true", "terrain.seed=46"),
     PRESET("thesis-4",
            "thesis view 4: the planet from 2000 km, terminator, cloud field, blue "
            "limb" THESIS_CLOUDS,
@@ -107,23 +119,23 @@ const atmo_preset atmo_presets[] = {
            "sun.zenith_deg=62.332413", "sun.azimuth_deg=154.698581", "post.flare=true",
            "clouds.enabled=true", "clouds.seed=47", "clouds.max_distance_m=1.5e5",
            "atmosphere.method=march"),
-    PRESET("thesis-7", "thesis view 7: looking +Z into an open box, path traced" THESIS_NO_TERRAIN,
+    PRESET("thesis-7", "thesis view 7: looking +Z into an open box, path traced" THESIS_OBJECTS,
            "camera.kind=perspective", "camera.position_m=26631.5,1336.5,10747.5",
            "camera.pitch_deg=0", "camera.yaw_deg=0", "camera.fov_deg=45",
            "sun.zenith_deg=86.098524", "sun.azimuth_deg=-134.254613", THESIS_OPEN_BOX_OBJECTS,
            "render.mode=path", "path.bounces=4"),
-    PRESET("thesis-8", "thesis view 8: over clouds and terrain at moderate sun" THESIS_CLOUDS,
+    PRESET("thesis-8", "thesis view 8: over clouds and terrain at moderate sun" THESIS_CLOUDS_TERRAIN,
            "camera.kind=perspective", "camera.position_m=7866,5837,-143910", "camera.pitch_deg=-29",
            "camera.yaw_deg=-535", "camera.fov_deg=45", "sun.zenith_deg=81.435892",
            "sun.azimuth_deg=-170.007181",
            "clouds.enabled=true", "clouds.seed=5", "clouds.max_distance_m=1e5",
-           "atmosphere.method=march"),
-    PRESET("thesis-9", "thesis view 9: high-altitude sunset over clouds" THESIS_CLOUDS,
+           "atmosphere.method=march", "terrain.enabled=true", "terrain.seed=46"),
+    PRESET("thesis-9", "thesis view 9: high-altitude sunset over clouds" THESIS_CLOUDS_TERRAIN,
            "camera.kind=perspective", "camera.position_m=18181,37415,3431", "camera.pitch_deg=-16",
            "camera.yaw_deg=-556", "camera.fov_deg=45", "sun.zenith_deg=87.476967",
            "sun.azimuth_deg=-150.985019",
            "clouds.enabled=true", "clouds.seed=5", "clouds.max_distance_m=4e5",
-           "atmosphere.method=march"),
+           "atmosphere.method=march", "terrain.enabled=true", "terrain.seed=46"),
     PRESET("glory",
            "above a cloud deck of thesis-disperse drops, looking down at the antisolar point: "
            "the fog bow and the glory's bright centre (its one ring lies within 1 deg, smoothed "

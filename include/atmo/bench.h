@@ -47,4 +47,10 @@ int bench_panorama(const char *dir, const char *device, int quick, atmo_err *e);
  * cost of an unused feature (host/bench/bench_path.c). Writes DIR/render.csv, DIR/render.svg. */
 int bench_path(const char *dir, const char *device, int quick, atmo_err *e);
 
+/* `atmo bench terrain`: heightmap sizes and formats against direct evaluation, sphere-tracing
+ * optimism and steps, exact against estimated shadows, light-shaft shortcuts, and thesis-1's
+ * time (host/bench/bench_terrain.c). Writes DIR/terrain.csv, DIR/terrain.svg and
+ * DIR/terrain_thesis1.csv. */
+int bench_terrain(const char *dir, const char *device, int quick, atmo_err *e);
+
 #endif

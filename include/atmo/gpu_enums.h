@@ -34,6 +34,23 @@ enum {
 };
 enum { ATMO_TRANSFER_SRGB = 0, ATMO_TRANSFER_GAMMA22 = 1 };
 
+/* terrain.heightmap_format: the heightmap pass's texels (kernels/terrain/heightmap.cl): the
+ * height alone (normals from its differences), or the height and its two derivatives */
+enum { ATMO_TERRAIN_FORMAT_FLOAT = 0, ATMO_TERRAIN_FORMAT_DERIVATIVES = 1 };
+
+/* terrain.shadow: the terrain's shadow on the sun (kernels/terrain/terrain.h): none, exact
+ * (shadow rays to points of the sun disc), or Quilez's penumbra estimate from one ray */
+enum { ATMO_TERRAIN_SHADOW_NONE = 0, ATMO_TERRAIN_SHADOW_EXACT, ATMO_TERRAIN_SHADOW_ESTIMATE };
+
+/* terrain.shafts: the light-shaft shortcuts of the thesis (presets.md), each a bit; 0: every
+ * sample of the medium integrator asks the terrain's shadow */
+enum {
+    ATMO_TERRAIN_SHAFT_BELOW_HORIZON = 1, /* sun below the sample's horizon: shadowed */
+    ATMO_TERRAIN_SHAFT_FAR = 2,           /* sample beyond the shadow far plane: lit */
+};
+/* (A sample above the highest terrain whose sun ray rises is lit without a shortcut: the
+ * tracer's shell test, kernels/terrain/terrain.h, returns at once.) */
+
 /* atmosphere.method, in the order of the scene registry's names */
 enum {
     ATMO_METHOD_SINGLE = 0, /* single scattering only, ray marched */

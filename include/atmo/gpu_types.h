@@ -23,6 +23,7 @@
 #include "atmo/gpu_path.h"
 #include "atmo/gpu_reference.h"
 #include "atmo/gpu_sky_view.h"
+#include "atmo/gpu_terrain.h"
 #endif
 
 typedef struct atmo_gpu_camera {
@@ -49,6 +50,7 @@ typedef struct atmo_gpu_scene {
     atmo_gpu_cloud cloud;         /* the cloud shell and the observer */
     atmo_gpu_clouds clouds;       /* the fBm cloud layer */
     atmo_gpu_path path;           /* the path tracer and the objects (render.mode = path) */
+    atmo_gpu_terrain terrain;     /* the procedural terrain */
 } atmo_gpu_scene;
 
 #endif

@@ -152,6 +152,25 @@ typedef struct atmo_scene {
         int count;
         atmo_object list[ATMO_MAX_OBJECTS];
     } objects;
+    struct {                   /* procedural terrain (kernels/terrain/) */
+        int enabled;
+        double max_height_m;   /* heights lie in [0, max_height_m] above the ground sphere */
+        double sea_level_m;    /* water at and below this altitude */
+        double frequency_per_m;          /* first octave of the height fBm */
+        double coverage_frequency_per_m; /* first octave of the land/sea field */
+        double land_fraction;  /* land/sea threshold: 1 all land, 0 all sea */
+        int octaves, coverage_octaves;
+        int seed;
+        int heightmap_size;    /* texels per side; 0: direct evaluation */
+        int heightmap_format;  /* ATMO_TERRAIN_FORMAT_* */
+        double heightmap_extent_m;
+        int steps;             /* sphere-tracing steps */
+        double optimism;       /* sphere-tracing step relaxation */
+        int shadow;            /* ATMO_TERRAIN_SHADOW_* */
+        int shadow_rays, shadow_steps;
+        double shadow_far_m;
+        int shafts;            /* bit set of ATMO_TERRAIN_SHAFT_* */
+    } terrain;
 } atmo_scene;
 
 typedef enum {

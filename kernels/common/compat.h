@@ -28,6 +28,7 @@ typedef float3 vec3;
 #define sinf sin
 #define cosf cos
 #define tanf tan
+#define tanhf tanh
 #define asinf asin
 #define acosf acos
 #define atanf atan

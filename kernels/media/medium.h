@@ -207,7 +207,7 @@ ATMO_FN void medium_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
     float d = ground ? geometry_distance_to_bottom(m.r, m.mu, a->bottom_radius)
                      : geometry_distance_to_top(m.r, m.mu, a->top_radius);
     float t_surface = visibility_surface_hit(s, ATMO_LUT_ARGS, &m);
-    int hits_surface = t_surface >= 0.0f && t_surface < d;
+    int hits_surface = t_surface >= 0.0f && t_surface <= d; /* a surface on the ground wins */
     if (hits_surface)
         d = t_surface;
     int blocked = t_max < d; /* by the black surface at t_max */

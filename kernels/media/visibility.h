@@ -11,7 +11,10 @@
  * shafts through gaps) and on the ground; under -DATMO_OBJECTS the scene's spheres and boxes
  * (render/objects.h, buffer `objects`) block the ray toward the sun (a point sun: binary
  * shadows; the path tracer, -DATMO_PATH, samples the disc itself and casts soft ones, so there
- * they are left out here). Terrain (a heightmap march toward the sun) plugs in here.
+ * they are left out here). Under -DATMO_TERRAIN the
+ * terrain (kernels/terrain/terrain.h): a shadow ray from the point toward the sun's centre (a
+ * point sun, as for the planet) with the shortcuts of terrain.shafts, and the terrain's
+ * surface with its light (terrain_shade.h).
  * visibility_sun_occluders is the product of the opaque sources (0 or 1), visibility_sun adds
  * the shadowing media (per wavelength, 0..1); both get the buffers, where a source keeps its
  * data (a heightmap, a density grid). The atmosphere's own transmittance toward the
@@ -31,6 +34,10 @@
 #ifdef ATMO_OBJECTS
 #include "render/objects.h"
 #endif
+#ifdef ATMO_TERRAIN
+#include "terrain/terrain.h"
+#include "terrain/terrain_shade.h"
+#endif
 #include "atmo/gpu_types.h"
 #endif
 
@@ -39,6 +46,24 @@
 #define VISIBILITY_OBJECTS 1
 ATMO_FN vec3 medium_ms_ground_irradiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                          float mu_s);
+#endif
+
+#ifdef ATMO_TERRAIN
+/* The terrain's shadow at a point of a ray, 0 or 1 (the shortcuts: gpu_enums.h). */
+ATMO_FN float visibility_terrain(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                 ATMO_GLOBAL const float *heightmap, const medium_point *q)
+{
+    ATMO_GLOBAL const atmo_gpu_terrain *tr = &s->terrain;
+    if ((tr->shafts & ATMO_TERRAIN_SHAFT_BELOW_HORIZON) && q->mu_s < 0.0f)
+        return 0.0f;
+    if ((tr->shafts & ATMO_TERRAIN_SHAFT_FAR) && v3_dot(q->p, q->p) > atmo_sq(tr->shadow_far_m))
+        return 1.0f;
+    float t;
+    return terrain_trace(s, heightmap, q->p, v3_from4(s->sun_direction), 0.0f, tr->shadow_far_m,
+                         tr->shadow_steps, &t, 0)
+               ? 0.0f
+               : 1.0f;
+}
 #endif
 
 /* 1 where the planet leaves the sun visible from the point, 0 in its shadow. */
@@ -60,6 +85,10 @@ ATMO_FN float visibility_sun_occluders(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO
                                      v3_from4(s->sun_direction), 0.0f, INFINITY))
         v = 0.0f;
 #endif
+#ifdef ATMO_TERRAIN
+    if (v > 0.0f)
+        v *= visibility_terrain(s, heightmap, q);
+#endif
     return v;
 }
 
@@ -80,21 +109,33 @@ ATMO_FN vec3 visibility_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS
 }
 
 /* Distance along the ray to the first opaque surface other than the ground (the observer, the
- * preview's objects), or -1 when there is none. */
+ * preview's objects, the terrain), or -1 when there is none. */
 ATMO_FN float visibility_surface_hit(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                      const medium_ray *m)
 {
-    float t = -1.0f;
+    float hit = -1.0f;
 #ifdef ATMO_CLOUD
-    t = observer_hit(s->cloud.observer, m);
+    hit = observer_hit(s->cloud.observer, m);
 #endif
 #ifdef VISIBILITY_OBJECTS
     float t_obj;
     if (objects_hit(objects, s->path.object_count, m->origin, m->dir, 0.0f,
-                    t >= 0.0f ? t : INFINITY, &t_obj) >= 0)
-        t = t_obj;
+                    hit >= 0.0f ? hit : INFINITY, &t_obj) >= 0)
+        hit = t_obj;
 #endif
-    return t;
+#ifdef ATMO_TERRAIN
+    /* the terrain covers the ground sphere (its surface lies at or above sea level >= 0): a
+     * hit is never beyond the ground's distance, computed as the integrator computes it */
+    float t;
+    if (terrain_trace(s, heightmap, m->origin, m->dir, 0.0f, hit >= 0.0f ? hit : INFINITY,
+                      s->terrain.steps, &t, 0)) {
+        ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+        if (geometry_ray_hits_ground(m->r, m->mu, a->bottom_radius))
+            t = fminf(t, geometry_distance_to_bottom(m->r, m->mu, a->bottom_radius));
+        hit = t;
+    }
+#endif
+    return hit;
 }
 
 #ifdef VISIBILITY_OBJECTS
@@ -139,7 +180,7 @@ ATMO_FN vec3 visibility_object_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATM
 /* Radiance leaving that surface toward the ray's origin, at distance t along the ray (without
  * the air in between). The observer is small, so it is lit like the camera's surroundings:
  * sunlight with the atmosphere's and the shell's transmittance at the ray's origin (its own
- * shadow test would block it). */
+ * shadow test would block it). The terrain's light is terrain_radiance (terrain_shade.h). */
 ATMO_FN vec3 visibility_surface_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                          const medium_ray *m, float t)
 {
@@ -147,6 +188,13 @@ ATMO_FN vec3 visibility_surface_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, AT
     vec3 lit = visibility_object_radiance(s, ATMO_LUT_ARGS, m, t);
     if (lit.x >= 0.0f)
         return lit;
+#endif
+#ifdef ATMO_TERRAIN
+#ifdef ATMO_CLOUD
+    float t_observer = observer_hit(s->cloud.observer, m);
+    if (!(t_observer >= 0.0f && t_observer <= t))
+#endif
+        return terrain_radiance(s, ATMO_LUT_ARGS, m, t);
 #endif
 #ifdef ATMO_CLOUD
     ATMO_GLOBAL const float4 *transmittance = transmittance_lut;

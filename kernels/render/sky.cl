@@ -10,7 +10,7 @@
  * size and any split of samples into launches. A non-finite sample (which should never happen)
  * is dropped and counted in `nonfinite`. The sample's stage-0 random stream (rng.h) places it
  * in the pixel (the camera's CAMERA_RNG_DIMS numbers) and goes on to the method's sky_trace
- * along the camera-relative ray.
+ * along the camera-relative ray (with terrain under fast or lut, through terrain_stage.h).
  *
  * Objects (-DATMO_OBJECTS, the preview) end a pixel's ray at the object: the air in front plus
  * the object's light (sky_object_distance below).
@@ -73,7 +73,11 @@ __kernel void sky_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
                 sky += view_t * visibility_surface_radiance(scene, ATMO_LUT_ARGS, &ray, t_obj);
                 sun = (float3)(0.0f);
             } else {
+#ifdef ATMO_TERRAIN_STAGE
+                terrain_stage_trace(scene, ATMO_LUT_ARGS, &ray, &g, &sky, &sun, &view_t);
+#else
                 sky_trace(scene, ATMO_LUT_ARGS, &ray, INFINITY, &g, &sky, &sun, &view_t);
+#endif
             }
             L = sky * scene->sky_factor.xyz + sun * scene->sun_factor.xyz;
         }

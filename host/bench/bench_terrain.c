@@ -1,0 +1,384 @@
+/* bench_terrain.c — `atmo bench terrain`: the terrain's shortcuts, each error against time.
+ *
+ * Rows (DIR/terrain.csv, chart DIR/terrain.svg; DIR/terrain_thesis1.csv for the timings):
+ *   heightmap-float N, heightmap-derivatives N, direct: the height field's RMS error in metres
+ *     against the double-precision reference (host/terrain/terrain_ref.c) at 4000 random points
+ *     of the heightmap's square (65.5 km, the thesis site inside it) — for a heightmap, the
+ *     bilinear interpolation of its texels (the reference at the texel centres: the pass writes
+ *     those within float rounding, test_terrain_noise), for direct the kernels' float fBm
+ *     compiled on the host; the settings name the device memory. Seconds: precompute + render
+ *     of thesis-1 at 64x36, 1 sample, method single, without shadows or shafts, on the device.
+ *     The normals' RMS angle error (degrees) is the second row of each size ("-normal").
+ *   optimism W, steps N: sphere tracing (the kernels' tracer compiled on the host) of 600
+ *     grazing rays from 2..50 m above the thesis site, against the brute-force double march:
+ *     error = (misses + pass-throughs + bad hits) / reference hits (test_terrain_trace's
+ *     classes), seconds = host time of the 600 traces.
+ *   shadow-exact N, shadow-estimate: the visible fraction of the sun disc at 300 surface
+ *     points at thesis-1's sun (2.3 degrees high) against exact shadows with 64 rays; error =
+ *     RMS difference, seconds = host time.
+ *   shafts S: thesis-1 at 48x27, 1 sample, method march, with light-shaft shortcut set S
+ *     (gpu_enums.h) against S = 0 (every sample asks the terrain): RMS relative difference and
+ *     device seconds of the render (precomputes left out, here and below).
+ * terrain_thesis1.csv: thesis-1's render time per sample at 160x90 (scaled to 1280x720 by the
+ * pixel count), default method, split by what is switched on: the sky alone, the terrain
+ * without shadows or shafts, with the surface's shadows, with shafts (everything). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "atmo/bench.h"
+#include "atmo/clock.h"
+#include "atmo/plan.h"
+#include "atmo/plan_terrain.h"
+#include "atmo/scene.h"
+#include "atmo/terrain_ref.h"
+#include "terrain/terrain.h"
+
+#define SITE_X 23796.0
+#define SITE_Z 16636.0
+#define MAX_ROWS 64
+
+static double urand(unsigned *state)
+{
+    *state = *state * 1664525u + 1013904223u;
+    return (*state >> 8) / 16777216.0;
+}
+
+static int thesis(atmo_scene *s, atmo_err *e)
+{
+    atmo_scene_defaults(s);
+    return atmo_scene_apply_preset(s, "thesis-1", e);
+}
+
+static int set(atmo_scene *s, const char *kv, atmo_err *e)
+{
+    return atmo_scene_assign(s, kv, "bench", e);
+}
+
+/* The bilinear heightmap of N texels over the extent (the reference at the centres). */
+static double map_height(const atmo_gpu_terrain_field *f, int n, double u, double v, int deriv,
+                         double *du, double *dv)
+{
+    double E = (double)f->heightmap_extent_m, d = E / n;
+    double gx = (u + 0.5 * E) / d - 0.5, gy = (v + 0.5 * E) / d - 0.5;
+    double i0 = floor(gx), j0 = floor(gy), fx = gx - i0, fy = gy - j0, h = 0, a = 0, b = 0;
+    for (int di = 0; di < 2; di++)
+        for (int dj = 0; dj < 2; dj++) {
+            double g[2], w = (di ? fx : 1 - fx) * (dj ? fy : 1 - fy);
+            double x = -0.5 * E + (i0 + di + 0.5) * d, z = -0.5 * E + (j0 + dj + 0.5) * d;
+            h += w * (double)(float)terrain_ref_height(f, x, z, g, NULL);
+            a += w * g[0], b += w * g[1];
+        }
+    if (!deriv) { /* central differences one texel apart, as terrain.h takes them */
+        double hxp = map_height(f, n, u + d, v, 1, NULL, NULL), hxm = map_height(f, n, u - d, v, 1, NULL, NULL);
+        double hzp = map_height(f, n, u, v + d, 1, NULL, NULL), hzm = map_height(f, n, u, v - d, 1, NULL, NULL);
+        a = (hxp - hxm) / (2 * d), b = (hzp - hzm) / (2 * d);
+    }
+    if (du)
+        *du = a, *dv = b;
+    return h;
+}
+
+static double angle_deg(double a0, double b0, double a1, double b1)
+{
+    double n0[3] = {-a0, 1, -b0}, n1[3] = {-a1, 1, -b1};
+    double c = (n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2]) /
+               sqrt((n0[0] * n0[0] + 1 + n0[2] * n0[2]) * (n1[0] * n1[0] + 1 + n1[2] * n1[2]));
+    return acos(fmin(c, 1.0)) * 180.0 / M_PI;
+}
+
+/* precompute: whether the seconds include the precompute passes (the heightmap's) */
+static int timed_render(const atmo_scene *s, const char *device, int precompute, double *seconds,
+                        atmo_render_result *out, atmo_err *e)
+{
+    atmo_render_result r;
+    int rc = bench_render(s, device, &r, e);
+    if (rc)
+        return rc;
+    *seconds = (precompute ? r.seconds_precompute : 0.0) + r.seconds_render;
+    if (out)
+        *out = r;
+    else
+        atmo_render_result_free(&r);
+    return ATMO_OK;
+}
+
+static int heightmaps(const char *device, int quick, bench_row *rows, int *n, atmo_err *e)
+{
+    static const int sizes[] = {256, 1024, 4096};
+    int count = quick ? 2 : 3, rc;
+    for (int fmt = -1; fmt < 2; fmt++)
+        for (int k = 0; k < (fmt < 0 ? 1 : count); k++) {
+            atmo_scene s;
+            if ((rc = thesis(&s, e)) || (rc = set(&s, "atmosphere.method=single", e)) ||
+                (rc = set(&s, "terrain.shadow=none", e)) ||
+                (rc = set(&s, "terrain.shadow_far_m=1", e)))
+                return rc;
+            s.image.width = 64, s.image.height = 36, s.image.samples = 1;
+            s.terrain.heightmap_size = fmt < 0 ? 0 : sizes[k];
+            s.terrain.heightmap_format = fmt < 0 ? 0 : fmt;
+            atmo_plan p;
+            if ((rc = atmo_plan_make(&s, &p, e)))
+                return rc;
+            atmo_gpu_terrain_field f = p.gpu.terrain.field;
+            atmo_plan_free(&p);
+            double seconds;
+            fprintf(stderr, "bench terrain: heightmap %d format %d\n", s.terrain.heightmap_size, fmt);
+            if ((rc = timed_render(&s, device, 1, &seconds, NULL, e)))
+                return rc;
+            unsigned rng = 5u;
+            double sum = 0, sum_a = 0;
+            int m = quick ? 500 : 4000;
+            for (int i = 0; i < m; i++) {
+                double E = (double)f.heightmap_extent_m;
+                double u = (urand(&rng) - 0.5) * 0.95 * E, v = (urand(&rng) - 0.5) * 0.95 * E;
+                double g[2], h = terrain_ref_height(&f, u, v, g, NULL), got, a, b;
+                if (fmt < 0) {
+                    terrain_height t = terrain_height_direct(&f, (float)u, (float)v);
+                    got = t.h, a = t.du, b = t.dv;
+                } else {
+                    got = map_height(&f, s.terrain.heightmap_size, u, v, fmt, &a, &b);
+                }
+                sum += (got - h) * (got - h);
+                double ang = angle_deg(a, b, g[0], g[1]);
+                sum_a += ang * ang;
+            }
+            size_t bytes = (size_t)s.terrain.heightmap_size * s.terrain.heightmap_size *
+                           (fmt == 1 ? 12 : 4);
+            for (int r = 0; r < 2; r++) {
+                bench_row *row = &rows[(*n)++];
+                snprintf(row->method, sizeof row->method, "%s%s",
+                         fmt < 0 ? "direct" : fmt ? "heightmap-derivatives" : "heightmap-float",
+                         r ? "-normal" : "");
+                snprintf(row->settings, sizeof row->settings, "%d texels %.1f MiB",
+                         s.terrain.heightmap_size, bytes / 1048576.0);
+                row->seconds = seconds;
+                row->error = sqrt((r ? sum_a : sum) / m);
+            }
+        }
+    return ATMO_OK;
+}
+
+typedef struct trace_set {
+    double o[600][3], d[600][3];
+    int ref[600];
+    double t_ref[600];
+} trace_set;
+
+static int tracing(int quick, bench_row *rows, int *n, atmo_err *e)
+{
+    atmo_scene s;
+    atmo_plan p;
+    int rc;
+    if ((rc = thesis(&s, e)) || (rc = atmo_plan_make(&s, &p, e)))
+        return rc;
+    double R = s.atmosphere.bottom_radius_m, *cam = s.camera.position_m;
+    atmo_gpu_scene g = p.gpu;
+    atmo_plan_free(&p);
+    trace_set *ts = malloc(sizeof *ts);
+    if (!ts)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory");
+    int m = quick ? 150 : 600;
+    unsigned rng = 31u;
+    fprintf(stderr, "bench terrain: %d reference rays\n", m);
+    for (int i = 0; i < m; i++) {
+        double x = SITE_X + (urand(&rng) - 0.5) * 4000, z = SITE_Z + (urand(&rng) - 0.5) * 4000;
+        double h = terrain_ref_height(&g.terrain.field, x, z, NULL, NULL);
+        double nv[3] = {x / R, sqrt(1 - (x * x + z * z) / (R * R)), z / R};
+        double above = 2 + 48 * urand(&rng), mu = -0.05 + 0.07 * urand(&rng);
+        double phi = 2 * M_PI * urand(&rng), e1[3] = {cos(phi), 0, sin(phi)};
+        double k = e1[0] * nv[0] + e1[2] * nv[2], len = 0, w[3];
+        for (int c = 0; c < 3; c++)
+            e1[c] -= k * nv[c], len += e1[c] * e1[c];
+        for (int c = 0; c < 3; c++) {
+            w[c] = nv[c] * (R + h + above) - (c == 1 ? R : 0);
+            ts->d[i][c] = (double)(float)(e1[c] / sqrt(len) * sqrt(1 - mu * mu) + mu * nv[c]);
+            ts->o[i][c] = (double)(float)(w[c] - cam[c]);
+        }
+        double wo[3], mc;
+        for (int c = 0; c < 3; c++)
+            wo[c] = cam[c] + ts->o[i][c];
+        ts->ref[i] = terrain_ref_hit(&g.terrain.field, R, 0.0, wo, ts->d[i], 8000.0, 2.0,
+                                     &ts->t_ref[i], &mc);
+    }
+    static const double omegas[] = {1, 1.5, 2, 3, 4, 6, 8};
+    static const int steps[] = {16, 32, 64, 128, 300};
+    for (int pass = 0; pass < 2; pass++)
+        for (int k = 0; k < (pass ? 5 : 7); k++) {
+            atmo_gpu_scene gs = g;
+            if (pass)
+                gs.terrain.steps = steps[k];
+            else
+                gs.terrain.optimism = (float)omegas[k];
+            int hits = 0, bad = 0;
+            double t0 = atmo_now_seconds();
+            for (int i = 0; i < m; i++) {
+                float tf;
+                vec3 o = v3((float)ts->o[i][0], (float)ts->o[i][1], (float)ts->o[i][2]);
+                vec3 d = v3((float)ts->d[i][0], (float)ts->d[i][1], (float)ts->d[i][2]);
+                int hit = terrain_trace(&gs, NULL, o, d, 0.0f, 8000.0f, gs.terrain.steps, &tf, 0);
+                double t = (double)tf;
+                hits += ts->ref[i];
+                if (ts->ref[i] && !hit) {
+                    bad++;
+                } else if (hit) {
+                    double w[3];
+                    for (int c = 0; c < 3; c++)
+                        w[c] = cam[c] + ts->o[i][c] + t * ts->d[i][c];
+                    double gclr = terrain_ref_clearance(&g.terrain.field, R, 0.0, w);
+                    double eps = 0.01 + (double)gs.terrain.tolerance * t;
+                    bad += gclr < -0.5 || gclr > eps + 0.5 ||
+                           (ts->ref[i] && t > ts->t_ref[i] + 5.0 + 1e-3 * ts->t_ref[i]);
+                }
+            }
+            bench_row *row = &rows[(*n)++];
+            snprintf(row->method, sizeof row->method, pass ? "steps" : "optimism");
+            snprintf(row->settings, sizeof row->settings, pass ? "%.0f (optimism 3)" : "%.1f (300 steps)",
+                     pass ? (double)steps[k] : omegas[k]);
+            row->seconds = atmo_now_seconds() - t0;
+            row->error = hits ? (double)bad / hits : 0.0;
+        }
+    free(ts);
+    return ATMO_OK;
+}
+
+static int shadows(int quick, bench_row *rows, int *n, atmo_err *e)
+{
+    atmo_scene s;
+    atmo_plan p;
+    int rc;
+    if ((rc = thesis(&s, e)) || (rc = atmo_plan_make(&s, &p, e)))
+        return rc;
+    double R = s.atmosphere.bottom_radius_m, *cam = s.camera.position_m;
+    atmo_gpu_scene g = p.gpu;
+    atmo_plan_free(&p);
+    int m = quick ? 60 : 300;
+    vec3 *pts = malloc(sizeof *pts * (size_t)m);
+    float *exact = malloc(sizeof *exact * (size_t)m);
+    if (!pts || !exact) {
+        free(pts), free(exact);
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory");
+    }
+    unsigned rng = 77u;
+    for (int i = 0; i < m; i++) {
+        double x = SITE_X + (urand(&rng) - 0.5) * 8000, z = SITE_Z + (urand(&rng) - 0.5) * 8000;
+        double h = terrain_ref_height(&g.terrain.field, x, z, NULL, NULL) + 0.2;
+        double nv[3] = {x / R, sqrt(1 - (x * x + z * z) / (R * R)), z / R}, w[3];
+        for (int c = 0; c < 3; c++)
+            w[c] = nv[c] * (R + h) - (c == 1 ? R : 0) - cam[c];
+        pts[i] = v3((float)w[0], (float)w[1], (float)w[2]);
+    }
+    atmo_gpu_scene gs = g;
+    gs.terrain.shadow = ATMO_TERRAIN_SHADOW_EXACT;
+    gs.terrain.shadow_rays = 64;
+    fprintf(stderr, "bench terrain: exact shadows with 64 rays at %d points\n", m);
+    for (int i = 0; i < m; i++)
+        exact[i] = terrain_sun_visible(&gs, NULL, pts[i], 0.0f);
+    static const int counts[] = {1, 4, 16};
+    for (int k = 0; k < 4; k++) {
+        gs = g;
+        gs.terrain.shadow = k < 3 ? ATMO_TERRAIN_SHADOW_EXACT : ATMO_TERRAIN_SHADOW_ESTIMATE;
+        gs.terrain.shadow_rays = k < 3 ? counts[k] : 1;
+        double t0 = atmo_now_seconds(), sum = 0;
+        for (int i = 0; i < m; i++) {
+            double d = terrain_sun_visible(&gs, NULL, pts[i], 0.0f) - exact[i];
+            sum += d * d;
+        }
+        bench_row *row = &rows[(*n)++];
+        snprintf(row->method, sizeof row->method, k < 3 ? "shadow-exact" : "shadow-estimate");
+        snprintf(row->settings, sizeof row->settings, k < 3 ? "%d rays" : "%d march",
+                 k < 3 ? counts[k] : 1);
+        row->seconds = atmo_now_seconds() - t0;
+        row->error = sqrt(sum / m);
+    }
+    free(pts);
+    free(exact);
+    return ATMO_OK;
+}
+
+static int shafts(const char *device, int quick, bench_row *rows, int *n, atmo_err *e)
+{
+    atmo_render_result ref;
+    int rc;
+    double seconds;
+    for (int k = 0; k < 4; k++) {
+        atmo_scene s;
+        if ((rc = thesis(&s, e)) || (rc = set(&s, "atmosphere.method=march", e)))
+            return rc;
+        s.image.width = quick ? 24 : 48, s.image.height = quick ? 14 : 27, s.image.samples = 1;
+        s.terrain.shafts = k;
+        fprintf(stderr, "bench terrain: shafts %d\n", k);
+        atmo_render_result r;
+        if ((rc = timed_render(&s, device, 0, &seconds, &r, e)))
+            return rc;
+        bench_row *row = &rows[(*n)++];
+        snprintf(row->method, sizeof row->method, "shafts");
+        snprintf(row->settings, sizeof row->settings, "shortcuts %d", k);
+        row->seconds = seconds;
+        if (k == 0) {
+            ref = r;
+            row->error = 0.0;
+        } else {
+            row->error = bench_rms_relative(&r, &ref);
+            atmo_render_result_free(&r);
+        }
+    }
+    atmo_render_result_free(&ref);
+    return ATMO_OK;
+}
+
+static int thesis_time(const char *dir, const char *device, int quick, const char *dev_name,
+                       atmo_err *e)
+{
+    static const char *const parts[] = {"sky only", "terrain without shadows or shafts",
+                                        "terrain + surface shadows", "terrain + shadows + shafts"};
+    bench_row rows[4];
+    int rc, w = quick ? 64 : 160, h = quick ? 36 : 90;
+    for (int k = 0; k < 4; k++) {
+        atmo_scene s;
+        if ((rc = thesis(&s, e)))
+            return rc;
+        s.image.width = w, s.image.height = h, s.image.samples = 1;
+        if (k == 0)
+            s.terrain.enabled = 0;
+        if (k == 1)
+            s.terrain.shadow = ATMO_TERRAIN_SHADOW_NONE;
+        if (k <= 2)
+            s.terrain.shadow_far_m = 1.0, s.terrain.shafts = ATMO_TERRAIN_SHAFT_FAR;
+        double seconds;
+        fprintf(stderr, "bench terrain: thesis-1 %s\n", parts[k]);
+        if ((rc = timed_render(&s, device, 0, &seconds, NULL, e)))
+            return rc;
+        snprintf(rows[k].method, sizeof rows[k].method, "thesis-1");
+        snprintf(rows[k].settings, sizeof rows[k].settings, "%s", parts[k]);
+        rows[k].seconds = seconds * (1280.0 * 720.0) / (w * h);
+        rows[k].error = 0.0;
+        printf("thesis-1, %s: %.3f s per sample at 1280x720 (measured at %dx%d)\n", parts[k],
+               rows[k].seconds, w, h);
+    }
+    char path[4096];
+    snprintf(path, sizeof path, "%s/terrain_thesis1.csv", dir);
+    return bench_write_csv(path, rows, 4, dev_name, e);
+}
+
+int bench_terrain(const char *dir, const char *device, int quick, atmo_err *e)
+{
+    bench_row rows[MAX_ROWS];
+    int n = 0, rc;
+    if ((rc = heightmaps(device, quick, rows, &n, e)) || (rc = tracing(quick, rows, &n, e)) ||
+        (rc = shadows(quick, rows, &n, e)) || (rc = shafts(device, quick, rows, &n, e)))
+        return rc;
+    for (int i = 0; i < n; i++)
+        printf("%-24s %-28s %10.4f s  error %.4g\n", rows[i].method, rows[i].settings,
+               rows[i].seconds, rows[i].error);
+    const char *dev_name = device ? device : "default";
+    char csv[4096], svg[4096];
+    snprintf(csv, sizeof csv, "%s/terrain.csv", dir);
+    snprintf(svg, sizeof svg, "%s/terrain.svg", dir);
+    if ((rc = bench_write_csv(csv, rows, n, dev_name, e)) ||
+        (rc = bench_chart(csv, svg, "terrain: error against time (heightmap m or deg, tracing "
+                                    "error rate, shadow RMS, shafts RMS relative)",
+                          "error", rows, n, e)))
+        return rc;
+    return thesis_time(dir, device, quick, dev_name, e);
+}

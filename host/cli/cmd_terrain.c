@@ -1,0 +1,205 @@
+/* cmd_terrain.c — `atmo terrain --at X,Z`: the terrain at a point of the planet, for users
+ * placing cameras and objects and for the tests.
+ *
+ * Scene: the defaults, then --preset NAME or --scene FILE (default: the default preset), then
+ * --set KEY=VALUE in order; terrain.enabled is implied. (X, Z) are the planar coordinates of
+ * the point's foot on the ground sphere (kernels/terrain/terrain.h: world x and z there, which
+ * near the origin are the world coordinates of the point). For each --at it prints the height
+ * of the height field above sea level (h, metres), the surface's altitude max(h, sea level),
+ * the world position of the surface point, its unit normal (the sphere's tangent frame), the
+ * land/sea coverage in [0, 1] and the material weights (terrain_material.h), all from the
+ * kernels' own float functions compiled on the host (what a render sees, with the fBm
+ * evaluated directly), plus the height from the double-precision reference
+ * (host/terrain/terrain_ref.c). --json prints one JSON object per point, one per line, with at
+ * least "height_m", "normal" and "coverage". */
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "atmo/plan.h"
+#include "atmo/scene.h"
+#include "atmo/terrain_ref.h"
+#include "terrain/terrain_material.h"
+#include "commands.h"
+
+#define TERRAIN_MAX_POINTS 256
+
+static const char terrain_usage[] =
+    "usage: atmo terrain --at X,Z [--at X,Z ...] [--preset NAME | --scene FILE] [--set K=V ...]\n"
+    "                    [--json]\n"
+    "\n"
+    "Prints the procedural terrain at planar coordinates (X, Z) in metres (the world x and z of\n"
+    "the point's foot on the ground sphere): height above sea level, surface altitude (water\n"
+    "at sea level), world position, unit normal, land/sea coverage and material weights.\n"
+    "terrain.enabled is implied; terrain.* keys (atmo params) change the terrain.\n";
+
+static const char *const material_names[TERRAIN_MATERIALS] = {"grass", "dirt", "rock", "snow",
+                                                              "water"};
+
+static int parse_at(const char *v, double at[2], atmo_err *e)
+{
+    char *end;
+    at[0] = strtod(v, &end);
+    if (end == v || *end != ',')
+        return atmo_fail(e, ATMO_ERR_USAGE, "--at needs X,Z in metres, got '%s'", v);
+    const char *z = end + 1;
+    at[1] = strtod(z, &end);
+    if (end == z || *end || !isfinite(at[0]) || !isfinite(at[1]))
+        return atmo_fail(e, ATMO_ERR_USAGE, "--at needs X,Z in metres, got '%s'", v);
+    return ATMO_OK;
+}
+
+/* One point: the report as a cJSON object, or NULL with *e filled. */
+static cJSON *probe(const atmo_plan *p, const atmo_scene *s, const double at[2], atmo_err *e)
+{
+    const atmo_gpu_scene *g = &p->gpu;
+    double R = s->atmosphere.bottom_radius_m, rho2 = (at[0] * at[0] + at[1] * at[1]) / (R * R);
+    if (rho2 >= 1.0) {
+        atmo_fail(e, ATMO_ERR_USAGE,
+                  "--at %g,%g lies outside the planet's disc of radius %g m; use |(X, Z)| < R",
+                  at[0], at[1], R);
+        return NULL;
+    }
+    terrain_height h = terrain_height_direct(&g->terrain.field, (float)at[0], (float)at[1]);
+    double ref_cov, ref = terrain_ref_height(&g->terrain.field, at[0], at[1], NULL, &ref_cov);
+    double surface = fmax((double)h.h, s->terrain.sea_level_m);
+    double n[3] = {at[0] / R, sqrt(1.0 - rho2), at[1] / R}, world[3], rel[3];
+    for (int k = 0; k < 3; k++)
+        world[k] = n[k] * (R + surface) - (k == 1 ? R : 0.0);
+    for (int k = 0; k < 3; k++)
+        rel[k] = world[k] - s->camera.position_m[k];
+    vec3 q = v3((float)rel[0], (float)rel[1], (float)rel[2]);
+    terrain_surface_point m = terrain_material(g, NULL, q, 1.0f);
+    float cu, cv;
+    float coverage = terrain_coverage(&g->terrain.field, (float)at[0], (float)at[1], &cu, &cv);
+
+    cJSON *o = cJSON_CreateObject(), *normal = cJSON_CreateArray();
+    cJSON *pos = cJSON_CreateArray(), *mat = cJSON_CreateObject();
+    if (!o || !normal || !pos || !mat) {
+        cJSON_Delete(o), cJSON_Delete(normal), cJSON_Delete(pos), cJSON_Delete(mat);
+        atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory");
+        return NULL;
+    }
+    cJSON_AddNumberToObject(o, "x_m", at[0]);
+    cJSON_AddNumberToObject(o, "z_m", at[1]);
+    cJSON_AddNumberToObject(o, "height_m", h.h);
+    cJSON_AddNumberToObject(o, "height_ref_m", ref);
+    cJSON_AddNumberToObject(o, "surface_m", surface);
+    cJSON_AddBoolToObject(o, "water", (double)h.h <= s->terrain.sea_level_m);
+    for (int k = 0; k < 3; k++)
+        cJSON_AddItemToArray(pos, cJSON_CreateNumber(world[k]));
+    cJSON_AddItemToObject(o, "position_m", pos);
+    cJSON_AddItemToArray(normal, cJSON_CreateNumber(m.normal.x));
+    cJSON_AddItemToArray(normal, cJSON_CreateNumber(m.normal.y));
+    cJSON_AddItemToArray(normal, cJSON_CreateNumber(m.normal.z));
+    cJSON_AddItemToObject(o, "normal", normal);
+    cJSON_AddNumberToObject(o, "coverage", coverage);
+    for (int k = 0; k < TERRAIN_MATERIALS; k++)
+        cJSON_AddNumberToObject(mat, material_names[k], m.weight[k]);
+    cJSON_AddItemToObject(o, "materials", mat);
+    return o;
+}
+
+static void print_text(const cJSON *o)
+{
+    const cJSON *n = cJSON_GetObjectItem(o, "normal"), *pos = cJSON_GetObjectItem(o, "position_m");
+    printf("at (%g, %g) m: height %.3f m above sea level (double reference %.3f m), surface "
+           "%.3f m%s\n",
+           cJSON_GetObjectItem(o, "x_m")->valuedouble, cJSON_GetObjectItem(o, "z_m")->valuedouble,
+           cJSON_GetObjectItem(o, "height_m")->valuedouble,
+           cJSON_GetObjectItem(o, "height_ref_m")->valuedouble,
+           cJSON_GetObjectItem(o, "surface_m")->valuedouble,
+           cJSON_IsTrue(cJSON_GetObjectItem(o, "water")) ? " (water)" : "");
+    printf("  position (%.3f, %.3f, %.3f) m, normal (%.6f, %.6f, %.6f), coverage %.4f\n",
+           cJSON_GetArrayItem(pos, 0)->valuedouble, cJSON_GetArrayItem(pos, 1)->valuedouble,
+           cJSON_GetArrayItem(pos, 2)->valuedouble, cJSON_GetArrayItem(n, 0)->valuedouble,
+           cJSON_GetArrayItem(n, 1)->valuedouble, cJSON_GetArrayItem(n, 2)->valuedouble,
+           cJSON_GetObjectItem(o, "coverage")->valuedouble);
+    printf("  materials:");
+    const cJSON *mat = cJSON_GetObjectItem(o, "materials");
+    for (const cJSON *c = mat->child; c; c = c->next)
+        printf(" %s %.3f", c->string, c->valuedouble);
+    printf("\n");
+}
+
+int cmd_terrain(int argc, char **argv)
+{
+    atmo_scene scene;
+    atmo_err e = {{0}};
+    atmo_plan plan;
+    double at[TERRAIN_MAX_POINTS][2];
+    int n_at = 0, json = 0, rc = ATMO_OK, planned = 0;
+    const char *scene_file = NULL, *preset = NULL;
+
+    for (int i = 1; i + 1 < argc; i++) {
+        if (strcmp(argv[i], "--scene") == 0)
+            scene_file = argv[i + 1];
+        if (strcmp(argv[i], "--preset") == 0)
+            preset = argv[i + 1];
+    }
+    atmo_scene_defaults(&scene);
+    rc = scene_file ? atmo_scene_load_json(&scene, scene_file, &e)
+                    : atmo_scene_apply_preset(&scene, preset ? preset : atmo_default_preset, &e);
+    for (int i = 1; i < argc && rc == ATMO_OK; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            fputs(terrain_usage, stdout);
+            return ATMO_OK;
+        }
+        if (strcmp(a, "--json") == 0) {
+            json = 1;
+            continue;
+        }
+        if (strcmp(a, "--at") && strcmp(a, "--set") && strcmp(a, "--scene") && strcmp(a, "--preset")) {
+            rc = atmo_fail(&e, ATMO_ERR_USAGE, "%s '%s' (atmo terrain --help)",
+                           a[0] == '-' ? "unknown option" : "unexpected argument", a);
+            break;
+        }
+        if (!v) {
+            rc = atmo_fail(&e, ATMO_ERR_USAGE, "%s needs a value (atmo terrain --help)", a);
+            break;
+        }
+        i++;
+        if (strcmp(a, "--at") == 0) {
+            if (n_at == TERRAIN_MAX_POINTS)
+                rc = atmo_fail(&e, ATMO_ERR_USAGE, "at most %d --at points", TERRAIN_MAX_POINTS);
+            else
+                rc = parse_at(v, at[n_at++], &e);
+        } else if (strcmp(a, "--set") == 0) {
+            rc = atmo_scene_assign(&scene, v, "--set", &e);
+        }
+    }
+    if (rc == ATMO_OK && n_at == 0)
+        rc = atmo_fail(&e, ATMO_ERR_USAGE, "atmo terrain needs --at X,Z (atmo terrain --help)");
+    if (rc == ATMO_OK) {
+        scene.terrain.enabled = 1;
+        /* the probe needs no device or method: plan with a method terrain works with */
+        if (scene.atmosphere.method == ATMO_METHOD_REFERENCE)
+            scene.atmosphere.method = ATMO_METHOD_SINGLE;
+        scene.terrain.heightmap_size = 0;
+        rc = atmo_plan_make(&scene, &plan, &e);
+        planned = rc == ATMO_OK;
+    }
+    for (int i = 0; i < n_at && rc == ATMO_OK; i++) {
+        cJSON *o = probe(&plan, &scene, at[i], &e);
+        if (!o) {
+            rc = ATMO_ERR_USAGE;
+            break;
+        }
+        if (json) {
+            char *text = cJSON_PrintUnformatted(o);
+            if (text)
+                printf("%s\n", text);
+            free(text);
+        } else {
+            print_text(o);
+        }
+        cJSON_Delete(o);
+    }
+    if (planned)
+        atmo_plan_free(&plan);
+    if (rc != ATMO_OK)
+        fprintf(stderr, "atmo terrain: %s\n", e.msg);
+    return rc;
+}

@@ -1,0 +1,112 @@
+/* plan_terrain.c — the procedural terrain in the plan (atmo/plan_terrain.h).
+ *
+ * Fills gpu.terrain: the height field's inputs (field: what the heightmap pass reads, so its
+ * cache key), the camera's placement over it (world position and altitude above the ground
+ * sphere in double, so the kernels' camera-relative floats keep metre precision at 6360 km;
+ * this part follows the view), the sphere tracer's slope bound, tolerance and budget, and the
+ * shadow and shaft settings.
+ *
+ * Slope bound. Octave i of the eroded fBm contributes to e = (a / sum b + 1) / 2 at most
+ *     b_i 2^i f |grad n|_max relief / sum b = f (15/8) (2 sqrt 2) relief / sum b
+ * (quintic fade: q' <= 15/8; a cell's corner differences: |k1 + k3 q| <= 2 per axis), the
+ * erosion denominator >= 1 only lowering it; with H the maximum height,
+ *     L = H f N (15/8) 2 sqrt 2 relief / sum b   (relief 0.8, noise.h),
+ * about 2.29 for the thesis' terrain (H 4 km, f 3e-5 /m, 9 octaves). The erosion's second
+ * term and the coverage's slope are left out, which is what terrain.optimism and the tracer's
+ * back-stepping answer for; tests/test_terrain_trace.c measures the misses.
+ *
+ * Tolerance: half a pixel's footprint per metre of distance (tan(fov / 2) / height, the pixel
+ * angle), so a hit is as exact as the image can show. */
+#include <math.h>
+#include <string.h>
+#include "atmo/plan_terrain.h"
+
+double atmo_terrain_slope_bound(const atmo_gpu_terrain_field *f)
+{
+    double norm = 2.0 * (1.0 - pow(0.5, f->octaves));
+    return (double)f->max_height_m * (double)f->frequency_per_m * f->octaves * (15.0 / 8.0) *
+           2.0 * sqrt(2.0) * 0.8 / norm;
+}
+
+int atmo_plan_terrain(const atmo_scene *s, atmo_plan *p, atmo_err *e)
+{
+    const int method = s->atmosphere.method;
+    if (method == ATMO_METHOD_REFERENCE)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "terrain.enabled works with atmosphere.method=single, march, fast or "
+                         "lut (got reference); set one of those");
+    atmo_gpu_terrain *t = &p->gpu.terrain;
+    memset(t, 0, sizeof *t);
+    t->field.max_height_m = (float)s->terrain.max_height_m;
+    t->field.frequency_per_m = (float)s->terrain.frequency_per_m;
+    t->field.coverage_frequency_per_m = (float)s->terrain.coverage_frequency_per_m;
+    t->field.land_fraction = (float)s->terrain.land_fraction;
+    t->field.octaves = s->terrain.octaves;
+    t->field.coverage_octaves = s->terrain.coverage_octaves;
+    t->field.seed = (uint)s->terrain.seed;
+    t->field.heightmap_size = s->terrain.heightmap_size;
+    t->field.heightmap_format = s->terrain.heightmap_format;
+    t->field.heightmap_extent_m = (float)s->terrain.heightmap_extent_m;
+
+    double R = s->atmosphere.bottom_radius_m;
+    const double *c = s->camera.position_m;
+    double r = sqrt(c[0] * c[0] + (c[1] + R) * (c[1] + R) + c[2] * c[2]);
+    t->camera.x = (float)c[0];
+    t->camera.y = (float)c[1];
+    t->camera.z = (float)c[2];
+    t->camera.w = (float)(r - R);
+    t->sea_level_m = (float)s->terrain.sea_level_m;
+    t->slope_bound = (float)atmo_terrain_slope_bound(&t->field);
+    t->optimism = (float)s->terrain.optimism;
+    double pixel = 2.0 * tan(0.5 * s->camera.fov_deg * M_PI / 180.0) / s->image.height;
+    if (s->camera.kind == ATMO_CAMERA_PANORAMA)
+        pixel = M_PI / s->image.height;
+    t->pixel_angle = (float)pixel;
+    t->tolerance = (float)(0.5 * pixel);
+    t->steps = s->terrain.steps;
+    t->shadow = s->terrain.shadow;
+    t->shadow_rays = s->terrain.shadow_rays;
+    t->shadow_steps = s->terrain.shadow_steps;
+    t->shadow_far_m = (float)s->terrain.shadow_far_m;
+    t->shafts = s->terrain.shafts;
+
+    int n = s->terrain.heightmap_size;
+    size_t texel = s->terrain.heightmap_format == ATMO_TERRAIN_FORMAT_DERIVATIVES ? 3 : 1;
+    size_t bytes = sizeof(float) * texel * (size_t)n * (size_t)n;
+    if (n == 1)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "terrain.heightmap_size=1 is no grid; use 0 (direct evaluation) or >= 2");
+    if (bytes > ATMO_TERRAIN_HEIGHTMAP_MAX_BYTES)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "terrain.heightmap_size=%d needs %.0f MiB, over the %.0f MiB limit; use "
+                         "a smaller size, the float format, or 0 (direct evaluation)",
+                         n, bytes / 1048576.0, ATMO_TERRAIN_HEIGHTMAP_MAX_BYTES / 1048576.0);
+    int rc = atmo_plan_add_buffer(p, "heightmap", "float", bytes, 0, NULL, e);
+    if (!rc)
+        rc = atmo_plan_add_buffer(p, "terrain_base", "float", 0, 0, NULL, e);
+    if (!rc && n > 0)
+        rc = atmo_plan_add_pass(p, "terrain_heightmap", n, n, 1, 0, e);
+    return rc;
+}
+
+int atmo_plan_terrain_base(atmo_plan *p, const float *heights, int nx, int nz, double x0,
+                           double z0, double dx, double dz, double detail, atmo_err *e)
+{
+    atmo_plan_buffer *b = atmo_plan_buffer_find(p, "terrain_base");
+    atmo_gpu_terrain_field *f = &p->gpu.terrain.field;
+    if (!b || f->heightmap_size < 2)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "a height grid needs terrain.enabled and terrain.heightmap_size >= 2 "
+                         "(the heightmap resamples it); set them");
+    if (nx < 2 || nz < 2 || !(dx > 0.0) || !(dz > 0.0) || !isfinite(x0) || !isfinite(z0))
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "a height grid needs at least 2 x 2 samples and positive spacing (got "
+                         "%d x %d, %g x %g m)", nx, nz, dx, dz);
+    b->bytes = sizeof(float) * (size_t)nx * (size_t)nz;
+    b->host_data = heights;
+    f->base_nx = nx, f->base_nz = nz;
+    f->base_rect.x = (float)x0, f->base_rect.y = (float)z0;
+    f->base_rect.z = (float)dx, f->base_rect.w = (float)dz;
+    f->base_detail = (float)detail;
+    return ATMO_OK;
+}

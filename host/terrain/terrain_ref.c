@@ -1,0 +1,186 @@
+/* terrain_ref.c — the terrain's height field and ray hits in double precision
+ * (atmo/terrain_ref.h), the host reference of kernels/terrain/noise.h and terrain.h.
+ *
+ * The same integer hash and lattice values as the kernels (exact in both precisions), the same
+ * quintic value noise, eroded fBm with the octave rotation and the exact gradient, coverage
+ * field and planar placement u = R x / r, v = R z / r, all in double. A ray hit is brute force:
+ * steps of at most `step` metres along the ray, each no longer than the clearance over a slope
+ * of 4 allows near the surface, a sign change bracketed and bisected. */
+#include <math.h>
+#include <stddef.h>
+#include "atmo/terrain_ref.h"
+
+#define ROT_C 0.8
+#define ROT_S 0.6
+#define COAST 0.05
+#define RELIEF 0.8
+
+static unsigned hash(int ix, int iy, unsigned seed)
+{
+    unsigned h = ((unsigned)ix * 0x8da6b343u) ^ ((unsigned)iy * 0xd8163841u) ^
+                 (seed * 0xcb1ab31fu + 0x9e3779b9u);
+    h ^= h >> 16;
+    h *= 0x7feb352du;
+    h ^= h >> 15;
+    h *= 0x846ca68bu;
+    h ^= h >> 16;
+    return h;
+}
+
+static double lattice(int ix, int iy, unsigned seed)
+{
+    return (double)(hash(ix, iy, seed) >> 8) / 8388608.0 - 1.0;
+}
+
+/* value, gradient and Hessian (xx, yy, xy) */
+static void noise(double x, double y, unsigned seed, double n[6])
+{
+    double x0 = floor(x), y0 = floor(y), fx = x - x0, fy = y - y0;
+    int ix = (int)x0, iy = (int)y0;
+    double qx = fx * fx * fx * (fx * (fx * 6 - 15) + 10), qy = fy * fy * fy * (fy * (fy * 6 - 15) + 10);
+    double dqx = 30 * fx * fx * (fx - 1) * (fx - 1), dqy = 30 * fy * fy * (fy - 1) * (fy - 1);
+    double ddqx = 60 * fx * (fx - 1) * (2 * fx - 1), ddqy = 60 * fy * (fy - 1) * (2 * fy - 1);
+    double a = lattice(ix, iy, seed), b = lattice(ix + 1, iy, seed);
+    double c = lattice(ix, iy + 1, seed), d = lattice(ix + 1, iy + 1, seed);
+    double k1 = b - a, k2 = c - a, k3 = a - b - c + d;
+    n[0] = a + k1 * qx + k2 * qy + k3 * qx * qy;
+    n[1] = dqx * (k1 + k3 * qy);
+    n[2] = dqy * (k2 + k3 * qx);
+    n[3] = ddqx * (k1 + k3 * qy);
+    n[4] = ddqy * (k2 + k3 * qx);
+    n[5] = k3 * dqx * dqy;
+}
+
+static void next_octave(double *x, double *y, double j[4])
+{
+    double nx = 2 * (ROT_C * *x - ROT_S * *y), ny = 2 * (ROT_S * *x + ROT_C * *y);
+    *x = nx, *y = ny;
+    double n00 = 2 * (ROT_C * j[0] - ROT_S * j[2]), n01 = 2 * (ROT_C * j[1] - ROT_S * j[3]);
+    double n10 = 2 * (ROT_S * j[0] + ROT_C * j[2]), n11 = 2 * (ROT_S * j[1] + ROT_C * j[3]);
+    j[0] = n00, j[1] = n01, j[2] = n10, j[3] = n11;
+}
+
+static double fbm(double x, double y, int octaves, unsigned seed, double *ex, double *ey)
+{
+    double a = 0, ax = 0, ay = 0, b = 1, norm = 0, dx = 0, dy = 0;
+    double s[4] = {0, 0, 0, 0}, j[4] = {1, 0, 0, 1};
+    for (int i = 0; i < octaves; i++) {
+        double n[6];
+        noise(x, y, seed + (unsigned)i, n);
+        dx += n[1];
+        dy += n[2];
+        s[0] += j[0] * n[3] + j[2] * n[5];
+        s[1] += j[0] * n[5] + j[2] * n[4];
+        s[2] += j[1] * n[3] + j[3] * n[5];
+        s[3] += j[1] * n[5] + j[3] * n[4];
+        double den = 1 + dx * dx + dy * dy;
+        double gx = j[0] * n[1] + j[2] * n[2], gy = j[1] * n[1] + j[3] * n[2];
+        double hx = s[0] * dx + s[1] * dy, hy = s[2] * dx + s[3] * dy;
+        a += b * n[0] / den;
+        ax += b * (gx * den - 2 * n[0] * hx) / (den * den);
+        ay += b * (gy * den - 2 * n[0] * hy) / (den * den);
+        norm += b;
+        b *= 0.5;
+        next_octave(&x, &y, j);
+    }
+    double k = RELIEF / norm, th = tanh(2 * k * a), slope = k * (1 - th * th);
+    *ex = ax * slope;
+    *ey = ay * slope;
+    return 0.5 + 0.5 * th;
+}
+
+static double coverage(const atmo_gpu_terrain_field *f, double u, double v, double *cu, double *cv)
+{
+    double fr = (double)f->coverage_frequency_per_m, x = u * fr, y = v * fr;
+    double c = 0, cx = 0, cy = 0, b = 1, norm = 0, j[4] = {1, 0, 0, 1};
+    unsigned seed = f->seed + 0x51ed27u;
+    for (int i = 0; i < f->coverage_octaves; i++) {
+        double n[6];
+        noise(x, y, seed + (unsigned)i, n);
+        c += b * n[0];
+        cx += b * (j[0] * n[1] + j[2] * n[2]);
+        cy += b * (j[1] * n[1] + j[3] * n[2]);
+        norm += b;
+        b *= 0.5;
+        next_octave(&x, &y, j);
+    }
+    double c0 = 0.5 * c / norm + 0.5, t = 1.0 - (double)f->land_fraction;
+    double s = (c0 - (t - COAST)) / (2 * COAST);
+    s = s < 0 ? 0 : s > 1 ? 1 : s;
+    double ds = s > 0 && s < 1 ? 6 * s * (1 - s) / (2 * COAST) : 0;
+    double k = ds * 0.5 / norm * fr;
+    *cu = cx * k;
+    *cv = cy * k;
+    return s * s * (3 - 2 * s);
+}
+
+double terrain_ref_height(const atmo_gpu_terrain_field *f, double u, double v, double grad[2],
+                          double *cov)
+{
+    double cu, cv, ex = 0, ey = 0, e = 0, fr = (double)f->frequency_per_m;
+    double c = coverage(f, u, v, &cu, &cv);
+    if (c > 0)
+        e = fbm(u * fr, v * fr, f->octaves, f->seed, &ex, &ey);
+    double H = (double)f->max_height_m;
+    if (grad) {
+        grad[0] = c > 0 ? H * (cu * e + c * ex * fr) : 0;
+        grad[1] = c > 0 ? H * (cv * e + c * ey * fr) : 0;
+    }
+    if (cov)
+        *cov = c;
+    return H * c * e;
+}
+
+double terrain_ref_clearance(const atmo_gpu_terrain_field *f, double R, double sea_level_m,
+                             const double p[3])
+{
+    double q[3] = {p[0], p[1] + R, p[2]};
+    double r = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+    double h = terrain_ref_height(f, R * q[0] / r, R * q[2] / r, NULL, NULL);
+    return (r - R) - (h > sea_level_m ? h : sea_level_m);
+}
+
+int terrain_ref_hit(const atmo_gpu_terrain_field *f, double R, double sea_level_m,
+                    const double o[3], const double d[3], double t_max, double step, double *t,
+                    double *min_clearance)
+{
+    double p[3], t0 = 0, g0, lo_g = INFINITY;
+    for (int k = 0; k < 3; k++)
+        p[k] = o[k];
+    g0 = terrain_ref_clearance(f, R, sea_level_m, p);
+    if (g0 <= 0) {
+        *t = 0;
+        return 1;
+    }
+    while (t0 < t_max) {
+        double dt = fmin(step, fmax(g0 / 4.0, 1e-3 * step));
+        double t1 = fmin(t0 + dt, t_max);
+        for (int k = 0; k < 3; k++)
+            p[k] = o[k] + t1 * d[k];
+        double g1 = terrain_ref_clearance(f, R, sea_level_m, p);
+        if (g1 <= 0) {
+            double a = t0, b = t1;
+            while (b - a > 1e-9 * b + 1e-9) {
+                double m = 0.5 * (a + b);
+                for (int k = 0; k < 3; k++)
+                    p[k] = o[k] + m * d[k];
+                if (terrain_ref_clearance(f, R, sea_level_m, p) > 0)
+                    a = m;
+                else
+                    b = m;
+            }
+            *t = 0.5 * (a + b);
+            return 1;
+        }
+        lo_g = fmin(lo_g, g1);
+        t0 = t1, g0 = g1;
+        /* above the highest terrain and rising: it never comes back down */
+        double q[3] = {p[0], p[1] + R, p[2]}, r = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+        if (r - R > fmax((double)f->max_height_m, sea_level_m) &&
+            q[0] * d[0] + q[1] * d[1] + q[2] * d[2] > 0)
+            break;
+    }
+    if (min_clearance)
+        *min_clearance = lo_g;
+    return 0;
+}

@@ -1,0 +1,54 @@
+/* gpu_terrain.h — the procedural terrain (kernels/terrain/) as the kernels see it. Zero unless
+ * the scene has terrain.enabled. Shared byte for byte with OpenCL C (checked by plan.c and
+ * tests/test_gpu_layout.c).
+ *
+ * `field` is the height field itself, the only part the heightmap pass reads (its cache key);
+ * with a host-supplied height grid (a digital elevation model in metres, atmo_plan_terrain_base)
+ * the heightmap pass resamples the grid and adds base_detail times the fBm; the rest is the
+ * camera's placement over it (follows the view) and the tracing, shading and
+ * shadow settings. Heights are in metres above the ground sphere (sea level), a function of
+ * the planar coordinates (u, v) of a point's foot on the sphere (kernels/terrain/terrain.h). */
+#ifndef ATMO_GPU_TERRAIN_H
+#define ATMO_GPU_TERRAIN_H
+#ifndef __OPENCL_VERSION__
+#include "common/compat.h"
+#endif
+
+typedef struct atmo_gpu_terrain_field {
+    float max_height_m;             /* H: heights lie in [0, H] */
+    float frequency_per_m;          /* the fBm's first octave */
+    float coverage_frequency_per_m; /* the land/sea field's first octave */
+    float land_fraction;            /* land/sea threshold: 1 all land, 0 all sea */
+    int octaves;                    /* of the height fBm (9) */
+    int coverage_octaves;           /* of the land/sea field (6) */
+    uint seed;                      /* of the integer hash */
+    int heightmap_size;             /* texels per side; 0: direct evaluation, no heightmap */
+    int heightmap_format;           /* ATMO_TERRAIN_FORMAT_* (gpu_enums.h) */
+    float heightmap_extent_m;       /* side of the square it covers, centred on the origin */
+    int base_nx, base_nz;           /* a host-supplied height grid (buffer terrain_base, row-major
+                                       in z), 0 x 0: none */
+    float4 base_rect;               /* its first sample's planar (u, v) and its spacing, m:
+                                       x0, z0, dx, dz */
+    float base_detail;              /* the fBm's share added over the grid (0: the grid alone) */
+    int pad0, pad1, pad2;
+} atmo_gpu_terrain_field;
+
+typedef struct atmo_gpu_terrain {
+    atmo_gpu_terrain_field field;
+    float4 camera;        /* xyz: the camera's world position (m); w: its altitude above the
+                             ground sphere (m), computed in double */
+    float sea_level_m;    /* water where the height is at or below it */
+    float slope_bound;    /* bound on |grad h| used to size the sphere-tracing steps */
+    float optimism;       /* step relaxation factor (1: steps within the bound) */
+    float tolerance;      /* hit tolerance per metre of distance (a pixel's footprint) */
+    int steps;            /* sphere-tracing steps before the fallback march */
+    int shadow;           /* ATMO_TERRAIN_SHADOW_* */
+    int shadow_rays;      /* exact shadows: rays toward points of the sun disc */
+    int shadow_steps;     /* steps of one shadow ray */
+    float shadow_far_m;   /* shadow rays and shafts look this far toward the sun */
+    int shafts;           /* bit set of ATMO_TERRAIN_SHAFT_* shortcuts */
+    float pixel_angle;    /* radians per pixel: the distance filter of shading detail */
+    int pad2;
+} atmo_gpu_terrain;
+
+#endif

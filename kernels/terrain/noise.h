@@ -1,0 +1,195 @@
+/* noise.h — the terrain's height field: value noise from an integer hash with analytic first
+ * and second derivatives, the "eroded" fBm over it, and the land/sea coverage field.
+ *
+ * Value noise (Quilez, "Value noise derivatives", 2008). Lattice values come from an integer
+ * hash of the cell corner and the seed (a 32-bit multiply-xorshift finaliser), mapped exactly
+ * to k 2^-23 - 1 in [-1, 1): the same on every device and in the double-precision host
+ * reference (host/terrain/terrain_ref.c). In a cell with corners a, b, c, d and fractions
+ * (x, y), with the quintic fade q(x) = x^3 (6 x^2 - 15 x + 10) (Perlin 2002),
+ *     n = a + k1 qx + k2 qy + k3 qx qy,  k1 = b - a, k2 = c - a, k3 = a - b - c + d,
+ *     n_x = q'x (k1 + k3 qy),  n_y = q'y (k2 + k3 qx),
+ *     n_xx = q''x (k1 + k3 qy),  n_yy = q''y (k2 + k3 qx),  n_xy = k3 q'x q'y,
+ * q'(x) = 30 x^2 (x - 1)^2, q''(x) = 60 x (x - 1)(2 x - 1): C2 across cells.
+ *
+ * Eroded fBm (Quilez, "Terrain", the thesis' terrain): octaves i = 0 .. N-1 at points
+ * p_i = (2 M)^i p_0 with the octave rotation M = [[0.8, -0.6], [0.6, 0.8]] (lacunarity 2) and
+ * weights b_i = 0.5^i (gain 0.5); with D_i = sum_{j <= i} grad n_j(p_j) (each gradient in its
+ * octave's own coordinates, as the original accumulates it)
+ *     a = sum_i b_i n_i / (1 + |D_i|^2),
+ * so slopes of the coarse octaves damp the fine ones ("erosion"). Its gradient in p_0 is exact:
+ * with J_i = (2 M)^i and H_j the Hessian of octave j,
+ *     grad a = sum_i b_i [J_i^T g_i (1 + |D_i|^2) - 2 n_i (sum_{j<=i} J_j^T H_j) D_i]
+ *              / (1 + |D_i|^2)^2.
+ * The terrain's elevation is e = (1 + tanh(2 TERRAIN_RELIEF a / sum b_i)) / 2 in (0, 1): a
+ * relief of 0.8 spreads the fBm's narrow distribution over about [0.1, 0.9] (valleys and snowy
+ * peaks under a 4 km maximum) with slope 0.8 / sum b_i at the middle, the rare values beyond
+ * saturating smoothly (a clamp would leave flat plateaus whose edges trace the lattice).
+ *
+ * Coverage (land and sea): plain fBm c0 of `coverage_octaves` octaves (no erosion), normalised
+ * to [0, 1] the same way, then smoothstep(t - 0.05, t + 0.05, c0) with t = 1 - land_fraction.
+ * The height is h = H coverage e (H = max_height_m); water covers h <= sea level.
+ *
+ * Octave i hashes with seed + i (the coverage with seed + 0x51ed27 + i), so octaves are
+ * independent lattices. Coordinates: (u, v) in metres, the planar coordinates of terrain.h; octave 0 samples the
+ * lattice at (u, v) times frequency_per_m. Parameters: gpu_terrain.h's field. */
+#ifndef ATMO_TERRAIN_NOISE_H
+#define ATMO_TERRAIN_NOISE_H
+#ifndef __OPENCL_VERSION__
+#include "common/compat.h"
+#include "atmo/gpu_terrain.h"
+#endif
+
+#define TERRAIN_ROT_C 0.8f
+#define TERRAIN_ROT_S 0.6f
+#define TERRAIN_COAST_HALF_WIDTH 0.05f
+#define TERRAIN_RELIEF 0.8f
+
+/* Value noise at a point and its derivatives (see the top of the file). */
+typedef struct terrain_noise {
+    float v, dx, dy, dxx, dyy, dxy;
+} terrain_noise;
+
+/* A height with its gradient in (u, v). */
+typedef struct terrain_height {
+    float h, du, dv;
+} terrain_height;
+
+ATMO_FN uint terrain_hash(int ix, int iy, uint seed)
+{
+    uint h = ((uint)ix * 0x8da6b343u) ^ ((uint)iy * 0xd8163841u) ^ (seed * 0xcb1ab31fu + 0x9e3779b9u);
+    h ^= h >> 16;
+    h *= 0x7feb352du;
+    h ^= h >> 15;
+    h *= 0x846ca68bu;
+    h ^= h >> 16;
+    return h;
+}
+
+/* The lattice value k 2^-23 - 1 (exact in float and double). */
+ATMO_FN float terrain_lattice(int ix, int iy, uint seed)
+{
+    return (float)(terrain_hash(ix, iy, seed) >> 8) * (1.0f / 8388608.0f) - 1.0f;
+}
+
+ATMO_FN terrain_noise terrain_value_noise(float x, float y, uint seed)
+{
+    float fx0 = floorf(x), fy0 = floorf(y);
+    int ix = (int)fx0, iy = (int)fy0;
+    float fx = x - fx0, fy = y - fy0;
+    float qx = fx * fx * fx * (fx * (fx * 6.0f - 15.0f) + 10.0f);
+    float qy = fy * fy * fy * (fy * (fy * 6.0f - 15.0f) + 10.0f);
+    float dqx = 30.0f * fx * fx * (fx - 1.0f) * (fx - 1.0f);
+    float dqy = 30.0f * fy * fy * (fy - 1.0f) * (fy - 1.0f);
+    float ddqx = 60.0f * fx * (fx - 1.0f) * (2.0f * fx - 1.0f);
+    float ddqy = 60.0f * fy * (fy - 1.0f) * (2.0f * fy - 1.0f);
+    float a = terrain_lattice(ix, iy, seed), b = terrain_lattice(ix + 1, iy, seed);
+    float c = terrain_lattice(ix, iy + 1, seed), d = terrain_lattice(ix + 1, iy + 1, seed);
+    float k1 = b - a, k2 = c - a, k3 = a - b - c + d;
+    terrain_noise n;
+    n.v = a + k1 * qx + k2 * qy + k3 * qx * qy;
+    n.dx = dqx * (k1 + k3 * qy);
+    n.dy = dqy * (k2 + k3 * qx);
+    n.dxx = ddqx * (k1 + k3 * qy);
+    n.dyy = ddqy * (k2 + k3 * qx);
+    n.dxy = k3 * dqx * dqy;
+    return n;
+}
+
+/* The eroded fBm's elevation e in [0, 1] at lattice point (x, y) and its gradient in (x, y). */
+ATMO_FN float terrain_fbm(float x, float y, int octaves, uint seed, float *ex, float *ey)
+{
+    float a = 0.0f, ax = 0.0f, ay = 0.0f, b = 1.0f, norm = 0.0f;
+    float dx = 0.0f, dy = 0.0f;                             /* D_i */
+    float sxx = 0.0f, sxy = 0.0f, syx = 0.0f, syy = 0.0f;   /* sum_j J_j^T H_j, row-major */
+    float j00 = 1.0f, j01 = 0.0f, j10 = 0.0f, j11 = 1.0f;   /* J_i = (2M)^i */
+    for (int i = 0; i < octaves; i++) {
+        terrain_noise n = terrain_value_noise(x, y, seed + (uint)i);
+        dx += n.dx;
+        dy += n.dy;
+        /* J^T H: J^T = [[j00, j10], [j01, j11]] */
+        sxx += j00 * n.dxx + j10 * n.dxy;
+        sxy += j00 * n.dxy + j10 * n.dyy;
+        syx += j01 * n.dxx + j11 * n.dxy;
+        syy += j01 * n.dxy + j11 * n.dyy;
+        float den = 1.0f + dx * dx + dy * dy;
+        float gx = j00 * n.dx + j10 * n.dy, gy = j01 * n.dx + j11 * n.dy; /* J^T g */
+        float hx = sxx * dx + sxy * dy, hy = syx * dx + syy * dy;         /* (sum J^T H) D */
+        a += b * n.v / den;
+        ax += b * (gx * den - 2.0f * n.v * hx) / (den * den);
+        ay += b * (gy * den - 2.0f * n.v * hy) / (den * den);
+        norm += b;
+        b *= 0.5f;
+        float nx = 2.0f * (TERRAIN_ROT_C * x - TERRAIN_ROT_S * y);
+        float ny = 2.0f * (TERRAIN_ROT_S * x + TERRAIN_ROT_C * y);
+        x = nx;
+        y = ny;
+        float n00 = 2.0f * (TERRAIN_ROT_C * j00 - TERRAIN_ROT_S * j10);
+        float n01 = 2.0f * (TERRAIN_ROT_C * j01 - TERRAIN_ROT_S * j11);
+        float n10 = 2.0f * (TERRAIN_ROT_S * j00 + TERRAIN_ROT_C * j10);
+        float n11 = 2.0f * (TERRAIN_ROT_S * j01 + TERRAIN_ROT_C * j11);
+        j00 = n00, j01 = n01, j10 = n10, j11 = n11;
+    }
+    float k = TERRAIN_RELIEF / norm, th = tanhf(2.0f * k * a), slope = k * (1.0f - th * th);
+    *ex = ax * slope;
+    *ey = ay * slope;
+    return 0.5f + 0.5f * th;
+}
+
+/* The land/sea coverage in [0, 1] at (u, v) metres and its gradient. */
+ATMO_FN float terrain_coverage(ATMO_GLOBAL const atmo_gpu_terrain_field *f, float u, float v,
+                               float *cu, float *cv)
+{
+    float x = u * f->coverage_frequency_per_m, y = v * f->coverage_frequency_per_m;
+    float c = 0.0f, cx = 0.0f, cy = 0.0f, b = 1.0f, norm = 0.0f;
+    float j00 = 1.0f, j01 = 0.0f, j10 = 0.0f, j11 = 1.0f;
+    uint seed = f->seed + 0x51ed27u;
+    for (int i = 0; i < f->coverage_octaves; i++) {
+        terrain_noise n = terrain_value_noise(x, y, seed + (uint)i);
+        c += b * n.v;
+        cx += b * (j00 * n.dx + j10 * n.dy);
+        cy += b * (j01 * n.dx + j11 * n.dy);
+        norm += b;
+        b *= 0.5f;
+        float nx = 2.0f * (TERRAIN_ROT_C * x - TERRAIN_ROT_S * y);
+        float ny = 2.0f * (TERRAIN_ROT_S * x + TERRAIN_ROT_C * y);
+        x = nx;
+        y = ny;
+        float n00 = 2.0f * (TERRAIN_ROT_C * j00 - TERRAIN_ROT_S * j10);
+        float n01 = 2.0f * (TERRAIN_ROT_C * j01 - TERRAIN_ROT_S * j11);
+        float n10 = 2.0f * (TERRAIN_ROT_S * j00 + TERRAIN_ROT_C * j10);
+        float n11 = 2.0f * (TERRAIN_ROT_S * j01 + TERRAIN_ROT_C * j11);
+        j00 = n00, j01 = n01, j10 = n10, j11 = n11;
+    }
+    float c0 = 0.5f * c / norm + 0.5f;
+    float t = 1.0f - f->land_fraction;
+    float s = clamp((c0 - (t - TERRAIN_COAST_HALF_WIDTH)) / (2.0f * TERRAIN_COAST_HALF_WIDTH),
+                    0.0f, 1.0f);
+    float ds = (s > 0.0f && s < 1.0f) ? 6.0f * s * (1.0f - s) / (2.0f * TERRAIN_COAST_HALF_WIDTH)
+                                      : 0.0f;
+    float k = ds * 0.5f / norm * f->coverage_frequency_per_m;
+    *cu = cx * k;
+    *cv = cy * k;
+    return s * s * (3.0f - 2.0f * s);
+}
+
+/* The height field h = H coverage e at (u, v) metres, evaluated directly. */
+ATMO_FN terrain_height terrain_height_direct(ATMO_GLOBAL const atmo_gpu_terrain_field *f, float u,
+                                             float v)
+{
+    float cu, cv, ex, ey;
+    float c = terrain_coverage(f, u, v, &cu, &cv);
+    terrain_height r;
+    if (c <= 0.0f) { /* open sea: the fBm is not needed */
+        r.h = 0.0f, r.du = 0.0f, r.dv = 0.0f;
+        return r;
+    }
+    float e = terrain_fbm(u * f->frequency_per_m, v * f->frequency_per_m, f->octaves, f->seed,
+                          &ex, &ey);
+    float H = f->max_height_m;
+    r.h = H * c * e;
+    r.du = H * (cu * e + c * ex * f->frequency_per_m);
+    r.dv = H * (cv * e + c * ey * f->frequency_per_m);
+    return r;
+}
+
+#endif

@@ -1,0 +1,359 @@
+/* terrain.h — the terrain on the planet: where a camera-relative point lies over the height
+ * field, the surface's height and normal there (from the heightmap or the fBm directly), the
+ * first hit of a ray (sphere tracing), and the terrain's shadow on the sun.
+ *
+ * Placement. The height field h(u, v) (noise.h) is a function of the planar coordinates of a
+ * point's foot on the ground sphere of radius R, u = R x / r, v = R z / r (x, z world
+ * coordinates relative to the planet's axis through the origin, r the distance to the planet
+ * centre): exact metres near the origin, continuous over the whole sphere (the far hemisphere
+ * mirrors the near one). The surface lies at altitude S = max(h, sea level) above the sphere.
+ * Kernels keep metre precision at 6360 km by never forming a world position: for a
+ * camera-relative point p, with the camera's unit vertical n_c, distance r_c and altitude h_c
+ * (computed in double by the host),
+ *     alt(p) = h_c + (2 r_c n_c.p + p.p) / (r_c + r_p),   r_p = sqrt(r_c^2 + 2 r_c n_c.p + p.p),
+ *     u = (x_c + p_x) R / r_p,  v = (z_c + p_z) R / r_p,
+ * and the clearance g(p) = alt(p) - S(u, v) is > 0 above the surface.
+ *
+ * Normal. With the point's vertical n and the gradient (h_u, h_v), the surface's normal is
+ * N = normalize(n - P_t (h_u, 0, h_v)), P_t the projection onto the tangent plane at n: the
+ * tangent frame of the sphere, not of world +Y (the relative error of dropping the curvature
+ * terms is h / R < 1e-3).
+ *
+ * Heightmap. heightmap_size = N > 0: the pass of heightmap.cl sampled h at the centres of an
+ * N x N grid over the square [-E/2, E/2]^2 (E = heightmap_extent_m); lookups inside it are
+ * bilinear (the height alone, gradient by central differences one texel apart; or the height
+ * and its derivatives, each interpolated), outside it the fBm is evaluated directly. N = 0:
+ * always direct.
+ *
+ * Sphere tracing (Hart 1996; over-relaxation after Keinert et al. 2014). Along a ray of local
+ * cosine mu to the vertical, the clearance falls at most at the rate L sqrt(1 - mu^2) - mu with
+ * L = slope_bound, so a step of dt = omega g / max(L sqrt(1 - mu^2) - mu, 0.05) with omega = 1
+ * cannot pass the surface while L bounds |grad h|; omega = optimism > 1 takes longer steps. A
+ * step that lands below the surface steps back to the last point above it and goes on with
+ * omega = 1 (back-stepping); below it again, the bracket is bisected (24 halvings or to 1e-6 of
+ * t). A point within the distance-dependent tolerance eps(t) = 0.01 m + tolerance t above the
+ * surface (a pixel's footprint at t) is a hit. Tracing is confined to the shell between sea
+ * level and the highest terrain; the ray's end at sea level is a hit by construction. A ray
+ * that has used `steps` steps is resolved by TERRAIN_FALLBACK_STEPS = 112 more steps, each
+ * at least a minimum that starts at the clearance plus eps(t) and grows by a factor 1.5 per
+ * step up to U = 1/64 of the rest of the shell (at most 48 steps to reach U from 1 cm for any
+ * U below 1e6 m, then 64 of U), with the same back-stepping and bisection, so it ends as a hit
+ * or leaves the shell: never as sky by exhaustion.
+ *
+ * Shadows, from a point toward the sun (unit vector s, angular radius alpha, within
+ * shadow_far_m): ATMO_TERRAIN_SHADOW_EXACT traces shadow_rays rays toward points of the sun
+ * disc on a Vogel spiral (equal areas, deterministic) and returns the fraction that escapes
+ * (soft by construction); ATMO_TERRAIN_SHADOW_ESTIMATE marches one ray toward the sun's centre
+ * through the terrain, keeps x = min over the march of g cos(e) / (t alpha) (e the sun's
+ * elevation: g cos(e) is the perpendicular clearance; Quilez, "Soft shadows in raymarched
+ * SDFs", 2010) and returns the visible fraction of a disc cut by a straight edge at x disc
+ * radii from its centre,
+ *     F(x) = 1/2 + (x sqrt(1 - x^2) + asin x) / pi,   x in [-1, 1].
+ *
+ * Parameters: gpu_terrain.h. */
+#ifndef ATMO_TERRAIN_TERRAIN_H
+#define ATMO_TERRAIN_TERRAIN_H
+#ifndef __OPENCL_VERSION__
+#include "common/compat.h"
+#include "common/geometry.h"
+#include "terrain/noise.h"
+#include "atmo/gpu_types.h"
+#endif
+
+#define TERRAIN_FALLBACK_STEPS 112
+#define TERRAIN_FALLBACK_GROWTH 1.5f
+#define TERRAIN_BISECTIONS 24
+#define TERRAIN_EPS_M 0.01f
+#define TERRAIN_GOLDEN_ANGLE 2.39996323f
+
+/* A camera-relative point over the height field. */
+typedef struct terrain_site {
+    float u, v;   /* planar coordinates of its foot, m */
+    float alt;    /* altitude above the ground sphere, m */
+} terrain_site;
+
+ATMO_FN terrain_site terrain_locate(ATMO_GLOBAL const atmo_gpu_scene *s, vec3 p)
+{
+    vec3 up = v3_from4(s->camera.local_up);
+    float r_c = s->camera.local_up.w;
+    float rise = 2.0f * r_c * v3_dot(up, p) + v3_dot(p, p);
+    float r_p = atmo_safe_sqrt(r_c * r_c + rise);
+    terrain_site q;
+    q.alt = s->terrain.camera.w + rise / (r_p + r_c);
+    float k = s->atmosphere.bottom_radius / r_p;
+    q.u = (s->terrain.camera.x + p.x) * k;
+    q.v = (s->terrain.camera.z + p.z) * k;
+    return q;
+}
+
+/* The unit vertical at a camera-relative point. */
+ATMO_FN vec3 terrain_vertical(ATMO_GLOBAL const atmo_gpu_scene *s, vec3 p)
+{
+    return v3_normalize(v3_add(v3_scale(v3_from4(s->camera.local_up), s->camera.local_up.w), p));
+}
+
+/* Texel (i, j) of the heightmap (clamped to the grid). */
+ATMO_FN float terrain_texel(ATMO_GLOBAL const atmo_gpu_terrain_field *f,
+                            ATMO_GLOBAL const float *hm, int i, int j, int k)
+{
+    int n = f->heightmap_size;
+    i = i < 0 ? 0 : (i >= n ? n - 1 : i);
+    j = j < 0 ? 0 : (j >= n ? n - 1 : j);
+    int stride = f->heightmap_format == ATMO_TERRAIN_FORMAT_DERIVATIVES ? 3 : 1;
+    return hm[(j * n + i) * stride + k];
+}
+
+/* Bilinear lookup of component k at grid coordinates (gx, gy) (texel centres at integers). */
+ATMO_FN float terrain_bilinear(ATMO_GLOBAL const atmo_gpu_terrain_field *f,
+                               ATMO_GLOBAL const float *hm, float gx, float gy, int k)
+{
+    float x0 = floorf(gx), y0 = floorf(gy), fx = gx - x0, fy = gy - y0;
+    int i = (int)x0, j = (int)y0;
+    float a = terrain_texel(f, hm, i, j, k), b = terrain_texel(f, hm, i + 1, j, k);
+    float c = terrain_texel(f, hm, i, j + 1, k), d = terrain_texel(f, hm, i + 1, j + 1, k);
+    return mix(mix(a, b, fx), mix(c, d, fx), fy);
+}
+
+/* The height field at (u, v): the heightmap inside its square, else the fBm. */
+ATMO_FN terrain_height terrain_height_at(ATMO_GLOBAL const atmo_gpu_terrain_field *f,
+                                         ATMO_GLOBAL const float *hm, float u, float v)
+{
+    int n = f->heightmap_size;
+    if (n > 1) {
+        float texel = f->heightmap_extent_m / (float)n;
+        float gx = (u + 0.5f * f->heightmap_extent_m) / texel - 0.5f;
+        float gy = (v + 0.5f * f->heightmap_extent_m) / texel - 0.5f;
+        if (gx >= 0.0f && gy >= 0.0f && gx <= (float)(n - 1) && gy <= (float)(n - 1)) {
+            terrain_height r;
+            r.h = terrain_bilinear(f, hm, gx, gy, 0);
+            if (f->heightmap_format == ATMO_TERRAIN_FORMAT_DERIVATIVES) {
+                r.du = terrain_bilinear(f, hm, gx, gy, 1);
+                r.dv = terrain_bilinear(f, hm, gx, gy, 2);
+            } else {
+                r.du = (terrain_bilinear(f, hm, gx + 1.0f, gy, 0) -
+                        terrain_bilinear(f, hm, gx - 1.0f, gy, 0)) / (2.0f * texel);
+                r.dv = (terrain_bilinear(f, hm, gx, gy + 1.0f, 0) -
+                        terrain_bilinear(f, hm, gx, gy - 1.0f, 0)) / (2.0f * texel);
+            }
+            return r;
+        }
+    }
+    return terrain_height_direct(f, u, v);
+}
+
+/* The surface's altitude S = max(h, sea level) over a site. */
+ATMO_FN float terrain_surface(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float *hm,
+                              terrain_site q)
+{
+    return fmaxf(terrain_height_at(&s->terrain.field, hm, q.u, q.v).h, s->terrain.sea_level_m);
+}
+
+/* The clearance g above the surface at a camera-relative point. */
+ATMO_FN float terrain_clearance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float *hm,
+                                vec3 p)
+{
+    terrain_site q = terrain_locate(s, p);
+    return q.alt - terrain_surface(s, hm, q);
+}
+
+/* The surface's unit normal at a camera-relative point on it (see the top of the file). */
+ATMO_FN vec3 terrain_normal(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float *hm,
+                            vec3 p)
+{
+    terrain_site q = terrain_locate(s, p);
+    vec3 n = terrain_vertical(s, p);
+    terrain_height h = terrain_height_at(&s->terrain.field, hm, q.u, q.v);
+    if (h.h <= s->terrain.sea_level_m)
+        return n;
+    vec3 g = v3(h.du, 0.0f, h.dv);
+    vec3 g_t = v3_sub(g, v3_scale(n, v3_dot(g, n)));
+    return v3_normalize(v3_sub(n, g_t));
+}
+
+/* Distances [t_in, t_out] along the ray where it lies in the terrain's shell (between sea level
+ * and the highest terrain); *ends_low: t_out is where the ray reaches sea level. 0 if the ray
+ * misses the shell. */
+ATMO_FN int terrain_shell(ATMO_GLOBAL const atmo_gpu_scene *s, vec3 o, vec3 d, float *t_in,
+                          float *t_out, int *ends_low)
+{
+    float R = s->atmosphere.bottom_radius, alt = terrain_locate(s, o).alt;
+    float top = fmaxf(s->terrain.field.max_height_m, s->terrain.sea_level_m) + 1.0f;
+    float low = s->terrain.sea_level_m;
+    float r = R + alt, mu = v3_dot(terrain_vertical(s, o), d), t0, t1, b0, b1;
+    if (!geometry_sphere_roots(r * mu, (alt - top) * (2.0f * R + alt + top), &t0, &t1) ||
+        t1 <= 0.0f)
+        return 0;
+    *t_in = fmaxf(t0, 0.0f);
+    *t_out = t1;
+    *ends_low = 0;
+    if (geometry_sphere_roots(r * mu, (alt - low) * (2.0f * R + alt + low), &b0, &b1) &&
+        b0 >= 0.0f && b0 < t1) {
+        *t_out = b0;
+        *ends_low = 1;
+    }
+    return 1;
+}
+
+/* The cosine of the ray to the local vertical at distance t (origin radius r, cosine mu). */
+ATMO_FN float terrain_ray_cosine(float r, float mu, float t)
+{
+    return atmo_clamp_cos((r * mu + t) / geometry_radius_at(r, mu, t));
+}
+
+/* Bisection of [a, b] (clearance > 0 at a, <= 0 at b) to the surface. */
+ATMO_FN float terrain_bisect(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float *hm,
+                             vec3 o, vec3 d, float a, float b)
+{
+    for (int i = 0; i < TERRAIN_BISECTIONS && b - a > 1e-6f * b; i++) {
+        float m = 0.5f * (a + b);
+        if (terrain_clearance(s, hm, v3_add(o, v3_scale(d, m))) > 0.0f)
+            a = m;
+        else
+            b = m;
+    }
+    return 0.5f * (a + b);
+}
+
+/* The first hit of the ray o + t d (camera-relative, d unit) with t0 <= t <= t1: 1 and *t_hit,
+ * or 0. steps: the sphere-tracing budget; *used (may be NULL) gets the steps taken, fallback
+ * included. */
+ATMO_FN int terrain_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float *hm,
+                          vec3 o, vec3 d, float t0, float t1, int steps, float *t_hit, int *used)
+{
+    ATMO_GLOBAL const atmo_gpu_terrain *tr = &s->terrain;
+    float t_in, t_out;
+    int ends_low, n = 0;
+    if (used)
+        *used = 0;
+    if (!terrain_shell(s, o, d, &t_in, &t_out, &ends_low))
+        return 0;
+    float t = fmaxf(t_in, t0), t_end = fminf(t_out, t1);
+    ends_low = ends_low && t_out <= t1;
+    if (t > t_end)
+        return 0;
+    float R = s->atmosphere.bottom_radius;
+    float r_o = R + terrain_locate(s, o).alt, mu_o = v3_dot(terrain_vertical(s, o), d);
+    float g = terrain_clearance(s, hm, v3_add(o, v3_scale(d, t)));
+    if (g <= 0.0f) { /* starts inside the terrain */
+        *t_hit = t;
+        return 1;
+    }
+    float omega = tr->optimism, t_prev = t, g_prev = g, min_step = 0.0f, uniform = 0.0f;
+    int total = steps + TERRAIN_FALLBACK_STEPS, hit = 0;
+    for (n = 0; n < total; n++) {
+        if (n == steps) { /* the fallback: steps from the clearance up to a 64th of the rest */
+            min_step = g + TERRAIN_EPS_M + tr->tolerance * t;
+            uniform = (t_end - t) / 64.0f;
+        } else if (n > steps) {
+            min_step = fminf(min_step * TERRAIN_FALLBACK_GROWTH, uniform);
+        }
+        if (g < TERRAIN_EPS_M + tr->tolerance * t) {
+            hit = 1;
+            break;
+        }
+        float mu = terrain_ray_cosine(r_o, mu_o, t);
+        float rate = fmaxf(tr->slope_bound * atmo_safe_sqrt(1.0f - mu * mu) - mu, 0.05f);
+        float dt = fmaxf(omega * g / rate, min_step);
+        t_prev = t, g_prev = g;
+        t = fminf(t + dt, t_end);
+        g = terrain_clearance(s, hm, v3_add(o, v3_scale(d, t)));
+        if (g <= 0.0f) {
+            if (omega > 1.0f) { /* back-step, then go on within the bound */
+                omega = 1.0f;
+                t = t_prev, g = g_prev;
+                continue;
+            }
+            t = terrain_bisect(s, hm, o, d, t_prev, t);
+            hit = 1;
+            break;
+        }
+        if (t >= t_end) {
+            if (ends_low) { /* sea level is below every surface: the hit is before it */
+                t = terrain_bisect(s, hm, o, d, t_prev, t_end);
+                hit = 1;
+            }
+            break;
+        }
+    }
+    if (used)
+        *used = n + 1;
+    if (hit)
+        *t_hit = t;
+    return hit;
+}
+
+/* The visible fraction of a disc cut by a straight edge x disc radii from its centre. */
+ATMO_FN float terrain_disc_fraction(float x)
+{
+    x = clamp(x, -1.0f, 1.0f);
+    return 0.5f + (x * atmo_safe_sqrt(1.0f - x * x) + asinf(x)) / ATMO_PI;
+}
+
+/* Point k of n on the sun disc as offsets (a, b) in units of its angular radius (a Vogel
+ * spiral: radius sqrt((k + 1/2) / n), angle k times the golden angle). */
+ATMO_FN void terrain_disc_point(int k, int n, float *a, float *b)
+{
+    float rho = sqrtf(((float)k + 0.5f) / (float)n), phi = (float)k * TERRAIN_GOLDEN_ANGLE;
+    *a = rho * cosf(phi);
+    *b = rho * sinf(phi);
+}
+
+/* Quilez's estimate from one march toward the sun's centre (see the top of the file). */
+ATMO_FN float terrain_shadow_estimate(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                      ATMO_GLOBAL const float *hm, vec3 p, vec3 sun, float start)
+{
+    ATMO_GLOBAL const atmo_gpu_terrain *tr = &s->terrain;
+    float t_in, t_out;
+    int ends_low;
+    if (!terrain_shell(s, p, sun, &t_in, &t_out, &ends_low))
+        return 1.0f;
+    float alpha = s->atmosphere.sun_angular_radius;
+    float cos_e = atmo_safe_sqrt(1.0f - atmo_sq(v3_dot(terrain_vertical(s, p), sun)));
+    float t = fmaxf(t_in, start), t_end = fminf(t_out, tr->shadow_far_m), x = 1.0f;
+    float min_step = (t_end - t) / (float)tr->shadow_steps;
+    for (int i = 0; i < tr->shadow_steps && t < t_end && x > -1.0f; i++) {
+        float g = terrain_clearance(s, hm, v3_add(p, v3_scale(sun, t)));
+        x = fminf(x, g * cos_e / (t * alpha));
+        t += fmaxf(fabsf(g) / (tr->slope_bound + 1.0f), min_step);
+    }
+    return terrain_disc_fraction(x);
+}
+
+/* The fraction of the sun disc the terrain leaves visible from the camera-relative point p
+ * (a point on or above the surface; start: the distance along each shadow ray where the march
+ * begins, clear of the point's own surface). */
+ATMO_FN float terrain_sun_visible(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float *hm,
+                                  vec3 p, float start)
+{
+    ATMO_GLOBAL const atmo_gpu_terrain *tr = &s->terrain;
+    vec3 sun = v3_from4(s->sun_direction);
+    if (tr->shadow == ATMO_TERRAIN_SHADOW_NONE)
+        return 1.0f;
+    if (tr->shadow == ATMO_TERRAIN_SHADOW_ESTIMATE)
+        return terrain_shadow_estimate(s, hm, p, sun, start);
+    float alpha = s->atmosphere.sun_angular_radius, t;
+    vec3 e1 = v3_normalize(v3_cross(sun, fabsf(sun.y) < 0.9f ? v3(0.0f, 1.0f, 0.0f)
+                                                             : v3(1.0f, 0.0f, 0.0f)));
+    vec3 e2 = v3_cross(sun, e1);
+    int lit = 0;
+    for (int k = 0; k < tr->shadow_rays; k++) {
+        float a, b;
+        terrain_disc_point(k, tr->shadow_rays, &a, &b);
+        vec3 d = v3_normalize(v3_add(sun, v3_add(v3_scale(e1, a * alpha), v3_scale(e2, b * alpha))));
+        lit += !terrain_trace(s, hm, p, d, start, tr->shadow_far_m, tr->shadow_steps, &t, 0);
+    }
+    return (float)lit / (float)tr->shadow_rays;
+}
+
+/* For the path tracer's surfaces: the first terrain hit along the camera-relative ray o + t d
+ * within t_max, its distance and the surface's unit normal there. */
+ATMO_FN int terrain_intersect(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float *hm,
+                              vec3 o, vec3 d, float t_max, float *t, vec3 *normal)
+{
+    if (!terrain_trace(s, hm, o, d, 0.0f, t_max, s->terrain.steps, t, 0))
+        return 0;
+    *normal = terrain_normal(s, hm, v3_add(o, v3_scale(d, *t)));
+    return 1;
+}
+
+#endif
