@@ -10,7 +10,8 @@
 # has three channels (R, G, B), which a heightmap is not: refused. The keys are listed by
 # `atmo params --json` with their types; a scene saved with a heightmap file reads back to the
 # same bytes. Bad input (no file, a missing file, no extent) exits 2 with one line on stderr
-# naming what is wrong, before any rendering (no output file is written).
+# naming what is wrong, before any rendering (no output file is written). A heightmap file
+# drawn as terrain replaces the procedural heights: the render differs from the procedural one.
 set -u
 atmo=$1
 tmp=$(mktemp -d)
@@ -114,6 +115,22 @@ import json, sys
 t = json.load(open(sys.argv[1]))["terrain"]
 assert t["heightmap_file"] == sys.argv[2] and t["heightmap_center_m"] == [1500, -2500], t
 PY
+
+# the file drawn as terrain (it implies terrain.enabled): refused with the fBm detail (not
+# built); drawn, it replaces the procedural heights (the image differs from the procedural's)
+"$atmo" render --set terrain.enabled=true --set terrain.heightmap_file="$tmp/ramp.png" \
+    --set terrain.heightmap_file_extent_m=20000 --set terrain.heightmap_detail=true \
+    --output "$tmp/no.pfm" 2>"$tmp/err"
+one_line_error $? "terrain.heightmap_detail"
+[ ! -e "$tmp/no.pfm" ] || bad "a refused render wrote its output"
+view=(--set terrain.enabled=true --set atmosphere.method=single --set camera.position_m=0,3000,12000
+      --set camera.pitch_deg=-12 --set camera.yaw_deg=180 --width 32 --height 16 --samples 1 --quiet)
+"$atmo" render "${view[@]}" --output "$tmp/fbm.pfm" 2>"$tmp/err" || { bad "procedural render"; cat "$tmp/err" >&2; }
+"$atmo" render "${view[@]}" --set terrain.heightmap_file="$tmp/ramp.png" \
+    --set terrain.heightmap_file_extent_m=20000 --set terrain.heightmap_scale_m=2000 \
+    --output "$tmp/dem.pfm" 2>"$tmp/err" || { bad "render with the DEM as terrain"; cat "$tmp/err" >&2; }
+[ -s "$tmp/dem.pfm" ] && ! cmp -s "$tmp/fbm.pfm" "$tmp/dem.pfm" ||
+    bad "the DEM render is missing or equals the procedural terrain's"
 
 [ $fail -eq 0 ] && echo "test_dem_cli: passed"
 exit $fail

@@ -172,6 +172,10 @@ int cmd_terrain(int argc, char **argv)
     }
     if (rc == ATMO_OK && n_at == 0)
         rc = atmo_fail(&e, ATMO_ERR_USAGE, "atmo terrain needs --at X,Z (atmo terrain --help)");
+    if (rc == ATMO_OK && scene.dem.file[0])
+        rc = atmo_fail(&e, ATMO_ERR_USAGE,
+                       "atmo terrain probes the procedural field only, not terrain.heightmap_file "
+                       "'%s'; atmo dem info describes the file", scene.dem.file);
     if (rc == ATMO_OK) {
         scene.terrain.enabled = 1;
         /* the probe needs no device or method: plan with a method terrain works with */

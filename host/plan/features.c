@@ -21,11 +21,12 @@ static int cloud_shell(const atmo_scene *s) { return s->cloud.enabled || s->obse
 static int cloud_layer(const atmo_scene *s) { return s->clouds.enabled; }
 static int has_objects(const atmo_scene *s) { return s->objects.count > 0; }
 static int path_mode(const atmo_scene *s) { return s->path.mode == ATMO_RENDER_PATH; }
-static int has_terrain(const atmo_scene *s) { return s->terrain.enabled; }
+/* a heightmap file is drawn as terrain, so it implies terrain.enabled */
+static int has_terrain(const atmo_scene *s) { return s->terrain.enabled || s->dem.file[0]; }
 static int terrain_stage(const atmo_scene *s)
 {
-    return s->terrain.enabled && (s->atmosphere.method == ATMO_METHOD_FAST ||
-                                  s->atmosphere.method == ATMO_METHOD_LUT);
+    return has_terrain(s) && (s->atmosphere.method == ATMO_METHOD_FAST ||
+                              s->atmosphere.method == ATMO_METHOD_LUT);
 }
 static int is_single(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_SINGLE; }
 static int is_march(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_MARCH; }

@@ -259,6 +259,10 @@ static int plan_features(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     if ((rc = atmo_scene_validate(s, e)) || (rc = atmo_atmosphere_from_scene(s, &p->atmosphere, e)))
         return rc;
     if (s->dem.file[0]) { /* a bad heightmap fails here, before any device work */
+        if (s->dem.detail)
+            return atmo_fail(e, ATMO_ERR_USAGE,
+                             "terrain.heightmap_detail=true (fBm detail below the file's cells) "
+                             "is not built yet; set it to false");
         atmo_dem_options o;
         atmo_dem_options_from_scene(s, &o);
         if ((rc = atmo_dem_load(s->dem.file, &o, &p->dem, e)))

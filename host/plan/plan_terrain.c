@@ -15,17 +15,50 @@
  * term and the coverage's slope are left out, which is what terrain.optimism and the tracer's
  * back-stepping answer for; tests/test_terrain_trace.c measures the misses.
  *
+ * A digital elevation model (terrain.heightmap_file, atmo/dem.h) becomes the heightmap's base
+ * height grid (plan_dem below); the procedural fBm then adds nothing (detail below the file's
+ * cells is not built).
+ *
  * Tolerance: half a pixel's footprint per metre of distance (tan(fov / 2) / height, the pixel
  * angle), so a hit is as exact as the image can show. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
+#include "atmo/dem.h"
 #include "atmo/plan_terrain.h"
+
+/* texels per side of the heightmap a DEM is resampled into when terrain.heightmap_size is 0 */
+#define TERRAIN_DEM_HEIGHTMAP_SIZE 1024
 
 double atmo_terrain_slope_bound(const atmo_gpu_terrain_field *f)
 {
     double norm = 2.0 * (1.0 - pow(0.5, f->octaves));
     return (double)f->max_height_m * (double)f->frequency_per_m * f->octaves * (15.0 / 8.0) *
            2.0 * sqrt(2.0) * 0.8 / norm;
+}
+
+/* The scene's DEM (p->dem, read by the plan) as the heightmap's base: resampled bicubically
+ * onto the heightmap's own texel centres, so the pass's bilinear lookup of the base returns the
+ * bicubic values there. The heightmap covers [-E/2, E/2]^2 of world X, Z (E its extent); the
+ * DEM's frame is centred on terrain.heightmap_center_m. */
+static int plan_dem(const atmo_scene *s, atmo_plan *p, atmo_err *e)
+{
+    const atmo_gpu_terrain_field *f = &p->gpu.terrain.field;
+    int n = f->heightmap_size;
+    double extent = f->heightmap_extent_m, texel = extent / n, first = -0.5 * extent + 0.5 * texel;
+    atmo_dem_grid g = {n, n, first - s->dem.center_m[0], first - s->dem.center_m[1], texel, texel,
+                       0};
+    float *grid = malloc(sizeof(float) * (size_t)n * (size_t)n);
+    if (!grid)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for a %dx%d heightmap", n, n);
+    int rc = atmo_plan_own(p, grid, e);
+    if (rc) {
+        free(grid);
+        return rc;
+    }
+    if ((rc = atmo_dem_resample(&p->dem, &g, ATMO_DEM_BICUBIC, grid, e)))
+        return rc;
+    return atmo_plan_terrain_base(p, grid, n, n, first, first, texel, texel, 0.0, e);
 }
 
 int atmo_plan_terrain(const atmo_scene *s, atmo_plan *p, atmo_err *e)
@@ -47,6 +80,14 @@ int atmo_plan_terrain(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     t->field.heightmap_size = s->terrain.heightmap_size;
     t->field.heightmap_format = s->terrain.heightmap_format;
     t->field.heightmap_extent_m = (float)s->terrain.heightmap_extent_m;
+    if (p->dem.width > 0) {
+        /* a DEM is resampled into the heightmap, so it needs one (4 MiB unless set), and the
+         * heights, kept within [0, max_height_m], must reach its highest point */
+        if (t->field.heightmap_size == 0)
+            t->field.heightmap_size = TERRAIN_DEM_HEIGHTMAP_SIZE;
+        if (p->dem.max_m > (double)t->field.max_height_m)
+            t->field.max_height_m = (float)p->dem.max_m;
+    }
 
     double R = s->atmosphere.bottom_radius_m;
     const double *c = s->camera.position_m;
@@ -70,7 +111,7 @@ int atmo_plan_terrain(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     t->shadow_far_m = (float)s->terrain.shadow_far_m;
     t->shafts = s->terrain.shafts;
 
-    int n = s->terrain.heightmap_size;
+    int n = t->field.heightmap_size;
     size_t texel = s->terrain.heightmap_format == ATMO_TERRAIN_FORMAT_DERIVATIVES ? 3 : 1;
     size_t bytes = sizeof(float) * texel * (size_t)n * (size_t)n;
     if (n == 1)
@@ -86,6 +127,8 @@ int atmo_plan_terrain(const atmo_scene *s, atmo_plan *p, atmo_err *e)
         rc = atmo_plan_add_buffer(p, "terrain_base", "float", 0, 0, NULL, e);
     if (!rc && n > 0)
         rc = atmo_plan_add_pass(p, "terrain_heightmap", n, n, 1, 0, e);
+    if (!rc && p->dem.width > 0)
+        rc = plan_dem(s, p, e);
     return rc;
 }
 
