@@ -64,41 +64,50 @@ static void png_write_text(FILE *f, const char *keyword, const char *text)
     png_put_u32(f, crc ^ 0xFFFFFFFFu);
 }
 
-int atmo_image_write_png(const char *path, const atmo_image *img, const atmo_post *post,
-                         const atmo_image_meta *meta, atmo_err *e)
+int atmo_image_write_png_rgb8(const char *path, int width, int height, const unsigned char *rgb,
+                              const char *software, const char *description, atmo_err *e)
 {
     /* Signature (8 bytes) and the IHDR chunk (4 + 4 + 13 + 4 bytes) come first. */
     const size_t header_bytes = 8 + 25;
     int rc = ATMO_ERR_RUNTIME;
     png_buffer png = {NULL, 0, 0};
-    unsigned char *pixels = malloc((size_t)img->width * (size_t)img->height * 3);
-    if (!pixels)
-        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory writing '%s'", path);
-    atmo_post_to_rgb8(post, img, pixels);
-    if (!stbi_write_png_to_func(png_collect, &png, img->width, img->height, 3, pixels,
-                                img->width * 3) ||
+    if (!stbi_write_png_to_func(png_collect, &png, width, height, 3, rgb, width * 3) ||
         png.failed || png.size < header_bytes || memcmp(png.data + 12, "IHDR", 4) != 0) {
         atmo_fail(e, ATMO_ERR_RUNTIME, "PNG encoding of '%s' failed (out of memory?)", path);
         goto cleanup;
     }
-
     char tmp[ATMO_TMP_PATH_MAX];
     FILE *f = atmo_atomic_open(path, tmp, e);
     if (!f)
         goto cleanup;
     fwrite(png.data, 1, header_bytes, f);
-    if (meta) {
-        char description[512], text[640];
-        atmo_image_describe(meta, description, sizeof description);
-        snprintf(text, sizeof text, "display-encoded (tone mapped, exposure %g) %s",
-                 (double)post->exposure, description);
-        png_write_text(f, "Software", meta->software ? meta->software : "atmo");
-        png_write_text(f, "Description", text);
-    }
+    if (software)
+        png_write_text(f, "Software", software);
+    if (description)
+        png_write_text(f, "Description", description);
     fwrite(png.data + header_bytes, 1, png.size - header_bytes, f);
     rc = atmo_atomic_commit(f, tmp, path, e);
 cleanup:
     free(png.data);
+    return rc;
+}
+
+int atmo_image_write_png(const char *path, const atmo_image *img, const atmo_post *post,
+                         const atmo_image_meta *meta, atmo_err *e)
+{
+    unsigned char *pixels = malloc((size_t)img->width * (size_t)img->height * 3);
+    if (!pixels)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory writing '%s'", path);
+    atmo_post_to_rgb8(post, img, pixels);
+    char description[512], text[640];
+    if (meta) {
+        atmo_image_describe(meta, description, sizeof description);
+        snprintf(text, sizeof text, "display-encoded (tone mapped, exposure %g) %s",
+                 (double)post->exposure, description);
+    }
+    int rc = atmo_image_write_png_rgb8(path, img->width, img->height, pixels,
+                                       meta ? (meta->software ? meta->software : "atmo") : NULL,
+                                       meta ? text : NULL, e);
     free(pixels);
     return rc;
 }

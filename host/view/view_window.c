@@ -12,13 +12,11 @@
  * scaled. The overlay is a list of triangles in window pixels, alpha blended over the image.
  *
  * The capture reads the back buffer after drawing (glReadPixels, GL_RGB, 8 bits, bottom row
- * first), flips it to top-first and writes it through stb_image_write as a PNG, atomically
- * (atmo/fileio.h). */
-#include <stb_image_write.h>
+ * first), flips it to top-first and writes it as a PNG through atmo_image_write_png_rgb8
+ * (atomically, as every image file). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "atmo/fileio.h"
 #include "view_shader.h"
 #include "view_window.h"
 
@@ -269,35 +267,12 @@ void view_window_draw(view_window *w, const atmo_post *post, const float *text, 
     }
 }
 
-/* stb's PNG encoder writes through this callback into memory. */
-typedef struct {
-    unsigned char *data;
-    size_t size;
-    int failed;
-} capture_buffer;
-
-static void collect(void *context, void *data, int size)
-{
-    capture_buffer *b = context;
-    unsigned char *grown = realloc(b->data, b->size + (size_t)size);
-    if (!grown) {
-        b->failed = 1;
-        return;
-    }
-    memcpy(grown + b->size, data, (size_t)size);
-    b->data = grown;
-    b->size += (size_t)size;
-}
-
 int view_window_capture(view_window *w, const char *path, atmo_err *e)
 {
     int fw, fh, rc = ATMO_OK;
     glfwGetFramebufferSize(w->window, &fw, &fh);
     size_t row = (size_t)fw * 3;
     unsigned char *pixels = malloc(row * (size_t)fh), *flipped = malloc(row * (size_t)fh);
-    capture_buffer png = {NULL, 0, 0};
-    char tmp[ATMO_TMP_PATH_MAX];
-    FILE *f = NULL;
     if (!pixels || !flipped) {
         rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory capturing the window");
         goto cleanup;
@@ -312,22 +287,8 @@ int view_window_capture(view_window *w, const char *path, atmo_err *e)
     }
     for (int y = 0; y < fh; y++)
         memcpy(flipped + (size_t)y * row, pixels + (size_t)(fh - 1 - y) * row, row);
-    if (!stbi_write_png_to_func(collect, &png, fw, fh, 3, flipped, (int)row) || png.failed) {
-        rc = atmo_fail(e, ATMO_ERR_RUNTIME, "encoding the window capture '%s' failed", path);
-        goto cleanup;
-    }
-    if (!(f = atmo_atomic_open(path, tmp, e))) {
-        rc = ATMO_ERR_RUNTIME;
-        goto cleanup;
-    }
-    if (fwrite(png.data, 1, png.size, f) != png.size) {
-        atmo_atomic_abort(f, tmp);
-        rc = atmo_fail(e, ATMO_ERR_RUNTIME, "writing '%s' failed", path);
-        goto cleanup;
-    }
-    rc = atmo_atomic_commit(f, tmp, path, e);
+    rc = atmo_image_write_png_rgb8(path, fw, fh, flipped, NULL, NULL, e);
 cleanup:
-    free(png.data);
     free(flipped);
     free(pixels);
     return rc;

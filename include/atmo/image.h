@@ -98,6 +98,10 @@ void atmo_post_to_rgb8(const atmo_post *post, const atmo_image *img, unsigned ch
  * values (atmo_image_write guarantees both) and write atomically. */
 int atmo_image_write_png(const char *path, const atmo_image *img, const atmo_post *post,
                          const atmo_image_meta *meta, atmo_err *e);
+/* 8-bit RGB pixels (3 bytes each, row 0 = top) as a PNG, with tEXt chunks "Software" and
+ * "Description" where those are not NULL (the viewer's window capture writes through it). */
+int atmo_image_write_png_rgb8(const char *path, int width, int height, const unsigned char *rgb,
+                              const char *software, const char *description, atmo_err *e);
 int atmo_image_write_hdr(const char *path, const atmo_image *img, const atmo_image_meta *meta,
                          atmo_err *e);
 int atmo_image_write_exr(const char *path, const atmo_image *img, const atmo_image_meta *meta,
