@@ -75,9 +75,7 @@ int atmo_cl_driver_cache_dir(char *dir, size_t size)
     return 0;
 }
 
-/* PoCL reads its settings once, when the ICD loader first opens it: set them before, each only
- * where the user has not. Without a cache directory PoCL keeps its own default. */
-static void driver_env(void)
+void atmo_cl_prepare_environment(void)
 {
     char dir[1100];
     const char *env = getenv("POCL_CACHE_DIR");
@@ -96,7 +94,7 @@ static int cl_enumerate(cl_device_entry *out, int *count, atmo_err *e)
 {
     cl_platform_id platforms[16];
     cl_uint np = 0;
-    driver_env();
+    atmo_cl_prepare_environment();
     cl_int err = clGetPlatformIDs(16, platforms, &np);
     if (err == -1001 || (err == CL_SUCCESS && np == 0))
         return atmo_fail(e, ATMO_ERR_RUNTIME,

@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "atmo/status.h"
+#include "atmo/cl_runtime.h"
 #include "commands.h"
 
 static const atmo_command commands[] = {
@@ -30,6 +31,7 @@ static void usage(FILE *f)
 
 int main(int argc, char **argv)
 {
+    atmo_cl_prepare_environment(); /* before any thread: setenv is not thread-safe */
     if (argc < 2) {
         usage(stderr);
         return ATMO_ERR_USAGE;

@@ -78,5 +78,11 @@ int atmo_cache_dir(char *dir, size_t size);
  * which atmo_cl_open (and every device listing) puts into POCL_CACHE_DIR before the platform is
  * opened, so both caches live in one place. Returns 0 and fills dir, or -1 (no cache dir). */
 int atmo_cl_driver_cache_dir(char *dir, size_t size);
+/* PoCL reads its settings once, when the ICD loader first opens it: set POCL_CACHE_DIR and
+ * POCL_WORK_GROUP_SPECIALIZATION before that, each only where the user has not (without a cache
+ * directory PoCL keeps its own default). setenv is not thread-safe, so a program with threads
+ * (the viewer: GLFW, Mesa and the render thread) calls this once before it starts any; the
+ * first OpenCL call of atmo_cl_open calls it too, which changes nothing once it has run. */
+void atmo_cl_prepare_environment(void);
 
 #endif
