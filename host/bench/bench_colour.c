@@ -110,7 +110,7 @@ static const char *pick_method(atmo_err *e)
 static int write_outputs(const char *dir, const char *method, const colour_row *rows, int n,
                            const char *device_name, atmo_err *e)
 {
-    char csv[4096], svg[4096], svg_tmp[ATMO_TMP_PATH_MAX], script[4200], tmp[ATMO_TMP_PATH_MAX];
+    char csv[4096], svg[4096], tmp[ATMO_TMP_PATH_MAX];
     snprintf(csv, sizeof csv, "%s/colour.csv", dir);
     snprintf(svg, sizeof svg, "%s/colour.svg", dir);
     FILE *f = atmo_atomic_open(csv, tmp, e);
@@ -127,21 +127,15 @@ static int write_outputs(const char *dir, const char *method, const colour_row *
     int rc = atmo_atomic_commit(f, tmp, csv, e);
     if (rc)
         return rc;
-    if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
-        fprintf(stderr, "atmo bench: gnuplot not found; wrote the CSV only (apt-get install "
-                        "gnuplot-nox for the chart)\n");
-        return ATMO_OK;
-    }
-    snprintf(script, sizeof script, "%s.gp", svg);
-    atmo_tmp_path(svg, svg_tmp);
-    if (!(f = fopen(script, "w")))
-        return atmo_fail(e, ATMO_ERR_RUNTIME, "cannot write %s", script);
-    fprintf(f, "set terminal svg size 1000,450 dynamic background rgb 'white'\n"
-               "set output '%s'\nset datafile separator ','\nset grid\nset key top left\n"
+    char *script = NULL;
+    size_t size = 0;
+    if (!(f = open_memstream(&script, &size)))
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the chart script of %s", svg);
+    fprintf(f, "set datafile separator ','\nset grid\nset key top left\n"
                "set multiplot layout 1,2 title 'spectral vs 3-wavelength colour, method %s (%s)'\n"
                "set xlabel 'sun zenith (deg)'\nset ylabel 'CIE76 Delta E*ab'\n"
                "set title 'colour difference over 15 views'\nplot ",
-            svg_tmp, method, device_name);
+            method, device_name);
     for (int b = 0; b < COLOUR_COUNTS; b++)
         fprintf(f, "%s'%s' using ($3 == %d ? $2 : 1/0):4 with linespoints lt %d title '%d bands, mean', "
                    "'' using ($3 == %d ? $2 : 1/0):5 with linespoints lt %d dt 2 title '%d bands, worst'",
@@ -152,16 +146,13 @@ static int write_outputs(const char *dir, const char *method, const colour_row *
                "plot '%s' using 3:7 with points pt 7 title 'spectral', '' using (3):6 with points "
                "pt 5 title '3 wavelengths'\nunset multiplot\n",
             csv);
-    fclose(f);
-    char cmd[2 * ATMO_TMP_PATH_MAX];
-    snprintf(cmd, sizeof cmd, "gnuplot '%s'", script);
-    int status = system(cmd);
-    remove(script);
-    if (status != 0) {
-        remove(svg_tmp);
-        return atmo_fail(e, ATMO_ERR_RUNTIME, "gnuplot failed drawing %s", svg);
+    if (fclose(f) != 0) {
+        free(script);
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the chart script of %s", svg);
     }
-    if ((rc = atmo_atomic_commit(NULL, svg_tmp, svg, e)))
+    rc = bench_plot(svg, 1000, 450, script, e);
+    free(script);
+    if (rc)
         return rc;
     printf("wrote %s and %s\n", csv, svg);
     return ATMO_OK;

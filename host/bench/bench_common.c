@@ -1,12 +1,12 @@
 /* bench_common.c — what the benchmark suites share (atmo/bench.h): rendering a scene, the
  * RMS relative difference of two images, the CSV and the gnuplot chart of error against time. */
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/bench.h"
 #include "atmo/fileio.h"
+#include "atmo/gnuplot.h"
 #include "atmo/plan.h"
 
 int bench_render(const atmo_scene *s, const char *device, atmo_render_result *r, atmo_err *e)
@@ -48,25 +48,28 @@ int bench_write_csv(const char *path, const bench_row *rows, int n, const char *
     return atmo_atomic_commit(f, tmp, path, e);
 }
 
+int bench_plot(const char *svg, int width, int height, const char *script, atmo_err *e)
+{
+    if (!atmo_gnuplot_available()) {
+        fprintf(stderr, "atmo bench: gnuplot not found; wrote the CSV only (apt-get install "
+                        "gnuplot-nox for the chart %s)\n", svg);
+        return ATMO_OK;
+    }
+    return atmo_gnuplot_svg(svg, width, height, script, e);
+}
+
 int bench_chart(const char *csv, const char *svg, const char *title, const char *ylabel,
                 const bench_row *rows, int n, atmo_err *e)
 {
-    if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
-        fprintf(stderr, "atmo bench: gnuplot not found; wrote the CSV only (apt-get install "
-                        "gnuplot-nox for the chart)\n");
-        return ATMO_OK;
-    }
-    char script_path[ATMO_TMP_PATH_MAX + 8], svg_tmp[ATMO_TMP_PATH_MAX];
-    snprintf(script_path, sizeof script_path, "%s.gp", svg);
-    atmo_tmp_path(svg, svg_tmp);
-    FILE *f = fopen(script_path, "w");
+    char *script = NULL;
+    size_t size = 0;
+    FILE *f = open_memstream(&script, &size);
     if (!f)
-        return atmo_fail(e, ATMO_ERR_RUNTIME, "cannot write %s: %s", script_path, strerror(errno));
-    fprintf(f, "set terminal svg size 800,500 dynamic background rgb 'white'\n"
-               "set output '%s'\nset datafile separator ','\nset logscale xy\n"
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the chart script of %s", svg);
+    fprintf(f, "set datafile separator ','\nset logscale xy\n"
                "set xlabel 'seconds'\nset ylabel '%s'\nset grid\n"
                "set key outside right\nset title '%s'\n",
-            svg_tmp, ylabel, title);
+            ylabel, title);
     const char *methods[16];
     int nm = 0;
     for (int i = 0; i < n; i++) {
@@ -83,15 +86,11 @@ int bench_chart(const char *csv, const char *svg, const char *title, const char 
                    "notitle",
                 j ? ", " : "", csv, methods[j], methods[j], methods[j]);
     fprintf(f, "\n");
-    fclose(f);
-    char cmd[3 * ATMO_TMP_PATH_MAX];
-    snprintf(cmd, sizeof cmd, "gnuplot '%s'", script_path);
-    int status = system(cmd);
-    remove(script_path);
-    if (status != 0) {
-        remove(svg_tmp);
-        return atmo_fail(e, ATMO_ERR_RUNTIME, "gnuplot failed drawing %s", svg);
+    if (fclose(f) != 0) {
+        free(script);
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the chart script of %s", svg);
     }
-    return atmo_atomic_commit(NULL, svg_tmp, svg, e);
+    int rc = bench_plot(svg, 800, 500, script, e);
+    free(script);
+    return rc;
 }
-

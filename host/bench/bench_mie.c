@@ -326,10 +326,7 @@ int bench_mie(const char *dir, int quick, atmo_err *e)
     if ((rc = atmo_atomic_commit(f, tmp, csv2, e)))
         goto done;
 
-    if (!mie_gnuplot_available()) {
-        fprintf(stderr, "atmo bench: gnuplot not found; wrote the CSVs only (apt-get install "
-                        "gnuplot-nox for the chart)\n");
-    } else {
+    { /* the chart */
         char panels[4096];
         size_t len = 0;
         for (int r = 0; r < 4; r++)
@@ -350,7 +347,7 @@ int bench_mie(const char *dir, int quick, atmo_err *e)
         }
         snprintf(script, sizeof panels + 8192, bench_mie_plot,
                  "phase options vs tabulated Mie (cumulus, 550 nm)", panels, csv2);
-        rc = mie_gnuplot_svg(svg, 1500, 900, script, e);
+        rc = bench_plot(svg, 1500, 900, script, e);
         free(script);
         if (rc)
             goto done;

@@ -193,38 +193,28 @@ static int write_csv(const char *path, run results[SIZES][CASES], int n_sizes,
 /* Wall seconds against megapixels, one series per case, and Blender's three points. */
 static int write_chart(const char *csv, const char *svg, const char *device_name, atmo_err *e)
 {
-    if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
-        fprintf(stderr, "atmo bench: gnuplot not found; wrote the CSV only (apt-get install "
-                        "gnuplot-nox for the chart)\n");
-        return ATMO_OK;
-    }
-    char script[ATMO_TMP_PATH_MAX + 8], svg_tmp[ATMO_TMP_PATH_MAX];
-    snprintf(script, sizeof script, "%s.gp", svg);
-    atmo_tmp_path(svg, svg_tmp);
-    FILE *f = fopen(script, "w");
+    char *script = NULL;
+    size_t size = 0;
+    FILE *f = open_memstream(&script, &size);
     if (!f)
-        return atmo_fail(e, ATMO_ERR_RUNTIME, "cannot write %s: %s", script, strerror(errno));
-    fprintf(f, "set terminal svg size 800,500 dynamic background rgb 'white'\n"
-               "set output '%s'\nset datafile separator ','\nset logscale xy\n"
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the chart script of %s", svg);
+    fprintf(f, "set datafile separator ','\nset logscale xy\n"
                "set xlabel 'megapixels (512x256 to 4096x2048 panoramas)'\n"
                "set ylabel 'whole process, seconds'\nset grid\nset key left top\n"
                "set title \"atmo render, fast, 1 sample, EXR\\n%s\"\n"
                "$blender << EOD\n0.131072,0.15\n2.097152,2.07\n8.388608,8.2\nEOD\nplot ",
-            svg_tmp, device_name);
+            device_name);
     for (int c = 0; c < CASES; c++)
         fprintf(f, "'%s' using (strcol(1) eq '%s' ? $4 : 1/0):5 with linespoints title '%s', ",
                 csv, case_names[c], case_names[c]);
     fprintf(f, "$blender using 1:2 with linespoints dashtype 2 title 'Blender sky bake (issue)'\n");
-    fclose(f);
-    char cmd[3 * ATMO_TMP_PATH_MAX];
-    snprintf(cmd, sizeof cmd, "gnuplot '%s'", script);
-    int status = system(cmd);
-    remove(script);
-    if (status != 0) {
-        remove(svg_tmp);
-        return atmo_fail(e, ATMO_ERR_RUNTIME, "gnuplot failed drawing %s", svg);
+    if (fclose(f) != 0) {
+        free(script);
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the chart script of %s", svg);
     }
-    return atmo_atomic_commit(NULL, svg_tmp, svg, e);
+    int rc = bench_plot(svg, 800, 500, script, e);
+    free(script);
+    return rc;
 }
 
 int bench_panorama(const char *dir, const char *device, int quick, atmo_err *e)

@@ -23,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/fileio.h"
+#include "atmo/gnuplot.h"
 #include "atmo/mie.h"
 #include "commands.h"
 #include "output_paths.h"
@@ -211,7 +212,7 @@ int cmd_mie(int argc, char **argv)
     if ((table_path && (rc = output_paths_add(&files, "--table", table_path, &e))) ||
         (chart_path && (rc = output_paths_add(&files, "--chart", chart_path, &e))))
         goto done;
-    if (chart_path && !mie_gnuplot_available()) {
+    if (chart_path && !atmo_gnuplot_available()) {
         rc = atmo_fail(&e, ATMO_ERR_RUNTIME, "--chart needs gnuplot, which is not on PATH; install "
                        "gnuplot-nox (setup.sh does) or leave out --chart");
         goto done;

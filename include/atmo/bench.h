@@ -19,6 +19,9 @@ double bench_rms_relative(const atmo_render_result *a, const atmo_render_result 
 /* DIR/SUITE.csv: method,settings,seconds,error,device. */
 int bench_write_csv(const char *path, const bench_row *rows, int n, const char *device,
                     atmo_err *e);
+/* A chart from a gnuplot script (atmo/gnuplot.h); where gnuplot is not installed, a note on
+ * stderr and ATMO_OK, so a benchmark still leaves its CSV. */
+int bench_plot(const char *svg, int width, int height, const char *script, atmo_err *e);
 /* Log-log chart of error against seconds, one series per method, via gnuplot. */
 int bench_chart(const char *csv, const char *svg, const char *title, const char *ylabel,
                 const bench_row *rows, int n, atmo_err *e);

@@ -200,11 +200,6 @@ int mie_table_cache_path(const mie_dsd *d, double wavelength_nm, double n, doubl
 
 /* ---- charts (host/mie_plot.c) ---------------------------------------------------------------- */
 
-/* 1 when a gnuplot executable is on PATH. */
-int mie_gnuplot_available(void);
-/* Run a gnuplot script (plot commands; data inline as datablocks) into svg, written atomically;
- * the terminal and output are set here. ATMO_ERR_RUNTIME when gnuplot is missing or fails. */
-int mie_gnuplot_svg(const char *svg, int width, int height, const char *script, atmo_err *e);
 /* log P against theta, one line per wavelength (P: n_wavelengths rows of n values), with the
  * corona, fog bow and glory ranges shaded. */
 int mie_chart_svg(const char *svg, const char *title, const double *theta_deg, int n,
