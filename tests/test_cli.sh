@@ -9,57 +9,36 @@
 # report.
 set -u
 atmo=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-passed=0
-failed=0
-ok() { passed=$((passed + 1)); }
-bad() { failed=$((failed + 1)); echo "FAIL: $*" >&2; }
-
-# expect_usage DESCRIPTION PATTERN ARGS...: exit 2, exactly one stderr line matching PATTERN,
-# and nothing written in the work directory
-expect_usage() {
-    local what=$1 pattern=$2
-    shift 2
-    rm -rf out && mkdir out
-    "$atmo" "$@" >stdout.txt 2>stderr.txt </dev/null
-    local rc=$? lines
-    lines=$(wc -l <stderr.txt)
-    if [ $rc -ne 2 ]; then bad "$what: exit $rc, want 2"; cat stderr.txt >&2; return; fi
-    if [ "$lines" -ne 1 ]; then bad "$what: $lines stderr lines, want 1"; cat stderr.txt >&2; return; fi
-    if ! grep -qiE -- "$pattern" stderr.txt; then bad "$what: message lacks '$pattern'"; cat stderr.txt >&2; return; fi
-    if [ -n "$(ls out)" ]; then bad "$what: left files: $(ls out)"; return; fi
-    ok
-}
+. "${ATMO_SOURCE_DIR:-$(dirname "$0")/..}/tests/support_cli.sh"
+cli_begin
 
 small=(--width 16 --height 8 --samples 2 --quiet)
-expect_usage "unknown command" "unknown command" bogus
-expect_usage "misspelt key" "did you mean 'sun.zenith_deg'" render "${small[@]}" --set sun.zenit=5 --output out/a.png
-expect_usage "NaN value" "sun.zenith_deg" render "${small[@]}" --set sun.zenith_deg=nan --output out/a.png
-expect_usage "out of range" "0 .. 180|range" render "${small[@]}" --set sun.zenith_deg=200 --output out/a.png
-expect_usage "wrong type" "camera.kind" render "${small[@]}" --set camera.kind=orthographic --output out/a.png
-expect_usage "vec3 syntax" "camera.position_m" render "${small[@]}" --set camera.position_m=1,2 --output out/a.png
-expect_usage "set without =" "--set|=" render "${small[@]}" --set sun.zenith_deg --output out/a.png
-expect_usage "bad width" "image.width" render --width 0 --output out/a.png
-expect_usage "bad samples" "image.samples" render --samples -3 --output out/a.png
-expect_usage "unknown format" "format" render "${small[@]}" --output out/a.jpg
-expect_usage "unwritable dir" "not writable|directory" render "${small[@]}" --output /nonexistent/dir/a.png
-expect_usage "unknown preset" "preset" render "${small[@]}" --preset nope --output out/a.png
-expect_usage "missing scene" "missing.json" render "${small[@]}" --scene missing.json --output out/a.png
+refused "unknown command" "unknown command" bogus
+refused "misspelt key" "did you mean 'sun.zenith_deg'" render "${small[@]}" --set sun.zenit=5 --output out/a.png
+refused "NaN value" "sun.zenith_deg" render "${small[@]}" --set sun.zenith_deg=nan --output out/a.png
+refused "out of range" "0 .. 180|range" render "${small[@]}" --set sun.zenith_deg=200 --output out/a.png
+refused "wrong type" "camera.kind" render "${small[@]}" --set camera.kind=orthographic --output out/a.png
+refused "vec3 syntax" "camera.position_m" render "${small[@]}" --set camera.position_m=1,2 --output out/a.png
+refused "set without =" "--set|=" render "${small[@]}" --set sun.zenith_deg --output out/a.png
+refused "bad width" "image.width" render --width 0 --output out/a.png
+refused "bad samples" "image.samples" render --samples -3 --output out/a.png
+refused "unknown format" "format" render "${small[@]}" --output out/a.jpg
+refused "unwritable dir" "not writable|directory" render "${small[@]}" --output /nonexistent/dir/a.png
+refused "unknown preset" "preset" render "${small[@]}" --preset nope --output out/a.png
+refused "missing scene" "missing.json" render "${small[@]}" --scene missing.json --output out/a.png
 echo '{"sun": {"zenith_deg": 30,}' >broken.json
-expect_usage "broken JSON" "broken.json" render "${small[@]}" --scene broken.json --output out/a.png
+refused "broken JSON" "broken.json" render "${small[@]}" --scene broken.json --output out/a.png
 echo '{"sun": {"zenith_deg": "high"}}' >wrongtype.json
-expect_usage "JSON wrong type" "sun.zenith_deg" render "${small[@]}" --scene wrongtype.json --output out/a.png
+refused "JSON wrong type" "sun.zenith_deg" render "${small[@]}" --scene wrongtype.json --output out/a.png
 echo '{"sun": {"zenith_degs": 3}}' >unknown.json
-expect_usage "JSON unknown key" "did you mean" render "${small[@]}" --scene unknown.json --output out/a.png
-expect_usage "preset and scene" "preset|scene" render "${small[@]}" --preset sky-noon --scene unknown.json --output out/a.png
-expect_usage "unknown option" "unknown option" render --frobnicate
-expect_usage "missing value" "needs a value" render --output
-expect_usage "bad tile size" "tile-size" render "${small[@]}" --tile-size 3 --output out/a.png
-expect_usage "bad budget" "launch-budget" render "${small[@]}" --launch-budget-ms 0 --output out/a.png
-expect_usage "bad device" "device" render "${small[@]}" --device 99 --output out/a.png
-expect_usage "devices option" "unknown option" devices --frobnicate
+refused "JSON unknown key" "did you mean" render "${small[@]}" --scene unknown.json --output out/a.png
+refused "preset and scene" "preset|scene" render "${small[@]}" --preset sky-noon --scene unknown.json --output out/a.png
+refused "unknown option" "unknown option" render --frobnicate
+refused "missing value" "needs a value" render --output
+refused "bad tile size" "tile-size" render "${small[@]}" --tile-size 3 --output out/a.png
+refused "bad budget" "launch-budget" render "${small[@]}" --launch-budget-ms 0 --output out/a.png
+refused "bad device" "device" render "${small[@]}" --device 99 --output out/a.png
+refused "devices option" "unknown option" devices --frobnicate
 
 # a good render writes every format, completely, and a report
 if "$atmo" render "${small[@]}" --camera panorama --output a.pfm --output a.png --output a.exr \
@@ -94,5 +73,4 @@ wait $pid
 rc=$?
 if [ $rc -eq 3 ] && [ -s int.pfm ] && grep -q "interrupted" int.txt && grep -qE '"interrupted":[[:space:]]*true' int.json; then ok; else bad "interrupt: exit $rc"; cat int.txt >&2; fi
 
-echo "$passed passed, $failed failed"
-[ $failed -eq 0 ]
+cli_end test_cli

@@ -11,26 +11,8 @@
 # --set KEY=v(f) (cmp, no tolerance); the file names are the ones the CLI documents.
 set -u
 atmo=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-passed=0
-failed=0
-ok() { passed=$((passed + 1)); }
-bad() { failed=$((failed + 1)); echo "FAIL: $*" >&2; }
-
-refused() {
-    local what=$1 pattern=$2
-    shift 2
-    rm -rf out && mkdir out
-    "$atmo" "$@" >/dev/null 2>err.txt
-    local rc=$?
-    if [ $rc -ne 2 ]; then bad "$what: exit $rc, want 2"; cat err.txt >&2; return; fi
-    if [ "$(wc -l <err.txt)" -ne 1 ]; then bad "$what: not one line"; cat err.txt >&2; return; fi
-    grep -qE -- "$pattern" err.txt || { bad "$what: message lacks '$pattern'"; cat err.txt >&2; return; }
-    [ -z "$(ls out)" ] || { bad "$what: wrote $(ls out)"; return; }
-    ok
-}
+. "${ATMO_SOURCE_DIR:-$(dirname "$0")/..}/tests/support_cli.sh"
+cli_begin
 
 small=(--width 24 --height 16 --samples 2 --quiet)
 "$atmo" render "${small[@]}" --frames 1..3 --animate sun.zenith_deg=30..80 --output sky.pfm ||
@@ -71,5 +53,4 @@ refused "animate without frames" "need --frames" render "${small[@]}" --animate 
 echo '{"camera": {"kind": "panorama"}}' >kind.json
 refused "scene-end changes a choice" "camera.kind differs" render "${small[@]}" --frames 1..2 --scene-end kind.json --output out/a.pfm
 
-echo "test_frames: $passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+cli_end test_frames

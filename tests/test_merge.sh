@@ -12,27 +12,8 @@
 # 2 cover an image of 5 bands of 8 rows (40 rows), which neither divides evenly.
 set -u
 atmo=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-passed=0
-failed=0
-ok() { passed=$((passed + 1)); }
-bad() { failed=$((failed + 1)); echo "FAIL: $*" >&2; }
-
-# refused DESCRIPTION PATTERN ARGS...: exit 2, one stderr line matching PATTERN, no out/ file
-refused() {
-    local what=$1 pattern=$2
-    shift 2
-    rm -rf out && mkdir out
-    "$atmo" "$@" >/dev/null 2>err.txt
-    local rc=$?
-    if [ $rc -ne 2 ]; then bad "$what: exit $rc, want 2"; cat err.txt >&2; return; fi
-    if [ "$(wc -l <err.txt)" -ne 1 ]; then bad "$what: not one line"; cat err.txt >&2; return; fi
-    grep -qE -- "$pattern" err.txt || { bad "$what: message lacks '$pattern'"; cat err.txt >&2; return; }
-    [ -z "$(ls out)" ] || { bad "$what: wrote $(ls out)"; return; }
-    ok
-}
+. "${ATMO_SOURCE_DIR:-$(dirname "$0")/..}/tests/support_cli.sh"
+cli_begin
 
 # same_files A B: byte for byte, for each of .exr .pfm .png
 same_files() {
@@ -106,5 +87,4 @@ refused "--part 3/x" "--part needs I/N" render "${scene[@]}" --part 3/x --output
 refused "more parts than bands" "only 5 bands" render "${scene[@]}" --part 1/6 --output out/p.exr
 refused "spectral mode" "spectral mode" render "${scene[@]}" --set render.spectral_bands=15 --part 1/2 --output out/p.exr
 
-echo "test_merge: $passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+cli_end test_merge

@@ -11,46 +11,27 @@
 # non-finite samples in the run report (Python's json reads it), which must be 0.
 set -u
 atmo=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-passed=0
-failed=0
-ok() { passed=$((passed + 1)); }
-bad() { failed=$((failed + 1)); echo "FAIL: $*" >&2; }
-
-expect_usage() {
-    local what=$1 pattern=$2
-    shift 2
-    rm -rf out && mkdir out
-    "$atmo" "$@" >stdout.txt 2>stderr.txt </dev/null
-    local rc=$? lines
-    lines=$(wc -l <stderr.txt)
-    if [ $rc -ne 2 ]; then bad "$what: exit $rc, want 2"; cat stderr.txt >&2; return; fi
-    if [ "$lines" -ne 1 ]; then bad "$what: $lines stderr lines, want 1"; cat stderr.txt >&2; return; fi
-    if ! grep -qiE -- "$pattern" stderr.txt; then bad "$what: message lacks '$pattern'"; cat stderr.txt >&2; return; fi
-    if [ -n "$(ls out)" ]; then bad "$what: left files: $(ls out)"; return; fi
-    ok
-}
+. "${ATMO_SOURCE_DIR:-$(dirname "$0")/..}/tests/support_cli.sh"
+cli_begin
 
 small=(render --width 8 --height 6 --samples 1 --quiet --output out/a.png)
-expect_usage "not an array" "objects.*JSON array" "${small[@]}" --set 'objects={"type": "sphere"}'
-expect_usage "no type" "objects\[0\].*type" "${small[@]}" --set 'objects=[{"center_m": [0, 1, 5]}]'
-expect_usage "unknown type" "objects\[0\].*sphere.*box" "${small[@]}" --set 'objects=[{"type": "cone"}]'
-expect_usage "missing radius" "objects\[0\].*radius_m" "${small[@]}" --set 'objects=[{"type": "sphere", "center_m": [0, 1, 5]}]'
-expect_usage "member of the other type" "objects\[1\]\.radius_m.*box" "${small[@]}" \
+refused "not an array" "objects.*JSON array" "${small[@]}" --set 'objects={"type": "sphere"}'
+refused "no type" "objects\[0\].*type" "${small[@]}" --set 'objects=[{"center_m": [0, 1, 5]}]'
+refused "unknown type" "objects\[0\].*sphere.*box" "${small[@]}" --set 'objects=[{"type": "cone"}]'
+refused "missing radius" "objects\[0\].*radius_m" "${small[@]}" --set 'objects=[{"type": "sphere", "center_m": [0, 1, 5]}]'
+refused "member of the other type" "objects\[1\]\.radius_m.*box" "${small[@]}" \
     --set 'objects=[{"type": "sphere", "center_m": [0, 1, 5], "radius_m": 1}, {"type": "box", "min_m": [0, 0, 0], "size_m": [1, 1, 1], "radius_m": 2}]'
-expect_usage "albedo out of range" "objects\[0\]\.albedo.*0 \.\. 1" "${small[@]}" \
+refused "albedo out of range" "objects\[0\]\.albedo.*0 \.\. 1" "${small[@]}" \
     --set 'objects=[{"type": "box", "min_m": [0, 0, 0], "size_m": [1, 1, 1], "albedo": [0.5, 1.5, 0]}]'
-expect_usage "negative size" "objects\[0\]\.size_m.*range" "${small[@]}" \
+refused "negative size" "objects\[0\]\.size_m.*range" "${small[@]}" \
     --set 'objects=[{"type": "box", "min_m": [0, 0, 0], "size_m": [1, -1, 1]}]'
-expect_usage "wrong JSON type" "objects\[0\]\.center_m.*3 numbers" "${small[@]}" \
+refused "wrong JSON type" "objects\[0\]\.center_m.*3 numbers" "${small[@]}" \
     --set 'objects=[{"type": "sphere", "center_m": [0, 1], "radius_m": 1}]'
-expect_usage "duplicate member" "objects\[0\]\.radius_m.*twice" "${small[@]}" \
+refused "duplicate member" "objects\[0\]\.radius_m.*twice" "${small[@]}" \
     --set 'objects=[{"type": "sphere", "center_m": [0, 1, 5], "radius_m": 1, "radius_m": 2}]'
-expect_usage "bad render mode" "render.mode.*preview, path" "${small[@]}" --set render.mode=fast
+refused "bad render mode" "render.mode.*preview, path" "${small[@]}" --set render.mode=fast
 printf '{"objects": [{"type": "sphere", "center_m": [0, 1, 5], "radius_m": "one"}]}\n' >bad.json
-expect_usage "scene file" "objects\[0\]\.radius_m.*bad.json" render --width 8 --height 6 --quiet --scene bad.json --output out/a.png
+refused "scene file" "objects\[0\]\.radius_m.*bad.json" render --width 8 --height 6 --quiet --scene bad.json --output out/a.png
 
 # --save-scene writes the list; the saved scene renders the same bytes, in both modes
 for mode in preview path; do
@@ -77,5 +58,4 @@ for n in 1 2 3 4 5 6 7 8 9; do
     done
 done
 
-echo "$passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+cli_end test_objects_cli

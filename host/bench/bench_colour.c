@@ -146,12 +146,7 @@ static int write_outputs(const char *dir, const char *method, const colour_row *
                "plot '%s' using 3:7 with points pt 7 title 'spectral', '' using (3):6 with points "
                "pt 5 title '3 wavelengths'\nunset multiplot\n",
             csv);
-    if (fclose(f) != 0) {
-        free(script);
-        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the chart script of %s", svg);
-    }
-    rc = bench_plot(svg, 1000, 450, script, e);
-    free(script);
+    rc = bench_plot_close(f, &script, svg, 1000, 450, e);
     if (rc)
         return rc;
     printf("wrote %s and %s\n", csv, svg);

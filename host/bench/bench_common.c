@@ -58,6 +58,17 @@ int bench_plot(const char *svg, int width, int height, const char *script, atmo_
     return atmo_gnuplot_svg(svg, width, height, script, e);
 }
 
+int bench_plot_close(FILE *script_stream, char **script, const char *svg, int width, int height,
+                     atmo_err *e)
+{
+    int closed = fclose(script_stream) == 0;
+    int rc = closed ? bench_plot(svg, width, height, *script, e)
+                    : atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the chart script of %s", svg);
+    free(*script);
+    *script = NULL;
+    return rc;
+}
+
 int bench_chart(const char *csv, const char *svg, const char *title, const char *ylabel,
                 const bench_row *rows, int n, atmo_err *e)
 {
@@ -86,11 +97,6 @@ int bench_chart(const char *csv, const char *svg, const char *title, const char 
                    "notitle",
                 j ? ", " : "", csv, methods[j], methods[j], methods[j]);
     fprintf(f, "\n");
-    if (fclose(f) != 0) {
-        free(script);
-        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the chart script of %s", svg);
-    }
-    int rc = bench_plot(svg, 800, 500, script, e);
-    free(script);
+    int rc = bench_plot_close(f, &script, svg, 800, 500, e);
     return rc;
 }

@@ -208,12 +208,7 @@ static int write_chart(const char *csv, const char *svg, const char *device_name
         fprintf(f, "'%s' using (strcol(1) eq '%s' ? $4 : 1/0):5 with linespoints title '%s', ",
                 csv, case_names[c], case_names[c]);
     fprintf(f, "$blender using 1:2 with linespoints dashtype 2 title 'Blender sky bake (issue)'\n");
-    if (fclose(f) != 0) {
-        free(script);
-        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the chart script of %s", svg);
-    }
-    int rc = bench_plot(svg, 800, 500, script, e);
-    free(script);
+    int rc = bench_plot_close(f, &script, svg, 800, 500, e);
     return rc;
 }
 

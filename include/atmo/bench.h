@@ -1,6 +1,7 @@
 /* bench.h — benchmark suites run by `atmo bench` (host/cmd_bench.c dispatches). */
 #ifndef ATMO_BENCH_H
 #define ATMO_BENCH_H
+#include <stdio.h>
 #include "atmo/render.h"
 #include "atmo/scene.h"
 #include "atmo/status.h"
@@ -22,6 +23,10 @@ int bench_write_csv(const char *path, const bench_row *rows, int n, const char *
 /* A chart from a gnuplot script (atmo/gnuplot.h); where gnuplot is not installed, a note on
  * stderr and ATMO_OK, so a benchmark still leaves its CSV. */
 int bench_plot(const char *svg, int width, int height, const char *script, atmo_err *e);
+/* bench_plot of a script written to an open_memstream(script) stream: closes the stream, draws,
+ * and frees the script. */
+int bench_plot_close(FILE *script_stream, char **script, const char *svg, int width, int height,
+                     atmo_err *e);
 /* Log-log chart of error against seconds, one series per method, via gnuplot. */
 int bench_chart(const char *csv, const char *svg, const char *title, const char *ylabel,
                 const bench_row *rows, int n, atmo_err *e);
