@@ -1,7 +1,12 @@
 /* spectral.c — parse the embedded CSV tables of data/ and interpolate them.
  *
- * Tables are parsed on first use and kept until exit (a handful of kilobytes). The CSVs have one
- * header line, then rows of comma-separated numbers in increasing wavelength (data/README.md). */
+ * The tables are parsed all together at the first lookup and kept until exit (a handful of
+ * kilobytes). The parse runs under pthread_once: threads of one process ask for tables at the
+ * same time (the viewer's render thread plans a scene while its window thread computes the
+ * sun's white point), and each must see every table complete; after the parse the cache is only
+ * read, so lookups need no lock. The CSVs have one header line, then rows of comma-separated
+ * numbers in increasing wavelength (data/README.md). */
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/embedded.h"
@@ -14,6 +19,7 @@ static struct {
     spectral_table table;
 } spectral_cache[SPECTRAL_MAX_TABLES];
 static int spectral_cache_count;
+static pthread_once_t spectral_once = PTHREAD_ONCE_INIT;
 
 static int spectral_parse(const char *text, spectral_table *t)
 {
@@ -47,21 +53,29 @@ static int spectral_parse(const char *text, spectral_table *t)
     return t->rows > 1 ? 0 : -1;
 }
 
+/* Every embedded table into the cache; one that does not parse is left out (lookups of it
+ * give NULL). */
+static void spectral_parse_all(void)
+{
+    for (const struct atmo_embedded_file *f = atmo_data_files;
+         f->name && spectral_cache_count < SPECTRAL_MAX_TABLES; f++) {
+        spectral_table *t = &spectral_cache[spectral_cache_count].table;
+        if (spectral_parse(f->text, t) != 0) {
+            free(t->values);
+            memset(t, 0, sizeof *t);
+            continue;
+        }
+        spectral_cache[spectral_cache_count++].name = f->name;
+    }
+}
+
 const spectral_table *spectral_table_get(const char *name)
 {
+    pthread_once(&spectral_once, spectral_parse_all);
     for (int i = 0; i < spectral_cache_count; i++)
         if (strcmp(spectral_cache[i].name, name) == 0)
             return &spectral_cache[i].table;
-    const struct atmo_embedded_file *f = atmo_embedded_find(atmo_data_files, name);
-    if (!f || spectral_cache_count == SPECTRAL_MAX_TABLES)
-        return NULL;
-    spectral_table *t = &spectral_cache[spectral_cache_count].table;
-    if (spectral_parse(f->text, t) != 0) {
-        free(t->values);
-        return NULL;
-    }
-    spectral_cache[spectral_cache_count++].name = f->name;
-    return t;
+    return NULL;
 }
 
 double spectral_table_lookup(const spectral_table *t, int c, double lambda_nm)

@@ -13,8 +13,10 @@ typedef struct spectral_table {
     double *values;     /* rows x columns, row-major, column 0 = wavelength in nm */
 } spectral_table;
 
-/* Parsed embedded table by file name ("data/cie1931_2deg_cmf.csv"); parsed once, kept for the
- * life of the process. Returns NULL if the name is unknown (a build error, not a user error). */
+/* Parsed embedded table by file name ("data/cie1931_2deg_cmf.csv"); the tables are parsed once,
+ * at the first call from any thread, and kept for the life of the process, so any thread may
+ * call this (and the lookups below) at any time. Returns NULL if the name is unknown (a build
+ * error, not a user error). */
 const spectral_table *spectral_table_get(const char *name);
 
 /* Linear interpolation of column c at lambda, clamped to the end rows. */
