@@ -35,10 +35,10 @@
 #include "frames.h"
 #include "output_paths.h"
 #include "render_passes.h"
+#include "scene_options.h"
 #include "atmo/outputs.h"
 
 #define RENDER_MAX_OUTPUTS 8
-#define RENDER_MAX_SETS 256
 
 static const char render_usage[] =
     "usage: atmo render [--preset NAME | --scene FILE] [--set KEY=VALUE ...] [options]\n"
@@ -432,26 +432,30 @@ int cmd_render(int argc, char **argv)
     atmo_err e = {{0}};
     atmo_scene scene;
     atmo_render_settings rs;
-    const char *preset = NULL, *scene_file = NULL, *report = NULL, *save_scene = NULL;
+    const char *report = NULL, *save_scene = NULL;
     const char *part_text = NULL, *frames_text = NULL, *scene_end = NULL;
     const char *animate[FRAMES_MAX_KEYS];
     int n_animate = 0;
     const char *outputs[RENDER_MAX_OUTPUTS];
-    char *sets[RENDER_MAX_SETS];
-    char set_buffers[RENDER_MAX_SETS][64];
-    int n_out = 0, n_set = 0, quiet = 0, lut_cache = 1, rc = ATMO_OK;
+    scene_options so;
+    int n_out = 0, quiet = 0, lut_cache = 1, rc = ATMO_OK;
     int exr_compression = ATMO_EXR_DEFAULT;
     output_paths files = {0};
     atmo_render_settings_default(&rs);
+    scene_options_init(&so, "render", 1);
 
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        const char *shorthand = NULL;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             printf(render_usage, atmo_default_preset);
             return ATMO_OK;
         }
+        int taken = scene_options_take(&so, argc, argv, &i);
+        if (taken < 0)
+            return ATMO_ERR_USAGE;
+        if (taken)
+            continue;
         if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
             quiet = 1;
             continue;
@@ -465,11 +469,10 @@ int cmd_render(int argc, char **argv)
             continue;
         }
         static const char *const with_value[] = {
-            "--preset", "--scene", "--set", "--output", "-o", "--report", "--save-scene",
-            "--noise", "--time-limit", "--device", "--dump-kernels", "--tile-size", "--launch-budget-ms", "--width",
-            "--height", "--samples", "--seed", "--time", "--part", "--frames", "--animate", "--scene-end",
-            "--exr-compression",
-            "--camera", NULL};
+            "--output", "-o", "--report", "--save-scene",
+            "--noise", "--time-limit", "--device", "--dump-kernels", "--tile-size", "--launch-budget-ms",
+            "--part", "--frames", "--animate", "--scene-end",
+            "--exr-compression", NULL};
         int known = 0;
         for (int k = 0; with_value[k]; k++)
             known |= strcmp(a, with_value[k]) == 0;
@@ -483,17 +486,7 @@ int cmd_render(int argc, char **argv)
             return ATMO_ERR_USAGE;
         }
         i++;
-        if (strcmp(a, "--preset") == 0)
-            preset = v;
-        else if (strcmp(a, "--scene") == 0)
-            scene_file = v;
-        else if (strcmp(a, "--set") == 0) {
-            if (n_set == RENDER_MAX_SETS) {
-                fprintf(stderr, "atmo render: more than %d --set options\n", RENDER_MAX_SETS);
-                return ATMO_ERR_USAGE;
-            }
-            sets[n_set++] = (char *)v;
-        } else if (strcmp(a, "--output") == 0 || strcmp(a, "-o") == 0) {
+        if (strcmp(a, "--output") == 0 || strcmp(a, "-o") == 0) {
             if (n_out == RENDER_MAX_OUTPUTS) {
                 fprintf(stderr, "atmo render: more than %d --output options\n", RENDER_MAX_OUTPUTS);
                 return ATMO_ERR_USAGE;
@@ -536,17 +529,7 @@ int cmd_render(int argc, char **argv)
                                "--time-limit needs seconds in (0, 1e7], got '%s'", v);
                 goto usage_error;
             }
-        } else if (strcmp(a, "--width") == 0)
-            shorthand = "image.width";
-        else if (strcmp(a, "--height") == 0)
-            shorthand = "image.height";
-        else if (strcmp(a, "--samples") == 0)
-            shorthand = "image.samples";
-        else if (strcmp(a, "--seed") == 0)
-            shorthand = "image.seed";
-        else if (strcmp(a, "--time") == 0)
-            shorthand = "clouds.time_s";
-        else if (strcmp(a, "--part") == 0)
+        } else if (strcmp(a, "--part") == 0)
             part_text = v;
         else if (strcmp(a, "--frames") == 0)
             frames_text = v;
@@ -558,32 +541,11 @@ int cmd_render(int argc, char **argv)
                 return ATMO_ERR_USAGE;
             }
             animate[n_animate++] = v;
-        } else /* --camera, the last of with_value[] */
-            shorthand = "camera.kind";
-        if (shorthand) {
-            if (n_set == RENDER_MAX_SETS || strlen(v) > 40) {
-                fprintf(stderr, "atmo render: bad value '%s' for %s\n", v, a);
-                return ATMO_ERR_USAGE;
-            }
-            snprintf(set_buffers[n_set], sizeof set_buffers[n_set], "%s=%s", shorthand, v);
-            sets[n_set] = set_buffers[n_set];
-            n_set++;
         }
     }
 
     /* scene */
-    if (preset && scene_file) {
-        rc = atmo_fail(&e, ATMO_ERR_USAGE, "--preset and --scene exclude each other; pick one");
-        goto usage_error;
-    }
-    atmo_scene_defaults(&scene);
-    if (scene_file)
-        rc = atmo_scene_load_json(&scene, scene_file, &e);
-    else
-        rc = atmo_scene_apply_preset(&scene, preset ? preset : atmo_default_preset, &e);
-    for (int i = 0; i < n_set && !rc; i++)
-        rc = atmo_scene_assign(&scene, sets[i], "--set", &e);
-    if (rc || (rc = atmo_scene_validate(&scene, &e)))
+    if ((rc = scene_options_scene(&so, NULL, &scene, &e)))
         goto usage_error;
 
     /* animation: the frames' scenes, each checked before any work */
@@ -597,15 +559,8 @@ int cmd_render(int argc, char **argv)
     for (int i = 0; i < n_animate && !rc; i++)
         rc = frames_add_animate(&anim, animate[i], &e);
     if (!rc && scene_end) {
-        atmo_scene end;
-        atmo_scene_defaults(&end); /* the start's base (defaults or the preset), then FILE */
-        if (!scene_file)
-            rc = atmo_scene_apply_preset(&end, preset ? preset : atmo_default_preset, &e);
-        if (!rc)
-            rc = atmo_scene_load_json(&end, scene_end, &e);
-        for (int i = 0; i < n_set && !rc; i++)
-            rc = atmo_scene_assign(&end, sets[i], "--set", &e);
-        if (!rc && !(rc = atmo_scene_validate(&end, &e)))
+        atmo_scene end; /* the start's base (defaults or the preset), then FILE, then the --set */
+        if (!(rc = scene_options_scene(&so, scene_end, &end, &e)))
             rc = frames_add_scene_end(&anim, &scene, &end, scene_end, &e);
     }
     for (int f = anim.first; frames_text && f <= anim.last && !rc; f++) {

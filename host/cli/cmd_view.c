@@ -1,10 +1,12 @@
 /* cmd_view.c — `atmo view`: the live viewer (atmo/view.h, host/view/).
  *
- * Scene assembly is `atmo render`'s: the defaults, --preset NAME (default atmo_default_preset)
- * or --scene FILE, then --set KEY=VALUE in order; every file the viewer may write (--output,
- * --window-capture, --save's names) and the script are checked before the window opens. The
- * viewer is built only where GLFW 3 and OpenGL are found (CMakeLists.txt defines
- * ATMO_HAVE_GLFW for this file alone): elsewhere `atmo view` says how to get it and exits 2. */
+ * Scene assembly is `atmo render`'s, through the same parser (scene_options.h): the defaults,
+ * --preset NAME (default atmo_default_preset) or --scene FILE, then --set KEY=VALUE in order
+ * (render's shorthands such as --width are not options of the viewer); every file the viewer
+ * may write (--output, --window-capture, --save's names) and the script are checked before the
+ * window opens. The viewer is built only where GLFW 3 and OpenGL are found (CMakeLists.txt
+ * defines ATMO_HAVE_GLFW for this file alone): elsewhere `atmo view` says how to get it and
+ * exits 2. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,8 +15,7 @@
 #include "atmo/view.h"
 #include "commands.h"
 #include "output_paths.h"
-
-#define VIEW_MAX_SETS 256
+#include "scene_options.h"
 
 #ifndef ATMO_HAVE_GLFW
 static const char view_unavailable[] =
@@ -29,7 +30,9 @@ static const char view_usage[] =
     "camera and turn the sun. The image is tone mapped on the GPU with the scene's post.*\n"
     "settings, as `atmo render` writes PNGs. Quality mode renders the scene as given (method,\n"
     "size, image.samples); preview mode renders method fast at half size. Every change\n"
-    "restarts the accumulation with a quarter-size draft, then refines.\n"
+    "restarts the accumulation with a quarter-size draft, then refines. A path-traced scene\n"
+    "(--set render.mode=path, e.g. --preset thesis-7) refines progressively like any other;\n"
+    "render passes, --noise and the lens flare are atmo render's.\n"
     "\n"
     "scene:\n"
     "  --preset NAME          a built-in scene (atmo presets; default %s)\n"
@@ -78,11 +81,10 @@ static int view_main(int argc, char **argv)
 {
     atmo_err e = {{0}};
     atmo_view_options o;
-    const char *preset = NULL, *scene_file = NULL;
-    const char *sets[VIEW_MAX_SETS];
-    int n_set = 0;
+    scene_options so; /* its --set list is the viewer's o.sets until atmo_view_run returns */
     output_paths files = {0};
     memset(&o, 0, sizeof o);
+    scene_options_init(&so, "view", 0);
     atmo_render_settings_default(&o.render);
     o.render.launch_budget_ms = 30.0;
     o.lut_cache = 1;
@@ -90,6 +92,11 @@ static int view_main(int argc, char **argv)
 
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int taken = scene_options_take(&so, argc, argv, &i);
+        if (taken < 0)
+            return ATMO_ERR_USAGE;
+        if (taken)
+            continue;
         if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
             o.quiet = 1;
             continue;
@@ -103,7 +110,7 @@ static int view_main(int argc, char **argv)
             continue;
         }
         static const char *const with_value[] = {
-            "--preset", "--scene", "--set", "--save", "--screenshot-after", "--output", "-o",
+            "--save", "--screenshot-after", "--output", "-o",
             "--window-capture", "--script", "--window", "--device", "--tile-size",
             "--launch-budget-ms", NULL};
         int known = 0;
@@ -119,17 +126,7 @@ static int view_main(int argc, char **argv)
             return ATMO_ERR_USAGE;
         }
         i++;
-        if (strcmp(a, "--preset") == 0)
-            preset = v;
-        else if (strcmp(a, "--scene") == 0)
-            scene_file = v;
-        else if (strcmp(a, "--set") == 0) {
-            if (n_set == VIEW_MAX_SETS) {
-                fprintf(stderr, "atmo view: more than %d --set options\n", VIEW_MAX_SETS);
-                return ATMO_ERR_USAGE;
-            }
-            sets[n_set++] = v;
-        } else if (strcmp(a, "--save") == 0)
+        if (strcmp(a, "--save") == 0)
             o.save_path = v;
         else if (strcmp(a, "--screenshot-after") == 0) {
             if (!whole(v, 1, 1000000, &o.screenshot_after)) {
@@ -172,24 +169,15 @@ static int view_main(int argc, char **argv)
         }
     }
 
-    if (preset && scene_file) {
-        atmo_fail(&e, ATMO_ERR_USAGE, "--preset and --scene exclude each other; pick one");
-        return usage_fail(&e, &files);
-    }
-    atmo_scene_defaults(&o.scene);
-    int rc = scene_file ? atmo_scene_load_json(&o.scene, scene_file, &e)
-                        : atmo_scene_apply_preset(&o.scene, preset ? preset : atmo_default_preset, &e);
-    for (int i = 0; i < n_set && !rc; i++)
-        rc = atmo_scene_assign(&o.scene, sets[i], "--set", &e);
-    if (rc || (rc = atmo_scene_validate(&o.scene, &e)))
+    if (scene_options_scene(&so, NULL, &o.scene, &e))
         return usage_fail(&e, &files);
     if (o.scene.render.spectral_bands > 0) {
         atmo_fail(&e, ATMO_ERR_USAGE, "the viewer renders three wavelengths; drop "
                                       "render.spectral_bands (atmo render does the spectral mode)");
         return usage_fail(&e, &files);
     }
-    o.sets = sets;
-    o.set_count = n_set;
+    o.sets = so.sets;
+    o.set_count = so.set_count;
 
     /* every file it may write, before the window opens */
     if ((o.screenshot_after > 0) != (o.output != NULL)) {
@@ -222,7 +210,7 @@ static int view_main(int argc, char **argv)
         return usage_fail(&e, &files);
     output_paths_free(&files);
 
-    rc = atmo_view_run(&o, &e);
+    int rc = atmo_view_run(&o, &e);
     if (rc)
         fprintf(stderr, "atmo view: %s\n", e.msg);
     return rc;

@@ -478,8 +478,14 @@ int atmo_session_set_view(atmo_session *s, const atmo_plan *plan, atmo_err *e)
     g.clouds.origin = s->plan.gpu.clouds.origin; /* follows the camera (and the time) */
     int same = memcmp(&g, &s->plan.gpu, sizeof g) == 0 && plan->pass_count == s->plan.pass_count &&
                plan->buffer_count == s->plan.buffer_count;
-    for (int i = 0; same && i < plan->buffer_count; i++)
-        same = plan->buffers[i].bytes == s->plan.buffers[i].bytes;
+    for (int i = 0; same && i < plan->buffer_count; i++) {
+        const atmo_plan_buffer *n = &plan->buffers[i], *o = &s->plan.buffers[i];
+        same = n->bytes == o->bytes && !n->host_data == !o->host_data;
+        /* a host table is uploaded once, before the passes: one that depends on the camera
+         * (the objects' camera-relative rows) needs the new plan's table, i.e. set_scene */
+        if (same && n->host_data && n->host_data != o->host_data)
+            same = memcmp(n->host_data, o->host_data, n->bytes) == 0;
+    }
     if (!same)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "the new plan changes more than the camera and the sun; use "

@@ -1,5 +1,7 @@
 /* view_mode.c — the viewer's modes: the one place that turns the user's scene into the scene a
- * mode renders, so a new mode (the path tracer's) is one more case here.
+ * mode renders, so a new mode is one more case here. The path tracer needs none: it is the
+ * scene key render.mode=path, which both modes keep (preview then path traces at half size
+ * with method fast).
  *
  *   preview  method `fast` (per-frame LUTs: the quickest full image) at half the width and
  *            height, for moving around; a scene with the cloud shell or the observer sphere,

@@ -29,7 +29,10 @@
  *
  * Plans and sessions. A session keeps a copy of its plan, whose host tables the plan owns:
  * after set_view the session still uses its old plan's tables (the new plan is freed), after
- * set_scene the new plan's (the old one is freed), a new session its own plan. */
+ * set_scene the new plan's (the old one is freed; also when set_scene's precompute was
+ * cancelled, since the session holds the new tables from its start), a new session its own
+ * plan. set_view refuses a plan whose host tables differ (a scene with objects: their rows are
+ * camera-relative, so a camera move changes them), and such a move takes set_scene. */
 #include <sys/resource.h>
 #include <math.h>
 #include <pthread.h>
@@ -93,23 +96,22 @@ static int prepare(view_renderer *r, slot *s, const atmo_scene *scene, int *open
     if (rc)
         return rc;
     if (s->session) {
-        atmo_err ignored;
-        rc = atmo_session_set_view(s->session, &p, &ignored);
-        if (rc == ATMO_OK) {
+        atmo_err why;
+        rc = atmo_session_set_view(s->session, &p, &why);
+        if (rc != ATMO_ERR_USAGE) { /* the session keeps its plan's tables */
             atmo_plan_free(&p);
-            return ATMO_OK;
+            if (rc)
+                *e = why;
+            return rc;
         }
-        if (rc == ATMO_ERR_USAGE) {
-            rc = atmo_session_set_scene(s->session, &p, &ignored);
-            if (rc == ATMO_OK) {
-                atmo_plan_free(&s->plan);
-                s->plan = p;
-                return ATMO_OK;
-            }
-        }
+        rc = atmo_session_set_scene(s->session, &p, &why);
         if (rc != ATMO_ERR_USAGE) {
-            atmo_plan_free(&p);
-            *e = ignored;
+            /* the session took the new plan's tables, also when its precompute stopped (the
+             * next set_view or set_scene completes it from them) */
+            atmo_plan_free(&s->plan);
+            s->plan = p;
+            if (rc)
+                *e = why;
             return rc;
         }
         slot_close(s); /* other kernels or another image size */

@@ -110,7 +110,9 @@ int atmo_session_step(atmo_session *s, const atmo_step *step, atmo_step_status *
  * none). */
 void atmo_session_set_noise_target(atmo_session *s, double noise);
 /* Same scene, other camera and/or sun: only gpu.camera, gpu.sun_direction and gpu.observer
- * may differ from the session's plan (ATMO_ERR_USAGE otherwise). */
+ * may differ from the session's plan, and its host tables must hold the same bytes (a scene
+ * with objects, whose rows are camera-relative, changes them with the camera): ATMO_ERR_USAGE
+ * otherwise, and atmo_session_set_scene takes such a plan. */
 int atmo_session_set_view(atmo_session *s, const atmo_plan *plan, atmo_err *e);
 /* Same program (fragments and -D flags) and image size, any other parameters. */
 int atmo_session_set_scene(atmo_session *s, const atmo_plan *plan, atmo_err *e);
