@@ -26,6 +26,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include "atmo/bench.h"
 #include "atmo/clock.h"
 #include "atmo/plan.h"
@@ -296,24 +297,67 @@ static int shadows(int quick, bench_row *rows, int *n, atmo_err *e)
     return ATMO_OK;
 }
 
-static int shafts(const char *device, int quick, bench_row *rows, int *n, atmo_err *e)
+/* Seconds of CPU time of the whole process (its OpenCL device threads included on PoCL): a
+ * measure of work that the machine's other load does not stretch. */
+static double cpu_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* A render and its CPU seconds (the plan's kernels and precomputes already cached by a first
+ * render of the same scene, so the seconds are the render's). */
+static int cpu_render(const atmo_scene *s, const char *device, double *cpu,
+                      atmo_render_result *out, atmo_err *e)
+{
+    double c0 = cpu_seconds(), wall;
+    int rc = timed_render(s, device, 0, &wall, out, e);
+    *cpu = cpu_seconds() - c0;
+    return rc;
+}
+
+/* The shortcut sets of the shafts rows: none (the exact march, the reference), each alone,
+ * the default and all six. */
+static const int shaft_sets[] = {0,
+                                 ATMO_TERRAIN_SHAFT_BELOW_HORIZON,
+                                 ATMO_TERRAIN_SHAFT_SURFACE,
+                                 ATMO_TERRAIN_SHAFT_SPARSE,
+                                 ATMO_TERRAIN_SHAFT_START,
+                                 ATMO_TERRAIN_SHAFT_REST,
+                                 ATMO_TERRAIN_SHAFT_FAR,
+                                 ATMO_TERRAIN_SHAFT_DEFAULT,
+                                 ATMO_TERRAIN_SHAFT_ALL};
+static const char *const shaft_names[] = {"exact march",  "(1) below horizon", "(2) surface",
+                                          "(3) sparse",   "(4) start",         "(5) rest",
+                                          "(6) far",      "default",           "all six"};
+#define SHAFT_SETS ((int)(sizeof shaft_sets / sizeof shaft_sets[0]))
+
+static int shafts(const char *device, int quick, bench_row *rows, int *n, bench_row *own,
+                  atmo_err *e)
 {
     atmo_render_result ref;
     int rc;
     double seconds;
-    for (int k = 0; k < 4; k++) {
+    for (int k = 0; k < SHAFT_SETS; k++) {
         atmo_scene s;
         if ((rc = thesis(&s, e)) || (rc = set(&s, "atmosphere.method=march", e)))
             return rc;
         s.image.width = quick ? 24 : 48, s.image.height = quick ? 14 : 27, s.image.samples = 1;
-        s.terrain.shafts = k;
-        fprintf(stderr, "bench terrain: shafts %d\n", k);
+        s.terrain.shafts = shaft_sets[k];
+        fprintf(stderr, "bench terrain: shafts %d\n", shaft_sets[k]);
         atmo_render_result r;
-        if ((rc = timed_render(&s, device, 0, &seconds, &r, e)))
+        if (k == 0) { /* compiles the kernels and fills the caches outside the timing */
+            atmo_scene warm = s;
+            warm.image.width = warm.image.height = 1;
+            if ((rc = timed_render(&warm, device, 0, &seconds, NULL, e)))
+                return rc;
+        }
+        if ((rc = cpu_render(&s, device, &seconds, &r, e)))
             return rc;
         bench_row *row = &rows[(*n)++];
         snprintf(row->method, sizeof row->method, "shafts");
-        snprintf(row->settings, sizeof row->settings, "shortcuts %d", k);
+        snprintf(row->settings, sizeof row->settings, "%s (%d)", shaft_names[k], shaft_sets[k]);
         row->seconds = seconds;
         if (k == 0) {
             ref = r;
@@ -322,51 +366,89 @@ static int shafts(const char *device, int quick, bench_row *rows, int *n, atmo_e
             row->error = bench_rms_relative(&r, &ref);
             atmo_render_result_free(&r);
         }
+        own[k] = *row;
     }
     atmo_render_result_free(&ref);
     return ATMO_OK;
 }
 
+/* thesis-1 per sample at 1280x720, from a render at w x h scaled by the pixel count: preview
+ * (the preset: method fast, 4 shadow rays, the default shortcuts) and quality (method march,
+ * 16 shadow rays, only the exact-at-thesis-1 shortcuts (1) and (6)), each built up from the
+ * sky alone to everything, so the differences say where the time goes. Seconds: the render's
+ * wall clock and its CPU seconds (two rows), the view's precomputes (fast's sky-view LUT)
+ * apart. */
 static int thesis_time(const char *dir, const char *device, int quick, const char *dev_name,
                        atmo_err *e)
 {
     static const char *const parts[] = {"sky only", "terrain without shadows or shafts",
-                                        "terrain + surface shadows", "terrain + shadows + shafts"};
-    bench_row rows[4];
-    int rc, w = quick ? 64 : 160, h = quick ? 36 : 90;
-    for (int k = 0; k < 4; k++) {
-        atmo_scene s;
-        if ((rc = thesis(&s, e)))
-            return rc;
-        s.image.width = w, s.image.height = h, s.image.samples = 1;
-        if (k == 0)
-            s.terrain.enabled = 0;
-        if (k == 1)
-            s.terrain.shadow = ATMO_TERRAIN_SHADOW_NONE;
-        if (k <= 2)
-            s.terrain.shadow_far_m = 1.0, s.terrain.shafts = ATMO_TERRAIN_SHAFT_FAR;
-        double seconds;
-        fprintf(stderr, "bench terrain: thesis-1 %s\n", parts[k]);
-        if ((rc = timed_render(&s, device, 0, &seconds, NULL, e)))
-            return rc;
-        snprintf(rows[k].method, sizeof rows[k].method, "thesis-1");
-        snprintf(rows[k].settings, sizeof rows[k].settings, "%s", parts[k]);
-        rows[k].seconds = seconds * (1280.0 * 720.0) / (w * h);
-        rows[k].error = 0.0;
-        printf("thesis-1, %s: %.3f s per sample at 1280x720 (measured at %dx%d)\n", parts[k],
-               rows[k].seconds, w, h);
-    }
+                                        "terrain + surface shadows",
+                                        "terrain + shadows + exact shafts",
+                                        "terrain + shadows + default shafts"};
+    enum { PARTS = 5 };
+    bench_row rows[4 * PARTS];
+    int rc, w = quick ? 64 : 320, h = quick ? 36 : 180, m = 0;
+    double scale = (1280.0 * 720.0) / (w * h);
+    for (int quality = 0; quality < 2; quality++)
+        for (int k = 0; k < PARTS; k++) {
+            atmo_scene s;
+            if ((rc = thesis(&s, e)))
+                return rc;
+            if (quality && ((rc = set(&s, "atmosphere.method=march", e)) ||
+                            (rc = set(&s, "terrain.shadow_rays=16", e))))
+                return rc;
+            if (quality && k == PARTS - 1)
+                continue; /* quality keeps the exact shortcuts */
+            s.image.width = w, s.image.height = h, s.image.samples = 1;
+            if (k == 0)
+                s.terrain.enabled = 0;
+            if (k == 1)
+                s.terrain.shadow = ATMO_TERRAIN_SHADOW_NONE;
+            if (k <= 2)
+                s.terrain.shadow_far_m = 1.0, s.terrain.shafts = ATMO_TERRAIN_SHAFT_FAR;
+            if (k == 3)
+                s.terrain.shafts = ATMO_TERRAIN_SHAFT_BELOW_HORIZON | ATMO_TERRAIN_SHAFT_FAR;
+            if (k == 4)
+                s.terrain.shafts = ATMO_TERRAIN_SHAFT_DEFAULT;
+            atmo_scene warm = s;
+            warm.image.width = warm.image.height = 1;
+            double seconds, cpu, c0;
+            fprintf(stderr, "bench terrain: thesis-1 %s, %s\n", quality ? "quality" : "preview",
+                    parts[k]);
+            if ((rc = timed_render(&warm, device, 0, &seconds, NULL, e)))
+                return rc;
+            atmo_render_result r;
+            c0 = cpu_seconds();
+            if ((rc = timed_render(&s, device, 0, &seconds, &r, e)))
+                return rc;
+            cpu = cpu_seconds() - c0;
+            double pre = r.seconds_precompute;
+            atmo_render_result_free(&r);
+            const char *mode = quality ? "quality" : "preview";
+            for (int c = 0; c < 2; c++) {
+                bench_row *row = &rows[m++];
+                snprintf(row->method, sizeof row->method, "thesis-1 %s %s", mode,
+                         c ? "cpu" : "wall");
+                snprintf(row->settings, sizeof row->settings, "%s", parts[k]);
+                row->seconds = (c ? cpu : seconds) * scale;
+                row->error = 0.0;
+            }
+            printf("thesis-1 %s, %s: %.1f s wall, %.1f CPU s per sample at 1280x720 (measured "
+                   "at %dx%d); view precompute %.2f s\n",
+                   mode, parts[k], seconds * scale, cpu * scale, w, h, pre);
+        }
     char path[4096];
     snprintf(path, sizeof path, "%s/terrain_thesis1.csv", dir);
-    return bench_write_csv(path, rows, 4, dev_name, e);
+    return bench_write_csv(path, rows, m, dev_name, e);
 }
 
 int bench_terrain(const char *dir, const char *device, int quick, atmo_err *e)
 {
-    bench_row rows[MAX_ROWS];
+    bench_row rows[MAX_ROWS], shaft_rows[SHAFT_SETS];
     int n = 0, rc;
     if ((rc = heightmaps(device, quick, rows, &n, e)) || (rc = tracing(quick, rows, &n, e)) ||
-        (rc = shadows(quick, rows, &n, e)) || (rc = shafts(device, quick, rows, &n, e)))
+        (rc = shadows(quick, rows, &n, e)) ||
+        (rc = shafts(device, quick, rows, &n, shaft_rows, e)))
         return rc;
     for (int i = 0; i < n; i++)
         printf("%-24s %-28s %10.4f s  error %.4g\n", rows[i].method, rows[i].settings,
@@ -379,6 +461,22 @@ int bench_terrain(const char *dir, const char *device, int quick, atmo_err *e)
         (rc = bench_chart(csv, svg, "terrain: error against time (heightmap m or deg, tracing "
                                     "error rate, shadow RMS, shafts RMS relative)",
                           "error", rows, n, e)))
+        return rc;
+    /* the shortcuts alone, each a series (the exact march has error 0: off the log axis) */
+    bench_row named[SHAFT_SETS];
+    for (int k = 1; k < SHAFT_SETS; k++) {
+        named[k - 1] = shaft_rows[k];
+        snprintf(named[k - 1].method, sizeof named[k - 1].method, "%s", shaft_names[k]);
+        printf("shafts %-20s %.2fx faster than the exact march, RMS relative %.4g\n",
+               shaft_names[k], shaft_rows[0].seconds / shaft_rows[k].seconds,
+               shaft_rows[k].error);
+    }
+    snprintf(csv, sizeof csv, "%s/terrain_shafts.csv", dir);
+    snprintf(svg, sizeof svg, "%s/terrain_shafts.svg", dir);
+    if ((rc = bench_write_csv(csv, shaft_rows, SHAFT_SETS, dev_name, e)) ||
+        (rc = bench_chart(csv, svg, "thesis-1 light shafts: each shortcut's RMS relative error "
+                                    "against the exact march, and CPU seconds",
+                          "RMS relative error", named, SHAFT_SETS - 1, e)))
         return rc;
     return thesis_time(dir, device, quick, dev_name, e);
 }

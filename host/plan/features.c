@@ -121,6 +121,7 @@ static const char *const clouds_march_fragments[] = {"kernels/media/cloud_march.
  * heightmap pass, which reads only the field (the camera's placement stays out of the key). */
 static const char *const terrain_fragments[] = {"kernels/terrain/noise.h",
                                                 "kernels/terrain/terrain.h",
+                                                "kernels/terrain/terrain_shafts.h",
                                                 "kernels/terrain/water.h",
                                                 "kernels/terrain/terrain_material.h",
                                                 "kernels/terrain/terrain_shade.h",
