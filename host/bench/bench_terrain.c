@@ -16,12 +16,20 @@
  *   shadow-exact N, shadow-estimate: the visible fraction of the sun disc at 300 surface
  *     points at thesis-1's sun (2.3 degrees high) against exact shadows with 64 rays; error =
  *     RMS difference, seconds = host time.
- *   shafts S: thesis-1 at 48x27, 1 sample, method march, with light-shaft shortcut set S
- *     (gpu_enums.h) against S = 0 (every sample asks the terrain): RMS relative difference and
- *     device seconds of the render (precomputes left out, here and below).
- * terrain_thesis1.csv: thesis-1's render time per sample at 160x90 (scaled to 1280x720 by the
- * pixel count), default method, split by what is switched on: the sky alone, the terrain
- * without shadows or shafts, with the surface's shadows, with shafts (everything). */
+ *   shafts, shafts away: thesis-1 at 96x54, 1 sample, method march, as it is and turned away
+ *     from the sun (yaw + 180 degrees), with no light-shaft shortcut (the exact march, every
+ *     sample asks the terrain), each of the six alone (kernels/terrain/terrain_shafts.h), the
+ *     default set and all six: RMS relative difference from the exact march, and CPU seconds of
+ *     the render (the process's, its device threads included: load on the machine does not
+ *     stretch it; less those of the same render at 1x1 pixel, what does not grow with
+ *     pixels); also DIR/terrain_shafts.csv and its chart DIR/terrain_shafts.svg.
+ * terrain_thesis1.csv: thesis-1's render time per sample at 320x180 (64x36 with --quick),
+ * scaled to 1280x720 by the pixel count, wall seconds of the render and net CPU seconds (as
+ * for the shafts rows; idle, the 2 cores take about half the CPU seconds in wall time), in
+ * preview (the preset: method fast, 4 shadow rays, the default shortcuts) and quality (method
+ * march, 16 shadow rays), built
+ * up from the sky alone: the terrain without shadows or shafts, with the surface's shadows,
+ * with exact shafts, with the default shortcuts. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -37,7 +45,7 @@
 
 #define SITE_X 23796.0
 #define SITE_Z 16636.0
-#define MAX_ROWS 64
+#define MAX_ROWS 80
 
 static double urand(unsigned *state)
 {
@@ -306,14 +314,21 @@ static double cpu_seconds(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* A render and its CPU seconds (the plan's kernels and precomputes already cached by a first
- * render of the same scene, so the seconds are the render's). */
+/* A render and its CPU seconds, less those of the same scene at 1x1 pixel (the plan, the
+ * session's opening and its cached kernels and precomputes: what does not grow with the
+ * pixels). The kernels and caches are already filled by a first render of the scene. */
 static int cpu_render(const atmo_scene *s, const char *device, double *cpu,
                       atmo_render_result *out, atmo_err *e)
 {
-    double c0 = cpu_seconds(), wall;
-    int rc = timed_render(s, device, 0, &wall, out, e);
-    *cpu = cpu_seconds() - c0;
+    atmo_scene one = *s;
+    one.image.width = one.image.height = 1;
+    double wall, c0 = cpu_seconds();
+    int rc = timed_render(&one, device, 0, &wall, NULL, e);
+    if (rc)
+        return rc;
+    double c1 = cpu_seconds();
+    rc = timed_render(s, device, 0, &wall, out, e);
+    *cpu = (cpu_seconds() - c1) - (c1 - c0);
     return rc;
 }
 
@@ -333,42 +348,57 @@ static const char *const shaft_names[] = {"exact march",  "(1) below horizon", "
                                           "(6) far",      "default",           "all six"};
 #define SHAFT_SETS ((int)(sizeof shaft_sets / sizeof shaft_sets[0]))
 
+/* The views of the shafts rows: thesis-1 as it is (toward the low sun), and turned round, away
+ * from it (where shortcuts 3 and 5 apply). */
+static const char *const shaft_views[] = {"camera.yaw_deg=-550", "camera.yaw_deg=-370"};
+static const char *const shaft_view_names[] = {"thesis-1", "thesis-1 away from the sun"};
+#define SHAFT_VIEWS 2
+
 static int shafts(const char *device, int quick, bench_row *rows, int *n, bench_row *own,
                   atmo_err *e)
 {
-    atmo_render_result ref;
     int rc;
     double seconds;
-    for (int k = 0; k < SHAFT_SETS; k++) {
-        atmo_scene s;
-        if ((rc = thesis(&s, e)) || (rc = set(&s, "atmosphere.method=march", e)))
-            return rc;
-        s.image.width = quick ? 24 : 48, s.image.height = quick ? 14 : 27, s.image.samples = 1;
-        s.terrain.shafts = shaft_sets[k];
-        fprintf(stderr, "bench terrain: shafts %d\n", shaft_sets[k]);
-        atmo_render_result r;
-        if (k == 0) { /* compiles the kernels and fills the caches outside the timing */
-            atmo_scene warm = s;
-            warm.image.width = warm.image.height = 1;
-            if ((rc = timed_render(&warm, device, 0, &seconds, NULL, e)))
+    for (int v = 0; v < SHAFT_VIEWS; v++) {
+        atmo_render_result ref;
+        for (int k = 0; k < SHAFT_SETS; k++) {
+            atmo_scene s;
+            if ((rc = thesis(&s, e)) || (rc = set(&s, "atmosphere.method=march", e)) ||
+                (rc = set(&s, shaft_views[v], e)))
                 return rc;
+            s.image.width = quick ? 24 : 96, s.image.height = quick ? 14 : 54;
+            s.image.samples = 1;
+            s.terrain.shafts = shaft_sets[k];
+            fprintf(stderr, "bench terrain: %s, shafts %d\n", shaft_view_names[v], shaft_sets[k]);
+            atmo_render_result r;
+            if (k == 0) { /* compiles the kernels and fills the caches outside the timing */
+                atmo_scene warm = s;
+                warm.image.width = warm.image.height = 1;
+                if ((rc = timed_render(&warm, device, 0, &seconds, NULL, e)))
+                    return rc;
+            }
+            if ((rc = cpu_render(&s, device, &seconds, &r, e)))
+                return rc;
+            bench_row *row = &rows[(*n)++];
+            snprintf(row->method, sizeof row->method, v ? "shafts away" : "shafts");
+            snprintf(row->settings, sizeof row->settings, "%s (%d)", shaft_names[k],
+                     shaft_sets[k]);
+            row->seconds = seconds;
+            if (k == 0) {
+                ref = r;
+                row->error = 0.0;
+            } else {
+                row->error = bench_rms_relative(&r, &ref);
+                atmo_render_result_free(&r);
+            }
+            own[v * SHAFT_SETS + k] = *row;
+            snprintf(own[v * SHAFT_SETS + k].method, sizeof row->method, "%s",
+                     shaft_view_names[v]);
+            snprintf(own[v * SHAFT_SETS + k].settings, sizeof row->settings, "%s",
+                     shaft_names[k]);
         }
-        if ((rc = cpu_render(&s, device, &seconds, &r, e)))
-            return rc;
-        bench_row *row = &rows[(*n)++];
-        snprintf(row->method, sizeof row->method, "shafts");
-        snprintf(row->settings, sizeof row->settings, "%s (%d)", shaft_names[k], shaft_sets[k]);
-        row->seconds = seconds;
-        if (k == 0) {
-            ref = r;
-            row->error = 0.0;
-        } else {
-            row->error = bench_rms_relative(&r, &ref);
-            atmo_render_result_free(&r);
-        }
-        own[k] = *row;
+        atmo_render_result_free(&ref);
     }
-    atmo_render_result_free(&ref);
     return ATMO_OK;
 }
 
@@ -412,16 +442,15 @@ static int thesis_time(const char *dir, const char *device, int quick, const cha
                 s.terrain.shafts = ATMO_TERRAIN_SHAFT_DEFAULT;
             atmo_scene warm = s;
             warm.image.width = warm.image.height = 1;
-            double seconds, cpu, c0;
+            double seconds, cpu;
             fprintf(stderr, "bench terrain: thesis-1 %s, %s\n", quality ? "quality" : "preview",
                     parts[k]);
             if ((rc = timed_render(&warm, device, 0, &seconds, NULL, e)))
                 return rc;
             atmo_render_result r;
-            c0 = cpu_seconds();
-            if ((rc = timed_render(&s, device, 0, &seconds, &r, e)))
+            if ((rc = cpu_render(&s, device, &cpu, &r, e)))
                 return rc;
-            cpu = cpu_seconds() - c0;
+            seconds = r.seconds_render;
             double pre = r.seconds_precompute;
             atmo_render_result_free(&r);
             const char *mode = quality ? "quality" : "preview";
@@ -444,7 +473,7 @@ static int thesis_time(const char *dir, const char *device, int quick, const cha
 
 int bench_terrain(const char *dir, const char *device, int quick, atmo_err *e)
 {
-    bench_row rows[MAX_ROWS], shaft_rows[SHAFT_SETS];
+    bench_row rows[MAX_ROWS], shaft_rows[SHAFT_VIEWS * SHAFT_SETS];
     int n = 0, rc;
     if ((rc = heightmaps(device, quick, rows, &n, e)) || (rc = tracing(quick, rows, &n, e)) ||
         (rc = shadows(quick, rows, &n, e)) ||
@@ -462,21 +491,21 @@ int bench_terrain(const char *dir, const char *device, int quick, atmo_err *e)
                                     "error rate, shadow RMS, shafts RMS relative)",
                           "error", rows, n, e)))
         return rc;
-    /* the shortcuts alone, each a series (the exact march has error 0: off the log axis) */
-    bench_row named[SHAFT_SETS];
-    for (int k = 1; k < SHAFT_SETS; k++) {
-        named[k - 1] = shaft_rows[k];
-        snprintf(named[k - 1].method, sizeof named[k - 1].method, "%s", shaft_names[k]);
-        printf("shafts %-20s %.2fx faster than the exact march, RMS relative %.4g\n",
-               shaft_names[k], shaft_rows[0].seconds / shaft_rows[k].seconds,
-               shaft_rows[k].error);
-    }
+    /* the shortcuts: one series per view, each point a shortcut set (the exact march, error
+     * 0, and shortcuts exact in a view fall off the log axis; the CSV has them) */
+    for (int v = 0; v < SHAFT_VIEWS; v++)
+        for (int k = 1; k < SHAFT_SETS; k++) {
+            const bench_row *r = &shaft_rows[v * SHAFT_SETS + k];
+            printf("shafts, %s: %-18s %.2fx the exact march's speed, RMS relative %.4g\n",
+                   shaft_view_names[v], shaft_names[k],
+                   shaft_rows[v * SHAFT_SETS].seconds / r->seconds, r->error);
+        }
     snprintf(csv, sizeof csv, "%s/terrain_shafts.csv", dir);
     snprintf(svg, sizeof svg, "%s/terrain_shafts.svg", dir);
-    if ((rc = bench_write_csv(csv, shaft_rows, SHAFT_SETS, dev_name, e)) ||
-        (rc = bench_chart(csv, svg, "thesis-1 light shafts: each shortcut's RMS relative error "
-                                    "against the exact march, and CPU seconds",
-                          "RMS relative error", named, SHAFT_SETS - 1, e)))
+    if ((rc = bench_write_csv(csv, shaft_rows, SHAFT_VIEWS * SHAFT_SETS, dev_name, e)) ||
+        (rc = bench_chart(csv, svg, "light-shaft shortcuts: RMS relative error against the "
+                                    "exact march, and CPU seconds (96x54, method march)",
+                          "RMS relative error", shaft_rows, SHAFT_VIEWS * SHAFT_SETS, e)))
         return rc;
     return thesis_time(dir, device, quick, dev_name, e);
 }
