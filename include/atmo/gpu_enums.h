@@ -52,7 +52,7 @@ enum {
     ATMO_TERRAIN_SHAFT_START = 16,        /* (4) march from 0.6 of the distance to the surface */
     ATMO_TERRAIN_SHAFT_REST = 32,         /* (5) shadowed beyond half the path: the rest too */
     ATMO_TERRAIN_SHAFT_ALL = 63,
-    ATMO_TERRAIN_SHAFT_DEFAULT = 3        /* terrain.shafts default: the shortcuts that pay */
+    ATMO_TERRAIN_SHAFT_DEFAULT = 8        /* terrain.shafts default: the one that pays (bench) */
 };
 /* (A sample above the highest terrain whose sun ray rises is lit without a shortcut: the
  * tracer's shell test, kernels/terrain/terrain.h, returns at once. The shortcuts:

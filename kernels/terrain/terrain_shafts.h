@@ -28,7 +28,9 @@
  *                      highest terrain whose sun ray rises is lit exactly, with no shortcut:
  *                      the tracer's shell test returns at once.)
  * Their errors against the exact march and their speed-ups: `atmo bench terrain` (rows
- * "shafts"), docs/notes/terrain.md. */
+ * "shafts"), docs/notes/terrain.md. The default, ATMO_TERRAIN_SHAFT_DEFAULT, is (3) alone: the
+ * only one that pays (2.6x turned away from the sun at 0.3 % RMS; facing the sun no shortcut
+ * changes the time, and (1) costs 1.6 % turned away). */
 #ifndef ATMO_TERRAIN_SHAFTS_H
 #define ATMO_TERRAIN_SHAFTS_H
 #ifndef __OPENCL_VERSION__
