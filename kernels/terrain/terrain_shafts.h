@@ -29,7 +29,7 @@
  *                      the tracer's shell test returns at once.)
  * Their errors against the exact march and their speed-ups: `atmo bench terrain` (rows
  * "shafts"), docs/notes/terrain.md. The default, ATMO_TERRAIN_SHAFT_DEFAULT, is (3) alone: the
- * only one that pays (2.6x turned away from the sun at 0.3 % RMS; facing the sun no shortcut
+ * only one that pays (2.5x turned away from the sun at 0.3 % RMS; facing the sun no shortcut
  * changes the time, and (1) costs 1.6 % turned away). */
 #ifndef ATMO_TERRAIN_SHAFTS_H
 #define ATMO_TERRAIN_SHAFTS_H
