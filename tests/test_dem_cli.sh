@@ -132,5 +132,32 @@ view=(--set terrain.enabled=true --set atmosphere.method=single --set camera.pos
 [ -s "$tmp/dem.pfm" ] && ! cmp -s "$tmp/fbm.pfm" "$tmp/dem.pfm" ||
     bad "the DEM render is missing or equals the procedural terrain's"
 
+# atmo terrain --at probes the file as a render draws it: at a heightmap texel centre (the
+# default 1024 texels over 65536 m: centres at 32 + 64 k m) the height is the file's bicubic
+# interpolant there (the plan resamples it onto the centres) within the float rounding of
+# heights up to 2 km (1e-3 m), and "height_ref_m" is that interpolant in double; beyond the
+# heightmap's square (|X| > 32768 m) the procedural field goes on, as without the file
+dem=(--set terrain.heightmap_file="$tmp/ramp.png" --set terrain.heightmap_file_extent_m=20000
+     --set terrain.heightmap_scale_m=2000)
+"$atmo" terrain "${dem[@]}" --at 32,32 --at 2080,-3104 --at 40000,100 --json >"$tmp/probe.json" \
+    2>"$tmp/err" || { bad "atmo terrain --at with a heightmap file failed"; cat "$tmp/err" >&2; }
+"$atmo" terrain --at 40000,100 --json >"$tmp/probe_fbm.json" 2>"$tmp/err" ||
+    { bad "atmo terrain --at failed"; cat "$tmp/err" >&2; }
+python3 - "$tmp/probe.json" "$tmp/probe_fbm.json" <<'PY' || fail=1
+import json, math, sys
+pts = [json.loads(l) for l in open(sys.argv[1])]
+fbm = json.loads(open(sys.argv[2]).readline())
+assert len(pts) == 3, pts
+for p in pts[:2]:
+    assert abs(p["height_m"] - p["height_ref_m"]) <= 1e-3, p
+    assert p["height_m"] > 0 and p["coverage"] == 1, p
+    assert abs(math.sqrt(sum(c * c for c in p["normal"])) - 1) < 1e-5, p
+assert abs(pts[0]["height_m"] - pts[1]["height_m"]) > 1, pts
+assert pts[2]["height_m"] == fbm["height_m"], (pts[2], fbm)
+print("atmo terrain with the file: %.3f and %.3f m at texel centres (file %.3f, %.3f); "
+      "beyond the heightmap the procedural %.3f m" % (pts[0]["height_m"], pts[1]["height_m"],
+      pts[0]["height_ref_m"], pts[1]["height_ref_m"], pts[2]["height_m"]))
+PY
+
 [ $fail -eq 0 ] && echo "test_dem_cli: passed"
 exit $fail

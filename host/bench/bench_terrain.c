@@ -16,16 +16,25 @@
  *   shadow-exact N, shadow-estimate: the visible fraction of the sun disc at 300 surface
  *     points at thesis-1's sun (2.3 degrees high) against exact shadows with 64 rays; error =
  *     RMS difference, seconds = host time.
- *   shafts S: thesis-1 at 48x27, 1 sample, method march, with light-shaft shortcut set S
- *     (gpu_enums.h) against S = 0 (every sample asks the terrain): RMS relative difference and
- *     device seconds of the render (precomputes left out, here and below).
- * terrain_thesis1.csv: thesis-1's render time per sample at 160x90 (scaled to 1280x720 by the
- * pixel count), default method, split by what is switched on: the sky alone, the terrain
- * without shadows or shafts, with the surface's shadows, with shafts (everything). */
+ *   shafts, shafts away: thesis-1 at 96x54, 1 sample, method march, as it is and turned away
+ *     from the sun (yaw + 180 degrees), with no light-shaft shortcut (the exact march, every
+ *     sample asks the terrain), each of the six alone (kernels/terrain/terrain_shafts.h), the
+ *     default set and all six: RMS relative difference from the exact march, and CPU seconds of
+ *     the render (the process's, its device threads included: load on the machine does not
+ *     stretch it; less those of the same render at 1x1 pixel, what does not grow with
+ *     pixels); also DIR/terrain_shafts.csv and its chart DIR/terrain_shafts.svg.
+ * terrain_thesis1.csv: thesis-1's render time per sample at 320x180 (64x36 with --quick),
+ * scaled to 1280x720 by the pixel count, wall seconds of the render and net CPU seconds (as
+ * for the shafts rows; idle, the 2 cores take about half the CPU seconds in wall time), in
+ * preview (the preset: method fast, 4 shadow rays, the default shortcuts) and quality (method
+ * march, 16 shadow rays), built
+ * up from the sky alone: the terrain without shadows or shafts, with the surface's shadows,
+ * with exact shafts, with the default shortcuts. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include "atmo/bench.h"
 #include "atmo/clock.h"
 #include "atmo/plan.h"
@@ -36,7 +45,7 @@
 
 #define SITE_X 23796.0
 #define SITE_Z 16636.0
-#define MAX_ROWS 64
+#define MAX_ROWS 80
 
 static double urand(unsigned *state)
 {
@@ -296,77 +305,179 @@ static int shadows(int quick, bench_row *rows, int *n, atmo_err *e)
     return ATMO_OK;
 }
 
-static int shafts(const char *device, int quick, bench_row *rows, int *n, atmo_err *e)
+/* Seconds of CPU time of the whole process (its OpenCL device threads included on PoCL): a
+ * measure of work that the machine's other load does not stretch. */
+static double cpu_seconds(void)
 {
-    atmo_render_result ref;
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* A render and its CPU seconds, less those of the same scene at 1x1 pixel (the plan, the
+ * session's opening and its cached kernels and precomputes: what does not grow with the
+ * pixels). The kernels and caches are already filled by a first render of the scene. */
+static int cpu_render(const atmo_scene *s, const char *device, double *cpu,
+                      atmo_render_result *out, atmo_err *e)
+{
+    atmo_scene one = *s;
+    one.image.width = one.image.height = 1;
+    double wall, c0 = cpu_seconds();
+    int rc = timed_render(&one, device, 0, &wall, NULL, e);
+    if (rc)
+        return rc;
+    double c1 = cpu_seconds();
+    rc = timed_render(s, device, 0, &wall, out, e);
+    *cpu = (cpu_seconds() - c1) - (c1 - c0);
+    return rc;
+}
+
+/* The shortcut sets of the shafts rows: none (the exact march, the reference), each alone,
+ * the default and all six. */
+static const int shaft_sets[] = {0,
+                                 ATMO_TERRAIN_SHAFT_BELOW_HORIZON,
+                                 ATMO_TERRAIN_SHAFT_SURFACE,
+                                 ATMO_TERRAIN_SHAFT_SPARSE,
+                                 ATMO_TERRAIN_SHAFT_START,
+                                 ATMO_TERRAIN_SHAFT_REST,
+                                 ATMO_TERRAIN_SHAFT_FAR,
+                                 ATMO_TERRAIN_SHAFT_DEFAULT,
+                                 ATMO_TERRAIN_SHAFT_ALL};
+static const char *const shaft_names[] = {"exact march",  "(1) below horizon", "(2) surface",
+                                          "(3) sparse",   "(4) start",         "(5) rest",
+                                          "(6) far",      "default",           "all six"};
+#define SHAFT_SETS ((int)(sizeof shaft_sets / sizeof shaft_sets[0]))
+
+/* The views of the shafts rows: thesis-1 as it is (toward the low sun), and turned round, away
+ * from it (where shortcuts 3 and 5 apply). */
+static const char *const shaft_views[] = {"camera.yaw_deg=-550", "camera.yaw_deg=-370"};
+static const char *const shaft_view_names[] = {"thesis-1", "thesis-1 away from the sun"};
+#define SHAFT_VIEWS 2
+
+static int shafts(const char *device, int quick, bench_row *rows, int *n, bench_row *own,
+                  atmo_err *e)
+{
     int rc;
     double seconds;
-    for (int k = 0; k < 4; k++) {
-        atmo_scene s;
-        if ((rc = thesis(&s, e)) || (rc = set(&s, "atmosphere.method=march", e)))
-            return rc;
-        s.image.width = quick ? 24 : 48, s.image.height = quick ? 14 : 27, s.image.samples = 1;
-        s.terrain.shafts = k;
-        fprintf(stderr, "bench terrain: shafts %d\n", k);
-        atmo_render_result r;
-        if ((rc = timed_render(&s, device, 0, &seconds, &r, e)))
-            return rc;
-        bench_row *row = &rows[(*n)++];
-        snprintf(row->method, sizeof row->method, "shafts");
-        snprintf(row->settings, sizeof row->settings, "shortcuts %d", k);
-        row->seconds = seconds;
-        if (k == 0) {
-            ref = r;
-            row->error = 0.0;
-        } else {
-            row->error = bench_rms_relative(&r, &ref);
-            atmo_render_result_free(&r);
+    for (int v = 0; v < SHAFT_VIEWS; v++) {
+        atmo_render_result ref;
+        for (int k = 0; k < SHAFT_SETS; k++) {
+            atmo_scene s;
+            if ((rc = thesis(&s, e)) || (rc = set(&s, "atmosphere.method=march", e)) ||
+                (rc = set(&s, shaft_views[v], e)))
+                return rc;
+            s.image.width = quick ? 24 : 96, s.image.height = quick ? 14 : 54;
+            s.image.samples = 1;
+            s.terrain.shafts = shaft_sets[k];
+            fprintf(stderr, "bench terrain: %s, shafts %d\n", shaft_view_names[v], shaft_sets[k]);
+            atmo_render_result r;
+            if (k == 0) { /* compiles the kernels and fills the caches outside the timing */
+                atmo_scene warm = s;
+                warm.image.width = warm.image.height = 1;
+                if ((rc = timed_render(&warm, device, 0, &seconds, NULL, e)))
+                    return rc;
+            }
+            if ((rc = cpu_render(&s, device, &seconds, &r, e)))
+                return rc;
+            bench_row *row = &rows[(*n)++];
+            snprintf(row->method, sizeof row->method, v ? "shafts away" : "shafts");
+            snprintf(row->settings, sizeof row->settings, "%s (%d)", shaft_names[k],
+                     shaft_sets[k]);
+            row->seconds = seconds;
+            if (k == 0) {
+                ref = r;
+                row->error = 0.0;
+            } else {
+                row->error = bench_rms_relative(&r, &ref);
+                atmo_render_result_free(&r);
+            }
+            own[v * SHAFT_SETS + k] = *row;
+            snprintf(own[v * SHAFT_SETS + k].method, sizeof row->method, "%s",
+                     shaft_view_names[v]);
+            snprintf(own[v * SHAFT_SETS + k].settings, sizeof row->settings, "%s",
+                     shaft_names[k]);
         }
+        atmo_render_result_free(&ref);
     }
-    atmo_render_result_free(&ref);
     return ATMO_OK;
 }
 
+/* thesis-1 per sample at 1280x720, from a render at w x h scaled by the pixel count: preview
+ * (the preset: method fast, 4 shadow rays, the default shortcuts) and quality (method march,
+ * 16 shadow rays, the shafts' exact march), each built up from the
+ * sky alone to everything, so the differences say where the time goes. Seconds: the render's
+ * wall clock and its net CPU seconds (two rows), the view's precomputes (fast's sky-view LUT)
+ * apart. */
 static int thesis_time(const char *dir, const char *device, int quick, const char *dev_name,
                        atmo_err *e)
 {
     static const char *const parts[] = {"sky only", "terrain without shadows or shafts",
-                                        "terrain + surface shadows", "terrain + shadows + shafts"};
-    bench_row rows[4];
-    int rc, w = quick ? 64 : 160, h = quick ? 36 : 90;
-    for (int k = 0; k < 4; k++) {
-        atmo_scene s;
-        if ((rc = thesis(&s, e)))
-            return rc;
-        s.image.width = w, s.image.height = h, s.image.samples = 1;
-        if (k == 0)
-            s.terrain.enabled = 0;
-        if (k == 1)
-            s.terrain.shadow = ATMO_TERRAIN_SHADOW_NONE;
-        if (k <= 2)
-            s.terrain.shadow_far_m = 1.0, s.terrain.shafts = ATMO_TERRAIN_SHAFT_FAR;
-        double seconds;
-        fprintf(stderr, "bench terrain: thesis-1 %s\n", parts[k]);
-        if ((rc = timed_render(&s, device, 0, &seconds, NULL, e)))
-            return rc;
-        snprintf(rows[k].method, sizeof rows[k].method, "thesis-1");
-        snprintf(rows[k].settings, sizeof rows[k].settings, "%s", parts[k]);
-        rows[k].seconds = seconds * (1280.0 * 720.0) / (w * h);
-        rows[k].error = 0.0;
-        printf("thesis-1, %s: %.3f s per sample at 1280x720 (measured at %dx%d)\n", parts[k],
-               rows[k].seconds, w, h);
-    }
+                                        "terrain + surface shadows",
+                                        "terrain + shadows + exact shafts (no shortcut)",
+                                        "terrain + shadows + default shafts"};
+    enum { PARTS = 5 };
+    bench_row rows[4 * PARTS];
+    int rc, w = quick ? 64 : 320, h = quick ? 36 : 180, m = 0;
+    double scale = (1280.0 * 720.0) / (w * h);
+    for (int quality = 0; quality < 2; quality++)
+        for (int k = 0; k < PARTS; k++) {
+            atmo_scene s;
+            if ((rc = thesis(&s, e)))
+                return rc;
+            if (quality && ((rc = set(&s, "atmosphere.method=march", e)) ||
+                            (rc = set(&s, "terrain.shadow_rays=16", e))))
+                return rc;
+            if (quality && k == PARTS - 1)
+                continue; /* quality keeps the exact shortcuts */
+            s.image.width = w, s.image.height = h, s.image.samples = 1;
+            if (k == 0)
+                s.terrain.enabled = 0;
+            if (k == 1)
+                s.terrain.shadow = ATMO_TERRAIN_SHADOW_NONE;
+            if (k <= 2)
+                s.terrain.shadow_far_m = 1.0, s.terrain.shafts = ATMO_TERRAIN_SHAFT_FAR;
+            if (k == 3)
+                s.terrain.shafts = 0;
+            if (k == 4)
+                s.terrain.shafts = ATMO_TERRAIN_SHAFT_DEFAULT;
+            atmo_scene warm = s;
+            warm.image.width = warm.image.height = 1;
+            double seconds, cpu;
+            fprintf(stderr, "bench terrain: thesis-1 %s, %s\n", quality ? "quality" : "preview",
+                    parts[k]);
+            if ((rc = timed_render(&warm, device, 0, &seconds, NULL, e)))
+                return rc;
+            atmo_render_result r;
+            if ((rc = cpu_render(&s, device, &cpu, &r, e)))
+                return rc;
+            seconds = r.seconds_render;
+            double pre = r.seconds_precompute;
+            atmo_render_result_free(&r);
+            const char *mode = quality ? "quality" : "preview";
+            for (int c = 0; c < 2; c++) {
+                bench_row *row = &rows[m++];
+                snprintf(row->method, sizeof row->method, "thesis-1 %s %s", mode,
+                         c ? "cpu" : "wall");
+                snprintf(row->settings, sizeof row->settings, "%s", parts[k]);
+                row->seconds = (c ? cpu : seconds) * scale;
+                row->error = 0.0;
+            }
+            printf("thesis-1 %s, %s: %.1f s wall, %.1f CPU s per sample at 1280x720 (measured "
+                   "at %dx%d); view precompute %.2f s\n",
+                   mode, parts[k], seconds * scale, cpu * scale, w, h, pre);
+        }
     char path[4096];
     snprintf(path, sizeof path, "%s/terrain_thesis1.csv", dir);
-    return bench_write_csv(path, rows, 4, dev_name, e);
+    return bench_write_csv(path, rows, m, dev_name, e);
 }
 
 int bench_terrain(const char *dir, const char *device, int quick, atmo_err *e)
 {
-    bench_row rows[MAX_ROWS];
+    bench_row rows[MAX_ROWS], shaft_rows[SHAFT_VIEWS * SHAFT_SETS];
     int n = 0, rc;
     if ((rc = heightmaps(device, quick, rows, &n, e)) || (rc = tracing(quick, rows, &n, e)) ||
-        (rc = shadows(quick, rows, &n, e)) || (rc = shafts(device, quick, rows, &n, e)))
+        (rc = shadows(quick, rows, &n, e)) ||
+        (rc = shafts(device, quick, rows, &n, shaft_rows, e)))
         return rc;
     for (int i = 0; i < n; i++)
         printf("%-24s %-28s %10.4f s  error %.4g\n", rows[i].method, rows[i].settings,
@@ -379,6 +490,22 @@ int bench_terrain(const char *dir, const char *device, int quick, atmo_err *e)
         (rc = bench_chart(csv, svg, "terrain: error against time (heightmap m or deg, tracing "
                                     "error rate, shadow RMS, shafts RMS relative)",
                           "error", rows, n, e)))
+        return rc;
+    /* the shortcuts: one series per view, each point a shortcut set (the exact march, error
+     * 0, and shortcuts exact in a view fall off the log axis; the CSV has them) */
+    for (int v = 0; v < SHAFT_VIEWS; v++)
+        for (int k = 1; k < SHAFT_SETS; k++) {
+            const bench_row *r = &shaft_rows[v * SHAFT_SETS + k];
+            printf("shafts, %s: %-18s %.2fx the exact march's speed, RMS relative %.4g\n",
+                   shaft_view_names[v], shaft_names[k],
+                   shaft_rows[v * SHAFT_SETS].seconds / r->seconds, r->error);
+        }
+    snprintf(csv, sizeof csv, "%s/terrain_shafts.csv", dir);
+    snprintf(svg, sizeof svg, "%s/terrain_shafts.svg", dir);
+    if ((rc = bench_write_csv(csv, shaft_rows, SHAFT_VIEWS * SHAFT_SETS, dev_name, e)) ||
+        (rc = bench_chart(csv, svg, "light-shaft shortcuts: RMS relative error against the "
+                                    "exact march, and CPU seconds (96x54, method march)",
+                          "RMS relative error", shaft_rows, SHAFT_VIEWS * SHAFT_SETS, e)))
         return rc;
     return thesis_time(dir, device, quick, dev_name, e);
 }

@@ -11,12 +11,21 @@
  * kernels' own float functions compiled on the host (what a render sees, with the fBm
  * evaluated directly), plus the height from the double-precision reference
  * (host/terrain/terrain_ref.c). --json prints one JSON object per point, one per line, with at
- * least "height_m", "normal" and "coverage". */
+ * least "height_m", "normal" and "coverage".
+ *
+ * With terrain.heightmap_file the terrain is the file's heights resampled into the heightmap
+ * (host/plan/plan_terrain.c: bicubic at the texel centres) and read back bilinearly, the
+ * procedural fBm beyond the heightmap's square: the probe looks up the same texels with the
+ * kernels' terrain_height_at (float format; the derivatives format differs only in the normal's
+ * interpolation), the reference height is the file's own bicubic interpolant in double
+ * (atmo_dem_sample) inside the square, and the coverage is 1 on the file's land, 0 on its
+ * water. */
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "atmo/dem.h"
 #include "atmo/plan.h"
 #include "atmo/scene.h"
 #include "atmo/terrain_ref.h"
@@ -29,10 +38,11 @@ static const char terrain_usage[] =
     "usage: atmo terrain --at X,Z [--at X,Z ...] [--preset NAME | --scene FILE] [--set K=V ...]\n"
     "                    [--json]\n"
     "\n"
-    "Prints the procedural terrain at planar coordinates (X, Z) in metres (the world x and z of\n"
+    "Prints the terrain at planar coordinates (X, Z) in metres (the world x and z of\n"
     "the point's foot on the ground sphere): height above sea level, surface altitude (water\n"
     "at sea level), world position, unit normal, land/sea coverage and material weights.\n"
-    "terrain.enabled is implied; terrain.* keys (atmo params) change the terrain.\n";
+    "terrain.enabled is implied; terrain.* keys (atmo params) change the terrain, and with\n"
+    "terrain.heightmap_file it is the file's heights as a render draws them.\n";
 
 static const char *const material_names[TERRAIN_MATERIALS] = {"grass", "dirt", "rock", "snow",
                                                               "water"};
@@ -61,8 +71,16 @@ static cJSON *probe(const atmo_plan *p, const atmo_scene *s, const double at[2],
                   at[0], at[1], R);
         return NULL;
     }
-    terrain_height h = terrain_height_direct(&g->terrain.field, (float)at[0], (float)at[1]);
-    double ref_cov, ref = terrain_ref_height(&g->terrain.field, at[0], at[1], NULL, &ref_cov);
+    const atmo_gpu_terrain_field *f = &g->terrain.field;
+    const atmo_plan_buffer *base = atmo_plan_buffer_find((atmo_plan *)p, "terrain_base");
+    const float *hm = p->dem.width > 0 && base ? (const float *)base->host_data : NULL;
+    float gx, gy;
+    int in_file = hm && terrain_in_heightmap(f, (float)at[0], (float)at[1], &gx, &gy);
+    terrain_height h = terrain_height_at(f, in_file ? hm : NULL, (float)at[0], (float)at[1]);
+    double ref_cov, ref = terrain_ref_height(f, at[0], at[1], NULL, &ref_cov);
+    if (in_file)
+        ref = atmo_dem_sample(&p->dem, at[0] - s->dem.center_m[0], at[1] - s->dem.center_m[1],
+                              ATMO_DEM_BICUBIC);
     double surface = fmax((double)h.h, s->terrain.sea_level_m);
     double n[3] = {at[0] / R, sqrt(1.0 - rho2), at[1] / R}, world[3], rel[3];
     for (int k = 0; k < 3; k++)
@@ -70,9 +88,10 @@ static cJSON *probe(const atmo_plan *p, const atmo_scene *s, const double at[2],
     for (int k = 0; k < 3; k++)
         rel[k] = world[k] - s->camera.position_m[k];
     vec3 q = v3((float)rel[0], (float)rel[1], (float)rel[2]);
-    terrain_surface_point m = terrain_material(g, NULL, q, 1.0f);
+    terrain_surface_point m = terrain_material(g, in_file ? hm : NULL, q, 1.0f);
     float cu, cv;
-    float coverage = terrain_coverage(&g->terrain.field, (float)at[0], (float)at[1], &cu, &cv);
+    float coverage = in_file ? ((double)h.h > s->terrain.sea_level_m ? 1.0f : 0.0f)
+                             : terrain_coverage(f, (float)at[0], (float)at[1], &cu, &cv);
 
     cJSON *o = cJSON_CreateObject(), *normal = cJSON_CreateArray();
     cJSON *pos = cJSON_CreateArray(), *mat = cJSON_CreateObject();
@@ -172,16 +191,14 @@ int cmd_terrain(int argc, char **argv)
     }
     if (rc == ATMO_OK && n_at == 0)
         rc = atmo_fail(&e, ATMO_ERR_USAGE, "atmo terrain needs --at X,Z (atmo terrain --help)");
-    if (rc == ATMO_OK && scene.dem.file[0])
-        rc = atmo_fail(&e, ATMO_ERR_USAGE,
-                       "atmo terrain probes the procedural field only, not terrain.heightmap_file "
-                       "'%s'; atmo dem info describes the file", scene.dem.file);
     if (rc == ATMO_OK) {
         scene.terrain.enabled = 1;
         /* the probe needs no device or method: plan with a method terrain works with */
         if (scene.atmosphere.method == ATMO_METHOD_REFERENCE)
             scene.atmosphere.method = ATMO_METHOD_SINGLE;
-        scene.terrain.heightmap_size = 0;
+        if (!scene.dem.file[0]) /* the fBm directly; a file needs its heightmap */
+            scene.terrain.heightmap_size = 0;
+        scene.terrain.heightmap_format = ATMO_TERRAIN_FORMAT_FLOAT;
         rc = atmo_plan_make(&scene, &plan, &e);
         planned = rc == ATMO_OK;
     }

@@ -28,6 +28,13 @@ static int terrain_stage(const atmo_scene *s)
     return has_terrain(s) && (s->atmosphere.method == ATMO_METHOD_FAST ||
                               s->atmosphere.method == ATMO_METHOD_LUT);
 }
+/* the methods whose sky_trace integrates the terrain itself get the stage for the water's
+ * mirror ray alone */
+static int terrain_water_stage(const atmo_scene *s)
+{
+    return has_terrain(s) && (s->atmosphere.method == ATMO_METHOD_SINGLE ||
+                              s->atmosphere.method == ATMO_METHOD_MARCH);
+}
 static int is_single(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_SINGLE; }
 static int is_march(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_MARCH; }
 static int is_fast(const atmo_scene *s) { return s->atmosphere.method == ATMO_METHOD_FAST; }
@@ -121,6 +128,7 @@ static const char *const clouds_march_fragments[] = {"kernels/media/cloud_march.
  * heightmap pass, which reads only the field (the camera's placement stays out of the key). */
 static const char *const terrain_fragments[] = {"kernels/terrain/noise.h",
                                                 "kernels/terrain/terrain.h",
+                                                "kernels/terrain/terrain_shafts.h",
                                                 "kernels/terrain/water.h",
                                                 "kernels/terrain/terrain_material.h",
                                                 "kernels/terrain/terrain_shade.h",
@@ -179,8 +187,10 @@ const atmo_feature atmo_features[] = {
      1},
     {"reference", ATMO_METHOD_REFERENCE, is_reference, reference_fragments, "", NULL, NULL, NULL,
      atmo_plan_reference, 0},
-    {"terrain_stage", -1, terrain_stage, terrain_stage_fragments, "-DATMO_TERRAIN_STAGE", NULL,
-     NULL, NULL, NULL, 0},
+    {"terrain_stage", -1, terrain_stage, terrain_stage_fragments,
+     "-DATMO_TERRAIN_STAGE -DATMO_TERRAIN_STAGE_TABLES", NULL, NULL, NULL, NULL, 0},
+    {"terrain_water_stage", -1, terrain_water_stage, terrain_stage_fragments,
+     "-DATMO_TERRAIN_STAGE", NULL, NULL, NULL, NULL, 0},
     /* the kernels that render with whichever method was assembled */
     {"render", -1, always, render_fragments, "", NULL, NULL, NULL, NULL, 0},
     /* the path tracer's stages and its kernel path_render, over whichever method was assembled */

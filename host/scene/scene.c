@@ -246,9 +246,11 @@ const atmo_param atmo_params[] = {
             "steps of one shadow ray"),
     ROW_FLOAT("terrain.shadow_far_m", terrain.shadow_far_m, "m", 1, 1e7, 40000,
               "shadow rays and light shafts look this far toward the sun"),
-    ROW_INT("terrain.shafts", terrain.shafts, "", 0, 3, 3,
+    ROW_INT("terrain.shafts", terrain.shafts, "", 0, 63, ATMO_TERRAIN_SHAFT_DEFAULT,
             "light-shaft shortcuts, a bit set: 1 sun below the sample's horizon = shadowed, "
-            "2 samples beyond terrain.shadow_far_m = lit"),
+            "2 samples beyond terrain.shadow_far_m = lit, 4 within 400 m of a shadowed "
+            "surface = shadowed, 8 every 6th sample away from the sun, 16 shadow march from "
+            "0.6 of the way to the surface, 32 shadowed beyond half the path = rest shadowed"),
     ROW_INT("lut.orders", atmosphere.lut_orders, "", 1, 15, 7,
             "lut method: scattering orders precomputed (1 = single scattering only)"),
     ROW_INT("lut.r_size", atmosphere.lut_r_size, "", 2, 1024, 32,

@@ -45,11 +45,18 @@ enum { ATMO_TERRAIN_SHADOW_NONE = 0, ATMO_TERRAIN_SHADOW_EXACT, ATMO_TERRAIN_SHA
 /* terrain.shafts: the light-shaft shortcuts of the thesis (presets.md), each a bit; 0: every
  * sample of the medium integrator asks the terrain's shadow */
 enum {
-    ATMO_TERRAIN_SHAFT_BELOW_HORIZON = 1, /* sun below the sample's horizon: shadowed */
-    ATMO_TERRAIN_SHAFT_FAR = 2,           /* sample beyond the shadow far plane: lit */
+    ATMO_TERRAIN_SHAFT_BELOW_HORIZON = 1, /* (1) sun below the sample's horizon: shadowed */
+    ATMO_TERRAIN_SHAFT_FAR = 2,           /* (6) sample beyond the shadow far plane: lit */
+    ATMO_TERRAIN_SHAFT_SURFACE = 4,       /* (2) within 400 m of a shadowed surface hit: shadowed */
+    ATMO_TERRAIN_SHAFT_SPARSE = 8,        /* (3) looking away from the sun: every 6th sample */
+    ATMO_TERRAIN_SHAFT_START = 16,        /* (4) march from 0.6 of the distance to the surface */
+    ATMO_TERRAIN_SHAFT_REST = 32,         /* (5) shadowed beyond half the path: the rest too */
+    ATMO_TERRAIN_SHAFT_ALL = 63,
+    ATMO_TERRAIN_SHAFT_DEFAULT = 8        /* terrain.shafts default: the one that pays (bench) */
 };
 /* (A sample above the highest terrain whose sun ray rises is lit without a shortcut: the
- * tracer's shell test, kernels/terrain/terrain.h, returns at once.) */
+ * tracer's shell test, kernels/terrain/terrain.h, returns at once. The shortcuts:
+ * kernels/terrain/terrain_shafts.h.) */
 
 /* atmosphere.method, in the order of the scene registry's names */
 enum {

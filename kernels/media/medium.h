@@ -17,7 +17,9 @@
  * alpha)) comes apart where the ray sees it. A segment that ends at t1 before the ground or the
  * top ends at a black surface there: no surface term, no sun disc.
  *
- * Stepping (pbrt-v4's SampleT_maj shape: one walk, one per-point evaluation). The ray is first
+ * Stepping (pbrt-v4's SampleT_maj shape: one walk, one per-point evaluation that carries the
+ * ray's small visibility state, visibility_ray: what the terrain's light-shaft shortcuts
+ * remember from one sample to the next). The ray is first
  * moved to where it enters the atmosphere (atmosphere_enter), then [0, d] is cut into n
  * segments growing as (i/n)^2 from the start, [d (i/n)^2, d ((i+1)/n)^2]: short where the
  * density changes fastest along rays that start low (worst 0.09 % against the double-precision
@@ -136,12 +138,13 @@ typedef struct medium_result {
     vec3 view_t;                   /* T(t0, end of the segment) */
 } medium_result;
 
-/* The sunlight arriving at a point: E T_sun V. */
-ATMO_FN vec3 medium_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                             const medium_point *q)
+/* The sunlight arriving at a point: E T_sun V, V at a sample of a ray with the visibility's
+ * state vr (0: a point on no ray). */
+ATMO_FN vec3 medium_sunlight_on_ray(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                    const medium_point *q, visibility_ray *vr)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    vec3 vis = visibility_sun(s, ATMO_LUT_ARGS, q);
+    vec3 vis = visibility_sun_on_ray(s, ATMO_LUT_ARGS, q, vr);
     if (vis.x <= 0.0f && vis.y <= 0.0f && vis.z <= 0.0f)
         return v3(0.0f, 0.0f, 0.0f);
     vec3 to_sun = atmosphere_transmittance_to_top(a, transmittance_lut, s->transmittance_width,
@@ -149,14 +152,22 @@ ATMO_FN vec3 medium_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
     return v3_mul(v3_from4(a->solar_irradiance), v3_mul(to_sun, vis));
 }
 
-/* One piece [t, t + dt] of the walk (sample at t + jitter dt): the per-point evaluation. */
+ATMO_FN vec3 medium_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                             const medium_point *q)
+{
+    return medium_sunlight_on_ray(s, ATMO_LUT_ARGS, q, 0);
+}
+
+/* One piece of the walk sampled at t, dt long: the per-point evaluation, with the ray's
+ * visibility state vr. */
 ATMO_FN void medium_piece(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                           const medium_ray *m, float t, float dt, int use_ms, int ground,
-                          medium_result *out, vec3 *T)
+                          visibility_ray *vr, medium_result *out, vec3 *T)
 {
     medium_point q = medium_ray_at(m, t, s->atmosphere.bottom_radius);
     media_sample ms = media_at(s, ATMO_LUT_ARGS, &q);
-    vec3 sun_e = medium_sunlight(s, ATMO_LUT_ARGS, &q);
+    vr->t = t;
+    vec3 sun_e = medium_sunlight_on_ray(s, ATMO_LUT_ARGS, &q, vr);
     vec3 step;
     vec3 w = medium_segment_step3(ms.extinction, dt, &step);
     vec3 lit = v3_mul(v3_mul(*T, w), sun_e);
@@ -215,6 +226,8 @@ ATMO_FN void medium_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
     hits_surface = hits_surface && !blocked;
     if (blocked)
         d = t_max;
+    visibility_ray vr;
+    visibility_ray_begin(s, &m, d, hits_surface ? d : -1.0f, &vr);
 
     float lo[MEDIA_MAX_INTERVALS], hi[MEDIA_MAX_INTERVALS];
     int n_int = media_intervals(s, &m, 0.0f, d, lo, hi), next = 0;
@@ -225,7 +238,8 @@ ATMO_FN void medium_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
         float ga = d * x0 * x0, dt = d * (x1 * x1 - x0 * x0), gb = ga + dt;
         if (next >= n_int || lo[next] >= gb) { /* the grid segment meets no interval */
             if (done <= ga) {
-                medium_piece(s, ATMO_LUT_ARGS, &m, ga + jitter * dt, dt, use_ms, ground, out, &T);
+                medium_piece(s, ATMO_LUT_ARGS, &m, ga + jitter * dt, dt, use_ms, ground, &vr,
+                             out, &T);
                 done = gb;
                 continue;
             }
@@ -234,7 +248,7 @@ ATMO_FN void medium_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
         while (next < n_int && lo[next] < gb) {
             if (lo[next] > pos)
                 medium_piece(s, ATMO_LUT_ARGS, &m, pos + jitter * (lo[next] - pos),
-                             lo[next] - pos, use_ms, ground, out, &T);
+                             lo[next] - pos, use_ms, ground, &vr, out, &T);
             media_interval(s, ATMO_LUT_ARGS, &m, lo[next], hi[next], jitter, use_ms, ground,
                            &out->rest, &T, &medium_t);
             pos = fmaxf(pos, hi[next]);
@@ -242,7 +256,7 @@ ATMO_FN void medium_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
         }
         if (pos < gb)
             medium_piece(s, ATMO_LUT_ARGS, &m, pos + jitter * (gb - pos), gb - pos, use_ms,
-                         ground, out, &T);
+                         ground, &vr, out, &T);
         done = fmaxf(pos, gb);
     }
 

@@ -13,8 +13,10 @@
  * shadows; the path tracer, -DATMO_PATH, samples the disc itself and casts soft ones, so there
  * they are left out here). Under -DATMO_TERRAIN the
  * terrain (kernels/terrain/terrain.h): a shadow ray from the point toward the sun's centre (a
- * point sun, as for the planet) with the shortcuts of terrain.shafts, and the terrain's
- * surface with its light (terrain_shade.h).
+ * point sun, as for the planet) with the shortcuts of terrain.shafts (terrain_shafts.h; those
+ * that remember earlier samples of the ray need the integrator's per-ray state,
+ * visibility_ray, through the *_on_ray forms), and the terrain's surface with its light
+ * (terrain_shade.h).
  * visibility_sun_occluders is the product of the opaque sources (0 or 1), visibility_sun adds
  * the shadowing media (per wavelength, 0..1); both get the buffers, where a source keeps its
  * data (a heightmap, a density grid). The atmosphere's own transmittance toward the
@@ -36,6 +38,7 @@
 #endif
 #ifdef ATMO_TERRAIN
 #include "terrain/terrain.h"
+#include "terrain/terrain_shafts.h"
 #include "terrain/terrain_shade.h"
 #endif
 #include "atmo/gpu_types.h"
@@ -48,21 +51,37 @@ ATMO_FN vec3 medium_ms_ground_irradiance(ATMO_GLOBAL const atmo_gpu_scene *s, AT
                                          float mu_s);
 #endif
 
+/* The state the visibility sources keep along one ray of the integrator, sample to sample
+ * (visibility_ray_begin, then `t` set before each sample): the terrain's light-shaft
+ * shortcuts (terrain_shafts.h). */
+typedef struct visibility_ray {
+    float t; /* the sample's distance along the ray, m */
 #ifdef ATMO_TERRAIN
-/* The terrain's shadow at a point of a ray, 0 or 1 (the shortcuts: gpu_enums.h). */
-ATMO_FN float visibility_terrain(ATMO_GLOBAL const atmo_gpu_scene *s,
-                                 ATMO_GLOBAL const float *heightmap, const medium_point *q)
+    terrain_shafts terrain;
+#endif
+} visibility_ray;
+
+/* The state of the ray m whose segment ends at `end`, at an opaque surface when surface_t >= 0
+ * (visibility_surface_hit's distance). */
+ATMO_FN void visibility_ray_begin(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m,
+                                  float end, float surface_t, visibility_ray *vr)
 {
-    ATMO_GLOBAL const atmo_gpu_terrain *tr = &s->terrain;
-    if ((tr->shafts & ATMO_TERRAIN_SHAFT_BELOW_HORIZON) && q->mu_s < 0.0f)
-        return 0.0f;
-    if ((tr->shafts & ATMO_TERRAIN_SHAFT_FAR) && v3_dot(q->p, q->p) > atmo_sq(tr->shadow_far_m))
-        return 1.0f;
-    float t;
-    return terrain_trace(s, heightmap, q->p, v3_from4(s->sun_direction), 0.0f, tr->shadow_far_m,
-                         tr->shadow_steps, &t, 0)
-               ? 0.0f
-               : 1.0f;
+    vr->t = 0.0f;
+#ifdef ATMO_TERRAIN
+    terrain_shafts_begin(s, m, end, surface_t, &vr->terrain);
+#else
+    (void)s, (void)m, (void)end, (void)surface_t;
+#endif
+}
+
+#ifdef ATMO_TERRAIN
+/* The terrain's shadow at a point, 0 or 1, with the shortcuts of terrain.shafts (gpu_enums.h):
+ * all of them on a ray with state vr, the stateless ones where vr is 0. */
+ATMO_FN float visibility_terrain(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                 ATMO_GLOBAL const float *heightmap, const medium_point *q,
+                                 visibility_ray *vr)
+{
+    return terrain_shafts_visibility(s, heightmap, q, vr ? vr->t : 0.0f, vr ? &vr->terrain : 0);
 }
 #endif
 
@@ -72,8 +91,10 @@ ATMO_FN float visibility_planet(ATMO_GLOBAL const atmo_gpu_atmosphere *a, const 
     return geometry_ray_hits_ground(q->r, q->mu_s, a->bottom_radius) ? 0.0f : 1.0f;
 }
 
-ATMO_FN float visibility_sun_occluders(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                                       const medium_point *q)
+/* visibility_sun_occluders at a sample of a ray with state vr (0: none). */
+ATMO_FN float visibility_sun_occluders_on_ray(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                              ATMO_LUT_PARAMS, const medium_point *q,
+                                              visibility_ray *vr)
 {
     float v = visibility_planet(&s->atmosphere, q);
 #ifdef ATMO_CLOUD
@@ -87,15 +108,24 @@ ATMO_FN float visibility_sun_occluders(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO
 #endif
 #ifdef ATMO_TERRAIN
     if (v > 0.0f)
-        v *= visibility_terrain(s, heightmap, q);
+        v *= visibility_terrain(s, heightmap, q, vr);
+#else
+    (void)vr;
 #endif
     return v;
 }
 
-ATMO_FN vec3 visibility_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                            const medium_point *q)
+ATMO_FN float visibility_sun_occluders(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                       const medium_point *q)
 {
-    float v = visibility_sun_occluders(s, ATMO_LUT_ARGS, q);
+    return visibility_sun_occluders_on_ray(s, ATMO_LUT_ARGS, q, 0);
+}
+
+/* visibility_sun at a sample of a ray with state vr (0: none). */
+ATMO_FN vec3 visibility_sun_on_ray(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                   const medium_point *q, visibility_ray *vr)
+{
+    float v = visibility_sun_occluders_on_ray(s, ATMO_LUT_ARGS, q, vr);
     vec3 vis = v3(v, v, v);
 #ifdef ATMO_CLOUD
     if (v > 0.0f)
@@ -106,6 +136,12 @@ ATMO_FN vec3 visibility_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS
         vis = v3_mul(vis, clouds_sun_transmittance(s, q));
 #endif
     return vis;
+}
+
+ATMO_FN vec3 visibility_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                            const medium_point *q)
+{
+    return visibility_sun_on_ray(s, ATMO_LUT_ARGS, q, 0);
 }
 
 /* Distance along the ray to the first opaque surface other than the ground (the observer, the

@@ -43,6 +43,8 @@
 #define TERRAIN_ROT_S 0.6f
 #define TERRAIN_COAST_HALF_WIDTH 0.05f
 #define TERRAIN_RELIEF 0.8f
+#define TERRAIN_BOUND_OCTAVE_A 4
+#define TERRAIN_BOUND_OCTAVE_B 7
 
 /* Value noise at a point and its derivatives (see the top of the file). */
 typedef struct terrain_noise {
@@ -170,6 +172,128 @@ ATMO_FN float terrain_coverage(ATMO_GLOBAL const atmo_gpu_terrain_field *f, floa
     *cu = cx * k;
     *cv = cy * k;
     return s * s * (3.0f - 2.0f * s);
+}
+
+/* terrain_fbm's elevation alone: the same sums without the Hessians and the gradient (the
+ * tracer's clearance needs no normal; about half the work per octave).
+ *
+ * With cap_e < 1 it may stop early with an upper bound instead (*bound = 1): each octave's
+ * term b_i n_i / (1 + |D_i|^2) lies in [-b_i, b_i] (|n| <= 1), so after m octaves
+ * |a - a_m| <= R_m = sum_{i >= m} b_i, and since tanh has slope <= 1,
+ * |e - e_m| <= k R_m (k = TERRAIN_RELIEF / sum b_i, e_m the elevation of a_m). After the
+ * octaves TERRAIN_BOUND_OCTAVE_A and TERRAIN_BOUND_OCTAVE_B (4 and 7, the fastest measured:
+ * docs/notes/terrain.md) it returns
+ * e_m + k R_m + 1e-6 (the float rounding of the sums) when that is at most cap_e - k R_m: below
+ * the cap by at least half the bound's whole uncertainty 2 k R_m, so a caller that steps by the
+ * margin to the bound takes at least a third of the step the exact value allows. */
+ATMO_FN float terrain_fbm_value_capped(float x, float y, int octaves, uint seed, float cap_e,
+                                       int *bound)
+{
+    float a = 0.0f, b = 1.0f, norm = 0.0f, dx = 0.0f, dy = 0.0f;
+    float last = 1.0f; /* 0.5^octaves */
+    for (int i = 0; i < octaves; i++)
+        last *= 0.5f;
+    float total = 2.0f - 2.0f * last, k = TERRAIN_RELIEF / total;
+    *bound = 0;
+    for (int i = 0; i < octaves; i++) {
+        float fx0 = floorf(x), fy0 = floorf(y);
+        int ix = (int)fx0, iy = (int)fy0;
+        float fx = x - fx0, fy = y - fy0;
+        float qx = fx * fx * fx * (fx * (fx * 6.0f - 15.0f) + 10.0f);
+        float qy = fy * fy * fy * (fy * (fy * 6.0f - 15.0f) + 10.0f);
+        float dqx = 30.0f * fx * fx * (fx - 1.0f) * (fx - 1.0f);
+        float dqy = 30.0f * fy * fy * (fy - 1.0f) * (fy - 1.0f);
+        uint sd = seed + (uint)i;
+        float na = terrain_lattice(ix, iy, sd), nb = terrain_lattice(ix + 1, iy, sd);
+        float nc = terrain_lattice(ix, iy + 1, sd), nd = terrain_lattice(ix + 1, iy + 1, sd);
+        float k1 = nb - na, k2 = nc - na, k3 = na - nb - nc + nd;
+        dx += dqx * (k1 + k3 * qy);
+        dy += dqy * (k2 + k3 * qx);
+        a += b * (na + k1 * qx + k2 * qy + k3 * qx * qy) / (1.0f + dx * dx + dy * dy);
+        norm += b;
+        b *= 0.5f;
+        if ((i + 1 == TERRAIN_BOUND_OCTAVE_A || i + 1 == TERRAIN_BOUND_OCTAVE_B) &&
+            i + 1 < octaves && cap_e < 1.0f) {
+            float rest = k * (total - norm); /* k R_m */
+            float up = 0.5f + 0.5f * tanhf(2.0f * k * a) + rest + 1e-6f;
+            if (up <= cap_e - rest) {
+                *bound = 1;
+                return up;
+            }
+        }
+        float nx = 2.0f * (TERRAIN_ROT_C * x - TERRAIN_ROT_S * y);
+        float ny = 2.0f * (TERRAIN_ROT_S * x + TERRAIN_ROT_C * y);
+        x = nx;
+        y = ny;
+    }
+    return 0.5f + 0.5f * tanhf(2.0f * (TERRAIN_RELIEF / norm) * a);
+}
+
+ATMO_FN float terrain_fbm_value(float x, float y, int octaves, uint seed)
+{
+    int bound;
+    return terrain_fbm_value_capped(x, y, octaves, seed, 1.0f, &bound);
+}
+
+/* terrain_coverage's value alone. */
+ATMO_FN float terrain_coverage_value(ATMO_GLOBAL const atmo_gpu_terrain_field *f, float u,
+                                     float v)
+{
+    float x = u * f->coverage_frequency_per_m, y = v * f->coverage_frequency_per_m;
+    float c = 0.0f, b = 1.0f, norm = 0.0f;
+    uint seed = f->seed + 0x51ed27u;
+    for (int i = 0; i < f->coverage_octaves; i++) {
+        float fx0 = floorf(x), fy0 = floorf(y);
+        int ix = (int)fx0, iy = (int)fy0;
+        float fx = x - fx0, fy = y - fy0;
+        float qx = fx * fx * fx * (fx * (fx * 6.0f - 15.0f) + 10.0f);
+        float qy = fy * fy * fy * (fy * (fy * 6.0f - 15.0f) + 10.0f);
+        uint sd = seed + (uint)i;
+        float na = terrain_lattice(ix, iy, sd), nb = terrain_lattice(ix + 1, iy, sd);
+        float nc = terrain_lattice(ix, iy + 1, sd), nd = terrain_lattice(ix + 1, iy + 1, sd);
+        float k1 = nb - na, k2 = nc - na, k3 = na - nb - nc + nd;
+        c += b * (na + k1 * qx + k2 * qy + k3 * qx * qy);
+        norm += b;
+        b *= 0.5f;
+        float nx = 2.0f * (TERRAIN_ROT_C * x - TERRAIN_ROT_S * y);
+        float ny = 2.0f * (TERRAIN_ROT_S * x + TERRAIN_ROT_C * y);
+        x = nx;
+        y = ny;
+    }
+    float c0 = 0.5f * c / norm + 0.5f;
+    float t = 1.0f - f->land_fraction;
+    float s = clamp((c0 - (t - TERRAIN_COAST_HALF_WIDTH)) / (2.0f * TERRAIN_COAST_HALF_WIDTH),
+                    0.0f, 1.0f);
+    return s * s * (3.0f - 2.0f * s);
+}
+
+/* terrain_height_direct's height alone. */
+ATMO_FN float terrain_height_direct_value(ATMO_GLOBAL const atmo_gpu_terrain_field *f, float u,
+                                          float v)
+{
+    float c = terrain_coverage_value(f, u, v);
+    if (c <= 0.0f)
+        return 0.0f;
+    return f->max_height_m * c *
+           terrain_fbm_value(u * f->frequency_per_m, v * f->frequency_per_m, f->octaves, f->seed);
+}
+
+/* An upper bound on the height at (u, v), cheaper than the height where it is well below
+ * cap_m: the coverage bounded by 1 and the fBm stopped early (terrain_fbm_value_capped), when
+ * that bound is below cap_m with room to spare; else the height itself.
+ * *bound: 1 for a bound, 0 for the height. */
+ATMO_FN float terrain_height_direct_capped(ATMO_GLOBAL const atmo_gpu_terrain_field *f, float u,
+                                           float v, float cap_m, int *bound)
+{
+    float H = f->max_height_m;
+    if (cap_m < H && cap_m > 0.0f) {
+        float e = terrain_fbm_value_capped(u * f->frequency_per_m, v * f->frequency_per_m,
+                                           f->octaves, f->seed, cap_m / H, bound);
+        if (*bound)
+            return H * e;
+    }
+    *bound = 0;
+    return terrain_height_direct_value(f, u, v);
 }
 
 /* The height field h = H coverage e at (u, v) metres, evaluated directly. */

@@ -32,7 +32,11 @@
  * step that lands below the surface steps back to the last point above it and goes on with
  * omega = 1 (back-stepping); below it again, the bracket is bisected (24 halvings or to 1e-6 of
  * t). A point within the distance-dependent tolerance eps(t) = 0.01 m + tolerance t above the
- * surface (a pixel's footprint at t) is a hit. Tracing is confined to the shell between sea
+ * surface (a pixel's footprint at t) is a hit. Between the ends the steps size themselves by
+ * a lower bound on g where it clears eps(t) (terrain_clearance_bounded: far above the surface
+ * the height's upper bound from the coarse octaves, noise.h), which keeps every decision the
+ * exact clearance would make except to shorten a step, and costs a few octaves instead of
+ * fifteen. Tracing is confined to the shell between sea
  * level and the highest terrain; the ray's end at sea level is a hit by construction. A ray
  * that has used `steps` steps is resolved by TERRAIN_FALLBACK_STEPS = 112 more steps, each
  * at least a minimum that starts at the clearance plus eps(t) and grows by a factor 1.5 per
@@ -114,38 +118,76 @@ ATMO_FN float terrain_bilinear(ATMO_GLOBAL const atmo_gpu_terrain_field *f,
     return mix(mix(a, b, fx), mix(c, d, fx), fy);
 }
 
+/* Whether (u, v) lies inside the heightmap's square of texel centres, and its grid coordinates
+ * (*gx, *gy) there. */
+ATMO_FN int terrain_in_heightmap(ATMO_GLOBAL const atmo_gpu_terrain_field *f, float u, float v,
+                                 float *gx, float *gy)
+{
+    int n = f->heightmap_size;
+    if (n <= 1)
+        return 0;
+    float texel = f->heightmap_extent_m / (float)n;
+    *gx = (u + 0.5f * f->heightmap_extent_m) / texel - 0.5f;
+    *gy = (v + 0.5f * f->heightmap_extent_m) / texel - 0.5f;
+    return *gx >= 0.0f && *gy >= 0.0f && *gx <= (float)(n - 1) && *gy <= (float)(n - 1);
+}
+
 /* The height field at (u, v): the heightmap inside its square, else the fBm. */
 ATMO_FN terrain_height terrain_height_at(ATMO_GLOBAL const atmo_gpu_terrain_field *f,
                                          ATMO_GLOBAL const float *hm, float u, float v)
 {
-    int n = f->heightmap_size;
-    if (n > 1) {
-        float texel = f->heightmap_extent_m / (float)n;
-        float gx = (u + 0.5f * f->heightmap_extent_m) / texel - 0.5f;
-        float gy = (v + 0.5f * f->heightmap_extent_m) / texel - 0.5f;
-        if (gx >= 0.0f && gy >= 0.0f && gx <= (float)(n - 1) && gy <= (float)(n - 1)) {
-            terrain_height r;
-            r.h = terrain_bilinear(f, hm, gx, gy, 0);
-            if (f->heightmap_format == ATMO_TERRAIN_FORMAT_DERIVATIVES) {
-                r.du = terrain_bilinear(f, hm, gx, gy, 1);
-                r.dv = terrain_bilinear(f, hm, gx, gy, 2);
-            } else {
-                r.du = (terrain_bilinear(f, hm, gx + 1.0f, gy, 0) -
-                        terrain_bilinear(f, hm, gx - 1.0f, gy, 0)) / (2.0f * texel);
-                r.dv = (terrain_bilinear(f, hm, gx, gy + 1.0f, 0) -
-                        terrain_bilinear(f, hm, gx, gy - 1.0f, 0)) / (2.0f * texel);
-            }
-            return r;
+    float gx, gy;
+    if (terrain_in_heightmap(f, u, v, &gx, &gy)) {
+        float texel = f->heightmap_extent_m / (float)f->heightmap_size;
+        terrain_height r;
+        r.h = terrain_bilinear(f, hm, gx, gy, 0);
+        if (f->heightmap_format == ATMO_TERRAIN_FORMAT_DERIVATIVES) {
+            r.du = terrain_bilinear(f, hm, gx, gy, 1);
+            r.dv = terrain_bilinear(f, hm, gx, gy, 2);
+        } else {
+            r.du = (terrain_bilinear(f, hm, gx + 1.0f, gy, 0) -
+                    terrain_bilinear(f, hm, gx - 1.0f, gy, 0)) / (2.0f * texel);
+            r.dv = (terrain_bilinear(f, hm, gx, gy + 1.0f, 0) -
+                    terrain_bilinear(f, hm, gx, gy - 1.0f, 0)) / (2.0f * texel);
         }
+        return r;
     }
     return terrain_height_direct(f, u, v);
+}
+
+/* The height alone at (u, v): terrain_height_at without the gradient (the tracer's clearance;
+ * the heightmap's one bilinear lookup instead of five, the fBm without its derivatives). */
+ATMO_FN float terrain_height_value(ATMO_GLOBAL const atmo_gpu_terrain_field *f,
+                                   ATMO_GLOBAL const float *hm, float u, float v)
+{
+    float gx, gy;
+    if (terrain_in_heightmap(f, u, v, &gx, &gy))
+        return terrain_bilinear(f, hm, gx, gy, 0);
+    return terrain_height_direct_value(f, u, v);
 }
 
 /* The surface's altitude S = max(h, sea level) over a site. */
 ATMO_FN float terrain_surface(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float *hm,
                               terrain_site q)
 {
-    return fmaxf(terrain_height_at(&s->terrain.field, hm, q.u, q.v).h, s->terrain.sea_level_m);
+    return fmaxf(terrain_height_value(&s->terrain.field, hm, q.u, q.v), s->terrain.sea_level_m);
+}
+
+/* A lower bound on the clearance at a camera-relative point, exact wherever the bound would be
+ * below floor_m (the tracer's hit tolerance there) or the point lies over the heightmap: above
+ * the procedural fBm, the clearance over terrain_height_direct_capped's upper bound on the
+ * height, which skips the coverage and the fine octaves far above the surface. */
+ATMO_FN float terrain_clearance_bounded(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                        ATMO_GLOBAL const float *hm, vec3 p, float floor_m)
+{
+    ATMO_GLOBAL const atmo_gpu_terrain_field *f = &s->terrain.field;
+    terrain_site q = terrain_locate(s, p);
+    float gx, gy;
+    if (terrain_in_heightmap(f, q.u, q.v, &gx, &gy))
+        return q.alt - terrain_surface(s, hm, q);
+    int bound;
+    float h = terrain_height_direct_capped(f, q.u, q.v, q.alt - floor_m, &bound);
+    return q.alt - fmaxf(h, s->terrain.sea_level_m);
 }
 
 /* The clearance g above the surface at a camera-relative point. */
@@ -256,7 +298,10 @@ ATMO_FN int terrain_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const
         float dt = fmaxf(omega * g / rate, min_step);
         t_prev = t, g_prev = g;
         t = fminf(t + dt, t_end);
-        g = terrain_clearance(s, hm, v3_add(o, v3_scale(d, t)));
+        /* a lower bound suffices while it clears the hit tolerance at t: no hit, no overshoot,
+         * and a step no longer than the exact clearance allows */
+        g = terrain_clearance_bounded(s, hm, v3_add(o, v3_scale(d, t)),
+                                      TERRAIN_EPS_M + tr->tolerance * t);
         if (g <= 0.0f) {
             if (omega > 1.0f) { /* back-step, then go on within the bound */
                 omega = 1.0f;

@@ -8,10 +8,13 @@
  * level ground (medium_ms_ground_irradiance: zero for method single, as its ground has) scaled
  * by the part of the sky a tilted surface sees, (1 + N . n) / 2,
  *     L = albedo / pi (E T_sun V max(N . s, 0) + E_sky (1 + N . n) / 2).
- * Water: the sky reflected with the Fresnel reflectance of the view angle, the sky taken as
- * uniform with the radiance E_sky / pi, the sun glint (water.h), and a dark water body of
- * albedo (terrain_material.h) lit by what the surface transmits:
- *     L = F E_sky / pi + E T_sun V glint + (1 - F) albedo_w / pi (E T_sun V mu_s + E_sky).
+ * Water: the sky reflected with the Fresnel reflectance of the view angle, the sun glint
+ * (water.h), and a dark water body of albedo (terrain_material.h) lit by what the surface
+ * transmits:
+ *     L = F L_sky + E T_sun V glint + (1 - F) albedo_w / pi (E T_sun V mu_s + E_sky),
+ * with L_sky the method's sky along the mirror ray, which the render stage adds
+ * (render/terrain_stage.h, -DATMO_TERRAIN_STAGE: every camera ray of single, march, fast and
+ * lut); elsewhere (a ray of no stage) the sky is taken as uniform, L_sky = E_sky / pi.
  * The air between the camera and the surface is the integrator's (aerial perspective). */
 #ifndef ATMO_TERRAIN_SHADE_H
 #define ATMO_TERRAIN_SHADE_H
@@ -57,8 +60,12 @@ ATMO_FN vec3 terrain_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
     if (sp.weight[TERRAIN_WATER] > 0.0f) {
         float f = water_fresnel(v3_dot(view, sp.vertical), WATER_INDEX);
         vec3 body = v3_add(v3_scale(sun_e, fmaxf(mu_s, 0.0f)), sky_e);
-        vec3 L = v3_scale(sky_e, f / ATMO_PI);
-        L = v3_add(L, v3_scale(sun_e, water_glint(sp.vertical, view, sun)));
+#ifdef ATMO_TERRAIN_STAGE
+        vec3 L = v3_scale(sun_e, water_glint(sp.vertical, view, sun));
+#else
+        vec3 L = v3_add(v3_scale(sky_e, f / ATMO_PI),
+                        v3_scale(sun_e, water_glint(sp.vertical, view, sun)));
+#endif
         return v3_add(L, v3_mul(v3_scale(body, (1.0f - f) / ATMO_PI), sp.albedo));
     }
     float cos_i = fmaxf(v3_dot(sp.normal, sun), 0.0f);

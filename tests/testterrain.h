@@ -1,0 +1,59 @@
+/* testterrain.h — shared by the sphere-tracing tests (tests/support_terrain_trace.c): rays over
+ * thesis-1's site, the device probe that traces them, and their judgement against the
+ * brute-force double march (terrain_ref_hit). */
+#ifndef ATMO_TESTTERRAIN_H
+#define ATMO_TESTTERRAIN_H
+#include "atmo/plan.h"
+#include "atmo/scene.h"
+#include "testcl.h"
+
+#define TEST_TRACE_SITE_X 23796.0
+#define TEST_TRACE_SITE_Z 16636.0
+#define TEST_TRACE_REF_STEP_M 2.0
+
+typedef struct test_trace_ray {
+    double o[3], d[3]; /* camera-relative origin (float-rounded) and unit direction */
+    double t_max;
+} test_trace_ray;
+
+typedef struct test_trace_setup {
+    atmo_scene scene;
+    atmo_plan plan;
+    double cam[3];
+} test_trace_setup;
+
+typedef struct test_trace_tally {
+    int hits, misses, through, false_hits, bad, ref_hits;
+    double worst_clear, mean_steps;
+} test_trace_tally;
+
+/* The probe kernel: trace(scene, buffers, origins, directions (w: t_max), out (t or -1, steps
+ * used), n). */
+extern const char test_trace_probe_src[];
+/* The planet's radius of the last test_trace_plan_at. */
+extern double test_trace_R_m;
+
+double test_trace_urand(unsigned *state);
+/* thesis-1's terrain (seed 46) under a sky-noon scene with the camera at cam (world metres) and
+ * up to two more KEY=VALUE settings (may be NULL). */
+void test_trace_plan_at(test_trace_setup *u, const double cam[3], const char *extra1,
+                        const char *extra2);
+/* The surface point above planar (x, z) and its vertical, world coordinates. */
+void test_trace_surface_point(const atmo_gpu_terrain_field *f, double sea, double x, double z,
+                              double p[3], double n[3]);
+void test_trace_make_ray(test_trace_ray *r, const double cam[3], const double origin_world[3],
+                         const double d[3], double t_max);
+void test_trace_make_rays(const atmo_gpu_terrain_field *f, const double cam[3], int n_down,
+                          int n_graze, int n_skim, unsigned *rng, test_trace_ray *rays);
+/* Runs the probe over the rays: out[i] = (t or -1, steps used). */
+void test_trace_run(atmo_cl *cl, cl_program prog, const atmo_plan *p, const test_trace_ray *rays,
+                    int n, float4 *out);
+/* The float rounding bound of the height field and the ray's position at world point w. */
+double test_trace_delta_m(const atmo_gpu_terrain_field *f, double L, const double w[3], double t);
+void test_trace_world_at(const test_trace_setup *u, const test_trace_ray *r, double t,
+                         double w[3]);
+/* Counts the tracer's misses, pass-throughs, false and bad hits against the reference. */
+test_trace_tally test_trace_judge(const test_trace_setup *u, const test_trace_ray *rays, int n,
+                                  const float4 *out, int verbose);
+
+#endif
