@@ -15,9 +15,9 @@
  * relative error must fall at every refinement and end below 1 % (the light march's jittered
  * optical depth over-estimates the transmittance, test_clouds_tracking; the view steps are
  * energy conserving). The errors are printed.
- * The Monte Carlo reference (method_reference.h's walk through the clouds, host build) on the
- * same ray with orders 1..1 must agree with the quadrature within 4.5 standard errors (10000
- * paths); with all orders it must exceed it, and the marcher's octaves are measured against
+ * The Monte Carlo reference (method_reference.h's walk through the clouds and their majorant
+ * grid, cloud_majorant.h, filled on the host as its pass fills it; host build) on the same ray
+ * with orders 1..1 must agree with the quadrature within 4.5 standard errors (10000 paths); with all orders it must exceed it, and the marcher's octaves are measured against
  * it (printed: the multiple-scattering model's bias on this ray). */
 #include <math.h>
 #include <stdio.h>
@@ -27,7 +27,7 @@
 #include "atmosphere/method_reference.h"
 #include "testlib.h"
 
-#define LUTS lut, lut, lut, lut, lut, lut, lut, lut, cdf
+#define LUTS lut, lut, lut, lut, lut, lut, lut, lut, cdf, grid
 
 static double sigma_at(const atmo_gpu_scene *s, const medium_ray *m, double t, double *h)
 {
@@ -56,6 +56,7 @@ int main(void)
 {
     static float4 lut[16]; /* optical depth 0 everywhere: the atmosphere is off */
     float cdf[2] = {0.0f, 1.0f};
+    static float grid[CLOUDS_GRID_NX * CLOUDS_GRID_NY * CLOUDS_GRID_NZ];
     atmo_gpu_scene s;
     memset(&s, 0, sizeof s);
     s.atmosphere.bottom_radius = 6360e3f;
@@ -87,6 +88,13 @@ int main(void)
     c->steps = 100000;
     c->ms_octaves = 1;
     c->look = ATMO_CLOUDS_LOOK_PHYSICAL;
+    /* the reference's majorant grid, as its pass fills it */
+    clouds_grid_frame frame = clouds_grid_frame_make(&s);
+    for (int k = 0; k < CLOUDS_GRID_NZ; k++)
+        for (int j = 0; j < CLOUDS_GRID_NY; j++)
+            for (int i = 0; i < CLOUDS_GRID_NX; i++)
+                grid[(k * CLOUDS_GRID_NY + j) * CLOUDS_GRID_NX + i] =
+                    clouds_grid_cell_bound(&s, &frame, i, j, k);
 
     /* the view: 60 degrees up, 100 degrees of azimuth away from the sun */
     double el = 60.0 * M_PI / 180.0, az = 100.0 * M_PI / 180.0;

@@ -11,13 +11,16 @@
  *
  * Placement: the noise's origin is the camera's world position (double) minus the wind's
  * displacement v t (direction (sin a, 0, cos a), a = clouds.wind_azimuth_deg), rounded to float
- * once, so a kernel's noise point p + origin is exact to float rounding of the sum. The majorant
- * of the Monte Carlo walk is clouds.density (the density's bound, cloud_layer.h). */
+ * once, so a kernel's noise point p + origin is exact to float rounding of the sum. The global
+ * majorant of the Monte Carlo walk is clouds.density (the density's bound, cloud_layer.h); the
+ * reference's majorant grid (cloud_majorant.h) refines it around the camera: a buffer of
+ * CLOUDS_GRID_NX x NY x NZ cell bounds, filled by its pass for each view. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/plan_cloud.h"
 #include "atmo/plan_clouds.h"
+#include "media/cloud_majorant.h"
 
 void atmo_plan_clouds_origin(const atmo_scene *s, float4 *origin)
 {
@@ -131,4 +134,14 @@ int atmo_plan_clouds(const atmo_scene *s, atmo_plan *p, atmo_err *e)
         return rc;
     return atmo_plan_add_buffer(p, "clouds_phase_cdf", "float", sizeof(float) * (size_t)o.count,
                                 0, cdf, e);
+}
+
+int atmo_plan_clouds_majorant(const atmo_scene *s, atmo_plan *p, atmo_err *e)
+{
+    (void)s;
+    size_t cells = (size_t)CLOUDS_GRID_NX * CLOUDS_GRID_NY * CLOUDS_GRID_NZ;
+    int rc = atmo_plan_add_buffer(p, "clouds_majorant", "float", sizeof(float) * cells, 1, NULL, e);
+    return rc ? rc
+              : atmo_plan_add_pass(p, "clouds_majorant_grid", CLOUDS_GRID_NX, CLOUDS_GRID_NY,
+                                   CLOUDS_GRID_NZ, 0, e);
 }
