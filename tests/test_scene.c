@@ -71,7 +71,7 @@ static const char *const spec_defaults[] = {"image.width=640",
                                             "clouds.extinction_per_m=10.354e-3",
                                             "clouds.lwc_g_m3=0.2",
                                             "clouds.albedo=0.9512",
-                                            "clouds.dsd=cumulus",
+                                            "clouds.dsd=", /* "" = cumulus */
                                             "clouds.phase=mie",
                                             "clouds.steps=256",
                                             "clouds.step_m=150",

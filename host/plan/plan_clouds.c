@@ -3,7 +3,8 @@
  * Optics at unit density, per render wavelength: sigma_t = clouds.extinction_per_m and the
  * albedo clouds.albedo (the thesis' 10.354e-3 1/m and 0.9512 by default), or, with
  * extinction_per_m = 0, sigma_t = (sigma_ext / LWC) x clouds.lwc_g_m3 and the albedo of the
- * Mie solution of the droplet distribution clouds.dsd (atmo_plan_mie_optics, plan_cloud.c). The
+ * Mie solution of the droplet distribution clouds.dsd (a preset or a SPEC of atmo mie --dsd, ""
+ * for cumulus; atmo_plan_mie_optics, plan_cloud.c). The
  * phase table is always the distribution's (phase_table.h's rows), each channel normalised so
  * that the interpolant the kernels evaluate (linear in theta) integrates to exactly 4 pi, in
  * closed form per segment (segment_integral), and its sampling CDF C_j of the middle
@@ -88,7 +89,8 @@ int atmo_plan_clouds(const atmo_scene *s, atmo_plan *p, atmo_err *e)
                          "clouds.top_m (%g) must be above clouds.bottom_m (%g); raise the top",
                          s->clouds.top_m, s->clouds.bottom_m);
     atmo_mie_optics o;
-    if ((rc = atmo_plan_mie_optics(s, s->clouds.dsd, 1, p, &o, e)))
+    if ((rc = atmo_plan_mie_optics(s, "clouds.dsd",
+                                        s->clouds.dsd[0] ? s->clouds.dsd : "cumulus", 1, p, &o, e)))
         return rc;
     atmo_gpu_clouds *g = &p->gpu.clouds;
     for (int i = 0; i < 3; i++) {

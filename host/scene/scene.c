@@ -171,9 +171,12 @@ const atmo_param atmo_params[] = {
               "clouds.lwc_g_m3"),
     ROW_FLOAT("clouds.albedo", clouds.albedo, "", 0, 1, 0.9512,
               "single-scattering albedo with clouds.extinction_per_m > 0 (thesis: 0.9512)"),
-    ROW_ENUM("clouds.dsd", clouds.dsd, cloud_dsd_names, 0,
-             "droplet size distribution of the phase table (and with clouds.extinction_per_m=0 "
-             "of the extinction and albedo)"),
+    ROW_STRING("clouds.dsd", clouds.dsd,
+               "droplet size distribution of the phase table (and with clouds.extinction_per_m=0 "
+               "of the extinction and albedo), as atmo mie --dsd: a preset (cumulus, stratus, "
+               "fog, corona, thesis-disperse, thesis-uniform) or mono:R, gamma:REFF,VEFF, "
+               "lognormal:RG,SIGMA_G, modgamma:ALPHA,B,GAMMA (um; optional ,max=R); "
+               "\"\" = cumulus"),
     ROW_FLOAT("clouds.lwc_g_m3", clouds.lwc_g_m3, "g/m^3", 1e-6, 10, 0.2,
               "liquid water content at unit density, with clouds.extinction_per_m=0"),
     ROW_ENUM("clouds.phase", clouds.phase, cloud_phase_names, 0,
