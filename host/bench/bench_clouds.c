@@ -64,11 +64,13 @@ static const cloud_view views[BENCH_CLOUDS_VIEWS] = {
 
 typedef struct march_config {
     const char *settings;
-    const char *assignments[4];
+    const char *assignments[5];
 } march_config;
 
 static const march_config march_configs[] = {
     {"defaults", {NULL}},
+    {"octaves 0.5,0.5,0.5 x4",
+     {"clouds.ms_a=0.5", "clouds.ms_b=0.5", "clouds.ms_c=0.5", "clouds.ms_octaves=4"}},
     {"step 300 m", {"clouds.step_m=300", NULL}},
     {"step 75 m", {"clouds.step_m=75", NULL}},
     {"4 light steps", {"clouds.light_steps=4", NULL}},
