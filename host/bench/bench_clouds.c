@@ -69,11 +69,11 @@ typedef struct march_config {
 
 static const march_config march_configs[] = {
     {"defaults", {NULL}},
-    {"octaves 0.5,0.5,0.5 x4",
+    {"octaves 0.5/0.5/0.5 x4",
      {"clouds.ms_a=0.5", "clouds.ms_b=0.5", "clouds.ms_c=0.5", "clouds.ms_octaves=4"}},
     {"step 300 m", {"clouds.step_m=300", NULL}},
     {"step 75 m", {"clouds.step_m=75", NULL}},
-    {"4 light steps", {"clouds.light_steps=4", NULL}},
+    {"8 light steps", {"clouds.light_steps=8", NULL}},
     {"16 light steps", {"clouds.light_steps=16", NULL}},
     {"1 octave", {"clouds.ms_octaves=1", NULL}},
     {"2 octaves", {"clouds.ms_octaves=2", NULL}},
@@ -297,7 +297,7 @@ int bench_clouds(const char *dir, const char *device, int quick, int fit, atmo_e
     snprintf(svg, sizeof svg, "%s/clouds.svg", dir);
     if ((rc = bench_write_csv(csv, out, n, device ? device : "default", e)) ||
         (rc = bench_chart(csv, svg,
-                          "fBm clouds: the marcher's knobs vs the reference (4 views x 6 rays, 550 nm); "
+                          "fBm clouds: marcher knobs vs the reference (4 views x 6 rays, 550 nm); "
                           "time per sample of the 24 rays",
                           "RMS relative error of the views", out, n, e)))
         return rc;
