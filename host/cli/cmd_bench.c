@@ -12,7 +12,7 @@
 #include "commands.h"
 
 static const char bench_usage[] =
-    "usage: atmo bench SUITE [--output DIR] [--device N|NAME] [--quick]\n"
+    "usage: atmo bench SUITE [--output DIR] [--device N|NAME] [--quick] [--fit]\n"
     "\n"
     "Measures error against a high-quality reference and time for each setting of a method,\n"
     "and writes DIR/SUITE.csv and the chart DIR/SUITE.svg (gnuplot). DIR defaults to bench/.\n"
@@ -32,19 +32,24 @@ static const char bench_usage[] =
     "              the bounces, and the cost of an unused objects feature\n"
     "  terrain     heightmap sizes and formats against direct evaluation, sphere-tracing\n"
     "              optimism and steps, exact against estimated shadows, light-shaft shortcuts,\n"
-    "              thesis-1's time per sample\n";
+    "              thesis-1's time per sample\n"
+    "  clouds      the fBm clouds' marcher (steps, light steps, octaves) against the Monte\n"
+    "              Carlo reference on four cloud views; --fit fits the multiple-scattering\n"
+    "              octaves (clouds.ms_a, ms_b, ms_c, ms_octaves) to the reference instead\n";
 
 int cmd_bench(int argc, char **argv)
 {
     const char *suite = NULL, *dir = "bench", *device = NULL;
     const char *reference = "tests/data/reference_sky.csv";
-    int quick = 0;
+    int quick = 0, fit = 0;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             printf("%s", bench_usage);
             return ATMO_OK;
         } else if (strcmp(argv[i], "--quick") == 0)
             quick = 1;
+        else if (strcmp(argv[i], "--fit") == 0)
+            fit = 1;
         else if (strcmp(argv[i], "--output") == 0 && i + 1 < argc)
             dir = argv[++i];
         else if (strcmp(argv[i], "--device") == 0 && i + 1 < argc)
@@ -60,15 +65,15 @@ int cmd_bench(int argc, char **argv)
     }
     if (!suite) {
         fprintf(stderr, "atmo bench: name a suite (sky, atmosphere, mie, colour, panorama, "
-                        "render, terrain); atmo bench --help\n");
+                        "render, terrain, clouds); atmo bench --help\n");
         return ATMO_ERR_USAGE;
     }
     if (strcmp(suite, "sky") != 0 && strcmp(suite, "mie") != 0 &&
         strcmp(suite, "atmosphere") != 0 && strcmp(suite, "colour") != 0 &&
         strcmp(suite, "panorama") != 0 && strcmp(suite, "render") != 0 &&
-        strcmp(suite, "terrain") != 0) {
+        strcmp(suite, "terrain") != 0 && strcmp(suite, "clouds") != 0) {
         fprintf(stderr, "atmo bench: unknown suite '%s' (suites: sky, atmosphere, mie, colour, "
-                        "panorama, render, terrain)\n",
+                        "panorama, render, terrain, clouds)\n",
                 suite);
         return ATMO_ERR_USAGE;
     }
@@ -84,6 +89,7 @@ int cmd_bench(int argc, char **argv)
              : strcmp(suite, "panorama") == 0 ? bench_panorama(dir, device, quick, &e)
              : strcmp(suite, "render") == 0 ? bench_path(dir, device, quick, &e)
              : strcmp(suite, "terrain") == 0 ? bench_terrain(dir, device, quick, &e)
+             : strcmp(suite, "clouds") == 0 ? bench_clouds(dir, device, quick, fit, &e)
                                          : bench_atmosphere(dir, device, reference, quick, &e);
     if (rc)
         fprintf(stderr, "atmo bench: %s\n", e.msg);

@@ -19,6 +19,10 @@ static int ms_methods(const atmo_scene *s)
 }
 static int cloud_shell(const atmo_scene *s) { return s->cloud.enabled || s->observer.enabled; }
 static int cloud_layer(const atmo_scene *s) { return s->clouds.enabled; }
+static int cloud_grid(const atmo_scene *s)
+{
+    return s->clouds.enabled && s->atmosphere.method == ATMO_METHOD_REFERENCE;
+}
 static int has_objects(const atmo_scene *s) { return s->objects.count > 0; }
 static int path_mode(const atmo_scene *s) { return s->path.mode == ATMO_RENDER_PATH; }
 /* a heightmap file is drawn as terrain, so it implies terrain.enabled */
@@ -123,6 +127,8 @@ static const char *const cloud_fragments[] = {"kernels/media/observer.h",
 static const char *const clouds_fragments[] = {"kernels/media/cloud_noise.h",
                                                "kernels/media/phase_table.h",
                                                "kernels/media/cloud_layer.h", NULL};
+static const char *const clouds_majorant_fragments[] = {"kernels/media/cloud_majorant.h",
+                                                        "kernels/media/cloud_majorant.cl", NULL};
 static const char *const clouds_march_fragments[] = {"kernels/media/cloud_march.h", NULL};
 /* The terrain: the height field, the tracer and shadows, the surface's light, and the
  * heightmap pass, which reads only the field (the camera's placement stays out of the key). */
@@ -163,6 +169,9 @@ const atmo_feature atmo_features[] = {
     /* the fBm cloud layer: a medium and a visibility source (its light march) */
     {"clouds", -1, cloud_layer, clouds_fragments, "-DATMO_CLOUDS", NULL, NULL, NULL,
      atmo_plan_clouds, 0},
+    /* the layer's majorant grid for the reference's walk; it follows the view (never cached) */
+    {"clouds_majorant", -1, cloud_grid, clouds_majorant_fragments, "", NULL, NULL, NULL,
+     atmo_plan_clouds_majorant, 0},
     /* the scene's spheres and boxes: sun occluders and the preview's surfaces (visibility.h),
      * the path tracer's surfaces */
     {"objects", -1, has_objects, objects_fragments, "-DATMO_OBJECTS", NULL, NULL, NULL,

@@ -67,18 +67,17 @@ static int pack_tables(const mie_table t[3], float4 **out, int *count, atmo_err 
     return ATMO_OK;
 }
 
-int atmo_plan_mie_optics(const atmo_scene *s, int dsd, int sun_disc, atmo_plan *p,
-                         atmo_mie_optics *out, atmo_err *e)
+int atmo_plan_mie_optics(const atmo_scene *s, const char *key, const char *dsd, int sun_disc,
+                         atmo_plan *p, atmo_mie_optics *out, atmo_err *e)
 {
     int rc = ATMO_OK;
     mie_table t[3];
     memset(t, 0, sizeof t);
     memset(out, 0, sizeof *out);
-    const char *dsd_name = atmo_param_find("cloud.dsd")->names[dsd];
     mie_dsd d;
-    if (mie_dsd_preset(dsd_name, &d))
-        return atmo_fail(e, ATMO_ERR_RUNTIME, "dsd=%s is not a Mie preset (a build bug)",
-                         dsd_name);
+    atmo_err why;
+    if (mie_dsd_parse(dsd, &d, &why))
+        return atmo_fail(e, ATMO_ERR_USAGE, "%s = '%s': %s", key, dsd, why.msg);
     mie_table_options opt;
     memset(&opt, 0, sizeof opt);
     opt.sun_radius_deg = sun_disc ? s->sun.angular_radius_deg : 0.0;
@@ -127,7 +126,9 @@ int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 
     if (s->cloud.enabled) {
         atmo_mie_optics o;
-        if ((rc = atmo_plan_mie_optics(s, s->cloud.dsd, s->cloud.sun_disc, p, &o, e)))
+        if ((rc = atmo_plan_mie_optics(s, "cloud.dsd",
+                                        atmo_param_find("cloud.dsd")->names[s->cloud.dsd],
+                                        s->cloud.sun_disc, p, &o, e)))
             return rc;
         for (int i = 0; i < 3; i++) {
             (&g->extinction.x)[i] = (float)(o.sigma_ext_per_lwc[i] * s->cloud.lwc_g_m3);

@@ -3,7 +3,8 @@
  * Optics at unit density, per render wavelength: sigma_t = clouds.extinction_per_m and the
  * albedo clouds.albedo (the thesis' 10.354e-3 1/m and 0.9512 by default), or, with
  * extinction_per_m = 0, sigma_t = (sigma_ext / LWC) x clouds.lwc_g_m3 and the albedo of the
- * Mie solution of the droplet distribution clouds.dsd (atmo_plan_mie_optics, plan_cloud.c). The
+ * Mie solution of the droplet distribution clouds.dsd (a preset or a SPEC of atmo mie --dsd, ""
+ * for cumulus; atmo_plan_mie_optics, plan_cloud.c). The
  * phase table is always the distribution's (phase_table.h's rows), each channel normalised so
  * that the interpolant the kernels evaluate (linear in theta) integrates to exactly 4 pi, in
  * closed form per segment (segment_integral), and its sampling CDF C_j of the middle
@@ -11,13 +12,16 @@
  *
  * Placement: the noise's origin is the camera's world position (double) minus the wind's
  * displacement v t (direction (sin a, 0, cos a), a = clouds.wind_azimuth_deg), rounded to float
- * once, so a kernel's noise point p + origin is exact to float rounding of the sum. The majorant
- * of the Monte Carlo walk is clouds.density (the density's bound, cloud_layer.h). */
+ * once, so a kernel's noise point p + origin is exact to float rounding of the sum. The global
+ * majorant of the Monte Carlo walk is clouds.density (the density's bound, cloud_layer.h); the
+ * reference's majorant grid (cloud_majorant.h) refines it around the camera: a buffer of
+ * CLOUDS_GRID_NX x NY x NZ cell bounds, filled by its pass for each view. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/plan_cloud.h"
 #include "atmo/plan_clouds.h"
+#include "media/cloud_majorant.h"
 
 void atmo_plan_clouds_origin(const atmo_scene *s, float4 *origin)
 {
@@ -85,7 +89,8 @@ int atmo_plan_clouds(const atmo_scene *s, atmo_plan *p, atmo_err *e)
                          "clouds.top_m (%g) must be above clouds.bottom_m (%g); raise the top",
                          s->clouds.top_m, s->clouds.bottom_m);
     atmo_mie_optics o;
-    if ((rc = atmo_plan_mie_optics(s, s->clouds.dsd, 1, p, &o, e)))
+    if ((rc = atmo_plan_mie_optics(s, "clouds.dsd",
+                                        s->clouds.dsd[0] ? s->clouds.dsd : "cumulus", 1, p, &o, e)))
         return rc;
     atmo_gpu_clouds *g = &p->gpu.clouds;
     for (int i = 0; i < 3; i++) {
@@ -131,4 +136,14 @@ int atmo_plan_clouds(const atmo_scene *s, atmo_plan *p, atmo_err *e)
         return rc;
     return atmo_plan_add_buffer(p, "clouds_phase_cdf", "float", sizeof(float) * (size_t)o.count,
                                 0, cdf, e);
+}
+
+int atmo_plan_clouds_majorant(const atmo_scene *s, atmo_plan *p, atmo_err *e)
+{
+    (void)s;
+    size_t cells = (size_t)CLOUDS_GRID_NX * CLOUDS_GRID_NY * CLOUDS_GRID_NZ;
+    int rc = atmo_plan_add_buffer(p, "clouds_majorant", "float", sizeof(float) * cells, 1, NULL, e);
+    return rc ? rc
+              : atmo_plan_add_pass(p, "clouds_majorant_grid", CLOUDS_GRID_NX, CLOUDS_GRID_NY,
+                                   CLOUDS_GRID_NZ, 0, e);
 }

@@ -171,9 +171,12 @@ const atmo_param atmo_params[] = {
               "clouds.lwc_g_m3"),
     ROW_FLOAT("clouds.albedo", clouds.albedo, "", 0, 1, 0.9512,
               "single-scattering albedo with clouds.extinction_per_m > 0 (thesis: 0.9512)"),
-    ROW_ENUM("clouds.dsd", clouds.dsd, cloud_dsd_names, 0,
-             "droplet size distribution of the phase table (and with clouds.extinction_per_m=0 "
-             "of the extinction and albedo)"),
+    ROW_STRING("clouds.dsd", clouds.dsd,
+               "droplet size distribution of the phase table (and with clouds.extinction_per_m=0 "
+               "of the extinction and albedo), as atmo mie --dsd: a preset (cumulus, stratus, "
+               "fog, corona, thesis-disperse, thesis-uniform) or mono:R, gamma:REFF,VEFF, "
+               "lognormal:RG,SIGMA_G, modgamma:ALPHA,B,GAMMA (um; optional ,max=R); "
+               "\"\" = cumulus"),
     ROW_FLOAT("clouds.lwc_g_m3", clouds.lwc_g_m3, "g/m^3", 1e-6, 10, 0.2,
               "liquid water content at unit density, with clouds.extinction_per_m=0"),
     ROW_ENUM("clouds.phase", clouds.phase, cloud_phase_names, 0,
@@ -184,19 +187,22 @@ const atmo_param atmo_params[] = {
     ROW_FLOAT("clouds.step_m", clouds.step_m, "m", 1, 1e5, 150,
               "the marcher's step in cloud near the camera (it grows with distance, 4x in clear "
               "air)"),
-    ROW_INT("clouds.light_steps", clouds.light_steps, "", 1, 1000, 8,
-            "steps of the light march toward the sun"),
+    ROW_INT("clouds.light_steps", clouds.light_steps, "", 1, 1000, 4,
+            "steps of the light march toward the sun (4: within the reference's noise of 8 and "
+            "16 with the fitted octaves, atmo bench clouds)"),
     ROW_FLOAT("clouds.light_distance_m", clouds.light_distance_m, "m", 1, 1e6, 8000,
               "length of the light march toward the sun"),
     ROW_FLOAT("clouds.max_distance_m", clouds.max_distance_m, "m", 1, 1e8, 150000,
               "the marcher's far plane: clouds beyond it are not seen"),
-    ROW_INT("clouds.ms_octaves", clouds.ms_octaves, "", 1, 16, 4,
-            "multiple-scattering octaves of the marcher (1: single scattering only)"),
-    ROW_FLOAT("clouds.ms_a", clouds.ms_a, "", 0, 1, 0.5,
-              "per octave: factor on the optical depth toward the sun"),
-    ROW_FLOAT("clouds.ms_b", clouds.ms_b, "", 0, 1, 0.5, "per octave: factor on the contribution"),
-    ROW_FLOAT("clouds.ms_c", clouds.ms_c, "", 0, 1, 0.5,
-              "per octave: factor on the phase function's anisotropy"),
+    ROW_INT("clouds.ms_octaves", clouds.ms_octaves, "", 1, 16, 6,
+            "multiple-scattering octaves of the marcher (1: single scattering only; 6 fitted to "
+            "the reference by atmo bench clouds --fit)"),
+    ROW_FLOAT("clouds.ms_a", clouds.ms_a, "", 0, 1, 0.2,
+              "per octave: factor on the optical depth toward the sun (fitted: 0.2)"),
+    ROW_FLOAT("clouds.ms_b", clouds.ms_b, "", 0, 1, 0.43,
+              "per octave: factor on the contribution (fitted: 0.43)"),
+    ROW_FLOAT("clouds.ms_c", clouds.ms_c, "", 0, 1, 0.7,
+              "per octave: factor on the phase function's anisotropy (fitted: 0.7)"),
     ROW_ENUM("clouds.look", clouds.look, clouds_look_names, ATMO_CLOUDS_LOOK_PHYSICAL,
              "physical (octaves, sky ambient) or thesis (constant ambient, powder, soft clamp)"),
     ROW_BOOL("observer.enabled", observer.enabled, 0,

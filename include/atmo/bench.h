@@ -61,4 +61,9 @@ int bench_path(const char *dir, const char *device, int quick, atmo_err *e);
  * DIR/terrain_thesis1.csv. */
 int bench_terrain(const char *dir, const char *device, int quick, atmo_err *e);
 
+/* `atmo bench clouds`: the fBm clouds' marcher and its knobs against the Monte Carlo reference
+ * on four cloud views, or (fit = 1) the fit of its multiple-scattering octaves to the reference
+ * (host/bench/bench_clouds.c). Writes DIR/clouds.csv and DIR/clouds.svg, or DIR/clouds_fit.csv. */
+int bench_clouds(const char *dir, const char *device, int quick, int fit, atmo_err *e);
+
 #endif

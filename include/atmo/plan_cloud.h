@@ -17,10 +17,11 @@ typedef struct atmo_mie_optics {
     int count;
 } atmo_mie_optics;
 
-/* The optics of preset distribution `dsd` (an index into cloud.dsd's names), convolved with the
+/* The optics of the distribution `dsd` (a preset name or a SPEC of mie_dsd_parse; the scene
+ * key `key` that holds it names it in the one-line error of a bad one), convolved with the
  * sun's disc when sun_disc is 1. */
-int atmo_plan_mie_optics(const atmo_scene *s, int dsd, int sun_disc, atmo_plan *p,
-                         atmo_mie_optics *out, atmo_err *e);
+int atmo_plan_mie_optics(const atmo_scene *s, const char *key, const char *dsd, int sun_disc,
+                         atmo_plan *p, atmo_mie_optics *out, atmo_err *e);
 
 /* When the scene enables the cloud or the observer: checks that the method is single or march,
  * builds (or loads from the cache) the Mie tables at the render wavelengths into the buffer

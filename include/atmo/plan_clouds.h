@@ -10,6 +10,11 @@
  * features.c). */
 int atmo_plan_clouds(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 
+/* With clouds and method reference: the majorant grid of the Monte Carlo walk, the buffer
+ * clouds_majorant (CLOUDS_GRID_NX x NY x NZ floats, kernels/media/cloud_majorant.h) and its pass
+ * clouds_majorant_grid; it follows the view (feature "clouds_majorant" of features.c). */
+int atmo_plan_clouds_majorant(const atmo_scene *s, atmo_plan *p, atmo_err *e);
+
 /* The noise's origin: the camera's world position minus the wind's displacement by
  * clouds.time_s (what gpu.clouds.origin holds; it follows the view). */
 void atmo_plan_clouds_origin(const atmo_scene *s, float4 *origin);

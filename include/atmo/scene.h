@@ -108,7 +108,8 @@ typedef struct atmo_scene {
         double time_s;         /* time since the noise's origin: moves it by wind x time */
         double extinction_per_m; /* sigma_t at unit density; 0: from the droplet distribution */
         double albedo;         /* with extinction_per_m > 0 */
-        int dsd;               /* index into mie_dsd_preset_names: phase table (and optics) */
+        char dsd[512];         /* droplet size distribution of the phase table (and optics):
+                                  a preset of atmo mie or a SPEC (mie_dsd_parse); "" = cumulus */
         double lwc_g_m3;       /* liquid water at unit density (extinction_per_m = 0) */
         int phase;             /* ATMO_CLOUD_PHASE_* */
         int steps;             /* the marcher's most steps along a view ray */

@@ -43,18 +43,26 @@
  * paths would see no tentative point there, and the few that do would carry the whole
  * estimate; 4 points per segment cut its standard error about 2.7 times for about 1.5 times
  * the time (measured on tests/test_aerial.c's rays: docs/notes/reference_segments.md).
- * Clouds (-DATMO_CLOUDS): the fBm layer is one more component of media_at; a segment that
- * reaches its altitudes adds the layer's bound (clouds.majorant x its largest extinction) to
- * the majorant, so delta, spectral and ratio tracking stay unbiased through it; the sun's
- * transmittance is ratio-tracked through air and clouds alike (visibility_sun's marched light
- * march is not used: only the opaque occluders); a scattering by the layer samples its phase
- * function: the Mie table by its CDF (phase_table.h, with the weight P / q per wavelength),
- * Henyey-Greenstein by the middle wavelength's g (weights p_c / p_y), Jendersie-d'Eon exactly.
- * Under the layer's majorant most tentative points are null collisions, so there the sun's
- * next-event estimate is made only with probability keep = min(1, REFERENCE_NEE_FLOOR +
- * max sigma_s / sigma_bar) and divided by it (Russian roulette: unbiased), which spares most
- * of the ratio-tracked shadow rays. The walk stays slow in thick clouds (one global bound for
- * the layer); a coarse majorant grid would cut its null collisions.
+ * Clouds (-DATMO_CLOUDS): the fBm layer is one more component of media_at. The majorant of a
+ * segment is then piecewise constant (tracking.h's segments, walked by reference_walk_next):
+ * the air's bound plus, inside the layer's majorant grid (cloud_majorant.h: the density bound
+ * of each cell the segment crosses, walked by a 3-D DDA), the cell's bound times the layer's
+ * largest extinction, and outside the grid, where the segment reaches the layer's altitudes,
+ * the layer's global bound (clouds.majorant x its largest extinction); so delta, spectral and
+ * ratio tracking stay unbiased through it while clear air and thin cloud cost few points. The
+ * sun's transmittance is ratio-tracked through air and clouds alike (visibility_sun's marched
+ * light march is not used: only the opaque occluders); a scattering by the layer samples its
+ * phase function: the Mie table by its CDF (phase_table.h, with the weight P / q per
+ * wavelength), Henyey-Greenstein by the middle wavelength's g (weights p_c / p_y),
+ * Jendersie-d'Eon exactly. Most tentative points under a bound are null collisions, so there
+ * the sun's next-event estimate is made only with probability keep = min(1,
+ * REFERENCE_NEE_FLOOR + max sigma_s / sigma_bar) and divided by it (Russian roulette: unbiased),
+ * which spares most of the ratio-tracked shadow rays. Inside opaque cloud the weights fall
+ * fast: a shadow ray's ratio-tracking weight below REFERENCE_ROULETTE_T, and the view
+ * segment's W below REFERENCE_ROULETTE_T times its weight at the segment's start once the
+ * segment's collision is chosen, go through Russian roulette (tracking_roulette: every estimate
+ * is linear in the weight, so it stays unbiased), which ends such walks after a few optical
+ * depths instead of kilometres of cloud.
  * Interfaces: the coefficients come from media_at (media.h), the occluders from
  * visibility_sun_occluders (visibility.h) at each point, the walk from tracking.h. The path
  * lives in its own planet-centred frame (the start of the path at (0, r, 0)); reference_frame
@@ -75,12 +83,16 @@
 #include "media/ray.h"
 #include "media/tracking.h"
 #include "media/visibility.h"
+#ifdef ATMO_CLOUDS
+#include "media/cloud_majorant.h"
+#endif
 #include "atmo/gpu_types.h"
 #endif
 
 #define REFERENCE_ROULETTE_ORDER 4
 #define REFERENCE_SEGMENT_POINTS 4.0f
 #define REFERENCE_NEE_FLOOR 0.05f /* with clouds: least probability of a next-event estimate */
+#define REFERENCE_ROULETTE_T 0.1f /* with clouds: weights below this go through roulette */
 
 /* Lowest altitude along the ray from r along mu up to distance d (the ray's end). */
 ATMO_FN float reference_min_altitude(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r,
@@ -107,21 +119,88 @@ ATMO_FN float reference_majorant(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float
     return fmaxf(tracking_max3(bound), 1e-12f) * 1.001f;
 }
 
-/* The media's majorant on the segment from radius r with cosine mu to distance d: the air's
- * above its lowest altitude, plus, where the segment reaches the fBm cloud layer's altitudes,
- * the layer's bound (its density bound times its largest extinction). */
+/* The air's majorant on the segment from radius r with cosine mu to distance d (above its
+ * lowest altitude). */
 ATMO_FN float reference_segment_majorant(ATMO_GLOBAL const atmo_gpu_scene *s, float r, float mu,
                                          float d)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    float h_min = reference_min_altitude(a, r, mu, d);
-    float bound = reference_majorant(a, h_min);
+    return reference_majorant(a, reference_min_altitude(a, r, mu, d));
+}
+
+/* The fBm layer's global bound on that segment where it reaches the layer's altitudes, else 0
+ * (the majorant outside the layer's grid). */
+ATMO_FN float reference_clouds_outside(ATMO_GLOBAL const atmo_gpu_scene *s, float r, float mu,
+                                       float d)
+{
 #ifdef ATMO_CLOUDS
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    float h_min = reference_min_altitude(a, r, mu, d);
     float h_max = fmaxf(r - a->bottom_radius, geometry_altitude_at(r, mu, d, a->bottom_radius));
     if (h_min - 10.0f < s->clouds.top_m && h_max + 10.0f > s->clouds.bottom_m)
-        bound += s->clouds.majorant * tracking_max3(v3_from4(s->clouds.extinction)) * 1.001f;
+        return s->clouds.majorant * tracking_max3(v3_from4(s->clouds.extinction)) * 1.001f;
+#else
+    (void)s, (void)r, (void)mu, (void)d;
 #endif
-    return bound;
+    return 0.0f;
+}
+
+/* A segment's walk: the tentative points of tracking.h under the media's piecewise-constant
+ * majorant, max(air + clouds, least) (clouds: the grid cell's bound, or `outside` beyond the
+ * grid; least: a floor on the rate, for short cut segments). */
+typedef struct reference_walk {
+    tracking_walk w;
+    float air, outside, least;
+#ifdef ATMO_CLOUDS
+    float scale; /* density -> extinction bound: the layer's largest extinction, x 1.001 */
+    clouds_grid_walk grid;
+#endif
+} reference_walk;
+
+/* The majorant of the segment that starts at the walk's point. */
+ATMO_FN void reference_walk_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                    reference_walk *rw)
+{
+#ifdef ATMO_CLOUDS
+    float seg_end, b = clouds_grid_segment(&rw->grid, clouds_majorant, rw->w.t, &seg_end);
+    float clouds = b < 0.0f ? rw->outside : b * rw->scale;
+    tracking_segment(&rw->w, fmaxf(rw->air + clouds, rw->least), seg_end);
+#else
+    (void)s;
+    tracking_segment(&rw->w, fmaxf(rw->air + rw->outside, rw->least), INFINITY);
+#endif
+}
+
+/* The walk along origin + t dir (camera-relative, dir unit) over [0, end]. */
+ATMO_FN reference_walk reference_walk_begin(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                            vec3 origin, vec3 dir, float end, float air,
+                                            float outside, float least)
+{
+    reference_walk rw;
+    rw.w = tracking_begin(end, 1.0f);
+    rw.air = air, rw.outside = outside, rw.least = least;
+#ifdef ATMO_CLOUDS
+    rw.scale = tracking_max3(v3_from4(s->clouds.extinction)) * 1.001f;
+    clouds_grid_frame f = clouds_grid_frame_make(s);
+    rw.grid = clouds_grid_begin(&f, origin, dir, end);
+#else
+    (void)origin, (void)dir;
+#endif
+    reference_walk_segment(s, ATMO_LUT_ARGS, &rw);
+    return rw;
+}
+
+/* The next tentative point (rw->w.t, rate rw->w.sigma_bar there); 0 once past the end. */
+ATMO_FN int reference_walk_next(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                reference_walk *rw, rng_stream *g)
+{
+    float tau = tracking_depth(g);
+    while (!tracking_advance(&rw->w, &tau)) {
+        if (rw->w.t >= rw->w.end)
+            return 0;
+        reference_walk_segment(s, ATMO_LUT_ARGS, rw);
+    }
+    return rw->w.t < rw->w.end;
 }
 
 /* The path's frame (see the top of the file) in the world's axes: a path point X (planet-
@@ -184,13 +263,18 @@ ATMO_FN vec3 reference_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_L
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     float r = q->r, mu = q->mu_s;
     float d = geometry_distance_to_top(r, mu, a->top_radius);
-    tracking_walk w = tracking_begin(d, reference_segment_majorant(s, r, mu, d));
     vec3 T = v3(1.0f, 1.0f, 1.0f), sun = v3_from4(s->sun_direction);
-    while (tracking_next(&w, g)) {
+    reference_walk rw = reference_walk_begin(s, ATMO_LUT_ARGS, q->p, sun, d,
+                                             reference_segment_majorant(s, r, mu, d),
+                                             reference_clouds_outside(s, r, mu, d), 0.0f);
+    while (reference_walk_next(s, ATMO_LUT_ARGS, &rw, g)) {
         medium_point x;
-        x.p = v3_add(q->p, v3_scale(sun, w.t));
-        x.h = geometry_altitude_at(r, mu, w.t, a->bottom_radius);
-        T = tracking_ratio(&w, T, media_at(s, ATMO_LUT_ARGS, &x).extinction);
+        x.p = v3_add(q->p, v3_scale(sun, rw.w.t));
+        x.h = geometry_altitude_at(r, mu, rw.w.t, a->bottom_radius);
+        T = tracking_ratio(&rw.w, T, media_at(s, ATMO_LUT_ARGS, &x).extinction);
+#ifdef ATMO_CLOUDS
+        T = tracking_roulette(T, REFERENCE_ROULETTE_T, g);
+#endif
         if (tracking_max3(T) <= 0.0f)
             break;
     }
@@ -301,9 +385,11 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
         int blocked = order == 0 && t_max < d; /* by the black surface */
         if (blocked)
             d = t_max, ground = 0;
-        float sigma_bar = reference_segment_majorant(s, r0, mu0, d);
-        if (blocked) /* at least REFERENCE_SEGMENT_POINTS tentative points on a short segment */
-            sigma_bar = fmaxf(sigma_bar, REFERENCE_SEGMENT_POINTS / d);
+        /* on a cut segment, at least REFERENCE_SEGMENT_POINTS tentative points */
+        reference_walk rw = reference_walk_begin(
+            s, ATMO_LUT_ARGS, reference_world_point(&frame, pos), reference_world_dir(&frame, dir),
+            d, reference_segment_majorant(s, r0, mu0, d), reference_clouds_outside(s, r0, mu0, d),
+            blocked ? REFERENCE_SEGMENT_POINTS / d : 0.0f);
         int count = order + 1 >= min_order; /* light reaching the camera through this segment's
                                                next-event estimates has order + 1 events */
         int more = max_order == 0 || order + 1 < max_order;
@@ -313,12 +399,14 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
         vec3 W = w, ws = w;
         int collided = 0, chosen = 0;
         float t_hit = 0.0f;
-        tracking_walk walk = tracking_begin(d, sigma_bar);
-        while (tracking_next(&walk, g)) {
-            float t = walk.t;
+#ifdef ATMO_CLOUDS
+        float w_roulette = REFERENCE_ROULETTE_T * tracking_max3(w);
+#endif
+        while (reference_walk_next(s, ATMO_LUT_ARGS, &rw, g)) {
+            float t = rw.w.t, sigma_bar = rw.w.sigma_bar;
             medium_point q = reference_point(a, &frame, pos, dir, r0, mu0, mus0, nu0, t);
             media_sample ms = media_at(s, ATMO_LUT_ARGS, &q);
-            if (count) {
+            if (count && tracking_max3(W) > 0.0f) {
                 float keep = 1.0f;
 #ifdef ATMO_CLOUDS
                 /* under the clouds' majorant most points are null: the estimate is made with
@@ -341,12 +429,20 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
                 }
             }
             if (more && !collided) {
-                int k = tracking_spectral_pick(&walk, g, &ws, ms.scattering, MEDIA_COMPONENTS,
+                int k = tracking_spectral_pick(&rw.w, g, &ws, ms.scattering, MEDIA_COMPONENTS,
                                                ms.extinction);
                 if (k >= 0)
                     collided = 1, chosen = k, t_hit = t;
             }
-            W = tracking_ratio(&walk, W, ms.extinction);
+            W = tracking_ratio(&rw.w, W, ms.extinction);
+#ifdef ATMO_CLOUDS
+            /* once the segment's collision is chosen, only W-weighted estimates are left */
+            if (collided || !more) {
+                W = tracking_roulette(W, w_roulette, g);
+                if (tracking_max3(W) <= 0.0f)
+                    break;
+            }
+#endif
         }
         if (ground && count) { /* the directly lit ground, seen through the segment */
             medium_point q = reference_point(a, &frame, pos, dir, r0, mu0, mus0, nu0, d);

@@ -32,7 +32,7 @@
  * Parameters (scene keys clouds.*, `atmo params`): bottom_m 1000, top_m 8000, fade_m 2000,
  * coverage 0.25, density 5, sharpness 1.05, frequency_per_m (8, 16, 8) 1e-5, coverage_scale_m
  * 500 km, octaves 6, warp_m 3000, extinction 10.354e-3 1/m and albedo 0.9512 at unit density
- * (the thesis) or from the distribution (extinction_per_m = 0), light_steps 8 over
+ * (the thesis) or from the distribution (extinction_per_m = 0), light_steps 4 over
  * light_distance_m 8000. The thesis' own layer (500 m to 20 km, 5 km fades, coverage features
  * to 2500 km) is --set clouds.bottom_m=500 clouds.top_m=20000 clouds.fade_m=5000
  * clouds.coverage_scale_m=2.5e6: its 13 km towers leave the air below them in shadow, so the
