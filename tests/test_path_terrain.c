@@ -1,6 +1,6 @@
 /* test_path_terrain — the terrain as a surface of the path tracer (kernels/render/surfaces.h):
  * its light on a flat patch, and its shadow on the sun behind a ridge.
- * labels: render kernel stat
+ * labels: render kernel stat slow
  *
  * Oracles:
  *  1. A flat patch (terrain.max_height_m 1 mm, all land: grass, normal = vertical; the same
