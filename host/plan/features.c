@@ -172,13 +172,14 @@ const atmo_feature atmo_features[] = {
     /* the layer's majorant grid for the reference's walk; it follows the view (never cached) */
     {"clouds_majorant", -1, cloud_grid, clouds_majorant_fragments, "", NULL, NULL, NULL,
      atmo_plan_clouds_majorant, 0},
-    /* the scene's spheres and boxes: sun occluders and the preview's surfaces (visibility.h),
-     * the path tracer's surfaces */
-    {"objects", -1, has_objects, objects_fragments, "-DATMO_OBJECTS", NULL, NULL, NULL,
-     atmo_plan_objects, 0},
     /* an opaque surface and a visibility source: before the composition of the media */
     {"terrain", -1, has_terrain, terrain_fragments, "-DATMO_TERRAIN", terrain_params,
      terrain_sources, NULL, atmo_plan_terrain, 0},
+    /* the scene's spheres and boxes: sun occluders and the preview's surfaces (visibility.h),
+     * the path tracer's surfaces; after the terrain, whose height field places the objects
+     * with on_terrain */
+    {"objects", -1, has_objects, objects_fragments, "-DATMO_OBJECTS", NULL, NULL, NULL,
+     atmo_plan_objects, 0},
     /* the medium integrator of single, march, fast and lut; the media of the reference */
     {"medium", -1, always, medium_fragments, "", NULL, NULL, NULL, NULL, 0},
     /* the layer's marcher, over the integrator's pieces (media.h declares it) */

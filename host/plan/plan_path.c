@@ -3,16 +3,34 @@
  *
  * Objects become atmo_gpu_object rows (include/atmo/gpu_path.h) placed camera-relative in the
  * world's axes, the subtraction of the camera's position done in double: a sphere's centre
- * c - p_cam and radius, a box's corners min - p_cam and min + size - p_cam. The rows are a host
- * table the plan owns, copied into the buffer `objects` before the passes. The path tracer's
- * settings are copied from the scene's path.* keys; its render kernel is path_render
+ * c - p_cam and radius, a box's corners min - p_cam and min + size - p_cam. An object with
+ * on_terrain has its anchor's y (the centre's, the min's) above the terrain: y + Y_s, Y_s the
+ * world Y of the terrain's surface over world (x, z) = terrain_at_m (or the sphere's centre, the
+ * box's base centre), from the double-precision height field (host/terrain/terrain_ref.c) at
+ * the foot of that point: the surface lies at radius r = R + S(u, v) with u = R x / r,
+ * v = R z / r (kernels/terrain/terrain.h's placement), solved by fixed-point iteration from
+ * r = R + S(x, z) (the foot moves by x (r - R) / R, a few metres, so the slope's change of S
+ * shrinks each step by ~(r - R) / R < 1e-3), and Y_s = sqrt(r^2 - x^2 - z^2) - R. The rows
+ * are a host table the plan owns, copied into the buffer `objects` before the passes. The path
+ * tracer's settings are copied from the scene's path.* keys; its render kernel is path_render
  * (kernels/render/path.cl), which a session launches in place of sky_render; with path.passes
  * it is compiled with -DATMO_RENDER_PASSES and sums the render passes into pass_planes more
  * planes. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/plan_path.h"
+#include "atmo/terrain_ref.h"
+
+/* The world Y of the terrain's surface over world (x, z) (see the top of the file). */
+static double terrain_surface_y(const atmo_gpu_terrain *t, double R, double x, double z)
+{
+    double sea = t->sea_level_m, r = R + fmax(terrain_ref_height(&t->field, x, z, NULL, NULL), sea);
+    for (int i = 0; i < 8; i++)
+        r = R + fmax(terrain_ref_height(&t->field, R * x / r, R * z / r, NULL, NULL), sea);
+    return sqrt(r * r - x * x - z * z) - R;
+}
 
 static float4 rel4(const double v[3], const double cam[3], double w)
 {
@@ -37,19 +55,29 @@ int atmo_plan_objects(const atmo_scene *s, atmo_plan *p, atmo_err *e)
         return rc;
     const double *cam = s->camera.position_m;
     for (int i = 0; i < n; i++) {
-        const atmo_object *o = &s->objects.list[i];
+        atmo_object o = s->objects.list[i];
         atmo_gpu_object *g = &rows[i];
-        g->kind = o->type;
-        if (o->type == ATMO_OBJECT_SPHERE) {
-            g->a = rel4(o->center_m, cam, o->radius_m);
+        g->kind = o.type;
+        if (o.on_terrain) {
+            /* the scene's checks allow it only with the procedural terrain, planned before */
+            int sphere = o.type == ATMO_OBJECT_SPHERE;
+            double x = o.has_terrain_at ? o.terrain_at_m[0]
+                                        : sphere ? o.center_m[0] : o.min_m[0] + 0.5 * o.size_m[0];
+            double z = o.has_terrain_at ? o.terrain_at_m[1]
+                                        : sphere ? o.center_m[2] : o.min_m[2] + 0.5 * o.size_m[2];
+            double y = terrain_surface_y(&p->gpu.terrain, s->atmosphere.bottom_radius_m, x, z);
+            *(sphere ? &o.center_m[1] : &o.min_m[1]) += y;
+        }
+        if (o.type == ATMO_OBJECT_SPHERE) {
+            g->a = rel4(o.center_m, cam, o.radius_m);
         } else {
-            double hi[3] = {o->min_m[0] + o->size_m[0], o->min_m[1] + o->size_m[1],
-                            o->min_m[2] + o->size_m[2]};
-            g->a = rel4(o->min_m, cam, 0.0);
+            double hi[3] = {o.min_m[0] + o.size_m[0], o.min_m[1] + o.size_m[1],
+                            o.min_m[2] + o.size_m[2]};
+            g->a = rel4(o.min_m, cam, 0.0);
             g->b = rel4(hi, cam, 0.0);
         }
-        g->albedo = col4(o->albedo);
-        g->emission = col4(o->emission);
+        g->albedo = col4(o.albedo);
+        g->emission = col4(o.emission);
     }
     p->gpu.path.object_count = n;
     return atmo_plan_add_buffer(p, "objects", "atmo_gpu_object", (size_t)n * sizeof *rows, 0,

@@ -5,7 +5,14 @@
  * "emission": [r, g, b]} or {"type": "box", "min_m": [x, y, z], "size_m": [sx, sy, sz], ...}:
  * world metres (Y up, origin at sea level), albedo the Lambertian reflectance in 0..1 per render
  * wavelength (default 0.8), emission the emitted spectral radiance in W m^-2 sr^-1 nm^-1
- * (default 0). The geometry's members are required; a member that does not belong to the
+ * (default 0). "on_terrain": true places the object on the procedural terrain: the y of its
+ * anchor (a sphere's centre, a box's min) is then metres above the terrain's surface, taken at
+ * world (x, z) = "terrain_at_m": [x, z] when given (one point for a group of objects, so they
+ * keep their relative heights), else at the sphere's centre or the centre of the box's base;
+ * the plan evaluates the height with the terrain's double-precision reference
+ * (host/plan/plan_path.c). on_terrain needs terrain.enabled and no terrain.heightmap_file (the
+ * reference is the procedural field); terrain_at_m needs on_terrain. The geometry's members are
+ * required; a member that does not belong to the
  * element's type, a duplicate, a wrong JSON type, a non-finite or out-of-range number is an
  * error naming objects[i].member, the source and the valid range. The array comes in through
  * the key "objects" of a scene file, of --set (objects='[...]') and of a preset. Saving writes
@@ -91,13 +98,39 @@ static int parse_object(const cJSON *item, int i, const char *where, atmo_object
     {
         if (strcmp(c->string, "type") == 0)
             continue;
+        if (strcmp(c->string, "on_terrain") == 0) {
+            if (!cJSON_IsBool(c))
+                return atmo_fail(e, ATMO_ERR_USAGE,
+                                 "objects[%d].on_terrain (from %s) has the wrong type: expected "
+                                 "true or false", i, where);
+            o->on_terrain = cJSON_IsTrue(c);
+            continue;
+        }
+        if (strcmp(c->string, "terrain_at_m") == 0) {
+            int ok = cJSON_IsArray(c) && cJSON_GetArraySize(c) == 2;
+            for (int k = 0; ok && k < 2; k++) {
+                const cJSON *x = cJSON_GetArrayItem(c, k);
+                ok = cJSON_IsNumber(x) && isfinite(x->valuedouble) &&
+                     fabs(x->valuedouble) <= OBJECT_COORD_MAX_M;
+                if (ok)
+                    o->terrain_at_m[k] = x->valuedouble;
+            }
+            if (!ok)
+                return atmo_fail(e, ATMO_ERR_USAGE,
+                                 "objects[%d].terrain_at_m (from %s) must be an array of 2 numbers "
+                                 "(world x, z in metres) within +-%.9g", i, where,
+                                 OBJECT_COORD_MAX_M);
+            o->has_terrain_at = 1;
+            continue;
+        }
         int m = 0;
         while (m < MEMBER_COUNT && strcmp(members[m].name, c->string) != 0)
             m++;
         if (m == MEMBER_COUNT || !(members[m].types & (1 << t)))
             return atmo_fail(e, ATMO_ERR_USAGE,
                              "objects[%d].%s (from %s) is not a member of a %s; a sphere has "
-                             "center_m, radius_m, a box min_m, size_m, both albedo, emission",
+                             "center_m, radius_m, a box min_m, size_m, both albedo, emission, "
+                             "on_terrain, terrain_at_m",
                              i, c->string, where, type_names[t]);
         if (seen & (1u << m))
             return atmo_fail(e, ATMO_ERR_USAGE,
@@ -128,6 +161,10 @@ static int parse_object(const cJSON *item, int i, const char *where, atmo_object
         if (members[m].required && (members[m].types & (1 << t)) && !(seen & (1u << m)))
             return atmo_fail(e, ATMO_ERR_USAGE, "objects[%d] (a %s, from %s) needs %s", i,
                              type_names[t], where, members[m].name);
+    if (o->has_terrain_at && !o->on_terrain)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "objects[%d].terrain_at_m (from %s) needs \"on_terrain\": true; add it "
+                         "or remove terrain_at_m", i, where);
     return ATMO_OK;
 }
 
@@ -178,6 +215,19 @@ int atmo_scene_check_objects(const atmo_scene *s, atmo_err *e)
                 if (!isfinite(v[k]) || v[k] < members[m].min || v[k] > members[m].max)
                     return range_error(i, &members[m], v[k], "the scene", e);
         }
+        if (o.on_terrain && !s->terrain.enabled)
+            return atmo_fail(e, ATMO_ERR_USAGE,
+                             "objects[%d].on_terrain needs the terrain; set terrain.enabled=true "
+                             "or remove on_terrain", i);
+        if (o.on_terrain && s->dem.file[0])
+            return atmo_fail(e, ATMO_ERR_USAGE,
+                             "objects[%d].on_terrain places objects on the procedural terrain, "
+                             "not on terrain.heightmap_file; give the object absolute heights",
+                             i);
+        if (o.has_terrain_at && !o.on_terrain)
+            return atmo_fail(e, ATMO_ERR_USAGE,
+                             "objects[%d].terrain_at_m needs on_terrain; set it or remove "
+                             "terrain_at_m", i);
     }
     return ATMO_OK;
 }
@@ -223,6 +273,20 @@ char *atmo_scene_objects_json(const atmo_scene *s)
         for (int m = 0; ok && m < MEMBER_COUNT; m++)
             if (members[m].types & (1 << o.type))
                 ok = add_member(obj, &members[m], member_field(&o, m));
+        if (ok && o.on_terrain)
+            ok = cJSON_AddTrueToObject(obj, "on_terrain") != NULL;
+        if (ok && o.has_terrain_at) {
+            cJSON *at = cJSON_CreateArray(), *x = NULL;
+            for (int k = 0; at && k < 2; k++)
+                if (!(x = exact_number(o.terrain_at_m[k])) || !cJSON_AddItemToArray(at, x)) {
+                    cJSON_Delete(x);
+                    cJSON_Delete(at);
+                    at = NULL;
+                }
+            ok = at && cJSON_AddItemToObject(obj, "terrain_at_m", at);
+            if (!ok)
+                cJSON_Delete(at);
+        }
         if (!ok)
             goto cleanup;
     }

@@ -30,8 +30,10 @@
  * view 6's sun, where seed 0 puts view 6's camera inside a cloud).
  * Views 1, 2, 3, 8 and 9 and `space` have the procedural terrain; its seed 46 puts land under
  * every thesis camera (thesis-1's camera 630 m and thesis-3's 90 m above the ground: `atmo
- * terrain --at X,Z`). The objects keep the thesis' absolute heights, which do not sit on this
- * terrain (view 2's 440 m above it, view 3's open box 53 m). */
+ * terrain --at X,Z`). In the views with terrain (2, 3) the objects stand on it ("on_terrain":
+ * their heights above the terrain's surface); the cameras keep presets.md's positions, so
+ * view 2's camera looks down from about 500 m above its objects and view 3's from about
+ * 120 m. View 7 has no terrain and keeps the thesis' absolute heights. */
 #include <string.h>
 #include "atmo/scene.h"
 
@@ -39,15 +41,16 @@ const char *const atmo_default_preset = "sky-sunset";
 
 #define PRESET(name, summary, ...) {name, summary, (const char *const[]){__VA_ARGS__, NULL}}
 #define THESIS_TERRAIN " [terrain; its clouds not rendered yet]"
-#define THESIS_TERRAIN_OBJECTS " [terrain and objects; the objects at the thesis' heights, above this terrain]"
+#define THESIS_TERRAIN_OBJECTS " [terrain and objects; the objects on this terrain]"
 #define THESIS_OBJECTS " [objects over the sea-level ground, path traced]"
 #define THESIS_CLOUDS " [clouds]"
 #define THESIS_CLOUDS_TERRAIN " [clouds and terrain]"
 /* presets.md's objects (albedo in linear RGB; the small spheres' (38, 25, 17)/255 written out) */
+/* view 2's sphere resting on the terrain (centre 1 m above it) and its box standing on it */
 #define THESIS_VIEW2_OBJECTS                                                                       \
-    "objects=[{\"type\": \"sphere\", \"center_m\": [22832, 2022, 13326], \"radius_m\": 1, "    \
-    "\"albedo\": [1, 1, 1]}, {\"type\": \"box\", \"min_m\": [22832.2, 2022, 13326.7], "           \
-    "\"size_m\": [2, 2, 2], \"albedo\": [0, 0, 1]}]"
+    "objects=[{\"type\": \"sphere\", \"center_m\": [22832, 1, 13326], \"radius_m\": 1, "         \
+    "\"albedo\": [1, 1, 1], \"on_terrain\": true}, {\"type\": \"box\", \"min_m\": [22832.2, 0, "   \
+    "13326.7], \"size_m\": [2, 2, 2], \"albedo\": [0, 0, 1], \"on_terrain\": true}]"
 #define THESIS_OPEN_BOX_OBJECTS                                                                    \
     "objects=[{\"type\": \"box\", \"min_m\": [26630, 1336, 10749], \"size_m\": [1, 1, 1], "     \
     "\"albedo\": [0.9, 0.1, 0.1]}, {\"type\": \"box\", \"min_m\": [26632, 1336, 10749], "        \
@@ -59,6 +62,26 @@ const char *const atmo_default_preset = "sky-sunset";
     "\"center_m\": [26631.66, 1336.12, 10749.66], \"radius_m\": 0.12, \"albedo\": [1, 0.5, "     \
     "0.15]}, {\"type\": \"sphere\", \"center_m\": [26631.5, 1336.12, 10749.33], \"radius_m\": "  \
     "0.12, \"albedo\": [1, 1, 1]}]"
+
+/* the same open box on the terrain (views with terrain): its heights relative to the thesis'
+ * ground level 1336 m, plus 0.25 m so the floor's top clears the terrain's rise of up to 0.2 m
+ * across the box's base (atmo terrain --at its corners), all taken at the box's centre */
+#define OPEN_BOX_ANCHOR "\"on_terrain\": true, \"terrain_at_m\": [26631.5, 10749.5]"
+#define THESIS_OPEN_BOX_ON_TERRAIN                                                                 \
+    "objects=[{\"type\": \"box\", \"min_m\": [26630, 0.25, 10749], \"size_m\": [1, 1, 1], "        \
+    "\"albedo\": [0.9, 0.1, 0.1], " OPEN_BOX_ANCHOR "}"                                            \
+    ", {\"type\": \"box\", \"min_m\": [26632, 0.25, 10749], \"size_m\": [1, 1, 1], "               \
+    "\"albedo\": [0.1, 0.9, 0.1], " OPEN_BOX_ANCHOR "}"                                            \
+    ", {\"type\": \"box\", \"min_m\": [26630, -0.75, 10749], \"size_m\": [3, 1, 1], "              \
+    "\"albedo\": [0.7, 0.7, 0.7], " OPEN_BOX_ANCHOR "}"                                            \
+    ", {\"type\": \"box\", \"min_m\": [26630, 0.25, 10750], \"size_m\": [3, 1, 1], "               \
+    "\"albedo\": [0.7, 0.7, 0.7], " OPEN_BOX_ANCHOR "}"                                            \
+    ", {\"type\": \"sphere\", \"center_m\": [26631.33, 0.37, 10749.66], \"radius_m\": 0.12, "      \
+    "\"albedo\": [0.149019608, 0.098039216, 0.066666667], " OPEN_BOX_ANCHOR "}"                    \
+    ", {\"type\": \"sphere\", \"center_m\": [26631.66, 0.37, 10749.66], \"radius_m\": 0.12, "      \
+    "\"albedo\": [1, 0.5, 0.15], " OPEN_BOX_ANCHOR "}"                                             \
+    ", {\"type\": \"sphere\", \"center_m\": [26631.5, 0.37, 10749.33], \"radius_m\": 0.12, "       \
+    "\"albedo\": [1, 1, 1], " OPEN_BOX_ANCHOR "}]"
 
 const atmo_preset atmo_presets[] = {
     PRESET("sky-noon",
@@ -94,7 +117,7 @@ const atmo_preset atmo_presets[] = {
            "thesis view 3: low sun near the open-box site, sun in frame" THESIS_TERRAIN_OBJECTS,
            "camera.kind=perspective", "camera.position_m=26632,1337,10748", "camera.pitch_deg=-5",
            "camera.yaw_deg=-575", "camera.fov_deg=45", "sun.zenith_deg=86.098524",
-           "sun.azimuth_deg=-134.254613", THESIS_OPEN_BOX_OBJECTS,
+           "sun.azimuth_deg=-134.254613", THESIS_OPEN_BOX_ON_TERRAIN,
            "terrain.enabled=true", "terrain.seed=46"),
     PRESET("thesis-4",
            "thesis view 4: the planet from 2000 km, terminator, cloud field, blue "

@@ -28,6 +28,9 @@ typedef struct atmo_object {
     double size_m[3];      /* box: extents, each > 0 */
     double albedo[3];      /* 0..1 */
     double emission[3];    /* >= 0 */
+    int on_terrain;        /* 1: the anchor's y (centre, min) is metres above the terrain */
+    int has_terrain_at;    /* 1: terrain_at_m is given (else the object's own x, z) */
+    double terrain_at_m[2]; /* world x, z where the terrain's height is taken */
 } atmo_object;
 
 typedef struct atmo_scene {

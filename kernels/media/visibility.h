@@ -16,7 +16,8 @@
  * point sun, as for the planet) with the shortcuts of terrain.shafts (terrain_shafts.h; those
  * that remember earlier samples of the ray need the integrator's per-ray state,
  * visibility_ray, through the *_on_ray forms), and the terrain's surface with its light
- * (terrain_shade.h).
+ * (terrain_shade.h; not under -DATMO_PATH, whose surfaces.h traces the terrain as a surface of
+ * its own, and whose surface points take visibility_sun_surface).
  * visibility_sun_occluders is the product of the opaque sources (0 or 1), visibility_sun adds
  * the shadowing media (per wavelength, 0..1); both get the buffers, where a source keeps its
  * data (a heightmap, a density grid). The atmosphere's own transmittance toward the
@@ -144,6 +145,32 @@ ATMO_FN vec3 visibility_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS
     return visibility_sun_on_ray(s, ATMO_LUT_ARGS, q, 0);
 }
 
+#ifdef ATMO_PATH
+/* The path tracer's sun visibility at a surface point: visibility_sun without the terrain, whose
+ * shadow the path tracer traces itself toward the point it samples on the sun's disc
+ * (render/surfaces.h), so the terrain's shadows get the disc's penumbra (the objects are no
+ * source under ATMO_PATH). */
+ATMO_FN vec3 visibility_sun_surface(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                    const medium_point *q)
+{
+    float v = visibility_planet(&s->atmosphere, q);
+#ifdef ATMO_CLOUD
+    if (observer_blocks(s->cloud.observer, q->p, v3_from4(s->sun_direction)))
+        v = 0.0f;
+#endif
+    vec3 vis = v3(v, v, v);
+#ifdef ATMO_CLOUD
+    if (v > 0.0f)
+        vis = v3_scale(cloud_shell_sun_transmittance(s, q, s->atmosphere.bottom_radius), v);
+#endif
+#ifdef ATMO_CLOUDS
+    if (v > 0.0f)
+        vis = v3_mul(vis, clouds_sun_transmittance(s, q));
+#endif
+    return vis;
+}
+#endif
+
 /* Distance along the ray to the first opaque surface other than the ground (the observer, the
  * preview's objects, the terrain), or -1 when there is none. */
 ATMO_FN float visibility_surface_hit(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
@@ -159,7 +186,7 @@ ATMO_FN float visibility_surface_hit(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_L
                     hit >= 0.0f ? hit : INFINITY, &t_obj) >= 0)
         hit = t_obj;
 #endif
-#ifdef ATMO_TERRAIN
+#if defined(ATMO_TERRAIN) && !defined(ATMO_PATH)
     /* the terrain covers the ground sphere (its surface lies at or above sea level >= 0): a
      * hit is never beyond the ground's distance, computed as the integrator computes it */
     float t;
@@ -225,7 +252,7 @@ ATMO_FN vec3 visibility_surface_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, AT
     if (lit.x >= 0.0f)
         return lit;
 #endif
-#ifdef ATMO_TERRAIN
+#if defined(ATMO_TERRAIN) && !defined(ATMO_PATH)
 #ifdef ATMO_CLOUD
     float t_observer = observer_hit(s->cloud.observer, m);
     if (!(t_observer >= 0.0f && t_observer <= t))

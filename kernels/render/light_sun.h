@@ -8,8 +8,8 @@
  *     albedo / pi E_sun T_sun V max(0, n . w),
  * with T_sun the atmosphere's transmittance toward the sun from the point (the transmittance
  * LUT, at the disc centre's cosine: the disc is 0.5 degrees wide), V the visibility sources
- * (medium_sunlight: the planet, the shadowing media) and the object test along w itself, so an
- * object's shadow has the penumbra of the disc. */
+ * (visibility_sun_surface: the planet, the shadowing media) and the objects' and the terrain's
+ * test along w itself (surfaces.h), so their shadows have the penumbra of the disc. */
 #ifndef ATMO_RENDER_LIGHT_SUN_H
 #define ATMO_RENDER_LIGHT_SUN_H
 #ifndef __OPENCL_VERSION__

@@ -10,7 +10,9 @@
  *   transmittance T) or, where the ray leaves the scene, sky_trace(INFINITY) (the sky, and the
  *   sun's disc seen directly); L = S + T (L_e + L_surface);
  *   at a surface vertex with throughput beta and albedo a:
- *     sun: beta a/pi E T_sun V max(0, n . w_sun)      (light_sun.h: the disc sampled)
+ *     sun: beta a/pi E T_sun V max(0, n . w_sun)      (light_sun.h: the disc sampled; V the
+ *          planet and the shadowing media at the point, times the objects and the terrain
+ *          along w_sun: surfaces_occluded)
  *     sky: beta a/pi S(w_l) cos / p_l * w_l           (light_sky.h, MIS weight w_l)
  *     continuation: w_b ~ cos / pi (bsdf.h), beta *= a; its segment's light S(w_b) counts with
  *     the MIS weight w_b, then the next vertex (emission counted there with weight 1).
@@ -127,9 +129,24 @@ ATMO_FN path_vertex path_vertex_at(ATMO_GLOBAL const atmo_gpu_scene *s, const me
     path_vertex v;
     v.q = medium_ray_at(m, h->t, s->atmosphere.bottom_radius);
     v.n = v3_dot(h->normal, m->dir) > 0.0f ? v3_scale(h->normal, -1.0f) : h->normal;
-    v.p = surfaces_offset(v.q.p, v.n);
+    v.p = v3_add(v.q.p, v3_scale(v.n, h->lift));
     v.albedo = h->albedo;
     return v;
+}
+
+/* The sunlight E T_sun V arriving at a surface point q: V from visibility_sun_surface (the
+ * planet, the shadowing media), the opaque surfaces left to the shadow ray along the direction
+ * sampled on the disc (surfaces_occluded). */
+ATMO_FN vec3 path_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                           const medium_point *q)
+{
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    vec3 vis = visibility_sun_surface(s, ATMO_LUT_ARGS, q);
+    if (vis.x <= 0.0f && vis.y <= 0.0f && vis.z <= 0.0f)
+        return v3(0.0f, 0.0f, 0.0f);
+    vec3 to_sun = atmosphere_transmittance_to_top(a, transmittance_lut, s->transmittance_width,
+                                                  s->transmittance_height, q->r, q->mu_s);
+    return v3_mul(v3_from4(a->solar_irradiance), v3_mul(to_sun, vis));
 }
 
 /* Sunlight reflected at v toward the ray (without the throughput). */
@@ -144,7 +161,7 @@ ATMO_FN vec3 path_direct_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
     if (c <= 0.0f)
         return v3(0.0f, 0.0f, 0.0f);
     vec3 e = s->path.sky == ATMO_PATH_SKY_UNIFORM ? v3_from4(s->atmosphere.solar_irradiance)
-                                                   : medium_sunlight(s, ATMO_LUT_ARGS, &v->q);
+                                                   : path_sunlight(s, ATMO_LUT_ARGS, &v->q);
     if ((e.x <= 0.0f && e.y <= 0.0f && e.z <= 0.0f) || surfaces_occluded(s, ATMO_LUT_ARGS, v->p, w))
         return v3(0.0f, 0.0f, 0.0f);
     return v3_mul(v3_scale(v3_mul(v->albedo, e), c / ATMO_PI), v3_from4(s->sky_factor));
