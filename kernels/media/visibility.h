@@ -122,11 +122,11 @@ ATMO_FN float visibility_sun_occluders(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO
     return visibility_sun_occluders_on_ray(s, ATMO_LUT_ARGS, q, 0);
 }
 
-/* visibility_sun at a sample of a ray with state vr (0: none). */
-ATMO_FN vec3 visibility_sun_on_ray(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                                   const medium_point *q, visibility_ray *vr)
+/* v, the opaque sources' visibility of the sun from q, times the transmittance toward the sun of
+ * the shadowing media (per wavelength). */
+ATMO_FN vec3 visibility_media_sun(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_point *q,
+                                  float v)
 {
-    float v = visibility_sun_occluders_on_ray(s, ATMO_LUT_ARGS, q, vr);
     vec3 vis = v3(v, v, v);
 #ifdef ATMO_CLOUD
     if (v > 0.0f)
@@ -137,6 +137,13 @@ ATMO_FN vec3 visibility_sun_on_ray(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT
         vis = v3_mul(vis, clouds_sun_transmittance(s, q));
 #endif
     return vis;
+}
+
+/* visibility_sun at a sample of a ray with state vr (0: none). */
+ATMO_FN vec3 visibility_sun_on_ray(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                   const medium_point *q, visibility_ray *vr)
+{
+    return visibility_media_sun(s, q, visibility_sun_occluders_on_ray(s, ATMO_LUT_ARGS, q, vr));
 }
 
 ATMO_FN vec3 visibility_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
@@ -158,16 +165,7 @@ ATMO_FN vec3 visibility_sun_surface(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LU
     if (observer_blocks(s->cloud.observer, q->p, v3_from4(s->sun_direction)))
         v = 0.0f;
 #endif
-    vec3 vis = v3(v, v, v);
-#ifdef ATMO_CLOUD
-    if (v > 0.0f)
-        vis = v3_scale(cloud_shell_sun_transmittance(s, q, s->atmosphere.bottom_radius), v);
-#endif
-#ifdef ATMO_CLOUDS
-    if (v > 0.0f)
-        vis = v3_mul(vis, clouds_sun_transmittance(s, q));
-#endif
-    return vis;
+    return visibility_media_sun(s, q, v);
 }
 #endif
 
