@@ -97,6 +97,17 @@ ATMO_FN terrain_noise terrain_value_noise(float x, float y, uint seed)
     return n;
 }
 
+/* The next octave's coordinates: (x, y) <- 2 R (x, y), R the octave rotation [[c, -s], [s, c]].
+ * Applied to the columns (j00, j10) and (j01, j11) of the Jacobian J = d(x, y)/d(u, v) it
+ * carries J along (J <- 2 R J), which turns each octave's gradient into the base frame. */
+ATMO_FN void terrain_octave_next(float *x, float *y)
+{
+    float nx = 2.0f * (TERRAIN_ROT_C * *x - TERRAIN_ROT_S * *y);
+    float ny = 2.0f * (TERRAIN_ROT_S * *x + TERRAIN_ROT_C * *y);
+    *x = nx;
+    *y = ny;
+}
+
 /* The eroded fBm's elevation e in [0, 1] at lattice point (x, y) and its gradient in (x, y). */
 ATMO_FN float terrain_fbm(float x, float y, int octaves, uint seed, float *ex, float *ey)
 {
@@ -121,15 +132,9 @@ ATMO_FN float terrain_fbm(float x, float y, int octaves, uint seed, float *ex, f
         ay += b * (gy * den - 2.0f * n.v * hy) / (den * den);
         norm += b;
         b *= 0.5f;
-        float nx = 2.0f * (TERRAIN_ROT_C * x - TERRAIN_ROT_S * y);
-        float ny = 2.0f * (TERRAIN_ROT_S * x + TERRAIN_ROT_C * y);
-        x = nx;
-        y = ny;
-        float n00 = 2.0f * (TERRAIN_ROT_C * j00 - TERRAIN_ROT_S * j10);
-        float n01 = 2.0f * (TERRAIN_ROT_C * j01 - TERRAIN_ROT_S * j11);
-        float n10 = 2.0f * (TERRAIN_ROT_S * j00 + TERRAIN_ROT_C * j10);
-        float n11 = 2.0f * (TERRAIN_ROT_S * j01 + TERRAIN_ROT_C * j11);
-        j00 = n00, j01 = n01, j10 = n10, j11 = n11;
+        terrain_octave_next(&x, &y);
+        terrain_octave_next(&j00, &j10);
+        terrain_octave_next(&j01, &j11);
     }
     float k = TERRAIN_RELIEF / norm, th = tanhf(2.0f * k * a), slope = k * (1.0f - th * th);
     *ex = ax * slope;
@@ -152,15 +157,9 @@ ATMO_FN float terrain_coverage(ATMO_GLOBAL const atmo_gpu_terrain_field *f, floa
         cy += b * (j01 * n.dx + j11 * n.dy);
         norm += b;
         b *= 0.5f;
-        float nx = 2.0f * (TERRAIN_ROT_C * x - TERRAIN_ROT_S * y);
-        float ny = 2.0f * (TERRAIN_ROT_S * x + TERRAIN_ROT_C * y);
-        x = nx;
-        y = ny;
-        float n00 = 2.0f * (TERRAIN_ROT_C * j00 - TERRAIN_ROT_S * j10);
-        float n01 = 2.0f * (TERRAIN_ROT_C * j01 - TERRAIN_ROT_S * j11);
-        float n10 = 2.0f * (TERRAIN_ROT_S * j00 + TERRAIN_ROT_C * j10);
-        float n11 = 2.0f * (TERRAIN_ROT_S * j01 + TERRAIN_ROT_C * j11);
-        j00 = n00, j01 = n01, j10 = n10, j11 = n11;
+        terrain_octave_next(&x, &y);
+        terrain_octave_next(&j00, &j10);
+        terrain_octave_next(&j01, &j11);
     }
     float c0 = 0.5f * c / norm + 0.5f;
     float t = 1.0f - f->land_fraction;
@@ -221,10 +220,7 @@ ATMO_FN float terrain_fbm_value_capped(float x, float y, int octaves, uint seed,
                 return up;
             }
         }
-        float nx = 2.0f * (TERRAIN_ROT_C * x - TERRAIN_ROT_S * y);
-        float ny = 2.0f * (TERRAIN_ROT_S * x + TERRAIN_ROT_C * y);
-        x = nx;
-        y = ny;
+        terrain_octave_next(&x, &y);
     }
     return 0.5f + 0.5f * tanhf(2.0f * (TERRAIN_RELIEF / norm) * a);
 }
@@ -255,10 +251,7 @@ ATMO_FN float terrain_coverage_value(ATMO_GLOBAL const atmo_gpu_terrain_field *f
         c += b * (na + k1 * qx + k2 * qy + k3 * qx * qy);
         norm += b;
         b *= 0.5f;
-        float nx = 2.0f * (TERRAIN_ROT_C * x - TERRAIN_ROT_S * y);
-        float ny = 2.0f * (TERRAIN_ROT_S * x + TERRAIN_ROT_C * y);
-        x = nx;
-        y = ny;
+        terrain_octave_next(&x, &y);
     }
     float c0 = 0.5f * c / norm + 0.5f;
     float t = 1.0f - f->land_fraction;
