@@ -8,11 +8,12 @@
  * solver gives the radiance reflected at the top and the diffuse radiance transmitted at the
  * bottom (the direct beam excluded) at a photon direction of cosine mu (> 0) to the upward
  * (reflected) or downward (transmitted) normal and azimuth phi from the beam's (phi = 0: the
- * horizontal direction the beam travels in). Method: delta-M truncation of p to 2N Legendre
- * moments (Wiscombe 1977), the truncated problem per azimuthal Fourier mode on N Gauss-Legendre
- * cosines per hemisphere (plus the beam's and the views' cosines at zero weight) by doubling
- * from a layer of tau 2^-n thin enough for single scattering, and the exact single scattering
- * put back in place of the truncated one (the TMS correction of Nakajima & Tanaka 1988). */
+ * horizontal direction the beam travels in). Method: delta-M truncation of p to M <= 2N
+ * Legendre moments (Wiscombe 1977), the truncated problem per azimuthal Fourier mode on N
+ * Gauss-Legendre cosines per hemisphere (plus the beam's and the views' cosines at zero weight)
+ * by doubling from a layer of tau 2^-n thin enough for single scattering, and the exact phase
+ * function's single scattering put back in place of the truncated one (the TMS correction of
+ * Nakajima & Tanaka 1988). */
 #ifndef ATMO_TESTSLAB_H
 #define ATMO_TESTSLAB_H
 
@@ -22,7 +23,8 @@ typedef struct slab_problem {
     double tau, omega, mu0;
     slab_phase_fn phase; /* p(cos theta) per steradian */
     const void *ctx;
-    int streams;         /* N, Gauss cosines per hemisphere (2N Legendre moments kept) */
+    int streams;         /* N, Gauss cosines per hemisphere */
+    int moments;         /* M <= 2N, Legendre moments kept by delta-M (0: 2N) */
 } slab_problem;
 
 typedef struct slab_fluxes {
