@@ -50,7 +50,8 @@ static void check_buffers(const atmo_plan *p, const char *const *names)
     for (; names[n]; n++) {
         CHECK(n < p->buffer_count && strcmp(p->buffers[n].name, names[n]) == 0);
         snprintf(params + strlen(params), sizeof params - strlen(params),
-                 "%s ATMO_GLOBAL const float4 *%s", n ? "," : "", names[n]);
+                 "%s ATMO_GLOBAL const %s *%s", n ? "," : "",
+                 n < p->buffer_count ? p->buffers[n].type : "?", names[n]);
         snprintf(args + strlen(args), sizeof args - strlen(args), "%s %s", n ? "," : "",
                  names[n]);
     }
@@ -129,8 +130,8 @@ static void test_cloud(void)
     test_plan(&s, &sky);
     test_scene_set(&s, "cloud.enabled=true");
     test_plan(&s, &cloud);
-    static const char *const with_table[] = {"transmittance_lut", "cloud_phase_table", "ms_lut",
-                                             NULL};
+    static const char *const with_table[] = {"transmittance_lut", "cloud_phase_table",
+                                             "cloud_phase_cdf", "ms_lut", NULL};
     check_buffers(&cloud, with_table);
     CHECK(strcmp(cloud.defines, "-DATMO_CLOUD -DATMO_MS_LUT") == 0);
     int shell = fragment_at(&cloud, "kernels/media/cloud_shell.h");

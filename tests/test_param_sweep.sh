@@ -93,7 +93,7 @@ while read -r key bound value; do
     lut.*) render "$key" lut --set "$key=$value" ;;
     reference.*) render "$key" reference --set "$key=$value" ;;
     cloud.*)
-        for m in single march; do
+        for m in single march reference; do
             render "$key" $m --set cloud.enabled=true --set "$key=$value"
         done ;;
     observer.*)

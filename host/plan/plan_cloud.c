@@ -6,8 +6,11 @@
  * have their own angle grids (finer for the shorter wavelength, where x is larger); they are
  * resampled by linear interpolation onto the grid of the longest one and packed as float4 rows
  * (P_0, P_1, P_2, theta in radians) into the buffer cloud_phase_table (a host table: copied to
- * the device before the passes; one zero row when the scene has an observer but no cloud); the
- * plan owns the packed rows (atmo_plan_free releases them).
+ * the device before the passes; one zero row when the scene has an observer but no cloud), with
+ * its sampling CDF in cloud_phase_cdf (atmo_plan_phase_cdf: the format phase_table.h samples,
+ * shared with the fBm layer); the plan owns both (atmo_plan_free releases them). With
+ * cloud.phase=hg the asymmetry is cloud.hg_g at every wavelength, or the table's g where that
+ * is 0.
  *
  * The observer's centre is placed camera-relative in the world's axes, as the kernels' 3-D
  * visibility sources take it (kernels/media/observer.h): distance_m horizontally from the
@@ -67,6 +70,46 @@ static int pack_tables(const mie_table t[3], float4 **out, int *count, atmo_err 
     return ATMO_OK;
 }
 
+/* int P sin(theta) dtheta over the rows' segment [a, b] of channel k, with P linear in theta
+ * between the rows (as phase_rows_eval interpolates), in closed form:
+ *     P_a (cos a - cos b) + (P_b - P_a) / (b - a) (sin b - sin a - (b - a) cos b) */
+static double segment_integral(const float4 *lo, const float4 *hi, int k)
+{
+    double a = lo->w, b = hi->w, pa = (&lo->x)[k], pb = (&hi->x)[k];
+    double slope = b > a ? (pb - pa) / (b - a) : 0.0;
+    return pa * (cos(a) - cos(b)) + slope * (sin(b) - sin(a) - (b - a) * cos(b));
+}
+
+/* atmo_plan_phase_cdf (atmo/plan_cloud.h): each channel normalised so its interpolant
+ * integrates to exactly 4 pi (the Mie table's trapezoids leave ~1e-4, which a furnace of many
+ * scatterings would see as an albedo above 1), then the sampling CDF of the middle channel
+ * from the same segment integrals. */
+int atmo_plan_phase_cdf(float4 *rows, int n, atmo_plan *p, float **out, atmo_err *e)
+{
+    float *cdf = malloc(sizeof *cdf * (size_t)n);
+    if (!cdf)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for a cloud's phase CDF");
+    for (int k = 0; k < 3; k++) {
+        double total = 0.0;
+        for (int j = 1; j < n; j++)
+            total += 2.0 * M_PI * segment_integral(&rows[j - 1], &rows[j], k);
+        double scale = total > 0.0 ? 4.0 * M_PI / total : 1.0;
+        for (int j = 0; j < n; j++)
+            (&rows[j].x)[k] = (float)((double)(&rows[j].x)[k] * scale);
+    }
+    double acc = 0.0, total = 0.0;
+    for (int j = 1; j < n; j++)
+        total += segment_integral(&rows[j - 1], &rows[j], 1);
+    cdf[0] = 0.0f;
+    for (int j = 1; j < n; j++) {
+        acc += segment_integral(&rows[j - 1], &rows[j], 1);
+        cdf[j] = (float)(acc / (total > 0.0 ? total : 1.0));
+    }
+    cdf[n - 1] = 1.0f;
+    *out = cdf;
+    return atmo_plan_own(p, cdf, e);
+}
+
 int atmo_plan_mie_optics(const atmo_scene *s, const char *key, const char *dsd, int sun_disc,
                          atmo_plan *p, atmo_mie_optics *out, atmo_err *e)
 {
@@ -109,10 +152,16 @@ int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "cloud.enabled (the homogeneous shell) and clouds.enabled (the fBm layer) "
                          "exclude each other; set one of them to false");
-    if (s->atmosphere.method != ATMO_METHOD_SINGLE && s->atmosphere.method != ATMO_METHOD_MARCH)
+    int m = s->atmosphere.method;
+    if (s->observer.enabled && m != ATMO_METHOD_SINGLE && m != ATMO_METHOD_MARCH)
         return atmo_fail(e, ATMO_ERR_USAGE,
-                         "cloud.enabled/observer.enabled work with atmosphere.method=single or "
-                         "march only (got %s); set one of those",
+                         "observer.enabled works with atmosphere.method=single or march only "
+                         "(got %s); set one of those",
+                         p->method);
+    if (m != ATMO_METHOD_SINGLE && m != ATMO_METHOD_MARCH && m != ATMO_METHOD_REFERENCE)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "cloud.enabled works with atmosphere.method=single, march or reference "
+                         "(got %s); set one of those",
                          p->method);
     if (s->cloud.enabled && s->cloud.top_m <= s->cloud.bottom_m)
         return atmo_fail(e, ATMO_ERR_USAGE,
@@ -130,25 +179,35 @@ int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e)
                                         atmo_param_find("cloud.dsd")->names[s->cloud.dsd],
                                         s->cloud.sun_disc, p, &o, e)))
             return rc;
+        int own_g = s->cloud.phase == ATMO_CLOUD_PHASE_HG && s->cloud.hg_g != 0.0;
         for (int i = 0; i < 3; i++) {
             (&g->extinction.x)[i] = (float)(o.sigma_ext_per_lwc[i] * s->cloud.lwc_g_m3);
             (&g->albedo.x)[i] = (float)o.albedo[i];
-            (&g->g.x)[i] = (float)o.g[i];
+            (&g->g.x)[i] = (float)(own_g ? s->cloud.hg_g : o.g[i]);
         }
         g->diameter_um = (float)o.diameter_um;
         g->base_m = (float)s->cloud.bottom_m;
         g->top_m = (float)s->cloud.top_m;
-        rc = atmo_plan_add_buffer(p, "cloud_phase_table", "float4",
-                                  sizeof(float4) * (size_t)o.count, 0, o.rows, e);
+        float *cdf = NULL;
+        if ((rc = atmo_plan_phase_cdf(o.rows, o.count, p, &cdf, e)) ||
+            (rc = atmo_plan_add_buffer(p, "cloud_phase_table", "float4",
+                                       sizeof(float4) * (size_t)o.count, 0, o.rows, e)))
+            return rc;
+        rc = atmo_plan_add_buffer(p, "cloud_phase_cdf", "float", sizeof(float) * (size_t)o.count,
+                                  0, cdf, e);
         g->table_size = o.count;
     } else {
         /* observer only: an empty shell at the ground and a one-row zero table, so the
          * cloud's phase (weighted by its zero scattering) is 0, not a read before the table */
         static const float4 zero_row;
+        static const float zero_cdf;
         g->base_m = g->top_m = 0.0f;
         g->table_size = 1;
-        rc = atmo_plan_add_buffer(p, "cloud_phase_table", "float4", sizeof zero_row, 0,
-                                  &zero_row, e);
+        if ((rc = atmo_plan_add_buffer(p, "cloud_phase_table", "float4", sizeof zero_row, 0,
+                                       &zero_row, e)))
+            return rc;
+        rc = atmo_plan_add_buffer(p, "cloud_phase_cdf", "float", sizeof zero_cdf, 0, &zero_cdf,
+                                  e);
     }
     return rc;
 }

@@ -5,10 +5,8 @@
  * extinction_per_m = 0, sigma_t = (sigma_ext / LWC) x clouds.lwc_g_m3 and the albedo of the
  * Mie solution of the droplet distribution clouds.dsd (a preset or a SPEC of atmo mie --dsd, ""
  * for cumulus; atmo_plan_mie_optics, plan_cloud.c). The
- * phase table is always the distribution's (phase_table.h's rows), each channel normalised so
- * that the interpolant the kernels evaluate (linear in theta) integrates to exactly 4 pi, in
- * closed form per segment (segment_integral), and its sampling CDF C_j of the middle
- * wavelength is made of the same segment integrals, in double precision.
+ * phase table is always the distribution's (phase_table.h's rows), normalised and given its
+ * sampling CDF by atmo_plan_phase_cdf (plan_cloud.c).
  *
  * Placement: the noise's origin is the camera's world position (double) minus the wind's
  * displacement v t (direction (sin a, 0, cos a), a = clouds.wind_azimuth_deg), rounded to float
@@ -31,45 +29,6 @@ void atmo_plan_clouds_origin(const atmo_scene *s, float4 *origin)
     origin->y = (float)s->camera.position_m[1];
     origin->z = (float)(s->camera.position_m[2] - shift * cos(a));
     origin->w = 0.0f;
-}
-
-/* int P sin(theta) dtheta over the rows' segment [a, b] of channel k, with P linear in theta
- * between the rows (as phase_rows_eval interpolates), in closed form:
- *     P_a (cos a - cos b) + (P_b - P_a) / (b - a) (sin b - sin a - (b - a) cos b) */
-static double segment_integral(const float4 *lo, const float4 *hi, int k)
-{
-    double a = lo->w, b = hi->w, pa = (&lo->x)[k], pb = (&hi->x)[k];
-    double slope = b > a ? (pb - pa) / (b - a) : 0.0;
-    return pa * (cos(a) - cos(b)) + slope * (sin(b) - sin(a) - (b - a) * cos(b));
-}
-
-/* Normalise each channel so its interpolant integrates to exactly 4 pi (the Mie table's
- * trapezoids leave ~1e-4, which a furnace of many scatterings would see as an albedo above 1),
- * then fill the sampling CDF of the middle channel from the same segment integrals. */
-static int normalise_and_cdf(float4 *rows, int n, float **out, atmo_err *e)
-{
-    float *cdf = malloc(sizeof *cdf * (size_t)n);
-    if (!cdf)
-        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the clouds' phase CDF");
-    for (int k = 0; k < 3; k++) {
-        double total = 0.0;
-        for (int j = 1; j < n; j++)
-            total += 2.0 * M_PI * segment_integral(&rows[j - 1], &rows[j], k);
-        double scale = total > 0.0 ? 4.0 * M_PI / total : 1.0;
-        for (int j = 0; j < n; j++)
-            (&rows[j].x)[k] = (float)((double)(&rows[j].x)[k] * scale);
-    }
-    double acc = 0.0, total = 0.0;
-    for (int j = 1; j < n; j++)
-        total += segment_integral(&rows[j - 1], &rows[j], 1);
-    cdf[0] = 0.0f;
-    for (int j = 1; j < n; j++) {
-        acc += segment_integral(&rows[j - 1], &rows[j], 1);
-        cdf[j] = (float)(acc / (total > 0.0 ? total : 1.0));
-    }
-    cdf[n - 1] = 1.0f;
-    *out = cdf;
-    return ATMO_OK;
 }
 
 int atmo_plan_clouds(const atmo_scene *s, atmo_plan *p, atmo_err *e)
@@ -129,7 +88,7 @@ int atmo_plan_clouds(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     g->look = s->clouds.look;
     g->seed = (uint)s->clouds.seed;
     float *cdf = NULL;
-    if ((rc = normalise_and_cdf(o.rows, o.count, &cdf, e)) || (rc = atmo_plan_own(p, cdf, e)))
+    if ((rc = atmo_plan_phase_cdf(o.rows, o.count, p, &cdf, e)))
         return rc;
     if ((rc = atmo_plan_add_buffer(p, "clouds_phase_table", "float4",
                                    sizeof(float4) * (size_t)o.count, 0, o.rows, e)))

@@ -122,7 +122,8 @@ const atmo_param atmo_params[] = {
     ROW_ENUM("atmosphere.method", atmosphere.method, method_names, ATMO_METHOD_FAST,
              "how light transport in the atmosphere is computed (see README: Methods)"),
     ROW_BOOL("cloud.enabled", cloud.enabled, 0,
-             "a homogeneous cloud/fog shell (methods single and march; kernels/media/cloud_shell.h)"),
+             "a homogeneous cloud/fog shell (methods single, march and reference; "
+             "kernels/media/cloud_shell.h)"),
     ROW_FLOAT("cloud.bottom_m", cloud.bottom_m, "m", 0, 1e5, 1000,
               "altitude of the cloud shell's base above sea level"),
     ROW_FLOAT("cloud.top_m", cloud.top_m, "m", 0, 1e5, 2000,
@@ -134,6 +135,8 @@ const atmo_param atmo_params[] = {
     ROW_ENUM("cloud.phase", cloud.phase, cloud_phase_names, 0,
              "cloud phase function: Mie table, Henyey-Greenstein with the table's g, or "
              "Jendersie-d'Eon for the distribution's effective diameter"),
+    ROW_FLOAT("cloud.hg_g", cloud.hg_g, "", -0.99, 0.99, 0,
+              "asymmetry g of cloud.phase=hg at every wavelength (0: the Mie table's g)"),
     ROW_BOOL("cloud.sun_disc", cloud.sun_disc, 1,
              "convolve the Mie table with the sun's disc (smooths ripples a point sun shows)"),
     ROW_BOOL("clouds.enabled", clouds.enabled, 0,

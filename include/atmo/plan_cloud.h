@@ -23,10 +23,16 @@ typedef struct atmo_mie_optics {
 int atmo_plan_mie_optics(const atmo_scene *s, const char *key, const char *dsd, int sun_disc,
                          atmo_plan *p, atmo_mie_optics *out, atmo_err *e);
 
-/* When the scene enables the cloud or the observer: checks that the method is single or march,
- * builds (or loads from the cache) the Mie tables at the render wavelengths into the buffer
- * cloud_phase_table and fills gpu.cloud (feature "cloud" of features.c, which is planned only
- * when the scene has a cloud or an observer). */
+/* Normalises a table of `n` rows (phase_table.h's format) so each channel's interpolant
+ * integrates to 4 pi and fills *cdf (n floats, owned by the plan) with the sampling CDF of its
+ * middle channel (phase_table.h). */
+int atmo_plan_phase_cdf(float4 *rows, int n, atmo_plan *p, float **cdf, atmo_err *e);
+
+/* When the scene enables the cloud or the observer: checks the method (single, march or, for
+ * the cloud without an observer, reference), builds (or loads from the cache) the Mie tables
+ * at the render wavelengths into the buffers cloud_phase_table and cloud_phase_cdf and fills
+ * gpu.cloud (feature "cloud" of features.c, which is planned only when the scene has a cloud
+ * or an observer). */
 int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 
 #endif

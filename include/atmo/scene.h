@@ -94,6 +94,7 @@ typedef struct atmo_scene {
         int dsd;               /* index into mie_dsd_preset_names */
         double lwc_g_m3;       /* liquid water content */
         int phase;             /* ATMO_CLOUD_PHASE_* */
+        double hg_g;           /* g of phase hg (0: the table's g) */
         int sun_disc;          /* 0/1: Mie table convolved with the sun's disc */
     } cloud;
     struct {                   /* the fBm cloud layer (kernels/media/cloud_layer.h) */

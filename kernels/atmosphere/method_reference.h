@@ -63,6 +63,18 @@
  * segment's collision is chosen, go through Russian roulette (tracking_roulette: every estimate
  * is linear in the weight, so it stays unbiased), which ends such walks after a few optical
  * depths instead of kilometres of cloud.
+ * The homogeneous cloud shell (-DATMO_CLOUD, cloud_shell.h; it and the layer exclude each
+ * other) is a component of media_at as well. Its majorant, its largest extinction x 1.001, is
+ * added over the parts of a segment between its two spheres (reference_walk_shell, with a
+ * REFERENCE_SHELL_MARGIN_M margin on the radii), so the clear air above and below keeps the
+ * air's majorant; a scattering by it samples its phase as the layer's does
+ * (reference_sample_cloud_phase: the Mie table's rows and CDF in phase_table.h's format, HG with
+ * g per channel, Jendersie-d'Eon); the sun's transmittance through it is exact, exp(-sigma l)
+ * for the sun's chord l through the shell, times the air's ratio-tracked transmittance
+ * (reference_tracked_extinction: the air's extinction alone). The layer's roulettes (the
+ * next-event keep, REFERENCE_ROULETTE_T) apply inside the shell too. The observer sphere is
+ * not a source of this method (plan_cloud.c refuses it: its silhouette is lit through the
+ * transmittance LUT).
  * Interfaces: the coefficients come from media_at (media.h), the occluders from
  * visibility_sun_occluders (visibility.h) at each point, the walk from tracking.h. The path
  * lives in its own planet-centred frame (the start of the path at (0, r, 0)); reference_frame
@@ -93,6 +105,10 @@
 #define REFERENCE_SEGMENT_POINTS 4.0f
 #define REFERENCE_NEE_FLOOR 0.05f /* with clouds: least probability of a next-event estimate */
 #define REFERENCE_ROULETTE_T 0.1f /* with clouds: weights below this go through roulette */
+#if defined(ATMO_CLOUD) || defined(ATMO_CLOUDS)
+#define REFERENCE_CLOUDY /* a cloud medium (the shell or the layer): the roulettes below */
+#endif
+#define REFERENCE_SHELL_MARGIN_M 10.0f /* the shell's majorant covers its radii +- this */
 
 /* Lowest altitude along the ray from r along mu up to distance d (the ray's end). */
 ATMO_FN float reference_min_altitude(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r,
@@ -151,6 +167,11 @@ ATMO_FN float reference_clouds_outside(ATMO_GLOBAL const atmo_gpu_scene *s, floa
 typedef struct reference_walk {
     tracking_walk w;
     float air, outside, least;
+#ifdef ATMO_CLOUD
+    int shell_parts;                   /* the parts of the walk inside the cloud shell (0..2) */
+    float shell_lo[2], shell_hi[2];    /* their ends (m along the walk) */
+    float shell;                       /* the majorant the shell adds there (1/m) */
+#endif
 #ifdef ATMO_CLOUDS
     float scale; /* density -> extinction bound: the layer's largest extinction, x 1.001 */
     clouds_grid_walk grid;
@@ -165,6 +186,20 @@ ATMO_FN void reference_walk_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LU
     float seg_end, b = clouds_grid_segment(&rw->grid, clouds_majorant, rw->w.t, &seg_end);
     float clouds = b < 0.0f ? rw->outside : b * rw->scale;
     tracking_segment(&rw->w, fmaxf(rw->air + clouds, rw->least), seg_end);
+#elif defined(ATMO_CLOUD)
+    (void)s;
+    float seg_end = INFINITY, shell = 0.0f;
+    for (int k = 0; k < rw->shell_parts; k++) {
+        if (rw->w.t < rw->shell_lo[k]) { /* clear air up to the next part */
+            seg_end = rw->shell_lo[k];
+            break;
+        }
+        if (rw->w.t < rw->shell_hi[k]) {
+            shell = rw->shell, seg_end = rw->shell_hi[k];
+            break;
+        }
+    }
+    tracking_segment(&rw->w, fmaxf(rw->air + rw->outside + shell, rw->least), seg_end);
 #else
     (void)s;
     tracking_segment(&rw->w, fmaxf(rw->air + rw->outside, rw->least), INFINITY);
@@ -179,6 +214,10 @@ ATMO_FN reference_walk reference_walk_begin(ATMO_GLOBAL const atmo_gpu_scene *s,
     reference_walk rw;
     rw.w = tracking_begin(end, 1.0f);
     rw.air = air, rw.outside = outside, rw.least = least;
+#ifdef ATMO_CLOUD
+    rw.shell_parts = 0; /* the shell joins the walk by reference_walk_shell */
+    rw.shell = 0.0f;
+#endif
 #ifdef ATMO_CLOUDS
     rw.scale = tracking_max3(v3_from4(s->clouds.extinction)) * 1.001f;
     clouds_grid_frame f = clouds_grid_frame_make(s);
@@ -189,6 +228,40 @@ ATMO_FN reference_walk reference_walk_begin(ATMO_GLOBAL const atmo_gpu_scene *s,
     reference_walk_segment(s, ATMO_LUT_ARGS, &rw);
     return rw;
 }
+
+#ifdef ATMO_CLOUD
+/* Adds the cloud shell to a walk that starts at radius r with cosine mu to the vertical: over
+ * the parts of the walk between the spheres of radii R + base - REFERENCE_SHELL_MARGIN_M and
+ * R + top + REFERENCE_SHELL_MARGIN_M (geometry_sphere_roots: the ray's distances to a sphere of
+ * radius R + z are the roots of t^2 + 2 r mu t + (h - z)(r + R + z), h = r - R) the majorant
+ * gains the shell's largest extinction x 1.001; the margin covers the float rounding of the
+ * altitude media_at tests (< 1 m at 6400 km), so sigma_bar >= sigma_t everywhere and the walk
+ * stays unbiased, while the clear air above and below keeps the air's majorant alone. */
+ATMO_FN void reference_walk_shell(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                  reference_walk *rw, float r, float mu)
+{
+    float R = s->atmosphere.bottom_radius, h = r - R, b = r * mu;
+    float base = s->cloud.base_m - REFERENCE_SHELL_MARGIN_M;
+    float top = s->cloud.top_m + REFERENCE_SHELL_MARGIN_M, o0, o1, i0, i1;
+    rw->shell_parts = 0;
+    if (!(s->cloud.top_m > s->cloud.base_m) ||
+        !geometry_sphere_roots(b, (h - top) * (r + R + top), &o0, &o1))
+        return;
+    float lo[2] = {o0, 0.0f}, hi[2] = {o1, 0.0f};
+    int parts = 1;
+    if (base > 0.0f && geometry_sphere_roots(b, (h - base) * (r + R + base), &i0, &i1))
+        hi[0] = i0, lo[1] = i1, hi[1] = o1, parts = 2;
+    for (int k = 0; k < parts; k++) {
+        float l = fmaxf(lo[k], 0.0f), u = fminf(hi[k], rw->w.end);
+        if (u > l) {
+            rw->shell_lo[rw->shell_parts] = l, rw->shell_hi[rw->shell_parts] = u;
+            rw->shell_parts++;
+        }
+    }
+    rw->shell = tracking_max3(v3_from4(s->cloud.extinction)) * 1.001f;
+    reference_walk_segment(s, ATMO_LUT_ARGS, rw);
+}
+#endif
 
 /* The next tentative point (rw->w.t, rate rw->w.sigma_bar there); 0 once past the end. */
 ATMO_FN int reference_walk_next(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
@@ -255,8 +328,26 @@ ATMO_FN medium_point reference_point(ATMO_GLOBAL const atmo_gpu_atmosphere *a,
     return medium_ray_at(&m, t, a->bottom_radius);
 }
 
+/* The extinction the sun's walk ratio-tracks at the point x: the media's, less the cloud
+ * shell's, whose transmittance toward the sun is its chord's (reference_transmittance). Under
+ * -DATMO_CLOUD the media are the air and the shell (the fBm layer excludes the shell:
+ * plan_cloud.c), so that is the air's extinction, computed as media_at computes it. */
+ATMO_FN vec3 reference_tracked_extinction(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                          const medium_point *x)
+{
+#ifdef ATMO_CLOUD
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    return atmosphere_extinction_at(a, x->h, expf(-x->h / a->rayleigh_scale_height),
+                                    expf(-x->h / a->mie_scale_height));
+#else
+    return media_at(s, ATMO_LUT_ARGS, x).extinction;
+#endif
+}
+
 /* Transmittance toward the sun from the point q to the top of the atmosphere by ratio tracking
- * (the ray must not hit the ground); unbiased, each factor 1 - sigma_t / sigma_bar in [0, 1]. */
+ * (the ray must not hit the ground); unbiased, each factor 1 - sigma_t / sigma_bar in [0, 1].
+ * The cloud shell's factor is exact instead: exp(-sigma l) for the sun's chord l through it
+ * (cloud_shell_sun_transmittance), no noise and no walk through the shell. */
 ATMO_FN vec3 reference_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                      const medium_point *q, rng_stream *g)
 {
@@ -271,13 +362,16 @@ ATMO_FN vec3 reference_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_L
         medium_point x;
         x.p = v3_add(q->p, v3_scale(sun, rw.w.t));
         x.h = geometry_altitude_at(r, mu, rw.w.t, a->bottom_radius);
-        T = tracking_ratio(&rw.w, T, media_at(s, ATMO_LUT_ARGS, &x).extinction);
-#ifdef ATMO_CLOUDS
+        T = tracking_ratio(&rw.w, T, reference_tracked_extinction(s, ATMO_LUT_ARGS, &x));
+#ifdef REFERENCE_CLOUDY
         T = tracking_roulette(T, REFERENCE_ROULETTE_T, g);
 #endif
         if (tracking_max3(T) <= 0.0f)
             break;
     }
+#ifdef ATMO_CLOUD
+    T = v3_mul(T, cloud_shell_sun_transmittance(s, q, a->bottom_radius));
+#endif
     return T;
 }
 
@@ -295,29 +389,51 @@ ATMO_FN vec3 reference_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PA
                     vis);
 }
 
+#ifdef REFERENCE_CLOUDY
+/* A scattering-angle cosine drawn from a cloud's phase function (cloud shell or layer: phase
+ * ATMO_CLOUD_PHASE_*, asymmetry g per channel, effective diameter, phase_table.h's rows and CDF)
+ * with the uniform number u1 (and one more from g for Jendersie-d'Eon's mixture); *weight gets
+ * the phase over the sampling density per channel: the Mie table by its CDF (P / q), HG by the
+ * middle channel's g (p_c / p_y), Jendersie-d'Eon exactly (1). */
+ATMO_FN float reference_sample_cloud_phase(int phase, vec3 g_hg, float diameter_um,
+                                           ATMO_GLOBAL const float4 *rows,
+                                           ATMO_GLOBAL const float *cdf, int n, float u1,
+                                           rng_stream *g, vec3 *weight)
+{
+    if (phase == ATMO_CLOUD_PHASE_JENDERSIE_DEON)
+        return phase_jendersie_deon_sample(phase_jendersie_deon_params(diameter_um), u1,
+                                           rng_next(g));
+    if (phase == ATMO_CLOUD_PHASE_HG) {
+        float cs = phase_henyey_greenstein_sample(g_hg.y, u1);
+        float py = phase_henyey_greenstein(cs, g_hg.y);
+        *weight = v3(phase_henyey_greenstein(cs, g_hg.x) / py, 1.0f,
+                     phase_henyey_greenstein(cs, g_hg.z) / py);
+        return cs;
+    }
+    return phase_rows_sample(rows, cdf, n, u1, weight);
+}
+#endif
+
 /* A new direction's cosine to the old one, sampled from component k's phase function with the
- * uniform number u1 (and, for Jendersie-d'Eon's mixture, one more from g); *weight multiplies the path's throughput (the phase over the
- * sampling density: 1 where the sampling is exact). */
+ * uniform number u1 (and, for Jendersie-d'Eon's mixture, one more from g); *weight multiplies
+ * the path's throughput (the phase over the sampling density: 1 where the sampling is exact). */
 ATMO_FN float reference_sample_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, int k,
                                      float u1, rng_stream *g, vec3 *weight)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     *weight = v3(1.0f, 1.0f, 1.0f);
+#ifdef ATMO_CLOUD
+    if (k == MEDIA_CLOUD)
+        return reference_sample_cloud_phase(s->cloud.phase, v3_from4(s->cloud.g),
+                                            s->cloud.diameter_um, cloud_phase_table,
+                                            cloud_phase_cdf, s->cloud.table_size, u1, g, weight);
+#endif
 #ifdef ATMO_CLOUDS
-    if (k == MEDIA_CLOUDS) {
-        ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
-        if (c->phase == ATMO_CLOUD_PHASE_JENDERSIE_DEON)
-            return phase_jendersie_deon_sample(phase_jendersie_deon_params(c->diameter_um), u1,
-                                               rng_next(g));
-        if (c->phase == ATMO_CLOUD_PHASE_HG) { /* sampled by channel y, weighted per channel */
-            float cs = phase_henyey_greenstein_sample(c->g.y, u1);
-            float py = phase_henyey_greenstein(cs, c->g.y);
-            *weight = v3(phase_henyey_greenstein(cs, c->g.x) / py, 1.0f,
-                         phase_henyey_greenstein(cs, c->g.z) / py);
-            return cs;
-        }
-        return phase_rows_sample(clouds_phase_table, clouds_phase_cdf, c->table_size, u1, weight);
-    }
+    if (k == MEDIA_CLOUDS)
+        return reference_sample_cloud_phase(s->clouds.phase, v3_from4(s->clouds.g),
+                                            s->clouds.diameter_um, clouds_phase_table,
+                                            clouds_phase_cdf, s->clouds.table_size, u1, g,
+                                            weight);
 #endif
     (void)g;
     return k == MEDIA_RAYLEIGH ? phase_draine_sample(0.0f, 1.0f, u1)
@@ -390,6 +506,9 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
             s, ATMO_LUT_ARGS, reference_world_point(&frame, pos), reference_world_dir(&frame, dir),
             d, reference_segment_majorant(s, r0, mu0, d), reference_clouds_outside(s, r0, mu0, d),
             blocked ? REFERENCE_SEGMENT_POINTS / d : 0.0f);
+#ifdef ATMO_CLOUD
+        reference_walk_shell(s, ATMO_LUT_ARGS, &rw, r0, mu0);
+#endif
         int count = order + 1 >= min_order; /* light reaching the camera through this segment's
                                                next-event estimates has order + 1 events */
         int more = max_order == 0 || order + 1 < max_order;
@@ -399,7 +518,7 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
         vec3 W = w, ws = w;
         int collided = 0, chosen = 0;
         float t_hit = 0.0f;
-#ifdef ATMO_CLOUDS
+#ifdef REFERENCE_CLOUDY
         float w_roulette = REFERENCE_ROULETTE_T * tracking_max3(w);
 #endif
         while (reference_walk_next(s, ATMO_LUT_ARGS, &rw, g)) {
@@ -408,7 +527,7 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
             media_sample ms = media_at(s, ATMO_LUT_ARGS, &q);
             if (count && tracking_max3(W) > 0.0f) {
                 float keep = 1.0f;
-#ifdef ATMO_CLOUDS
+#ifdef REFERENCE_CLOUDY
                 /* under the clouds' majorant most points are null: the estimate is made with
                  * probability keep (>= REFERENCE_NEE_FLOOR, more where it scatters) and
                  * divided by it, which keeps it unbiased and spares most shadow rays */
@@ -435,7 +554,7 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
                     collided = 1, chosen = k, t_hit = t;
             }
             W = tracking_ratio(&rw.w, W, ms.extinction);
-#ifdef ATMO_CLOUDS
+#ifdef REFERENCE_CLOUDY
             /* once the segment's collision is chosen, only W-weighted estimates are left */
             if (collided || !more) {
                 W = tracking_roulette(W, w_roulette, g);

@@ -52,11 +52,11 @@
 #define ATMO_LUT_PARAMS                                                                            \
     const float4 *transmittance_lut, const float4 *ms_lut, const float4 *scattering_rayleigh,     \
         const float4 *scattering_mie, const float4 *scattering_scratch,                           \
-        const float4 *cloud_phase_table, const float *heightmap, const float *terrain_base,     \
-        const float4 *sky_view_lut
+        const float4 *cloud_phase_table, const float *cloud_phase_cdf, const float *heightmap,  \
+        const float *terrain_base, const float4 *sky_view_lut
 #define ATMO_LUT_ARGS                                                                              \
     transmittance_lut, ms_lut, scattering_rayleigh, scattering_mie, scattering_scratch,           \
-        cloud_phase_table, heightmap, terrain_base, sky_view_lut
+        cloud_phase_table, cloud_phase_cdf, heightmap, terrain_base, sky_view_lut
 #endif
 
 #endif
