@@ -46,14 +46,15 @@ void test_trace_plan_at(test_trace_setup *u, const double cam[3], const char *ex
         test_scene_set(&u->scene, extra2);
     test_plan(&u->scene, &u->plan);
     memcpy(u->cam, cam, sizeof u->cam);
+    u->heightmap = NULL;
     test_trace_R_m = u->scene.atmosphere.bottom_radius_m;
 }
 
 /* The surface point above planar (x, z) and its vertical, world coordinates. */
-void test_trace_surface_point(const atmo_gpu_terrain_field *f, double sea, double x, double z,
-                          double p[3], double n[3])
+void test_trace_surface_point(const atmo_gpu_terrain_field *f, const float *hm, double sea,
+                              double x, double z, double p[3], double n[3])
 {
-    double h = fmax(terrain_ref_height(f, x, z, NULL, NULL), sea);
+    double h = fmax(terrain_ref_height_map(f, hm, x, z), sea);
     double rho2 = (x * x + z * z) / (test_trace_R_m * test_trace_R_m);
     n[0] = x / test_trace_R_m, n[1] = sqrt(1 - rho2), n[2] = z / test_trace_R_m;
     for (int k = 0; k < 3; k++)
@@ -140,8 +141,8 @@ test_trace_tally test_trace_judge(const test_trace_setup *u, const test_trace_ra
         const test_trace_ray *r = &rays[i];
         double o[3], t_ref = 0, min_clear = INFINITY;
         test_trace_world_at(u, r, 0.0, o);
-        int ref = terrain_ref_hit(&tr->field, test_trace_R_m, sea, o, r->d, r->t_max, TEST_TRACE_REF_STEP_M, &t_ref,
-                                  &min_clear);
+        int ref = terrain_ref_hit_map(&tr->field, u->heightmap, test_trace_R_m, sea, o, r->d,
+                                      r->t_max, TEST_TRACE_REF_STEP_M, &t_ref, &min_clear);
         int hit = out[i].x >= 0.0f;
         double t = out[i].x, w[3];
         y.ref_hits += ref;
@@ -157,7 +158,7 @@ test_trace_tally test_trace_judge(const test_trace_setup *u, const test_trace_ra
             continue;
         test_trace_world_at(u, r, t, w);
         double eps = 0.01 + (double)tr->tolerance * t, delta = test_trace_delta_m(&tr->field, L, w, t);
-        double g = terrain_ref_clearance(&tr->field, test_trace_R_m, sea, w);
+        double g = terrain_ref_clearance_map(&tr->field, u->heightmap, test_trace_R_m, sea, w);
         y.worst_clear = fmax(y.worst_clear, g > 0 ? g / (eps + delta) : -g / delta);
         if (g < -delta || g > eps + delta) {
             y.bad++;
@@ -176,7 +177,8 @@ test_trace_tally test_trace_judge(const test_trace_setup *u, const test_trace_ra
             for (int k = 1; k < 64; k++) {
                 double q[3];
                 test_trace_world_at(u, r, t_ref + (t - t_ref) * k / 64.0, q);
-                deepest = fmin(deepest, terrain_ref_clearance(&tr->field, test_trace_R_m, sea, q));
+                deepest = fmin(deepest, terrain_ref_clearance_map(&tr->field, u->heightmap,
+                                                                  test_trace_R_m, sea, q));
             }
             if (deepest < -(delta + 0.5)) {
                 y.through++;
@@ -192,8 +194,9 @@ test_trace_tally test_trace_judge(const test_trace_setup *u, const test_trace_ra
 /* n_down rays from the camera downward, then n_graze grazing rays from 2..50 m above random
  * surface points within 2 km of the site, then n_skim ridge-skimming rays (see
  * test_terrain_trace.c), drawn from the generator state *rng. */
-void test_trace_make_rays(const atmo_gpu_terrain_field *f, const double cam[3], int n_down,
-                          int n_graze, int n_skim, unsigned *rng, test_trace_ray *rays)
+void test_trace_make_rays(const atmo_gpu_terrain_field *f, const float *hm, const double cam[3],
+                          int n_down, int n_graze, int n_skim, unsigned *rng,
+                          test_trace_ray *rays)
 {
     for (int i = 0; i < n_down + n_graze + n_skim; i++) {
         double o[3], d[3], t_max;
@@ -207,7 +210,7 @@ void test_trace_make_rays(const atmo_gpu_terrain_field *f, const double cam[3], 
             double x = TEST_TRACE_SITE_X + (test_trace_urand(rng) - 0.5) * 4000;
             double z = TEST_TRACE_SITE_Z + (test_trace_urand(rng) - 0.5) * 4000;
             double q[3], m[3], phi = 2 * M_PI * test_trace_urand(rng);
-            test_trace_surface_point(f, 0.0, x, z, q, m);
+            test_trace_surface_point(f, hm, 0.0, x, z, q, m);
             /* a horizontal unit vector at q */
             double e1[3] = {cos(phi), 0, sin(phi)}, k = e1[0] * m[0] + e1[1] * m[1] + e1[2] * m[2];
             for (int c = 0; c < 3; c++)
@@ -228,7 +231,7 @@ void test_trace_make_rays(const atmo_gpu_terrain_field *f, const double cam[3], 
                     back *= 0.7;
                     for (int c = 0; c < 3; c++)
                         o[c] = q[c] + above * m[c] - back * d[c];
-                } while (back > 1.0 && terrain_ref_clearance(f, test_trace_R_m, 0.0, o) < 1.0);
+                } while (back > 1.0 && terrain_ref_clearance_map(f, hm, test_trace_R_m, 0.0, o) < 1.0);
                 t_max = back + 3000.0;
             }
         }

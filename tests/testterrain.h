@@ -20,6 +20,7 @@ typedef struct test_trace_setup {
     atmo_scene scene;
     atmo_plan plan;
     double cam[3];
+    const float *heightmap; /* the float heightmap the reference reads (NULL: procedural) */
 } test_trace_setup;
 
 typedef struct test_trace_tally {
@@ -38,13 +39,15 @@ double test_trace_urand(unsigned *state);
  * up to two more KEY=VALUE settings (may be NULL). */
 void test_trace_plan_at(test_trace_setup *u, const double cam[3], const char *extra1,
                         const char *extra2);
-/* The surface point above planar (x, z) and its vertical, world coordinates. */
-void test_trace_surface_point(const atmo_gpu_terrain_field *f, double sea, double x, double z,
-                              double p[3], double n[3]);
+/* The surface point above planar (x, z) and its vertical, world coordinates (hm: a float
+ * heightmap under the field, terrain_ref_height_map, or NULL). */
+void test_trace_surface_point(const atmo_gpu_terrain_field *f, const float *hm, double sea,
+                              double x, double z, double p[3], double n[3]);
 void test_trace_make_ray(test_trace_ray *r, const double cam[3], const double origin_world[3],
                          const double d[3], double t_max);
-void test_trace_make_rays(const atmo_gpu_terrain_field *f, const double cam[3], int n_down,
-                          int n_graze, int n_skim, unsigned *rng, test_trace_ray *rays);
+void test_trace_make_rays(const atmo_gpu_terrain_field *f, const float *hm, const double cam[3],
+                          int n_down, int n_graze, int n_skim, unsigned *rng,
+                          test_trace_ray *rays);
 /* Runs the probe over the rays: out[i] = (t or -1, steps used). */
 void test_trace_run(atmo_cl *cl, cl_program prog, const atmo_plan *p, const test_trace_ray *rays,
                     int n, float4 *out);
