@@ -134,6 +134,7 @@ static const char *const clouds_march_fragments[] = {"kernels/media/cloud_march.
  * heightmap pass, which reads only the field (the camera's placement stays out of the key). */
 static const char *const terrain_fragments[] = {"kernels/terrain/noise.h",
                                                 "kernels/terrain/terrain_detail.h",
+                                                "kernels/terrain/terrain_half.h",
                                                 "kernels/terrain/terrain.h",
                                                 "kernels/terrain/terrain_shafts.h",
                                                 "kernels/terrain/water.h",

@@ -128,15 +128,18 @@ int atmo_plan_terrain(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     t->shafts = s->terrain.shafts;
 
     int n = t->field.heightmap_size;
-    size_t texel = s->terrain.heightmap_format == ATMO_TERRAIN_FORMAT_DERIVATIVES ? 3 : 1;
-    size_t bytes = sizeof(float) * texel * (size_t)n * (size_t)n;
+    /* bytes per texel: 12 (derivatives), 2 (half; the buffer rounded up to whole floats), 4 */
+    size_t texel = s->terrain.heightmap_format == ATMO_TERRAIN_FORMAT_DERIVATIVES ? 12
+                   : s->terrain.heightmap_format == ATMO_TERRAIN_FORMAT_HALF  ? 2
+                                                                              : 4;
+    size_t bytes = (texel * (size_t)n * (size_t)n + 3) / 4 * 4;
     if (n == 1)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "terrain.heightmap_size=1 is no grid; use 0 (direct evaluation) or >= 2");
     if (bytes > ATMO_TERRAIN_HEIGHTMAP_MAX_BYTES)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "terrain.heightmap_size=%d needs %.0f MiB, over the %.0f MiB limit; use "
-                         "a smaller size, the float format, or 0 (direct evaluation)",
+                         "a smaller size, the float or half format, or 0 (direct evaluation)",
                          n, bytes / 1048576.0, ATMO_TERRAIN_HEIGHTMAP_MAX_BYTES / 1048576.0);
     int rc = atmo_plan_add_buffer(p, "heightmap", "float", bytes, 0, NULL, e);
     if (!rc)

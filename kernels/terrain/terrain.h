@@ -21,8 +21,8 @@
  *
  * Heightmap. heightmap_size = N > 0: the pass of heightmap.cl sampled h at the centres of an
  * N x N grid over the square [-E/2, E/2]^2 (E = heightmap_extent_m); lookups inside it are
- * bilinear (the height alone, gradient by central differences one texel apart; or the height
- * and its derivatives, each interpolated), plus the fBm's detail below a DEM's cells where the
+ * bilinear (the height alone, gradient by central differences one texel apart, as a float or a
+ * half float; or the height and its derivatives, each interpolated), plus the fBm's detail below a DEM's cells where the
  * field has one (terrain_detail.h: value and exact gradient); outside it the fBm is evaluated
  * directly. N = 0: always direct.
  *
@@ -63,6 +63,7 @@
 #include "common/geometry.h"
 #include "terrain/noise.h"
 #include "terrain/terrain_detail.h"
+#include "terrain/terrain_half.h"
 #include "atmo/gpu_types.h"
 #endif
 
@@ -105,6 +106,8 @@ ATMO_FN float terrain_texel(ATMO_GLOBAL const atmo_gpu_terrain_field *f,
     int n = f->heightmap_size;
     i = i < 0 ? 0 : (i >= n ? n - 1 : i);
     j = j < 0 ? 0 : (j >= n ? n - 1 : j);
+    if (f->heightmap_format == ATMO_TERRAIN_FORMAT_HALF)
+        return TERRAIN_LOAD_HALF(hm, j * n + i);
     int stride = f->heightmap_format == ATMO_TERRAIN_FORMAT_DERIVATIVES ? 3 : 1;
     return hm[(j * n + i) * stride + k];
 }
