@@ -151,7 +151,8 @@ test_trace_tally test_trace_judge(const test_trace_setup *u, const test_trace_ra
         if (ref && !hit) {
             y.misses++;
             if (verbose)
-                fprintf(stderr, "  ray %d: missed a hit at %.3f m\n", i, t_ref);
+                fprintf(stderr, "  ray %d: missed a hit at %.3f m (%d steps)\n", i, t_ref,
+                        (int)out[i].y);
             continue;
         }
         if (!hit)
@@ -184,7 +185,8 @@ test_trace_tally test_trace_judge(const test_trace_setup *u, const test_trace_ra
                 y.through++;
                 if (verbose)
                     fprintf(stderr, "  ray %d: passed %.3f m deep through the terrain (hits "
-                                    "%.3f / %.3f m)\n", i, -deepest, t_ref, t);
+                                    "%.3f / %.3f m, %d steps)\n", i, -deepest, t_ref, t,
+                            (int)out[i].y);
             }
         }
     }
@@ -237,4 +239,85 @@ void test_trace_make_rays(const atmo_gpu_terrain_field *f, const float *hm, cons
         }
         test_trace_make_ray(&rays[i], cam, o, d, t_max);
     }
+}
+
+float *test_trace_dem_plan(test_trace_setup *u, const double cam[3], int plane)
+{
+    test_trace_plan_at(u, cam, "terrain.heightmap_size=512", "terrain.heightmap_extent_m=65536");
+    atmo_plan *p = &u->plan;
+    const atmo_gpu_terrain_field *f = &p->gpu.terrain.field;
+    float *grid = malloc(sizeof(float) * TEST_TRACE_DEM_MAP * TEST_TRACE_DEM_MAP);
+    double texel = TEST_TRACE_DEM_EXTENT_M / TEST_TRACE_DEM_MAP, first = -0.5 * TEST_TRACE_DEM_EXTENT_M + 0.5 * texel;
+    for (int j = 0; j < TEST_TRACE_DEM_MAP; j++)
+        for (int i = 0; i < TEST_TRACE_DEM_MAP; i++) {
+            double x = (double)(float)(first + i * texel), z = (double)(float)(first + j * texel);
+            grid[j * TEST_TRACE_DEM_MAP + i] = (float)(plane ? 500.0 + 0.05 * x + 0.03 * z
+                                              : terrain_ref_height(f, x, z, NULL, NULL));
+        }
+    atmo_err e;
+    CHECK(atmo_plan_terrain_base(p, grid, TEST_TRACE_DEM_MAP, TEST_TRACE_DEM_MAP, first, first, texel, texel, 0.0, &e) ==
+          ATMO_OK);
+    CHECK(atmo_plan_terrain_detail(p, texel, &e) == ATMO_OK);
+    return grid;
+}
+
+
+int test_trace_dem_run(atmo_cl *cl, int n_down, int n_graze, int n_skim, unsigned seed,
+                       int *ref_hits)
+{
+    test_trace_setup u;
+    double cam0[3] = {TEST_TRACE_SITE_X, 0.0, TEST_TRACE_SITE_Z};
+    int nm = TEST_TRACE_DEM_MAP;
+    float *grid = test_trace_dem_plan(&u, cam0, 0);
+    atmo_gpu_terrain_field f = u.plan.gpu.terrain.field;
+    cl_program prog = test_plan_program(cl, &u.plan, test_trace_probe_src);
+    cl_int err;
+    cl_mem scene = clCreateBuffer(cl->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                  sizeof u.plan.gpu, &u.plan.gpu, &err);
+    CHECK(err == CL_SUCCESS);
+    cl_mem luts[ATMO_PLAN_MAX_BUFFERS];
+    test_precompute(cl, prog, scene, &u.plan, luts);
+    float *map = malloc(sizeof(float) * (size_t)nm * (size_t)nm);
+    test_cl_read(cl, test_plan_buffer(&u.plan, luts, "heightmap"),
+                 sizeof(float) * (size_t)nm * (size_t)nm, map);
+    test_release_luts(luts);
+    clReleaseMemObject(scene);
+    clReleaseProgram(prog);
+    double p[3], n[3], cam[3];
+    test_trace_surface_point(&f, map, 0.0, TEST_TRACE_SITE_X, TEST_TRACE_SITE_Z, p, n);
+    for (int k = 0; k < 3; k++)
+        cam[k] = p[k] + 300.0 * n[k];
+    atmo_plan_free(&u.plan);
+    free(grid);
+    grid = test_trace_dem_plan(&u, cam, 0);
+    u.heightmap = map;
+    prog = test_plan_program(cl, &u.plan, test_trace_probe_src);
+    int n_rays = n_down + n_graze + n_skim;
+    test_trace_ray *rays = calloc((size_t)n_rays, sizeof *rays);
+    float4 *out = calloc((size_t)n_rays, sizeof *out);
+    test_trace_make_rays(&f, map, cam, n_down, n_graze, n_skim, &seed, rays);
+    test_trace_run(cl, prog, &u.plan, rays, n_rays, out);
+    static const char *const names[3] = {"downward", "grazing", "ridge-skimming"};
+    const int first[4] = {0, n_down, n_down + n_graze, n_rays};
+    int all_hits = 0, all_bad = 0;
+    for (int g = 0; g < 3; g++) {
+        test_trace_tally y = test_trace_judge(&u, rays + first[g], first[g + 1] - first[g],
+                                              out + first[g], 1);
+        printf("DEM + detail, %-14s %5d rays, %5d hits (reference %5d): %d misses, %d "
+               "pass-throughs, %d false, %d bad; worst clearance %.3f of its bound; %.1f steps "
+               "per ray\n", names[g], first[g + 1] - first[g], y.hits, y.ref_hits, y.misses,
+               y.through, y.false_hits, y.bad, y.worst_clear, y.mean_steps);
+        all_hits += y.ref_hits;
+        all_bad += y.misses + y.through + y.false_hits + y.bad;
+    }
+    printf("%d errors in %d reference hits: rate < %.3g at 95 %% confidence\n", all_bad, all_hits,
+           3.0 / all_hits);
+    free(rays);
+    free(out);
+    free(map);
+    free(grid);
+    clReleaseProgram(prog);
+    atmo_plan_free(&u.plan);
+    *ref_hits = all_hits;
+    return all_bad;
 }

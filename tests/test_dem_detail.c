@@ -38,7 +38,8 @@
  *     the brute-force double march over the same float heightmap plus the double detail
  *     (terrain_ref_hit_map, 2 m steps, shorter near the surface: no 4 m lattice cell is
  *     stepped over), classes of error as in test_terrain_trace: none asserted (a rate below
- *     3 / hits at 95 % confidence), the steps per ray printed. */
+ *     3 / hits at 95 % confidence; test_dem_detail_miss_rate, slow, takes it below 1e-4), the
+ *     steps per ray printed. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -50,8 +51,8 @@
 #include "testscene.h"
 #include "testterrain.h"
 
-#define MAP 512
-#define EXTENT 65536.0
+#define MAP TEST_TRACE_DEM_MAP
+#define EXTENT TEST_TRACE_DEM_EXTENT_M
 #define CELLS 400
 #define QUAD 128
 
@@ -59,28 +60,6 @@ static double urand(unsigned *state)
 {
     *state = *state * 1664525u + 1013904223u;
     return (*state >> 8) / 16777216.0;
-}
-
-/* u's plan: the heightmap's size and extent set, the base grid its texel centres' heights
- * (plane: the plane of oracle 2, else the double fBm), with detail below 128 m cells. */
-static float *dem_plan(test_trace_setup *u, const double cam[3], int plane)
-{
-    test_trace_plan_at(u, cam, "terrain.heightmap_size=512", "terrain.heightmap_extent_m=65536");
-    atmo_plan *p = &u->plan;
-    const atmo_gpu_terrain_field *f = &p->gpu.terrain.field;
-    float *grid = malloc(sizeof(float) * MAP * MAP);
-    double texel = EXTENT / MAP, first = -0.5 * EXTENT + 0.5 * texel;
-    for (int j = 0; j < MAP; j++)
-        for (int i = 0; i < MAP; i++) {
-            double x = (double)(float)(first + i * texel), z = (double)(float)(first + j * texel);
-            grid[j * MAP + i] = (float)(plane ? 500.0 + 0.05 * x + 0.03 * z
-                                              : terrain_ref_height(f, x, z, NULL, NULL));
-        }
-    atmo_err e;
-    CHECK(atmo_plan_terrain_base(p, grid, MAP, MAP, first, first, texel, texel, 0.0, &e) ==
-          ATMO_OK);
-    CHECK(atmo_plan_terrain_detail(p, texel, &e) == ATMO_OK);
-    return grid;
 }
 
 /* The mean of the detail of field f over the square [x, x + C] x [z, z + C]. */
@@ -97,7 +76,7 @@ int main(void)
 {
     test_trace_setup u;
     double cam0[3] = {TEST_TRACE_SITE_X, 0.0, TEST_TRACE_SITE_Z};
-    float *plane = dem_plan(&u, cam0, 1);
+    float *plane = test_trace_dem_plan(&u, cam0, 1);
     atmo_gpu_terrain_field f = u.plan.gpu.terrain.field;
     int i0 = f.detail_octave0, K = f.detail_octaves;
     double A = f.detail_amplitude_m, texel = EXTENT / MAP;
@@ -195,59 +174,9 @@ int main(void)
     test_require_opencl();
     atmo_cl cl;
     test_cl_open(&cl);
-    float *grid = dem_plan(&u, cam0, 0);
-    f = u.plan.gpu.terrain.field;
-    cl_program prog = test_plan_program(&cl, &u.plan, test_trace_probe_src);
-    cl_int err;
-    cl_mem scene = clCreateBuffer(cl.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                                  sizeof u.plan.gpu, &u.plan.gpu, &err);
-    CHECK(err == CL_SUCCESS);
-    cl_mem luts[ATMO_PLAN_MAX_BUFFERS];
-    test_precompute(&cl, prog, scene, &u.plan, luts);
-    float *map = malloc(sizeof(float) * MAP * MAP);
-    test_cl_read(&cl, test_plan_buffer(&u.plan, luts, "heightmap"), sizeof(float) * MAP * MAP,
-                 map);
-    test_release_luts(luts);
-    clReleaseMemObject(scene);
-    clReleaseProgram(prog);
-    double p[3], n[3], cam[3];
-    test_trace_surface_point(&f, map, 0.0, TEST_TRACE_SITE_X, TEST_TRACE_SITE_Z, p, n);
-    for (int k = 0; k < 3; k++)
-        cam[k] = p[k] + 300.0 * n[k];
-    atmo_plan_free(&u.plan);
-    free(grid);
-    grid = dem_plan(&u, cam, 0);
-    u.heightmap = map;
-    prog = test_plan_program(&cl, &u.plan, test_trace_probe_src);
-    enum { N_DOWN = 400, N_GRAZE = 600, N_SKIM = 500, N_RAYS = N_DOWN + N_GRAZE + N_SKIM };
-    test_trace_ray *rays = calloc(N_RAYS, sizeof *rays);
-    float4 *out = calloc(N_RAYS, sizeof *out);
-    unsigned ray_rng = 9001u;
-    test_trace_make_rays(&f, map, cam, N_DOWN, N_GRAZE, N_SKIM, &ray_rng, rays);
-    test_trace_run(&cl, prog, &u.plan, rays, N_RAYS, out);
-    static const char *const names[3] = {"downward", "grazing", "ridge-skimming"};
-    const int first[4] = {0, N_DOWN, N_DOWN + N_GRAZE, N_RAYS};
-    int all_hits = 0, all_bad = 0;
-    for (int g = 0; g < 3; g++) {
-        test_trace_tally y = test_trace_judge(&u, rays + first[g], first[g + 1] - first[g],
-                                              out + first[g], 1);
-        printf("DEM + detail, %-14s %4d rays, %4d hits (reference %4d): %d misses, %d "
-               "pass-throughs, %d false, %d bad; worst clearance %.3f of its bound; %.1f steps "
-               "per ray\n", names[g], first[g + 1] - first[g], y.hits, y.ref_hits, y.misses,
-               y.through, y.false_hits, y.bad, y.worst_clear, y.mean_steps);
-        all_hits += y.ref_hits;
-        all_bad += y.misses + y.through + y.false_hits + y.bad;
-    }
-    printf("%d errors in %d reference hits: rate < %.3g at 95 %% confidence\n", all_bad, all_hits,
-           3.0 / all_hits);
-    CHECK(all_hits >= 1000);
-    CHECK(all_bad == 0);
-    free(rays);
-    free(out);
-    free(map);
-    free(grid);
-    clReleaseProgram(prog);
-    atmo_plan_free(&u.plan);
+    int hits = 0, errors = test_trace_dem_run(&cl, 400, 600, 500, 9001u, &hits);
+    CHECK(hits >= 1000);
+    CHECK(errors == 0);
     atmo_cl_close(&cl);
     return test_finish();
 }

@@ -10,6 +10,8 @@
 #define TEST_TRACE_SITE_X 23796.0
 #define TEST_TRACE_SITE_Z 16636.0
 #define TEST_TRACE_REF_STEP_M 2.0
+#define TEST_TRACE_DEM_MAP 512
+#define TEST_TRACE_DEM_EXTENT_M 65536.0
 
 typedef struct test_trace_ray {
     double o[3], d[3]; /* camera-relative origin (float-rounded) and unit direction */
@@ -55,6 +57,16 @@ void test_trace_run(atmo_cl *cl, cl_program prog, const atmo_plan *p, const test
 double test_trace_delta_m(const atmo_gpu_terrain_field *f, double L, const double w[3], double t);
 void test_trace_world_at(const test_trace_setup *u, const test_trace_ray *r, double t,
                          double w[3]);
+/* A DEM with detail (test_dem_detail.c): test_trace_plan_at with a 512-texel heightmap over
+ * 65536 m whose base grid (returned, malloc'd) holds its texel centres' heights (plane: 500 +
+ * 0.05 u + 0.03 v; else the double fBm rounded to float), and the detail below 128 m cells. */
+float *test_trace_dem_plan(test_trace_setup *u, const double cam[3], int plane);
+/* Traces n_down + n_graze + n_skim rays (test_trace_make_rays from generator state seed) over
+ * that DEM with detail from 300 m above the site on the device and judges them against the
+ * double march over the device's float heightmap plus the double detail; prints the tallies
+ * and returns the errors, *ref_hits the reference's hits. */
+int test_trace_dem_run(atmo_cl *cl, int n_down, int n_graze, int n_skim, unsigned seed,
+                       int *ref_hits);
 /* Counts the tracer's misses, pass-throughs, false and bad hits against the reference. */
 test_trace_tally test_trace_judge(const test_trace_setup *u, const test_trace_ray *rays, int n,
                                   const float4 *out, int verbose);

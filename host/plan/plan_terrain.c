@@ -22,7 +22,8 @@
  * A digital elevation model (terrain.heightmap_file, atmo/dem.h) becomes the heightmap's base
  * height grid (plan_dem below); with terrain.heightmap_detail the fBm's octaves finer than the
  * cells it is drawn at (the larger of the file's cell and the heightmap's texel) are added at
- * lookup time, else the procedural fBm adds nothing.
+ * lookup time, with twice terrain.steps for the tracer (TERRAIN_DETAIL_STEPS_FACTOR), else the
+ * procedural fBm adds nothing.
  *
  * Tolerance: half a pixel's footprint per metre of distance (tan(fov / 2) / height, the pixel
  * angle), so a hit is as exact as the image can show. */
@@ -38,6 +39,11 @@
 #define TERRAIN_DETAIL_OCTAVES 4
 /* the finest octave the detail may start at (lattice coordinates stay well inside float) */
 #define TERRAIN_DETAIL_MAX_OCTAVE 24
+/* the sphere tracer's step budget over the detail, times terrain.steps: grazing rays over its
+ * metre-scale relief run out of 300 steps about once in 5000 hits and the fallback then steps
+ * over bumps (6 errors in 32356 hits, test_dem_detail_miss_rate); twice the budget leaves none,
+ * and the mean steps per ray grow by 1 % (the few rays that need them) */
+#define TERRAIN_DETAIL_STEPS_FACTOR 2
 
 double atmo_terrain_slope_bound(const atmo_gpu_terrain_field *f)
 {
@@ -201,5 +207,6 @@ int atmo_plan_terrain_detail(atmo_plan *p, double cell_m, atmo_err *e)
     f->detail_octaves = TERRAIN_DETAIL_OCTAVES;
     f->detail_amplitude_m = (float)ldexp((double)f->max_height_m * 0.8 / norm, -i0);
     p->gpu.terrain.slope_bound = (float)atmo_terrain_slope_bound(f);
+    p->gpu.terrain.steps *= TERRAIN_DETAIL_STEPS_FACTOR;
     return ATMO_OK;
 }

@@ -322,7 +322,8 @@ const atmo_param atmo_params[] = {
     ROW_FLOAT("terrain.heightmap_offset_m", dem.offset_m, "m", -1e5, 1e5, 0,
               "PNG heightmap: height of value 0 above sea level"),
     ROW_BOOL("terrain.heightmap_detail", dem.detail, 0,
-             "the procedural fBm adds detail below the heightmap's cell size"),
+             "the procedural fBm adds detail below the heightmap's cell size (the tracer takes "
+             "twice terrain.steps over it)"),
     ROW_ENUM("terrain.heightmap_nodata", dem.nodata, dem_nodata_names, 0,
              "heightmap samples without data: filled from their neighbours, or sea level (0 m)"),
     ROW_BOOL("post.flare", post.flare, 0,
