@@ -17,8 +17,8 @@
  * (host/plan/plan_terrain.c: bicubic at the texel centres) and read back bilinearly, the
  * procedural fBm beyond the heightmap's square: the probe looks up the same texels with the
  * kernels' terrain_height_at as floats (the derivatives format differs in the normal's
- * interpolation, the half format by its rounding, 2^-11 of the height), the reference height is the file's own bicubic interpolant in double
- * (atmo_dem_sample) inside the square, plus with terrain.heightmap_detail the detail below
+ * interpolation, the half format by its rounding, 2^-11 of the height), the reference height
+ * is the file's own bicubic interpolant in double (atmo_dem_sample) inside the square, plus with terrain.heightmap_detail the detail below
  * its cells (terrain_ref_detail), and the coverage is 1 on the file's land, 0 on its water. */
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -63,10 +63,7 @@ static int parse_at(const char *v, double at[2], atmo_err *e)
 /* One point: the report as a cJSON object, or NULL with *e filled. */
 static cJSON *probe(const atmo_plan *p, const atmo_scene *s, const double at[2], atmo_err *e)
 {
-    /* the file's heights are the plan's float grid at the texel centres, whatever the format */
-    atmo_gpu_scene gs = p->gpu;
-    const atmo_gpu_scene *g = &gs;
-    gs.terrain.field.heightmap_format = ATMO_TERRAIN_FORMAT_FLOAT;
+    const atmo_gpu_scene *g = &p->gpu;
     double R = s->atmosphere.bottom_radius_m, rho2 = (at[0] * at[0] + at[1] * at[1]) / (R * R);
     if (rho2 >= 1.0) {
         atmo_fail(e, ATMO_ERR_USAGE,
