@@ -17,7 +17,8 @@
  *
  * The detail below a DEM's cells (kernels/terrain/terrain_detail.h) adds
  *     L_d = K A_i0 2^i0 f (15/8) 2 sqrt 2
- * (K octaves, A_i 2^i constant), about 1.0 for the default terrain over 64 m cells.
+ * (K octaves, A_i 2^i constant), about 1.0 for the default terrain whatever the cell size
+ * (A_i0 2^i0 = H relief / sum b).
  *
  * A digital elevation model (terrain.heightmap_file, atmo/dem.h) becomes the heightmap's base
  * height grid (plan_dem below); with terrain.heightmap_detail the fBm's octaves finer than the

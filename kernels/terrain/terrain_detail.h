@@ -19,7 +19,7 @@
  * so |d| <= A_{i0} (2 - 2^(1 - K)) (|n| <= 1) and |grad d| <= K A_{i0} 2^i0 f (15/8) 2 sqrt 2
  * (each octave as in plan_terrain.c's slope bound, A_i 2^i constant): the tracer's shell and
  * slope bound include both. Octave i hashes with seed + i, as in the fBm. Float precision: the
- * lattice coordinates reach f 2^(i0 + K) |u|, about 2e4 over a 30 m DEM 30 km from the origin,
+ * lattice coordinates reach f 2^(i0 + K) |u|, about 3e4 over a 30 m DEM 30 km from the origin,
  * rounded to ~1e-3 of a lattice cell: millimetres of the detail's height. */
 #ifndef ATMO_TERRAIN_DETAIL_H
 #define ATMO_TERRAIN_DETAIL_H
