@@ -46,14 +46,15 @@ void test_trace_plan_at(test_trace_setup *u, const double cam[3], const char *ex
         test_scene_set(&u->scene, extra2);
     test_plan(&u->scene, &u->plan);
     memcpy(u->cam, cam, sizeof u->cam);
+    u->heightmap = NULL;
     test_trace_R_m = u->scene.atmosphere.bottom_radius_m;
 }
 
 /* The surface point above planar (x, z) and its vertical, world coordinates. */
-void test_trace_surface_point(const atmo_gpu_terrain_field *f, double sea, double x, double z,
-                          double p[3], double n[3])
+void test_trace_surface_point(const atmo_gpu_terrain_field *f, const float *hm, double sea,
+                              double x, double z, double p[3], double n[3])
 {
-    double h = fmax(terrain_ref_height(f, x, z, NULL, NULL), sea);
+    double h = fmax(terrain_ref_height_map(f, hm, x, z), sea);
     double rho2 = (x * x + z * z) / (test_trace_R_m * test_trace_R_m);
     n[0] = x / test_trace_R_m, n[1] = sqrt(1 - rho2), n[2] = z / test_trace_R_m;
     for (int k = 0; k < 3; k++)
@@ -140,8 +141,8 @@ test_trace_tally test_trace_judge(const test_trace_setup *u, const test_trace_ra
         const test_trace_ray *r = &rays[i];
         double o[3], t_ref = 0, min_clear = INFINITY;
         test_trace_world_at(u, r, 0.0, o);
-        int ref = terrain_ref_hit(&tr->field, test_trace_R_m, sea, o, r->d, r->t_max, TEST_TRACE_REF_STEP_M, &t_ref,
-                                  &min_clear);
+        int ref = terrain_ref_hit_map(&tr->field, u->heightmap, test_trace_R_m, sea, o, r->d,
+                                      r->t_max, TEST_TRACE_REF_STEP_M, &t_ref, &min_clear);
         int hit = out[i].x >= 0.0f;
         double t = out[i].x, w[3];
         y.ref_hits += ref;
@@ -150,14 +151,15 @@ test_trace_tally test_trace_judge(const test_trace_setup *u, const test_trace_ra
         if (ref && !hit) {
             y.misses++;
             if (verbose)
-                fprintf(stderr, "  ray %d: missed a hit at %.3f m\n", i, t_ref);
+                fprintf(stderr, "  ray %d: missed a hit at %.3f m (%d steps)\n", i, t_ref,
+                        (int)out[i].y);
             continue;
         }
         if (!hit)
             continue;
         test_trace_world_at(u, r, t, w);
         double eps = 0.01 + (double)tr->tolerance * t, delta = test_trace_delta_m(&tr->field, L, w, t);
-        double g = terrain_ref_clearance(&tr->field, test_trace_R_m, sea, w);
+        double g = terrain_ref_clearance_map(&tr->field, u->heightmap, test_trace_R_m, sea, w);
         y.worst_clear = fmax(y.worst_clear, g > 0 ? g / (eps + delta) : -g / delta);
         if (g < -delta || g > eps + delta) {
             y.bad++;
@@ -176,13 +178,15 @@ test_trace_tally test_trace_judge(const test_trace_setup *u, const test_trace_ra
             for (int k = 1; k < 64; k++) {
                 double q[3];
                 test_trace_world_at(u, r, t_ref + (t - t_ref) * k / 64.0, q);
-                deepest = fmin(deepest, terrain_ref_clearance(&tr->field, test_trace_R_m, sea, q));
+                deepest = fmin(deepest, terrain_ref_clearance_map(&tr->field, u->heightmap,
+                                                                  test_trace_R_m, sea, q));
             }
             if (deepest < -(delta + 0.5)) {
                 y.through++;
                 if (verbose)
                     fprintf(stderr, "  ray %d: passed %.3f m deep through the terrain (hits "
-                                    "%.3f / %.3f m)\n", i, -deepest, t_ref, t);
+                                    "%.3f / %.3f m, %d steps)\n", i, -deepest, t_ref, t,
+                            (int)out[i].y);
             }
         }
     }
@@ -192,8 +196,9 @@ test_trace_tally test_trace_judge(const test_trace_setup *u, const test_trace_ra
 /* n_down rays from the camera downward, then n_graze grazing rays from 2..50 m above random
  * surface points within 2 km of the site, then n_skim ridge-skimming rays (see
  * test_terrain_trace.c), drawn from the generator state *rng. */
-void test_trace_make_rays(const atmo_gpu_terrain_field *f, const double cam[3], int n_down,
-                          int n_graze, int n_skim, unsigned *rng, test_trace_ray *rays)
+void test_trace_make_rays(const atmo_gpu_terrain_field *f, const float *hm, const double cam[3],
+                          int n_down, int n_graze, int n_skim, unsigned *rng,
+                          test_trace_ray *rays)
 {
     for (int i = 0; i < n_down + n_graze + n_skim; i++) {
         double o[3], d[3], t_max;
@@ -207,7 +212,7 @@ void test_trace_make_rays(const atmo_gpu_terrain_field *f, const double cam[3], 
             double x = TEST_TRACE_SITE_X + (test_trace_urand(rng) - 0.5) * 4000;
             double z = TEST_TRACE_SITE_Z + (test_trace_urand(rng) - 0.5) * 4000;
             double q[3], m[3], phi = 2 * M_PI * test_trace_urand(rng);
-            test_trace_surface_point(f, 0.0, x, z, q, m);
+            test_trace_surface_point(f, hm, 0.0, x, z, q, m);
             /* a horizontal unit vector at q */
             double e1[3] = {cos(phi), 0, sin(phi)}, k = e1[0] * m[0] + e1[1] * m[1] + e1[2] * m[2];
             for (int c = 0; c < 3; c++)
@@ -228,10 +233,91 @@ void test_trace_make_rays(const atmo_gpu_terrain_field *f, const double cam[3], 
                     back *= 0.7;
                     for (int c = 0; c < 3; c++)
                         o[c] = q[c] + above * m[c] - back * d[c];
-                } while (back > 1.0 && terrain_ref_clearance(f, test_trace_R_m, 0.0, o) < 1.0);
+                } while (back > 1.0 && terrain_ref_clearance_map(f, hm, test_trace_R_m, 0.0, o) < 1.0);
                 t_max = back + 3000.0;
             }
         }
         test_trace_make_ray(&rays[i], cam, o, d, t_max);
     }
+}
+
+float *test_trace_dem_plan(test_trace_setup *u, const double cam[3], int plane)
+{
+    test_trace_plan_at(u, cam, "terrain.heightmap_size=512", "terrain.heightmap_extent_m=65536");
+    atmo_plan *p = &u->plan;
+    const atmo_gpu_terrain_field *f = &p->gpu.terrain.field;
+    float *grid = malloc(sizeof(float) * TEST_TRACE_DEM_MAP * TEST_TRACE_DEM_MAP);
+    double texel = TEST_TRACE_DEM_EXTENT_M / TEST_TRACE_DEM_MAP, first = -0.5 * TEST_TRACE_DEM_EXTENT_M + 0.5 * texel;
+    for (int j = 0; j < TEST_TRACE_DEM_MAP; j++)
+        for (int i = 0; i < TEST_TRACE_DEM_MAP; i++) {
+            double x = (double)(float)(first + i * texel), z = (double)(float)(first + j * texel);
+            grid[j * TEST_TRACE_DEM_MAP + i] = (float)(plane ? 500.0 + 0.05 * x + 0.03 * z
+                                              : terrain_ref_height(f, x, z, NULL, NULL));
+        }
+    atmo_err e;
+    CHECK(atmo_plan_terrain_base(p, grid, TEST_TRACE_DEM_MAP, TEST_TRACE_DEM_MAP, first, first, texel, texel, 0.0, &e) ==
+          ATMO_OK);
+    CHECK(atmo_plan_terrain_detail(p, texel, &e) == ATMO_OK);
+    return grid;
+}
+
+
+int test_trace_dem_run(atmo_cl *cl, int n_down, int n_graze, int n_skim, unsigned seed,
+                       int *ref_hits)
+{
+    test_trace_setup u;
+    double cam0[3] = {TEST_TRACE_SITE_X, 0.0, TEST_TRACE_SITE_Z};
+    int nm = TEST_TRACE_DEM_MAP;
+    float *grid = test_trace_dem_plan(&u, cam0, 0);
+    atmo_gpu_terrain_field f = u.plan.gpu.terrain.field;
+    cl_program prog = test_plan_program(cl, &u.plan, test_trace_probe_src);
+    cl_int err;
+    cl_mem scene = clCreateBuffer(cl->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                  sizeof u.plan.gpu, &u.plan.gpu, &err);
+    CHECK(err == CL_SUCCESS);
+    cl_mem luts[ATMO_PLAN_MAX_BUFFERS];
+    test_precompute(cl, prog, scene, &u.plan, luts);
+    float *map = malloc(sizeof(float) * (size_t)nm * (size_t)nm);
+    test_cl_read(cl, test_plan_buffer(&u.plan, luts, "heightmap"),
+                 sizeof(float) * (size_t)nm * (size_t)nm, map);
+    test_release_luts(luts);
+    clReleaseMemObject(scene);
+    clReleaseProgram(prog);
+    double p[3], n[3], cam[3];
+    test_trace_surface_point(&f, map, 0.0, TEST_TRACE_SITE_X, TEST_TRACE_SITE_Z, p, n);
+    for (int k = 0; k < 3; k++)
+        cam[k] = p[k] + 300.0 * n[k];
+    atmo_plan_free(&u.plan);
+    free(grid);
+    grid = test_trace_dem_plan(&u, cam, 0);
+    u.heightmap = map;
+    prog = test_plan_program(cl, &u.plan, test_trace_probe_src);
+    int n_rays = n_down + n_graze + n_skim;
+    test_trace_ray *rays = calloc((size_t)n_rays, sizeof *rays);
+    float4 *out = calloc((size_t)n_rays, sizeof *out);
+    test_trace_make_rays(&f, map, cam, n_down, n_graze, n_skim, &seed, rays);
+    test_trace_run(cl, prog, &u.plan, rays, n_rays, out);
+    static const char *const names[3] = {"downward", "grazing", "ridge-skimming"};
+    const int first[4] = {0, n_down, n_down + n_graze, n_rays};
+    int all_hits = 0, all_bad = 0;
+    for (int g = 0; g < 3; g++) {
+        test_trace_tally y = test_trace_judge(&u, rays + first[g], first[g + 1] - first[g],
+                                              out + first[g], 1);
+        printf("DEM + detail, %-14s %5d rays, %5d hits (reference %5d): %d misses, %d "
+               "pass-throughs, %d false, %d bad; worst clearance %.3f of its bound; %.1f steps "
+               "per ray\n", names[g], first[g + 1] - first[g], y.hits, y.ref_hits, y.misses,
+               y.through, y.false_hits, y.bad, y.worst_clear, y.mean_steps);
+        all_hits += y.ref_hits;
+        all_bad += y.misses + y.through + y.false_hits + y.bad;
+    }
+    printf("%d errors in %d reference hits: rate < %.3g at 95 %% confidence\n", all_bad, all_hits,
+           3.0 / all_hits);
+    free(rays);
+    free(out);
+    free(map);
+    free(grid);
+    clReleaseProgram(prog);
+    atmo_plan_free(&u.plan);
+    *ref_hits = all_hits;
+    return all_bad;
 }

@@ -11,7 +11,8 @@
 # `atmo params --json` with their types; a scene saved with a heightmap file reads back to the
 # same bytes. Bad input (no file, a missing file, no extent) exits 2 with one line on stderr
 # naming what is wrong, before any rendering (no output file is written). A heightmap file
-# drawn as terrain replaces the procedural heights: the render differs from the procedural one.
+# drawn as terrain replaces the procedural heights: the render differs from the procedural one,
+# and with terrain.heightmap_detail the fBm's detail below its cells changes it again.
 set -u
 atmo=$1
 tmp=$(mktemp -d)
@@ -116,21 +117,36 @@ t = json.load(open(sys.argv[1]))["terrain"]
 assert t["heightmap_file"] == sys.argv[2] and t["heightmap_center_m"] == [1500, -2500], t
 PY
 
-# the file drawn as terrain (it implies terrain.enabled): refused with the fBm detail (not
-# built); drawn, it replaces the procedural heights (the image differs from the procedural's)
-"$atmo" render --set terrain.enabled=true --set terrain.heightmap_file="$tmp/ramp.png" \
-    --set terrain.heightmap_file_extent_m=20000 --set terrain.heightmap_detail=true \
-    --output "$tmp/no.pfm" 2>"$tmp/err"
-one_line_error $? "terrain.heightmap_detail"
-[ ! -e "$tmp/no.pfm" ] || bad "a refused render wrote its output"
+# the file drawn as terrain (it implies terrain.enabled): it replaces the procedural heights
+# (the image differs from the procedural's), and with terrain.heightmap_detail the fBm's
+# octaves below its cells add to it (the image differs again, and has no NaN/Inf: a PFM's
+# floats read back finite); the detail without a file is refused
 view=(--set terrain.enabled=true --set atmosphere.method=single --set camera.position_m=0,3000,12000
       --set camera.pitch_deg=-12 --set camera.yaw_deg=180 --width 32 --height 16 --samples 1 --quiet)
+"$atmo" render "${view[@]}" --set terrain.heightmap_detail=true --output "$tmp/no.pfm" 2>"$tmp/err"
+one_line_error $? "terrain.heightmap_file"
+[ ! -e "$tmp/no.pfm" ] || bad "a refused render wrote its output"
 "$atmo" render "${view[@]}" --output "$tmp/fbm.pfm" 2>"$tmp/err" || { bad "procedural render"; cat "$tmp/err" >&2; }
 "$atmo" render "${view[@]}" --set terrain.heightmap_file="$tmp/ramp.png" \
     --set terrain.heightmap_file_extent_m=20000 --set terrain.heightmap_scale_m=2000 \
     --output "$tmp/dem.pfm" 2>"$tmp/err" || { bad "render with the DEM as terrain"; cat "$tmp/err" >&2; }
 [ -s "$tmp/dem.pfm" ] && ! cmp -s "$tmp/fbm.pfm" "$tmp/dem.pfm" ||
     bad "the DEM render is missing or equals the procedural terrain's"
+"$atmo" render "${view[@]}" --set terrain.heightmap_file="$tmp/ramp.png" \
+    --set terrain.heightmap_file_extent_m=20000 --set terrain.heightmap_scale_m=2000 \
+    --set terrain.heightmap_detail=true --output "$tmp/detail.pfm" 2>"$tmp/err" ||
+    { bad "render with the DEM and its detail"; cat "$tmp/err" >&2; }
+[ -s "$tmp/detail.pfm" ] && ! cmp -s "$tmp/dem.pfm" "$tmp/detail.pfm" ||
+    bad "the DEM render with detail is missing or equals the one without"
+python3 - "$tmp/detail.pfm" <<'PY' || fail=1
+import math, struct, sys
+data = open(sys.argv[1], "rb").read()
+head = data.split(b"\n", 3)
+w, h = map(int, head[1].split())
+scale = float(head[2])
+vals = struct.unpack(("<" if scale < 0 else ">") + "%df" % (3 * w * h), head[3][:12 * w * h])
+assert all(math.isfinite(v) for v in vals), "NaN/Inf in the render with detail"
+PY
 
 # atmo terrain --at probes the file as a render draws it: at a heightmap texel centre (the
 # default 1024 texels over 65536 m: centres at 32 + 64 k m) the height is the file's bicubic
@@ -141,6 +157,9 @@ dem=(--set terrain.heightmap_file="$tmp/ramp.png" --set terrain.heightmap_file_e
      --set terrain.heightmap_scale_m=2000)
 "$atmo" terrain "${dem[@]}" --at 32,32 --at 2080,-3104 --at 40000,100 --json >"$tmp/probe.json" \
     2>"$tmp/err" || { bad "atmo terrain --at with a heightmap file failed"; cat "$tmp/err" >&2; }
+"$atmo" terrain "${dem[@]}" --set terrain.heightmap_detail=true --at 32,32 --at 2080,-3104 \
+    --json >"$tmp/probe_detail.json" 2>"$tmp/err" ||
+    { bad "atmo terrain --at with a heightmap file and detail failed"; cat "$tmp/err" >&2; }
 "$atmo" terrain --at 40000,100 --json >"$tmp/probe_fbm.json" 2>"$tmp/err" ||
     { bad "atmo terrain --at failed"; cat "$tmp/err" >&2; }
 python3 - "$tmp/probe.json" "$tmp/probe_fbm.json" <<'PY' || fail=1
@@ -157,6 +176,22 @@ assert pts[2]["height_m"] == fbm["height_m"], (pts[2], fbm)
 print("atmo terrain with the file: %.3f and %.3f m at texel centres (file %.3f, %.3f); "
       "beyond the heightmap the procedural %.3f m" % (pts[0]["height_m"], pts[1]["height_m"],
       pts[0]["height_ref_m"], pts[1]["height_ref_m"], pts[2]["height_m"]))
+PY
+# with the detail: the height is the file's interpolant plus the double detail
+# (terrain_ref_detail, in "height_ref_m") within the same 1e-3 m, differs from the file's alone
+# by at most the detail's bound (2 A, A = 4000 0.8 / sum b 2^-11 = 0.78 m for 64 m texels, the
+# first octave with a period <= 32 m being the 11th) and not by nothing
+python3 - "$tmp/probe.json" "$tmp/probe_detail.json" <<'PY' || fail=1
+import json, sys
+plain = [json.loads(l) for l in open(sys.argv[1])][:2]
+det = [json.loads(l) for l in open(sys.argv[2])]
+amp = 4000 * 0.8 / (2 * (1 - 0.5 ** 9)) / 2 ** 11
+for p, d in zip(plain, det):
+    assert abs(d["height_m"] - d["height_ref_m"]) <= 1e-3, d
+    assert 0 < abs(d["height_m"] - p["height_m"]) <= 2 * amp, (p, d)
+print("atmo terrain with the detail: %+.3f and %+.3f m over the file's heights (bound %.3f m)" %
+      (det[0]["height_m"] - plain[0]["height_m"], det[1]["height_m"] - plain[1]["height_m"],
+       2 * amp))
 PY
 
 [ $fail -eq 0 ] && echo "test_dem_cli: passed"

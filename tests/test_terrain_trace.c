@@ -53,7 +53,7 @@ int main(void)
     double cam[3] = {TEST_TRACE_SITE_X, 0.0, TEST_TRACE_SITE_Z}, p[3], n[3];
     test_trace_plan_at(&u, cam, NULL, NULL); /* for the field */
     const atmo_gpu_terrain_field f = u.plan.gpu.terrain.field;
-    test_trace_surface_point(&f, 0.0, TEST_TRACE_SITE_X, TEST_TRACE_SITE_Z, p, n);
+    test_trace_surface_point(&f, NULL, 0.0, TEST_TRACE_SITE_X, TEST_TRACE_SITE_Z, p, n);
     atmo_plan_free(&u.plan);
     for (int k = 0; k < 3; k++)
         cam[k] = p[k] + 300.0 * n[k];
@@ -63,7 +63,7 @@ int main(void)
     test_trace_ray *rays = calloc(N_RAYS, sizeof *rays);
     float4 *out = calloc(N_RAYS, sizeof *out);
     unsigned rng = 777u;
-    test_trace_make_rays(&f, cam, N_DOWN, N_GRAZE, N_SKIM, &rng, rays);
+    test_trace_make_rays(&f, NULL, cam, N_DOWN, N_GRAZE, N_SKIM, &rng, rays);
     static const char *const names[3] = {"downward", "grazing", "ridge-skimming"};
     const int first[4] = {0, N_DOWN, N_DOWN + N_GRAZE, N_RAYS};
 
@@ -101,7 +101,7 @@ int main(void)
 
     /* precision: one target, cameras from 1 m to 2000 km away at 45 degrees */
     double target[3], tn[3];
-    test_trace_surface_point(&f, 0.0, TEST_TRACE_SITE_X + 1234.5, TEST_TRACE_SITE_Z - 987.25, target, tn);
+    test_trace_surface_point(&f, NULL, 0.0, TEST_TRACE_SITE_X + 1234.5, TEST_TRACE_SITE_Z - 987.25, target, tn);
     double east[3] = {tn[1], -tn[0], 0}, el = hypot(east[0], east[1]);
     static const double dist[] = {1, 10, 100, 1e3, 1e4, 1e5, 2e6};
     for (size_t k = 0; k < sizeof dist / sizeof dist[0]; k++) {

@@ -1,11 +1,13 @@
 /* bench_terrain.c — `atmo bench terrain`: the terrain's shortcuts, each error against time.
  *
  * Rows (DIR/terrain.csv, chart DIR/terrain.svg; DIR/terrain_thesis1.csv for the timings):
- *   heightmap-float N, heightmap-derivatives N, direct: the height field's RMS error in metres
+ *   heightmap-float N, heightmap-derivatives N, heightmap-half N, direct: the height field's
+ *     RMS error in metres
  *     against the double-precision reference (host/terrain/terrain_ref.c) at 4000 random points
  *     of the heightmap's square (65.5 km, the thesis site inside it) — for a heightmap, the
  *     bilinear interpolation of its texels (the reference at the texel centres: the pass writes
- *     those within float rounding, test_terrain_noise), for direct the kernels' float fBm
+ *     those within float rounding, test_terrain_noise; the half format their rounding to half,
+ *     bitwise as the pass stores them, test_terrain_half), for direct the kernels' float fBm
  *     compiled on the host; the settings name the device memory. Seconds: precompute + render
  *     of thesis-1 at 64x36, 1 sample, method single, without shadows or shafts, on the device.
  *     The normals' RMS angle error (degrees) is the second row of each size ("-normal").
@@ -64,9 +66,10 @@ static int set(atmo_scene *s, const char *kv, atmo_err *e)
     return atmo_scene_assign(s, kv, "bench", e);
 }
 
-/* The bilinear heightmap of N texels over the extent (the reference at the centres). */
+/* The bilinear heightmap of N texels over the extent (the reference at the centres, rounded to
+ * float or with `half` to a half float as the pass stores it). */
 static double map_height(const atmo_gpu_terrain_field *f, int n, double u, double v, int deriv,
-                         double *du, double *dv)
+                         int half, double *du, double *dv)
 {
     double E = (double)f->heightmap_extent_m, d = E / n;
     double gx = (u + 0.5 * E) / d - 0.5, gy = (v + 0.5 * E) / d - 0.5;
@@ -75,12 +78,15 @@ static double map_height(const atmo_gpu_terrain_field *f, int n, double u, doubl
         for (int dj = 0; dj < 2; dj++) {
             double g[2], w = (di ? fx : 1 - fx) * (dj ? fy : 1 - fy);
             double x = -0.5 * E + (i0 + di + 0.5) * d, z = -0.5 * E + (j0 + dj + 0.5) * d;
-            h += w * (double)(float)terrain_ref_height(f, x, z, g, NULL);
+            float t = (float)terrain_ref_height(f, x, z, g, NULL);
+            h += w * (double)(half ? terrain_half_to_float(terrain_half_from_float(t)) : t);
             a += w * g[0], b += w * g[1];
         }
     if (!deriv) { /* central differences one texel apart, as terrain.h takes them */
-        double hxp = map_height(f, n, u + d, v, 1, NULL, NULL), hxm = map_height(f, n, u - d, v, 1, NULL, NULL);
-        double hzp = map_height(f, n, u, v + d, 1, NULL, NULL), hzm = map_height(f, n, u, v - d, 1, NULL, NULL);
+        double hxp = map_height(f, n, u + d, v, 1, half, NULL, NULL);
+        double hxm = map_height(f, n, u - d, v, 1, half, NULL, NULL);
+        double hzp = map_height(f, n, u, v + d, 1, half, NULL, NULL);
+        double hzm = map_height(f, n, u, v - d, 1, half, NULL, NULL);
         a = (hxp - hxm) / (2 * d), b = (hzp - hzm) / (2 * d);
     }
     if (du)
@@ -116,7 +122,9 @@ static int heightmaps(const char *device, int quick, bench_row *rows, int *n, at
 {
     static const int sizes[] = {256, 1024, 4096};
     int count = quick ? 2 : 3, rc;
-    for (int fmt = -1; fmt < 2; fmt++)
+    static const char *const names[] = {"heightmap-float", "heightmap-derivatives",
+                                        "heightmap-half"};
+    for (int fmt = -1; fmt <= ATMO_TERRAIN_FORMAT_HALF; fmt++)
         for (int k = 0; k < (fmt < 0 ? 1 : count); k++) {
             atmo_scene s;
             if ((rc = thesis(&s, e)) || (rc = set(&s, "atmosphere.method=single", e)) ||
@@ -146,18 +154,22 @@ static int heightmaps(const char *device, int quick, bench_row *rows, int *n, at
                     terrain_height t = terrain_height_direct(&f, (float)u, (float)v);
                     got = t.h, a = t.du, b = t.dv;
                 } else {
-                    got = map_height(&f, s.terrain.heightmap_size, u, v, fmt, &a, &b);
+                    got = map_height(&f, s.terrain.heightmap_size, u, v,
+                                     fmt == ATMO_TERRAIN_FORMAT_DERIVATIVES,
+                                     fmt == ATMO_TERRAIN_FORMAT_HALF, &a, &b);
                 }
                 sum += (got - h) * (got - h);
                 double ang = angle_deg(a, b, g[0], g[1]);
                 sum_a += ang * ang;
             }
             size_t bytes = (size_t)s.terrain.heightmap_size * s.terrain.heightmap_size *
-                           (fmt == 1 ? 12 : 4);
+                           (fmt == ATMO_TERRAIN_FORMAT_DERIVATIVES ? 12
+                            : fmt == ATMO_TERRAIN_FORMAT_HALF      ? 2
+                                                                   : 4);
             for (int r = 0; r < 2; r++) {
                 bench_row *row = &rows[(*n)++];
                 snprintf(row->method, sizeof row->method, "%s%s",
-                         fmt < 0 ? "direct" : fmt ? "heightmap-derivatives" : "heightmap-float",
+                         fmt < 0 ? "direct" : names[fmt],
                          r ? "-normal" : "");
                 snprintf(row->settings, sizeof row->settings, "%d texels %.1f MiB",
                          s.terrain.heightmap_size, bytes / 1048576.0);

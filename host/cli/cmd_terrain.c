@@ -16,10 +16,10 @@
  * With terrain.heightmap_file the terrain is the file's heights resampled into the heightmap
  * (host/plan/plan_terrain.c: bicubic at the texel centres) and read back bilinearly, the
  * procedural fBm beyond the heightmap's square: the probe looks up the same texels with the
- * kernels' terrain_height_at (float format; the derivatives format differs only in the normal's
- * interpolation), the reference height is the file's own bicubic interpolant in double
- * (atmo_dem_sample) inside the square, and the coverage is 1 on the file's land, 0 on its
- * water. */
+ * kernels' terrain_height_at as floats (the derivatives format differs in the normal's
+ * interpolation, the half format by its rounding, 2^-11 of the height), the reference height
+ * is the file's own bicubic interpolant in double (atmo_dem_sample) inside the square, plus with terrain.heightmap_detail the detail below
+ * its cells (terrain_ref_detail), and the coverage is 1 on the file's land, 0 on its water. */
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
@@ -80,7 +80,8 @@ static cJSON *probe(const atmo_plan *p, const atmo_scene *s, const double at[2],
     double ref_cov, ref = terrain_ref_height(f, at[0], at[1], NULL, &ref_cov);
     if (in_file)
         ref = atmo_dem_sample(&p->dem, at[0] - s->dem.center_m[0], at[1] - s->dem.center_m[1],
-                              ATMO_DEM_BICUBIC);
+                              ATMO_DEM_BICUBIC) +
+              terrain_ref_detail(f, at[0], at[1], NULL);
     double surface = fmax((double)h.h, s->terrain.sea_level_m);
     double n[3] = {at[0] / R, sqrt(1.0 - rho2), at[1] / R}, world[3], rel[3];
     for (int k = 0; k < 3; k++)

@@ -133,6 +133,8 @@ static const char *const clouds_march_fragments[] = {"kernels/media/cloud_march.
 /* The terrain: the height field, the tracer and shadows, the surface's light, and the
  * heightmap pass, which reads only the field (the camera's placement stays out of the key). */
 static const char *const terrain_fragments[] = {"kernels/terrain/noise.h",
+                                                "kernels/terrain/terrain_detail.h",
+                                                "kernels/terrain/terrain_half.h",
                                                 "kernels/terrain/terrain.h",
                                                 "kernels/terrain/terrain_shafts.h",
                                                 "kernels/terrain/water.h",

@@ -48,6 +48,9 @@ _Static_assert(sizeof(atmo_gpu_terrain_field) == 80, "atmo_gpu_terrain_field lay
 _Static_assert(offsetof(atmo_gpu_terrain_field, seed) == 24, "atmo_gpu_terrain_field layout");
 _Static_assert(offsetof(atmo_gpu_terrain_field, base_rect) == 48, "atmo_gpu_terrain_field");
 _Static_assert(offsetof(atmo_gpu_terrain_field, base_detail) == 64, "atmo_gpu_terrain_field");
+_Static_assert(offsetof(atmo_gpu_terrain_field, detail_octave0) == 68, "atmo_gpu_terrain_field");
+_Static_assert(offsetof(atmo_gpu_terrain_field, detail_amplitude_m) == 76,
+               "atmo_gpu_terrain_field");
 _Static_assert(sizeof(atmo_gpu_terrain) == 144, "atmo_gpu_terrain layout");
 _Static_assert(offsetof(atmo_gpu_terrain, camera) == 80, "atmo_gpu_terrain layout");
 _Static_assert(offsetof(atmo_gpu_terrain, shafts) == 132, "atmo_gpu_terrain layout");
@@ -259,10 +262,6 @@ static int plan_features(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     if ((rc = atmo_scene_validate(s, e)) || (rc = atmo_atmosphere_from_scene(s, &p->atmosphere, e)))
         return rc;
     if (s->dem.file[0]) { /* a bad heightmap fails here, before any device work */
-        if (s->dem.detail)
-            return atmo_fail(e, ATMO_ERR_USAGE,
-                             "terrain.heightmap_detail=true (fBm detail below the file's cells) "
-                             "is not built yet; set it to false");
         atmo_dem_options o;
         atmo_dem_options_from_scene(s, &o);
         if ((rc = atmo_dem_load(s->dem.file, &o, &p->dem, e)))

@@ -66,7 +66,7 @@ static const char *const path_skies[] = {"atmosphere", "uniform", NULL};
 static const char *const sampler_names[] = {"sobol", "random", NULL};
 _Static_assert(ATMO_RENDER_PATH == 1 && ATMO_PATH_SKY_UNIFORM == 1 && ATMO_SAMPLER_RANDOM == 1,
                "enum name tables follow the order of the constants");
-static const char *const terrain_format_names[] = {"float", "derivatives", NULL};
+static const char *const terrain_format_names[] = {"float", "derivatives", "half", NULL};
 static const char *const terrain_shadow_names[] = {"none", "exact", "estimate", NULL};
 _Static_assert(ATMO_CAMERA_PANORAMA == 1 && ATMO_CAMERA_FISHEYE == 2 && ATMO_PHASE_HENYEY_GREENSTEIN == 1 &&
                    ATMO_QUANTITY_LUMINANCE == 1 && ATMO_TONEMAP_LOTTES == 7 &&
@@ -238,7 +238,8 @@ const atmo_param atmo_params[] = {
             "heightmap texels per side (0: evaluate the fBm directly, no memory)"),
     ROW_ENUM("terrain.heightmap_format", terrain.heightmap_format, terrain_format_names,
              ATMO_TERRAIN_FORMAT_FLOAT,
-             "heightmap texels: float height, or height and derivatives (3 floats)"),
+             "heightmap texels: float height, height and derivatives (3 floats), or half-float "
+             "height (2 bytes, rounded to 2^-11 of it)"),
     ROW_FLOAT("terrain.heightmap_extent_m", terrain.heightmap_extent_m, "m", 1, 1e7, 65536,
               "side of the square the heightmap covers, centred on the origin"),
     ROW_INT("terrain.steps", terrain.steps, "", 1, 4096, 300,
@@ -324,7 +325,8 @@ const atmo_param atmo_params[] = {
     ROW_FLOAT("terrain.heightmap_offset_m", dem.offset_m, "m", -1e5, 1e5, 0,
               "PNG heightmap: height of value 0 above sea level"),
     ROW_BOOL("terrain.heightmap_detail", dem.detail, 0,
-             "the procedural fBm adds detail below the heightmap's cell size"),
+             "the procedural fBm adds detail below the heightmap's cell size (the tracer takes "
+             "twice terrain.steps over it)"),
     ROW_ENUM("terrain.heightmap_nodata", dem.nodata, dem_nodata_names, 0,
              "heightmap samples without data: filled from their neighbours, or sea level (0 m)"),
     ROW_BOOL("post.flare", post.flare, 0,

@@ -3,7 +3,9 @@
  *
  * The same integer hash and lattice values as the kernels (exact in both precisions), the same
  * quintic value noise, eroded fBm with the octave rotation and the exact gradient, coverage
- * field and planar placement u = R x / r, v = R z / r, all in double. A ray hit is brute force:
+ * field and planar placement u = R x / r, v = R z / r, the detail below a DEM's cells
+ * (terrain_detail.h: plain octaves i0 .. i0 + K - 1 of the same lattices) and the heightmap's
+ * bilinear lookup of its float texels, all in double. A ray hit is brute force:
  * steps of at most `step` metres along the ray, each no longer than the clearance over a slope
  * of 4 allows near the surface, a sign change bracketed and bisected. */
 #include <math.h>
@@ -131,23 +133,81 @@ double terrain_ref_height(const atmo_gpu_terrain_field *f, double u, double v, d
     return H * c * e;
 }
 
-double terrain_ref_clearance(const atmo_gpu_terrain_field *f, double R, double sea_level_m,
-                             const double p[3])
+double terrain_ref_detail(const atmo_gpu_terrain_field *f, double u, double v, double grad[2])
+{
+    double fr = (double)f->frequency_per_m, x = u * fr, y = v * fr, j[4] = {fr, 0, 0, fr};
+    double a = (double)f->detail_amplitude_m, d = 0, du = 0, dv = 0;
+    for (int i = 0; i < f->detail_octave0; i++)
+        next_octave(&x, &y, j);
+    for (int k = 0; k < f->detail_octaves; k++, a *= 0.5) {
+        double n[6];
+        noise(x, y, f->seed + (unsigned)(f->detail_octave0 + k), n);
+        d += a * n[0];
+        du += a * (j[0] * n[1] + j[2] * n[2]);
+        dv += a * (j[1] * n[1] + j[3] * n[2]);
+        next_octave(&x, &y, j);
+    }
+    if (grad)
+        grad[0] = du, grad[1] = dv;
+    return d;
+}
+
+static double texel(const atmo_gpu_terrain_field *f, const float *hm, int i, int j)
+{
+    int n = f->heightmap_size;
+    i = i < 0 ? 0 : i >= n ? n - 1 : i;
+    j = j < 0 ? 0 : j >= n ? n - 1 : j;
+    return (double)hm[(size_t)j * (size_t)n + (size_t)i];
+}
+
+double terrain_ref_height_map(const atmo_gpu_terrain_field *f, const float *hm, double u,
+                              double v)
+{
+    int n = f->heightmap_size;
+    double E = (double)f->heightmap_extent_m, cell = E / n;
+    double gx = (u + 0.5 * E) / cell - 0.5, gy = (v + 0.5 * E) / cell - 0.5;
+    if (!hm || n < 2 || gx < 0 || gy < 0 || gx > n - 1 || gy > n - 1)
+        return terrain_ref_height(f, u, v, NULL, NULL);
+    double x0 = floor(gx), y0 = floor(gy), fx = gx - x0, fy = gy - y0;
+    int i = (int)x0, j = (int)y0;
+    double h = (1 - fy) * ((1 - fx) * texel(f, hm, i, j) + fx * texel(f, hm, i + 1, j)) +
+               fy * ((1 - fx) * texel(f, hm, i, j + 1) + fx * texel(f, hm, i + 1, j + 1));
+    return h + terrain_ref_detail(f, u, v, NULL);
+}
+
+double terrain_ref_clearance_map(const atmo_gpu_terrain_field *f, const float *hm, double R,
+                                 double sea_level_m, const double p[3])
 {
     double q[3] = {p[0], p[1] + R, p[2]};
     double r = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
-    double h = terrain_ref_height(f, R * q[0] / r, R * q[2] / r, NULL, NULL);
+    double h = terrain_ref_height_map(f, hm, R * q[0] / r, R * q[2] / r);
     return (r - R) - (h > sea_level_m ? h : sea_level_m);
+}
+
+double terrain_ref_clearance(const atmo_gpu_terrain_field *f, double R, double sea_level_m,
+                             const double p[3])
+{
+    return terrain_ref_clearance_map(f, NULL, R, sea_level_m, p);
 }
 
 int terrain_ref_hit(const atmo_gpu_terrain_field *f, double R, double sea_level_m,
                     const double o[3], const double d[3], double t_max, double step, double *t,
                     double *min_clearance)
 {
+    return terrain_ref_hit_map(f, NULL, R, sea_level_m, o, d, t_max, step, t, min_clearance);
+}
+
+int terrain_ref_hit_map(const atmo_gpu_terrain_field *f, const float *hm, double R,
+                        double sea_level_m, const double o[3], const double d[3], double t_max,
+                        double step, double *t, double *min_clearance)
+{
+    double top = (double)f->max_height_m;
+    for (int k = 0; k < f->detail_octaves; k++) /* the detail's bound, terrain_detail.h */
+        top += ldexp((double)f->detail_amplitude_m, -k);
     double p[3], t0 = 0, g0, lo_g = INFINITY;
     for (int k = 0; k < 3; k++)
         p[k] = o[k];
-    g0 = terrain_ref_clearance(f, R, sea_level_m, p);
+    g0 = terrain_ref_clearance_map(f, hm, R, sea_level_m, p);
     if (g0 <= 0) {
         *t = 0;
         return 1;
@@ -157,14 +217,14 @@ int terrain_ref_hit(const atmo_gpu_terrain_field *f, double R, double sea_level_
         double t1 = fmin(t0 + dt, t_max);
         for (int k = 0; k < 3; k++)
             p[k] = o[k] + t1 * d[k];
-        double g1 = terrain_ref_clearance(f, R, sea_level_m, p);
+        double g1 = terrain_ref_clearance_map(f, hm, R, sea_level_m, p);
         if (g1 <= 0) {
             double a = t0, b = t1;
             while (b - a > 1e-9 * b + 1e-9) {
                 double m = 0.5 * (a + b);
                 for (int k = 0; k < 3; k++)
                     p[k] = o[k] + m * d[k];
-                if (terrain_ref_clearance(f, R, sea_level_m, p) > 0)
+                if (terrain_ref_clearance_map(f, hm, R, sea_level_m, p) > 0)
                     a = m;
                 else
                     b = m;
@@ -176,7 +236,7 @@ int terrain_ref_hit(const atmo_gpu_terrain_field *f, double R, double sea_level_
         t0 = t1, g0 = g1;
         /* above the highest terrain and rising: it never comes back down */
         double q[3] = {p[0], p[1] + R, p[2]}, r = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
-        if (r - R > fmax((double)f->max_height_m, sea_level_m) &&
+        if (r - R > fmax(top, sea_level_m) &&
             q[0] * d[0] + q[1] * d[1] + q[2] * d[2] > 0)
             break;
     }

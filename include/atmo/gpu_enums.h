@@ -35,8 +35,10 @@ enum {
 enum { ATMO_TRANSFER_SRGB = 0, ATMO_TRANSFER_GAMMA22 = 1 };
 
 /* terrain.heightmap_format: the heightmap pass's texels (kernels/terrain/heightmap.cl): the
- * height alone (normals from its differences), or the height and its two derivatives */
-enum { ATMO_TERRAIN_FORMAT_FLOAT = 0, ATMO_TERRAIN_FORMAT_DERIVATIVES = 1 };
+ * height alone (normals from its differences), the height and its two derivatives, or the
+ * height alone as a half float (kernels/terrain/terrain_half.h) */
+enum { ATMO_TERRAIN_FORMAT_FLOAT = 0, ATMO_TERRAIN_FORMAT_DERIVATIVES = 1,
+       ATMO_TERRAIN_FORMAT_HALF = 2 };
 
 /* terrain.shadow: the terrain's shadow on the sun (kernels/terrain/terrain.h): none, exact
  * (shadow rays to points of the sun disc), or Quilez's penumbra estimate from one ray */

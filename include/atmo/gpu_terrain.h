@@ -4,7 +4,9 @@
  *
  * `field` is the height field itself, the only part the heightmap pass reads (its cache key);
  * with a host-supplied height grid (a digital elevation model in metres, atmo_plan_terrain_base)
- * the heightmap pass resamples the grid and adds base_detail times the fBm; the rest is the
+ * the heightmap pass resamples the grid and adds base_detail times the fBm, and lookups inside
+ * the heightmap add the fBm's octaves below the grid's cells (detail_*; terrain_detail.h); the
+ * rest is the
  * camera's placement over it (follows the view) and the tracing, shading and
  * shadow settings. Heights are in metres above the ground sphere (sea level), a function of
  * the planar coordinates (u, v) of a point's foot on the sphere (kernels/terrain/terrain.h). */
@@ -30,7 +32,9 @@ typedef struct atmo_gpu_terrain_field {
     float4 base_rect;               /* its first sample's planar (u, v) and its spacing, m:
                                        x0, z0, dx, dz */
     float base_detail;              /* the fBm's share added over the grid (0: the grid alone) */
-    int pad0, pad1, pad2;
+    int detail_octave0;             /* first fBm octave of the detail below a DEM's cells */
+    int detail_octaves;             /* its octaves, 0: none (terrain_detail.h) */
+    float detail_amplitude_m;       /* the first detail octave's amplitude, m */
 } atmo_gpu_terrain_field;
 
 typedef struct atmo_gpu_terrain {

@@ -22,7 +22,14 @@ int atmo_plan_terrain(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 int atmo_plan_terrain_base(atmo_plan *p, const float *heights, int nx, int nz, double x0,
                            double z0, double dx, double dz, double detail, atmo_err *e);
 
-/* The bound on |grad h| the sphere tracer sizes its steps by (plan_terrain.c). */
+/* After atmo_plan_terrain_base: the fBm's octaves below cells of cell_m metres are added to
+ * the heightmap's lookups (kernels/terrain/terrain_detail.h: the first octave whose lattice
+ * period is at most cell_m / 2, TERRAIN_DETAIL_OCTAVES of them, at the fBm's own gain), the
+ * sphere tracer's slope bound grows by theirs and its step budget doubles. */
+int atmo_plan_terrain_detail(atmo_plan *p, double cell_m, atmo_err *e);
+
+/* The bound on |grad h| the sphere tracer sizes its steps by, the detail's included
+ * (plan_terrain.c). */
 double atmo_terrain_slope_bound(const atmo_gpu_terrain_field *f);
 
 #endif

@@ -3,8 +3,10 @@
  * terrain_heightmap: work item (i, j) of an N x N grid (N = heightmap_size) evaluates the fBm
  * height (noise.h) at the texel centre
  *     u = -E/2 + (i + 1/2) E/N,  v = -E/2 + (j + 1/2) E/N   (E = heightmap_extent_m)
- * and writes texel j N + i: the height (ATMO_TERRAIN_FORMAT_FLOAT, 4 bytes) or the height and
- * its analytic derivatives dh/du, dh/dv (ATMO_TERRAIN_FORMAT_DERIVATIVES, 12 bytes). With a
+ * and writes texel j N + i: the height (ATMO_TERRAIN_FORMAT_FLOAT, 4 bytes), the height and
+ * its analytic derivatives dh/du, dh/dv (ATMO_TERRAIN_FORMAT_DERIVATIVES, 12 bytes), or the
+ * height rounded to a half float (ATMO_TERRAIN_FORMAT_HALF, 2 bytes: vstore_half, round to
+ * nearest even; terrain_half.h). With a
  * host-supplied height grid (buffer terrain_base, base_nx x base_nz samples from (x0, z0) at
  * spacing (dx, dz): base_rect) the texel is the grid's bilinear interpolation (clamped at its
  * edges; derivatives from the interpolating patch) plus base_detail times the fBm. It reads
@@ -34,7 +36,9 @@ __kernel void terrain_heightmap(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_P
         h.du = ((b - a) * (1.0f - fz) + (d - c) * fz) / f->base_rect.z + k * h.du;
         h.dv = ((c - a) * (1.0f - fx) + (d - b) * fx) / f->base_rect.w + k * h.dv;
     }
-    if (f->heightmap_format == ATMO_TERRAIN_FORMAT_DERIVATIVES) {
+    if (f->heightmap_format == ATMO_TERRAIN_FORMAT_HALF) {
+        vstore_half(h.h, (size_t)(j * n + i), (__global half *)heightmap);
+    } else if (f->heightmap_format == ATMO_TERRAIN_FORMAT_DERIVATIVES) {
         heightmap[3 * (j * n + i)] = h.h;
         heightmap[3 * (j * n + i) + 1] = h.du;
         heightmap[3 * (j * n + i) + 2] = h.dv;

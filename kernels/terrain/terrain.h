@@ -21,9 +21,10 @@
  *
  * Heightmap. heightmap_size = N > 0: the pass of heightmap.cl sampled h at the centres of an
  * N x N grid over the square [-E/2, E/2]^2 (E = heightmap_extent_m); lookups inside it are
- * bilinear (the height alone, gradient by central differences one texel apart; or the height
- * and its derivatives, each interpolated), outside it the fBm is evaluated directly. N = 0:
- * always direct.
+ * bilinear (the height alone, gradient by central differences one texel apart, as a float or a
+ * half float; or the height and its derivatives, each interpolated), plus the fBm's detail below a DEM's cells where the
+ * field has one (terrain_detail.h: value and exact gradient); outside it the fBm is evaluated
+ * directly. N = 0: always direct.
  *
  * Sphere tracing (Hart 1996; over-relaxation after Keinert et al. 2014). Along a ray of local
  * cosine mu to the vertical, the clearance falls at most at the rate L sqrt(1 - mu^2) - mu with
@@ -36,10 +37,10 @@
  * a lower bound on g where it clears eps(t) (terrain_clearance_bounded: far above the surface
  * the height's upper bound from the coarse octaves, noise.h), which keeps every decision the
  * exact clearance would make except to shorten a step, and costs a few octaves instead of
- * fifteen. Tracing is confined to the shell between sea
- * level and the highest terrain; the ray's end at sea level is a hit by construction. A ray
- * that has used `steps` steps is resolved by TERRAIN_FALLBACK_STEPS = 112 more steps, each
- * at least a minimum that starts at the clearance plus eps(t) and grows by a factor 1.5 per
+ * fifteen. Tracing is confined to the shell between sea level and the highest terrain
+ * (max_height_m plus the detail's bound); the ray's end at sea level is a hit by construction.
+ * A ray that has used `steps` steps is resolved by TERRAIN_FALLBACK_STEPS = 112 more steps,
+ * each at least a minimum that starts at the clearance plus eps(t) and grows by a factor 1.5 per
  * step up to U = 1/64 of the rest of the shell (at most 48 steps to reach U from 1 cm for any
  * U below 1e6 m, then 64 of U), with the same back-stepping and bisection, so it ends as a hit
  * or leaves the shell: never as sky by exhaustion.
@@ -61,6 +62,8 @@
 #include "common/compat.h"
 #include "common/geometry.h"
 #include "terrain/noise.h"
+#include "terrain/terrain_detail.h"
+#include "terrain/terrain_half.h"
 #include "atmo/gpu_types.h"
 #endif
 
@@ -103,6 +106,8 @@ ATMO_FN float terrain_texel(ATMO_GLOBAL const atmo_gpu_terrain_field *f,
     int n = f->heightmap_size;
     i = i < 0 ? 0 : (i >= n ? n - 1 : i);
     j = j < 0 ? 0 : (j >= n ? n - 1 : j);
+    if (f->heightmap_format == ATMO_TERRAIN_FORMAT_HALF)
+        return TERRAIN_LOAD_HALF(hm, j * n + i);
     int stride = f->heightmap_format == ATMO_TERRAIN_FORMAT_DERIVATIVES ? 3 : 1;
     return hm[(j * n + i) * stride + k];
 }
@@ -150,6 +155,10 @@ ATMO_FN terrain_height terrain_height_at(ATMO_GLOBAL const atmo_gpu_terrain_fiel
             r.dv = (terrain_bilinear(f, hm, gx, gy + 1.0f, 0) -
                     terrain_bilinear(f, hm, gx, gy - 1.0f, 0)) / (2.0f * texel);
         }
+        if (f->detail_octaves > 0) {
+            terrain_height d = terrain_detail_height(f, u, v);
+            r.h += d.h, r.du += d.du, r.dv += d.dv;
+        }
         return r;
     }
     return terrain_height_direct(f, u, v);
@@ -162,7 +171,8 @@ ATMO_FN float terrain_height_value(ATMO_GLOBAL const atmo_gpu_terrain_field *f,
 {
     float gx, gy;
     if (terrain_in_heightmap(f, u, v, &gx, &gy))
-        return terrain_bilinear(f, hm, gx, gy, 0);
+        return terrain_bilinear(f, hm, gx, gy, 0) +
+               (f->detail_octaves > 0 ? terrain_detail_value(f, u, v) : 0.0f);
     return terrain_height_direct_value(f, u, v);
 }
 
@@ -219,7 +229,8 @@ ATMO_FN int terrain_shell(ATMO_GLOBAL const atmo_gpu_scene *s, vec3 o, vec3 d, f
                           float *t_out, int *ends_low)
 {
     float R = s->atmosphere.bottom_radius, alt = terrain_locate(s, o).alt;
-    float top = fmaxf(s->terrain.field.max_height_m, s->terrain.sea_level_m) + 1.0f;
+    float top = fmaxf(s->terrain.field.max_height_m + terrain_detail_bound_m(&s->terrain.field),
+                      s->terrain.sea_level_m) + 1.0f;
     float low = s->terrain.sea_level_m;
     float r = R + alt, mu = v3_dot(terrain_vertical(s, o), d), t0, t1, b0, b1;
     if (!geometry_sphere_roots(r * mu, (alt - top) * (2.0f * R + alt + top), &t0, &t1) ||

@@ -1,9 +1,23 @@
 /* terrain_material.h — the terrain's procedural materials (no image assets).
  *
- * By altitude a above sea level, the cosine c = N . n of the
- * slope (N the surface normal, n the vertical) and a detail noise dn in [-1, 1] (two octaves of
- * value noise, periods 160 m and 40 m, each faded out where its period is below four pixel
- * footprints, t times pixel_angle, so far terrain neither aliases nor shimmers):
+ * Detail noise. D(x, y) is two octaves of value noise, periods 160 m and 40 m, each faded out
+ * where its period is below four pixel footprints (t times pixel_angle), so far terrain neither
+ * aliases nor shimmers. Evaluated in the plane (u, v) alone it stretches on steep faces: a metre
+ * along the fall line of a slope s moves (u, v) by 1 / sqrt(1 + s^2) m, so the noise varies
+ * that much slower there than along the strike. The detail dn is therefore triplanar (Geiss,
+ * "Generating complex procedural terrains using the GPU", GPU Gems 3, ch. 1, 2007): in the
+ * frame (u, a, v) of the height field (a the altitude, metres: the planar coordinates of
+ * terrain.h, so camera-relative float precision as the rest of the terrain) the surface's
+ * normal is N ~ (-h_u, 1, -h_v), and the three axis projections blend by |N_k|^4,
+ *     dn = w_u D(v, a) + w_a D(u, v) + w_v D(u, a),
+ *     (w_u, w_a, w_v) = (h_u^4, 1, h_v^4) / (1 + h_u^4 + h_v^4),
+ * (the normalisation of N cancels), weights that sum to 1 and keep dn in [-1, 1]. On flat
+ * ground w_a = 1 exactly and dn = D(u, v); on a vertical face the projection along the face's
+ * normal dominates, whose coordinates move a metre per metre along both the fall line and the
+ * strike (tests/test_terrain_triplanar.c measures the variance per metre of each).
+ *
+ * Materials. By altitude a above sea level, the cosine c = N . n of the slope (N the surface
+ * normal, n the vertical) and the detail noise dn in [-1, 1]:
  *     flat  = smoothstep(0.70, 0.85, c)                        (steep faces are rock)
  *     low   = 1 - smoothstep(700, 1000, a + 150 dn)            (grass below ~700-1000 m)
  *     snow  = smoothstep(2500, 3100, a + 200 dn) smoothstep(0.55, 0.70, c)
@@ -56,17 +70,45 @@ ATMO_FN vec3 terrain_material_albedo(int k)
     }
 }
 
-/* The detail noise at (u, v), filtered for a pixel footprint of `footprint` metres. */
-ATMO_FN float terrain_detail(uint seed, float u, float v, float footprint)
+/* D: the detail noise in one plane at (x, y) metres, filtered for a pixel footprint of
+ * `footprint` metres. */
+ATMO_FN float terrain_material_noise_plane(uint seed, float x, float y, float footprint)
 {
     float sum = 0.0f, period = TERRAIN_DETAIL_PERIOD_M, amp = 0.7f;
     for (int i = 0; i < 2; i++) {
         float fade = terrain_smoothstep(2.0f, 4.0f, period / fmaxf(footprint, 1e-3f));
-        sum += amp * fade * terrain_value_noise(u / period, v / period, seed + 0x3c6ef372u + (uint)i).v;
+        sum += amp * fade * terrain_value_noise(x / period, y / period, seed + 0x3c6ef372u + (uint)i).v;
         period *= 0.25f;
         amp = 0.3f;
     }
     return sum;
+}
+
+/* The triplanar weights (w_u, w_a, w_v) for the height field's gradient (h_u, h_v) (see the
+ * top of the file); slopes beyond 1e4 (89.994 degrees) count as 1e4, so the fourth powers stay
+ * finite. */
+ATMO_FN void terrain_triplanar_weights(float hu, float hv, float w[3])
+{
+    float a = fminf(hu * hu, 1e8f), b = fminf(hv * hv, 1e8f);
+    a *= a, b *= b;
+    float s = 1.0f + a + b;
+    w[0] = a / s, w[1] = 1.0f / s, w[2] = b / s;
+}
+
+/* dn: the triplanar detail noise at planar (u, v) and altitude a (metres) of a surface with
+ * gradient (h_u, h_v) (see the top of the file); projections of weight 0 are not evaluated. */
+ATMO_FN float terrain_material_noise(uint seed, float u, float v, float a, float hu, float hv,
+                                     float footprint)
+{
+    float w[3], dn = 0.0f;
+    terrain_triplanar_weights(hu, hv, w);
+    if (w[0] > 0.0f)
+        dn += w[0] * terrain_material_noise_plane(seed, v, a, footprint);
+    if (w[1] > 0.0f)
+        dn += w[1] * terrain_material_noise_plane(seed, u, v, footprint);
+    if (w[2] > 0.0f)
+        dn += w[2] * terrain_material_noise_plane(seed, u, a, footprint);
+    return dn;
 }
 
 /* The weights of grass, dirt, rock and snow at altitude a above sea level, slope cosine c and
@@ -102,7 +144,8 @@ ATMO_FN terrain_surface_point terrain_material(ATMO_GLOBAL const atmo_gpu_scene 
             m.weight[k] = 0.0f;
         m.weight[TERRAIN_WATER] = 1.0f;
     } else {
-        float dn = terrain_detail(s->terrain.field.seed, q.u, q.v, distance * s->terrain.pixel_angle);
+        float dn = terrain_material_noise(s->terrain.field.seed, q.u, q.v, h.h, h.du, h.dv,
+                                          distance * s->terrain.pixel_angle);
         terrain_material_weights(h.h - s->terrain.sea_level_m, v3_dot(m.normal, m.vertical), dn,
                                  m.weight);
     }
