@@ -75,10 +75,11 @@ static int normalise_and_cdf(float4 *rows, int n, float **out, atmo_err *e)
 int atmo_plan_clouds(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 {
     int m = s->atmosphere.method, rc;
-    if (m != ATMO_METHOD_SINGLE && m != ATMO_METHOD_MARCH && m != ATMO_METHOD_REFERENCE)
+    int volume = s->path.mode == ATMO_RENDER_PATH && s->path.clouds == ATMO_PATH_CLOUDS_VOLUME;
+    if (!volume && m != ATMO_METHOD_SINGLE && m != ATMO_METHOD_MARCH && m != ATMO_METHOD_REFERENCE)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "clouds.enabled works with atmosphere.method=single, march or reference "
-                         "(got %s); set one of those",
+                         "(got %s); set one of those, or render.mode=path with path.clouds=volume",
                          p->method);
     if (s->cloud.enabled)
         return atmo_fail(e, ATMO_ERR_USAGE,

@@ -304,20 +304,8 @@ ATMO_FN float reference_sample_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_L
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     *weight = v3(1.0f, 1.0f, 1.0f);
 #ifdef ATMO_CLOUDS
-    if (k == MEDIA_CLOUDS) {
-        ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
-        if (c->phase == ATMO_CLOUD_PHASE_JENDERSIE_DEON)
-            return phase_jendersie_deon_sample(phase_jendersie_deon_params(c->diameter_um), u1,
-                                               rng_next(g));
-        if (c->phase == ATMO_CLOUD_PHASE_HG) { /* sampled by channel y, weighted per channel */
-            float cs = phase_henyey_greenstein_sample(c->g.y, u1);
-            float py = phase_henyey_greenstein(cs, c->g.y);
-            *weight = v3(phase_henyey_greenstein(cs, c->g.x) / py, 1.0f,
-                         phase_henyey_greenstein(cs, c->g.z) / py);
-            return cs;
-        }
-        return phase_rows_sample(clouds_phase_table, clouds_phase_cdf, c->table_size, u1, weight);
-    }
+    if (k == MEDIA_CLOUDS) /* cloud_layer.h's sampling, shared with the path tracer */
+        return clouds_phase_sample(s, clouds_phase_table, clouds_phase_cdf, u1, g, weight);
 #endif
     (void)g;
     return k == MEDIA_RAYLEIGH ? phase_draine_sample(0.0f, 1.0f, u1)

@@ -140,6 +140,29 @@ ATMO_FN vec3 clouds_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const
     return phase_rows_eval(table, c->table_size, nu);
 }
 
+/* A scattering-angle cosine drawn from the phase function with the uniform number u1 (and, for
+ * Jendersie-d'Eon's mixture, one more from g); *weight gets the phase over the density it was
+ * drawn with, per wavelength: the Mie table by its CDF (phase_table.h, weight P / q), Henyey-
+ * Greenstein by the middle wavelength's g (weights p_c / p_y), Jendersie-d'Eon exactly (1). */
+ATMO_FN float clouds_phase_sample(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                  ATMO_GLOBAL const float4 *table, ATMO_GLOBAL const float *cdf,
+                                  float u1, rng_stream *g, vec3 *weight)
+{
+    ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
+    *weight = v3(1.0f, 1.0f, 1.0f);
+    if (c->phase == ATMO_CLOUD_PHASE_JENDERSIE_DEON)
+        return phase_jendersie_deon_sample(phase_jendersie_deon_params(c->diameter_um), u1,
+                                           rng_next(g));
+    if (c->phase == ATMO_CLOUD_PHASE_HG) {
+        float cs = phase_henyey_greenstein_sample(c->g.y, u1);
+        float py = phase_henyey_greenstein(cs, c->g.y);
+        *weight = v3(phase_henyey_greenstein(cs, c->g.x) / py, 1.0f,
+                     phase_henyey_greenstein(cs, c->g.z) / py);
+        return cs;
+    }
+    return phase_rows_sample(table, cdf, c->table_size, u1, weight);
+}
+
 /* The parts of [t_start, t_end] of the ray from radius r with cosine mu (R the ground's radius)
  * inside the shell between the altitudes base and top, in order: their count (0..2), their
  * ends in lo[], hi[]. */
