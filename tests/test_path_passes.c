@@ -4,7 +4,7 @@
  * Oracles:
  *   - The light passes are a partition of each sample's radiance (kernels/render/path.h), so
  *     their means sum to the beauty image's: per pixel and channel within 1e-5 relative plus
- *     1e-7 absolute (float rounding of sums over 16 samples of five terms).
+ *     1e-7 absolute (float rounding of sums over 16 samples of six terms).
  *   - Depth and normal against the closed form of a ray and a sphere: for the sphere of centre
  *     c and radius R, t(d) = -b - sqrt(b^2 - |f|^2 + R^2) with f = -c, b = f . d, and
  *     n = (t d - c) / R. With the pixel filter shrunk to sigma 0.1 px truncated at 0.5 px, a
@@ -15,7 +15,10 @@
  *     1e10 (to float rounding of its sum, 1e-6) and normal 0 where no sample of the pixel hits.
  *   - The albedo pass is the sphere's albedo on those pixels (exactly: every sample hits it).
  * World: the uniform test world (no air), a sphere of albedo (0.6, 0.4, 0.2) 6 m ahead and
- * 0.5 m right of the camera, sun at zenith 30 degrees, sky (0.1, 0.2, 0.3); 20 x 16 pixels. */
+ * 0.5 m right of the camera, sun at zenith 30 degrees, sky (0.1, 0.2, 0.3); 20 x 16 pixels.
+ * The partition again with scattering events in the cloud layer (path.clouds = volume: the
+ * camera in a cloud layer of the same world, the sphere beside it), where the Clouds pass must
+ * hold light (positive in every channel of the image's sum). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,12 +29,79 @@
 
 #define W 20
 #define H 16
+#define PATH_PASS_CLOUDS_PLANE 5 /* kernels/render/path.h's PATH_PASS_CLOUDS */
 
 static double sphere_t(const double d[3], const double c[3], double R)
 {
     double b = -(d[0] * c[0] + d[1] * c[1] + d[2] * c[2]);
     double f2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2], disc = b * b - f2 + R * R;
     return disc < 0.0 ? -1.0 : -b - sqrt(disc);
+}
+
+/* The light passes of the render r against its beauty image: the pixels whose sum differs by
+ * more than float rounding; *worst the largest relative difference. */
+static int pass_sum_bad(const atmo_render_result *r, size_t pixels, double *worst)
+{
+    int bad = 0;
+    *worst = 0.0;
+    for (size_t i = 0; i < pixels; i++)
+        for (int c = 0; c < 3; c++) {
+            double total = 0.0;
+            for (int k = 0; k < ATMO_PATH_LIGHT_PASSES; k++)
+                total += r->passes[4 * (pixels * k + i) + c];
+            double beauty = r->rgb[3 * i + c], diff = fabs(total - beauty);
+            *worst = fmax(*worst, diff / fmax(beauty, 1e-30));
+            bad += diff > 1e-5 * fabs(beauty) + 1e-7;
+        }
+    return bad;
+}
+
+static void test_cloud_passes(void)
+{
+    atmo_scene s;
+    test_scene_preset(&s, "sky-noon");
+    test_scene_set(&s, "render.mode=path");
+    test_scene_set(&s, "path.passes=true");
+    test_scene_set(&s, "path.sky=uniform");
+    test_scene_set(&s, "path.uniform_sky=0.1,0.2,0.3");
+    test_scene_set(&s, "path.ground=false");
+    test_scene_set(&s, "sun.zenith_deg=30");
+    test_scene_set(&s, "clouds.enabled=true");
+    test_scene_set(&s, "path.clouds=volume");
+    test_scene_set(&s, "clouds.bottom_m=1000");
+    test_scene_set(&s, "clouds.top_m=2000");
+    test_scene_set(&s, "clouds.fade_m=300");
+    test_scene_set(&s, "clouds.coverage=0.7");
+    test_scene_set(&s, "clouds.extinction_per_m=0.005");
+    test_scene_set(&s, "camera.position_m=0,1500,0");
+    test_scene_set(&s, "image.width=8");
+    test_scene_set(&s, "image.height=8");
+    test_scene_set(&s, "image.samples=8");
+    test_scene_set(&s, "objects=[{\"type\": \"sphere\", \"center_m\": [0.5, 1500, 6], "
+                       "\"radius_m\": 1.5, \"albedo\": [0.6, 0.4, 0.2]}]");
+    atmo_plan p;
+    test_plan(&s, &p);
+    atmo_render_settings rs;
+    atmo_render_settings_default(&rs);
+    atmo_render_result r;
+    atmo_err e;
+    if (atmo_render(&p, &rs, &r, &e)) {
+        fprintf(stderr, "render failed: %s\n", e.msg);
+        exit(1);
+    }
+    size_t pixels = 64;
+    double worst, clouds[3] = {0.0, 0.0, 0.0};
+    int bad = pass_sum_bad(&r, pixels, &worst);
+    for (size_t i = 0; i < pixels; i++)
+        for (int c = 0; c < 3; c++)
+            clouds[c] += r.passes[4 * (pixels * PATH_PASS_CLOUDS_PLANE + i) + c];
+    printf("clouds (volume): light passes vs beauty worst relative difference %.2g; Clouds pass "
+           "sum %.3g %.3g %.3g\n",
+           worst, clouds[0], clouds[1], clouds[2]);
+    CHECK(r.nonfinite == 0 && bad == 0);
+    CHECK(clouds[0] > 0.0 && clouds[1] > 0.0 && clouds[2] > 0.0);
+    atmo_render_result_free(&r);
+    atmo_plan_free(&p);
 }
 
 int main(void)
@@ -68,17 +138,8 @@ int main(void)
     }
     CHECK(r.pass_planes == ATMO_PATH_PASS_PLANES && r.nonfinite == 0);
     size_t pixels = (size_t)W * H;
-    double worst_sum = 0.0;
-    int sum_bad = 0;
-    for (size_t i = 0; i < pixels; i++)
-        for (int c = 0; c < 3; c++) {
-            double total = 0.0;
-            for (int k = 0; k < ATMO_PATH_LIGHT_PASSES; k++)
-                total += r.passes[4 * (pixels * k + i) + c];
-            double beauty = r.rgb[3 * i + c], diff = fabs(total - beauty);
-            worst_sum = fmax(worst_sum, diff / fmax(beauty, 1e-30));
-            sum_bad += diff > 1e-5 * fabs(beauty) + 1e-7;
-        }
+    double worst_sum;
+    int sum_bad = pass_sum_bad(&r, pixels, &worst_sum);
     printf("light passes vs beauty: worst relative difference %.2g\n", worst_sum);
     CHECK(sum_bad == 0);
 
@@ -142,5 +203,6 @@ int main(void)
     CHECK(depth_bad == 0 && normal_bad == 0 && albedo_bad == 0 && sky_bad == 0);
     atmo_render_result_free(&r);
     atmo_plan_free(&p);
+    test_cloud_passes();
     return test_finish();
 }

@@ -157,6 +157,8 @@ static const char *const spec_defaults[] = {"image.width=640",
                                             "path.aperture_m=0",
                                             "path.focus_m=10",
                                             "path.passes=false",
+                                            "path.clouds=march",
+                                            "path.volume_bounces=256",
                                             NULL};
 
 /* Ranges of the specification: key, min, max (enums and bools are checked by name). */

@@ -8,20 +8,22 @@
  *   Sun.R/G/B      sunlight reflected by surfaces, every bounce
  *   Sky.R/G/B      skylight reflected by surfaces, every bounce (Sun + Sky = Blender's Diffuse
  *                  Direct + Indirect: atmo splits them by light instead of by bounce)
+ *   Clouds.R/G/B   light scattered by the cloud layer's volume (path.clouds = volume): the sun
+ *                  at its scattering events and the sky reached from them, every bounce
  *   Depth.Z        distance to the primary hit in metres along the ray (1e10 where the ray
  *                  escapes, Blender's background depth), averaged over the pixel's samples
  *   Normal.X/Y/Z   the primary hit's unit normal facing the camera, world axes, averaged
  *   DiffCol.R/G/B  the primary hit's albedo (Blender: Diffuse Color), averaged
  *   Samples.N      samples per pixel
  *   Error.R/G/B    the standard error of each pixel's mean (atmo/session.h)
- * The five light passes sum to the beauty image R, G, B (to float rounding). */
+ * The six light passes sum to the beauty image R, G, B (to float rounding). */
 #include <stdlib.h>
 #include "render_passes.h"
 
 int render_pass_layers(const atmo_render_result *r, atmo_image_layer *layers, float **block)
 {
     static const char *const light_names[ATMO_PATH_LIGHT_PASSES] = {"Env", "Emit", "Volume",
-                                                                    "Sun", "Sky"};
+                                                                    "Sun", "Sky", "Clouds"};
     *block = NULL;
     if (r->pass_planes == 0)
         return 0;

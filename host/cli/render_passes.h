@@ -3,8 +3,10 @@
 #define ATMO_CLI_RENDER_PASSES_H
 #include "atmo/image.h"
 #include "atmo/render.h"
+#include "atmo/gpu_path.h"
 
-#define RENDER_PASS_LAYERS 10
+/* the light passes, then Normal, Depth, DiffCol, Samples and Error */
+#define RENDER_PASS_LAYERS (ATMO_PATH_LIGHT_PASSES + 5)
 
 /* The layers of a result with passes, into layers[RENDER_PASS_LAYERS]; their data lives in
  * *block (malloc'd; the caller frees it). Returns the number of layers, 0 for a result without

@@ -18,10 +18,17 @@ static int ms_methods(const atmo_scene *s)
     return s->atmosphere.method == ATMO_METHOD_MARCH || s->atmosphere.method == ATMO_METHOD_FAST;
 }
 static int cloud_shell(const atmo_scene *s) { return s->cloud.enabled || s->observer.enabled; }
-static int cloud_layer(const atmo_scene *s) { return s->clouds.enabled; }
+/* path.clouds = volume: the path tracer scatters in the layer, the methods see only the air */
+static int cloud_volume(const atmo_scene *s)
+{
+    return s->clouds.enabled && s->path.mode == ATMO_RENDER_PATH &&
+           s->path.clouds == ATMO_PATH_CLOUDS_VOLUME;
+}
+/* the layer as a medium of the methods (media.h, visibility.h, the marcher) */
+static int cloud_layer(const atmo_scene *s) { return s->clouds.enabled && !cloud_volume(s); }
 static int cloud_grid(const atmo_scene *s)
 {
-    return s->clouds.enabled && s->atmosphere.method == ATMO_METHOD_REFERENCE;
+    return (cloud_layer(s) && s->atmosphere.method == ATMO_METHOD_REFERENCE) || cloud_volume(s);
 }
 static int has_objects(const atmo_scene *s) { return s->objects.count > 0; }
 static int path_mode(const atmo_scene *s) { return s->path.mode == ATMO_RENDER_PATH; }
@@ -159,8 +166,9 @@ static const char *const render_fragments[] = {"kernels/atmosphere/sky_cosines.h
 static const char *const objects_fragments[] = {"kernels/render/objects.h", NULL};
 static const char *const path_fragments[] = {
     "kernels/render/path_camera.h", "kernels/render/surfaces.h", "kernels/render/bsdf.h",
-    "kernels/render/light_sun.h",   "kernels/render/light_sky.h", "kernels/render/path.h",
-    "kernels/render/path.cl",       NULL};
+    "kernels/render/light_sun.h",   "kernels/render/light_sky.h", "kernels/media/cloud_walk.h",
+    "kernels/render/volume_stage.h", "kernels/render/path.h",     "kernels/render/path.cl",
+    NULL};
 
 const atmo_feature atmo_features[] = {
     {"atmosphere", -1, always, atmosphere_fragments, "", atmosphere_params, atmosphere_sources,
@@ -171,7 +179,12 @@ const atmo_feature atmo_features[] = {
     /* the fBm cloud layer: a medium and a visibility source (its light march) */
     {"clouds", -1, cloud_layer, clouds_fragments, "-DATMO_CLOUDS", NULL, NULL, NULL,
      atmo_plan_clouds, 0},
-    /* the layer's majorant grid for the reference's walk; it follows the view (never cached) */
+    /* the same layer for the path tracer's volume stage alone (render/volume_stage.h): no
+     * method, integrator or visibility source sees it */
+    {"clouds_volume", -1, cloud_volume, clouds_fragments, "-DATMO_CLOUDS_VOLUME", NULL, NULL,
+     NULL, atmo_plan_clouds, 0},
+    /* the layer's majorant grid for the reference's walk and the volume stage's; it follows the
+     * view (never cached) */
     {"clouds_majorant", -1, cloud_grid, clouds_majorant_fragments, "", NULL, NULL, NULL,
      atmo_plan_clouds_majorant, 0},
     /* an opaque surface and a visibility source: before the composition of the media */

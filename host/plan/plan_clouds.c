@@ -12,8 +12,11 @@
  * displacement v t (direction (sin a, 0, cos a), a = clouds.wind_azimuth_deg), rounded to float
  * once, so a kernel's noise point p + origin is exact to float rounding of the sum. The global
  * majorant of the Monte Carlo walk is clouds.density (the density's bound, cloud_layer.h); the
- * reference's majorant grid (cloud_majorant.h) refines it around the camera: a buffer of
- * CLOUDS_GRID_NX x NY x NZ cell bounds, filled by its pass for each view. */
+ * majorant grid (cloud_majorant.h) of the reference's walk and of the path tracer's volume stage
+ * (path.clouds = volume: cloud_walk.h) refines it around the camera: a buffer of
+ * CLOUDS_GRID_NX x NY x NZ cell bounds, filled by its pass for each view. With path.clouds =
+ * volume in path mode the layer is planned for the volume stage alone (-DATMO_CLOUDS_VOLUME),
+ * so every atmosphere method can be the air's. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,11 +37,16 @@ void atmo_plan_clouds_origin(const atmo_scene *s, float4 *origin)
 int atmo_plan_clouds(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 {
     int m = s->atmosphere.method, rc;
-    if (m != ATMO_METHOD_SINGLE && m != ATMO_METHOD_MARCH && m != ATMO_METHOD_REFERENCE)
+    int volume = s->path.mode == ATMO_RENDER_PATH && s->path.clouds == ATMO_PATH_CLOUDS_VOLUME;
+    if (!volume && m != ATMO_METHOD_SINGLE && m != ATMO_METHOD_MARCH && m != ATMO_METHOD_REFERENCE)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "clouds.enabled works with atmosphere.method=single, march or reference "
-                         "(got %s); set one of those",
+                         "(got %s); set one of those, or render.mode=path with path.clouds=volume",
                          p->method);
+    if (volume && s->clouds.look == ATMO_CLOUDS_LOOK_THESIS)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "clouds.look=thesis is the marcher's look, which path.clouds=volume does "
+                         "not march; set clouds.look=physical or path.clouds=march");
     if (s->cloud.enabled)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "cloud.enabled (the homogeneous shell) and clouds.enabled (the fBm layer) "

@@ -63,8 +63,10 @@ static const char *const dem_nodata_names[] = {"neighbours", "sea-level", NULL};
 static const char *const clouds_look_names[] = {"physical", "thesis", NULL};
 static const char *const render_modes[] = {"preview", "path", NULL};
 static const char *const path_skies[] = {"atmosphere", "uniform", NULL};
+static const char *const path_clouds_names[] = {"march", "volume", NULL};
 static const char *const sampler_names[] = {"sobol", "random", NULL};
-_Static_assert(ATMO_RENDER_PATH == 1 && ATMO_PATH_SKY_UNIFORM == 1 && ATMO_SAMPLER_RANDOM == 1,
+_Static_assert(ATMO_RENDER_PATH == 1 && ATMO_PATH_SKY_UNIFORM == 1 && ATMO_SAMPLER_RANDOM == 1 &&
+                   ATMO_PATH_CLOUDS_VOLUME == 1,
                "enum name tables follow the order of the constants");
 static const char *const terrain_format_names[] = {"float", "derivatives", "half", NULL};
 static const char *const terrain_shadow_names[] = {"none", "exact", "estimate", NULL};
@@ -365,8 +367,15 @@ const atmo_param atmo_params[] = {
     ROW_FLOAT("path.focus_m", path.focus_m, "m", 0.01, 1e7, 10,
               "path mode: distance of the plane in focus in metres (path.aperture_m > 0)"),
     ROW_BOOL("path.passes", path.passes, 0,
-             "path mode: render passes as EXR layers (Env, Emit, Volume, Sun, Sky, Depth, "
-             "Normal, DiffCol, samples and standard error)"),
+             "path mode: render passes as EXR layers (Env, Emit, Volume, Sun, Sky, Clouds, "
+             "Depth, Normal, DiffCol, samples and standard error)"),
+    ROW_ENUM("path.clouds", path.clouds, path_clouds_names, ATMO_PATH_CLOUDS_MARCH,
+             "path mode with clouds.enabled: march (the method marches the layer along each "
+             "segment, octave multiple scattering) or volume (paths scatter in the layer: delta "
+             "tracking, ratio-tracked sun, phase sampling)"),
+    ROW_INT("path.volume_bounces", path.volume_bounces, "", 1, 4096, 256,
+            "path mode, path.clouds = volume: most scattering events in the clouds per path "
+            "(Russian roulette ends most paths long before)"),
     {NULL, ATMO_PARAM_INT, 0, NULL, 0, 0, {0, 0, 0}, NULL, NULL},
 };
 

@@ -80,6 +80,9 @@ enum { ATMO_OBJECT_SPHERE = 0, ATMO_OBJECT_BOX = 1 };
  * method), or a uniform test sky of radiance path.uniform_sky with no air, its sun unattenuated
  * (kernels/render/path.h) */
 enum { ATMO_PATH_SKY_ATMOSPHERE = 0, ATMO_PATH_SKY_UNIFORM = 1 };
+/* path.clouds: the method marches the cloud layer along each segment, or the path scatters in
+ * it (kernels/render/volume_stage.h) */
+enum { ATMO_PATH_CLOUDS_MARCH = 0, ATMO_PATH_CLOUDS_VOLUME = 1 };
 
 /* path.sampler: the primary samples (pixel position): Owen-scrambled Sobol, or the counter
  * hash of rng.h (independent random numbers, for comparison) */

@@ -13,9 +13,9 @@
 #include "common/compat.h"
 #endif
 
-/* The path tracer's render passes (kernels/render/path.h, path.cl): five light passes, then
+/* The path tracer's render passes (kernels/render/path.h, path.cl): six light passes, then
  * the primary hit's normal and depth, then its albedo, one float4 plane each. */
-#define ATMO_PATH_LIGHT_PASSES 5
+#define ATMO_PATH_LIGHT_PASSES 6
 #define ATMO_PATH_PASS_PLANES (ATMO_PATH_LIGHT_PASSES + 2)
 
 /* The sky's radiance table of the sky sampling (kernels/render/light_sky.h's LIGHT_SKY_W x
@@ -48,7 +48,8 @@ typedef struct atmo_gpu_path {
     float filter_sigma;  /* pixel filter: Gaussian standard deviation, px */
     float aperture_m;    /* thin lens: aperture radius (0: pinhole) */
     float focus_m;       /* thin lens: distance of the plane in focus */
-    int pad0, pad1, pad2;
+    int volume_bounces;  /* path.clouds = volume: most scattering events in the clouds */
+    int pad1, pad2;
 } atmo_gpu_path;
 
 #endif

@@ -152,6 +152,8 @@ typedef struct atmo_scene {
         double filter_radius_px, filter_sigma_px;
         double aperture_m, focus_m; /* thin lens (aperture 0: pinhole) */
         int passes;            /* 0/1: render passes (EXR layers) */
+        int clouds;            /* ATMO_PATH_CLOUDS_*: how paths meet the fBm cloud layer */
+        int volume_bounces;    /* most scattering events in the cloud layer per path */
     } path;
     struct {
         int count;

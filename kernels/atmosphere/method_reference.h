@@ -68,8 +68,8 @@
  * added over the parts of a segment between its two spheres (reference_walk_shell, with a
  * REFERENCE_SHELL_MARGIN_M margin on the radii), so the clear air above and below keeps the
  * air's majorant; a scattering by it samples its phase as the layer's does
- * (reference_sample_cloud_phase: the Mie table's rows and CDF in phase_table.h's format, HG with
- * g per channel, Jendersie-d'Eon); the sun's transmittance through it is exact, exp(-sigma l)
+ * (phase_table.h's cloud_phase_sample: the Mie table's rows and CDF, HG with g per channel,
+ * Jendersie-d'Eon); the sun's transmittance through it is exact, exp(-sigma l)
  * for the sun's chord l through the shell, times the air's ratio-tracked transmittance
  * (reference_tracked_extinction: the air's extinction alone). The layer's roulettes (the
  * next-event keep, REFERENCE_ROULETTE_T) apply inside the shell too. The observer sphere is
@@ -389,31 +389,6 @@ ATMO_FN vec3 reference_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PA
                     vis);
 }
 
-#ifdef REFERENCE_CLOUDY
-/* A scattering-angle cosine drawn from a cloud's phase function (cloud shell or layer: phase
- * ATMO_CLOUD_PHASE_*, asymmetry g per channel, effective diameter, phase_table.h's rows and CDF)
- * with the uniform number u1 (and one more from g for Jendersie-d'Eon's mixture); *weight gets
- * the phase over the sampling density per channel: the Mie table by its CDF (P / q), HG by the
- * middle channel's g (p_c / p_y), Jendersie-d'Eon exactly (1). */
-ATMO_FN float reference_sample_cloud_phase(int phase, vec3 g_hg, float diameter_um,
-                                           ATMO_GLOBAL const float4 *rows,
-                                           ATMO_GLOBAL const float *cdf, int n, float u1,
-                                           rng_stream *g, vec3 *weight)
-{
-    if (phase == ATMO_CLOUD_PHASE_JENDERSIE_DEON)
-        return phase_jendersie_deon_sample(phase_jendersie_deon_params(diameter_um), u1,
-                                           rng_next(g));
-    if (phase == ATMO_CLOUD_PHASE_HG) {
-        float cs = phase_henyey_greenstein_sample(g_hg.y, u1);
-        float py = phase_henyey_greenstein(cs, g_hg.y);
-        *weight = v3(phase_henyey_greenstein(cs, g_hg.x) / py, 1.0f,
-                     phase_henyey_greenstein(cs, g_hg.z) / py);
-        return cs;
-    }
-    return phase_rows_sample(rows, cdf, n, u1, weight);
-}
-#endif
-
 /* A new direction's cosine to the old one, sampled from component k's phase function with the
  * uniform number u1 (and, for Jendersie-d'Eon's mixture, one more from g); *weight multiplies
  * the path's throughput (the phase over the sampling density: 1 where the sampling is exact). */
@@ -424,16 +399,13 @@ ATMO_FN float reference_sample_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_L
     *weight = v3(1.0f, 1.0f, 1.0f);
 #ifdef ATMO_CLOUD
     if (k == MEDIA_CLOUD)
-        return reference_sample_cloud_phase(s->cloud.phase, v3_from4(s->cloud.g),
-                                            s->cloud.diameter_um, cloud_phase_table,
-                                            cloud_phase_cdf, s->cloud.table_size, u1, g, weight);
+        return cloud_phase_sample(s->cloud.phase, v3_from4(s->cloud.g), s->cloud.diameter_um,
+                                  cloud_phase_table, cloud_phase_cdf, s->cloud.table_size, u1, g,
+                                  weight);
 #endif
 #ifdef ATMO_CLOUDS
-    if (k == MEDIA_CLOUDS)
-        return reference_sample_cloud_phase(s->clouds.phase, v3_from4(s->clouds.g),
-                                            s->clouds.diameter_um, clouds_phase_table,
-                                            clouds_phase_cdf, s->clouds.table_size, u1, g,
-                                            weight);
+    if (k == MEDIA_CLOUDS) /* cloud_layer.h's sampling, shared with the path tracer */
+        return clouds_phase_sample(s, clouds_phase_table, clouds_phase_cdf, u1, g, weight);
 #endif
     (void)g;
     return k == MEDIA_RAYLEIGH ? phase_draine_sample(0.0f, 1.0f, u1)

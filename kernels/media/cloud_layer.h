@@ -140,6 +140,17 @@ ATMO_FN vec3 clouds_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const
     return phase_rows_eval(table, c->table_size, nu);
 }
 
+/* A scattering-angle cosine drawn from the layer's phase function with the uniform number u1
+ * (phase_table.h's cloud_phase_sample; *weight the phase over the sampling density). */
+ATMO_FN float clouds_phase_sample(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                  ATMO_GLOBAL const float4 *table, ATMO_GLOBAL const float *cdf,
+                                  float u1, rng_stream *g, vec3 *weight)
+{
+    ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
+    return cloud_phase_sample(c->phase, v3_from4(c->g), c->diameter_um, table, cdf, c->table_size,
+                              u1, g, weight);
+}
+
 /* The parts of [t_start, t_end] of the ray from radius r with cosine mu (R the ground's radius)
  * inside the shell between the altitudes base and top, in order: their count (0..2), their
  * ends in lo[], hi[]. */

@@ -11,11 +11,16 @@
  * the CDF (binary search) and cos theta uniformly inside it, so its density per steradian is
  *     q(theta) = (C_{j+1} - C_j) / (2 pi (cos theta_j - cos theta_{j+1}))
  * and returns the weight P_c(theta) / (4 pi q) per wavelength: the estimator stays unbiased
- * for every channel whatever the table's resolution (the weight is ~1 on a fine table). */
+ * for every channel whatever the table's resolution (the weight is ~1 on a fine table).
+ * cloud_phase_sample draws from whichever phase a cloud medium (the shell or the layer) uses:
+ * the table, Henyey-Greenstein or Jendersie-d'Eon (ATMO_CLOUD_PHASE_*). */
 #ifndef ATMO_MEDIA_PHASE_TABLE_H
 #define ATMO_MEDIA_PHASE_TABLE_H
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
+#include "common/phase.h"
+#include "common/rng.h"
+#include "atmo/gpu_enums.h"
 #endif
 
 /* The last row j with rows[j].w <= theta (0 <= j < n - 1). */
@@ -63,6 +68,30 @@ ATMO_FN float phase_rows_sample(ATMO_GLOBAL const float4 *rows, ATMO_GLOBAL cons
     vec3 p = phase_rows_eval(rows, n, c);
     *weight = q > 0.0f ? v3_scale(p, 1.0f / q) : v3(0.0f, 0.0f, 0.0f);
     return c;
+}
+
+/* A scattering-angle cosine drawn from a cloud's phase function (ATMO_CLOUD_PHASE_*: the table
+ * `rows` with its CDF, Henyey-Greenstein with asymmetry g_hg per channel, or Jendersie-d'Eon
+ * for the effective diameter) with the uniform number u1, and one more from g for
+ * Jendersie-d'Eon's mixture. *weight gets the phase over the density the cosine was drawn with,
+ * per channel: the table by its CDF (P / q, phase_rows_sample), Henyey-Greenstein by the middle
+ * channel's g (p_c / p_y), Jendersie-d'Eon exactly (1). */
+ATMO_FN float cloud_phase_sample(int phase, vec3 g_hg, float diameter_um,
+                                 ATMO_GLOBAL const float4 *rows, ATMO_GLOBAL const float *cdf,
+                                 int n, float u1, rng_stream *g, vec3 *weight)
+{
+    *weight = v3(1.0f, 1.0f, 1.0f);
+    if (phase == ATMO_CLOUD_PHASE_JENDERSIE_DEON)
+        return phase_jendersie_deon_sample(phase_jendersie_deon_params(diameter_um), u1,
+                                           rng_next(g));
+    if (phase == ATMO_CLOUD_PHASE_HG) {
+        float cs = phase_henyey_greenstein_sample(g_hg.y, u1);
+        float py = phase_henyey_greenstein(cs, g_hg.y);
+        *weight = v3(phase_henyey_greenstein(cs, g_hg.x) / py, 1.0f,
+                     phase_henyey_greenstein(cs, g_hg.z) / py);
+        return cs;
+    }
+    return phase_rows_sample(rows, cdf, n, u1, weight);
 }
 
 #endif

@@ -20,6 +20,16 @@
  *   the sky behind: both strategies estimate the same integral of S, so their weights sum to 1
  *   and the sum is unbiased (Veach 1997). The sun's disc is left to next-event estimation: a
  *   continuation ray that finds it adds nothing there (path.sun_nee = 0: it adds the disc).
+ * Clouds (path.clouds = volume, -DATMO_CLOUDS_VOLUME): the fBm cloud layer is no medium of the
+ * method then; each segment's free flight through it (volume_stage.h) may end in a scattering
+ * at t_c before the surface: S is the air's light up to t_c and the scattering is the next
+ * vertex, lit by the sun (beta p(nu) E T_sun V T_clouds: the same shadow function as a
+ * surface's, path_shadow, the layer's transmittance ratio-tracked) and continued by a direction
+ * drawn from the phase function (beta *= p / pdf); the sky reaches it by that continuation
+ * alone (weight 1). A surface's sun is ratio-tracked through the layer the same way. A path
+ * scatters at most path.volume_bounces times in the clouds; roulette counts every event.
+ * (path.clouds = march: the method marches the layer along each segment, octave multiple
+ * scattering, cloud_march.h; no vertex is ever in a cloud.)
  * N_s = path.secondary continuation rays leave the primary hit, each with beta / N_s (the
  * primary's direct light once, its sky MIS weighed against N_s BSDF samples); a path bounces
  * at most N_b = path.bounces times after the primary hit (the last continuation's segment and
@@ -32,10 +42,11 @@
  * atmosphere and no planet in the way, only the objects' shadows: the world of the furnace and
  * open-box tests, which a host reference can trace exactly.
  * Passes: every contribution goes to one light pass (PATH_PASS_*: the sky seen directly, the
- * objects' emission, the air in front of surfaces, reflected sunlight, reflected skylight), and
+ * objects' emission, the air in front of surfaces and cloud vertices, reflected sunlight,
+ * reflected skylight, the light of cloud vertices: their sun and the sky behind them), and
  * the sample's radiance is their sum, so the passes add up to the beauty image; the primary
  * hit's distance, normal and albedo come with them (render/path.cl stores them when the scene
- * asks for passes).
+ * asks for passes; a primary ray that scatters in a cloud has none of them, as if it escaped).
  * Random numbers: stage 0 of the sample (rng.h) has the lens, the primary segment and the
  * primary hit's direct light; secondary ray j and all its bounces draw from stage 1 + j, in
  * order. The pixel position comes from path_camera.h's sequence. */
@@ -51,6 +62,7 @@
 #include "render/bsdf.h"
 #include "render/light_sun.h"
 #include "render/light_sky.h"
+#include "render/volume_stage.h"
 #endif
 
 /* The light passes (render passes, path.passes): a partition of a sample's radiance by where the
@@ -61,6 +73,8 @@ enum {
     PATH_PASS_VOLUME,  /* the air's in-scattered light in front of surfaces, every segment */
     PATH_PASS_SUN,     /* sunlight reflected by surfaces (next-event estimation), every bounce */
     PATH_PASS_SKY,     /* skylight reflected by surfaces (sky sampling and escaping bounces) */
+    PATH_PASS_CLOUDS,  /* light scattered by the cloud layer's volume (path.clouds = volume):
+                          the sun at its vertices, the sky their continuations reach */
     PATH_LIGHT_PASSES
 };
 
@@ -92,35 +106,43 @@ ATMO_FN void path_add(path_parts *parts, int pass, vec3 L)
  * bounces inside an open box are all this short. */
 #define PATH_AIR_MIN_M 10.0f
 
-/* The light S that segment m brings to its origin, up to the hit h or out of the scene (the
- * sun disc only with_sun), and its view transmittance. */
+/* The light S that segment m brings to its origin, up to the first of the hit h and a
+ * scattering in the cloud layer's volume (volume_stage.h's free flight: its distance in
+ * *t_event, else -1), or out of the scene (the sun disc only with_sun), and its view
+ * transmittance (the air's, times the layer's tracking weight). */
 ATMO_FN vec3 path_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                           const medium_ray *m, const path_hit *h, int with_sun, rng_stream *g,
-                          vec3 *view_t)
+                          vec3 *view_t, float *t_event)
 {
-    if (s->path.sky == ATMO_PATH_SKY_UNIFORM) { /* the sun's disc is left to the NEE here */
-        *view_t = v3(1.0f, 1.0f, 1.0f);
-        return h->kind == SURFACES_NONE ? v3_from4(s->path.uniform_sky) : v3(0.0f, 0.0f, 0.0f);
-    }
-    if (h->kind != SURFACES_NONE && h->t < PATH_AIR_MIN_M) {
-        *view_t = v3(1.0f, 1.0f, 1.0f);
+    vec3 w;
+    float t_c = volume_flight(s, ATMO_LUT_ARGS, m, h->kind == SURFACES_NONE ? INFINITY : h->t, g,
+                              &w);
+    int escapes = h->kind == SURFACES_NONE && t_c < 0.0f;
+    *t_event = t_c;
+    *view_t = w;
+    if (s->path.sky == ATMO_PATH_SKY_UNIFORM) /* the sun's disc is left to the NEE here */
+        return escapes ? v3_mul(w, v3_from4(s->path.uniform_sky)) : v3(0.0f, 0.0f, 0.0f);
+    if (!escapes && (t_c >= 0.0f ? t_c : h->t) < PATH_AIR_MIN_M)
         return v3(0.0f, 0.0f, 0.0f);
-    }
-    vec3 sky, sun;
-    float t_max = h->kind == SURFACES_NONE ? INFINITY : h->t * PATH_SEGMENT_SHORTEN;
-    sky_trace(s, ATMO_LUT_ARGS, m, t_max, g, &sky, &sun, view_t);
+    vec3 sky, sun, air_t;
+    float t_max = t_c >= 0.0f ? t_c : escapes ? INFINITY : h->t * PATH_SEGMENT_SHORTEN;
+    sky_trace(s, ATMO_LUT_ARGS, m, t_max, g, &sky, &sun, &air_t);
+    *view_t = v3_mul(air_t, w);
     vec3 L = v3_mul(sky, v3_from4(s->sky_factor));
     if (with_sun)
         L = v3_add(L, v3_mul(sun, v3_from4(s->sun_factor)));
-    return L;
+    return v3_mul(L, w);
 }
 
-/* A vertex: the hit of ray m, its facing normal and the offset origin of rays leaving it. */
+/* A vertex: the hit of ray m, its facing normal and the offset origin of rays leaving it; or a
+ * scattering in the cloud layer (volume: no normal, no albedo; dir the ray that reached it). */
 typedef struct path_vertex {
     medium_point q; /* the hit point (for the visibility sources) */
     vec3 p;         /* origin for new rays, off the surface */
     vec3 n;         /* unit normal on the ray's side */
     vec3 albedo;
+    vec3 dir;       /* the direction of the ray m */
+    int volume;     /* 1: a scattering in the cloud layer's volume */
 } path_vertex;
 
 ATMO_FN path_vertex path_vertex_at(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m,
@@ -131,6 +153,22 @@ ATMO_FN path_vertex path_vertex_at(ATMO_GLOBAL const atmo_gpu_scene *s, const me
     v.n = v3_dot(h->normal, m->dir) > 0.0f ? v3_scale(h->normal, -1.0f) : h->normal;
     v.p = v3_add(v.q.p, v3_scale(v.n, h->lift));
     v.albedo = h->albedo;
+    v.dir = m->dir;
+    v.volume = 0;
+    return v;
+}
+
+/* The vertex of a scattering at distance t along m in the cloud layer. */
+ATMO_FN path_vertex path_vertex_volume(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m,
+                                       float t)
+{
+    path_vertex v;
+    v.q = medium_ray_at(m, t, s->atmosphere.bottom_radius);
+    v.p = v.q.p;
+    v.n = v3(0.0f, 0.0f, 0.0f);
+    v.albedo = v3(0.0f, 0.0f, 0.0f);
+    v.dir = m->dir;
+    v.volume = 1;
     return v;
 }
 
@@ -149,7 +187,22 @@ ATMO_FN vec3 path_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
     return v3_mul(v3_from4(a->solar_irradiance), v3_mul(to_sun, vis));
 }
 
-/* Sunlight reflected at v toward the ray (without the throughput). */
+/* The one shadow function of surface and cloud vertices: the sunlight arriving at q along the
+ * direction w sampled on the disc, for rays leaving from p: E T_sun V (path_sunlight; in the
+ * uniform world E), zero where a surface blocks w (surfaces_occluded), times the cloud layer's
+ * transmittance toward the sun by ratio tracking (volume_stage.h; 1 without its volume). */
+ATMO_FN vec3 path_shadow(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                         const medium_point *q, vec3 p, vec3 w, rng_stream *g)
+{
+    vec3 e = s->path.sky == ATMO_PATH_SKY_UNIFORM ? v3_from4(s->atmosphere.solar_irradiance)
+                                                   : path_sunlight(s, ATMO_LUT_ARGS, q);
+    if ((e.x <= 0.0f && e.y <= 0.0f && e.z <= 0.0f) || surfaces_occluded(s, ATMO_LUT_ARGS, p, w))
+        return v3(0.0f, 0.0f, 0.0f);
+    return v3_mul(e, volume_sun_transmittance(s, ATMO_LUT_ARGS, q, g));
+}
+
+/* Sunlight scattered at v toward the ray (without the throughput): a surface's albedo/pi cos, a
+ * cloud vertex's phase function. */
 ATMO_FN vec3 path_direct_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                              const path_vertex *v, rng_stream *g)
 {
@@ -157,13 +210,15 @@ ATMO_FN vec3 path_direct_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
     if (!s->path.sun_nee)
         return v3(0.0f, 0.0f, 0.0f);
     vec3 w = light_sun_sample(v3_from4(s->sun_direction), s->sun_direction.w, u1, u2);
+    if (v->volume) {
+        vec3 f = volume_phase(s, ATMO_LUT_ARGS, v3_dot(v->dir, w));
+        vec3 e = path_shadow(s, ATMO_LUT_ARGS, &v->q, v->p, w, g);
+        return v3_mul(v3_mul(f, e), v3_from4(s->sky_factor));
+    }
     float c = v3_dot(v->n, w);
     if (c <= 0.0f)
         return v3(0.0f, 0.0f, 0.0f);
-    vec3 e = s->path.sky == ATMO_PATH_SKY_UNIFORM ? v3_from4(s->atmosphere.solar_irradiance)
-                                                   : path_sunlight(s, ATMO_LUT_ARGS, &v->q);
-    if ((e.x <= 0.0f && e.y <= 0.0f && e.z <= 0.0f) || surfaces_occluded(s, ATMO_LUT_ARGS, v->p, w))
-        return v3(0.0f, 0.0f, 0.0f);
+    vec3 e = path_shadow(s, ATMO_LUT_ARGS, &v->q, v->p, w, g);
     return v3_mul(v3_scale(v3_mul(v->albedo, e), c / ATMO_PI), v3_from4(s->sky_factor));
 }
 
@@ -182,39 +237,60 @@ ATMO_FN vec3 path_direct_sky(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
     medium_ray r = medium_ray_make(s, v->p, w);
     path_hit h = surfaces_hit(s, ATMO_LUT_ARGS, &r, INFINITY);
     vec3 view_t;
-    vec3 S = path_segment(s, ATMO_LUT_ARGS, &r, &h, 0, g, &view_t);
+    float t_event; /* a scattering in the clouds ends S there (its light is the continuation's) */
+    vec3 S = path_segment(s, ATMO_LUT_ARGS, &r, &h, 0, g, &view_t, &t_event);
     float weight = light_sky_power(1.0f, p_l, n_bsdf, p_b);
     return v3_scale(v3_mul(v->albedo, S), c / ATMO_PI * weight / p_l);
 }
 
-/* The light of a path that leaves vertex v (depth: its bounce, 0 the primary hit) with
- * throughput beta, its first continuation weighed against n_bsdf BSDF samples. */
+/* The light of a path that leaves vertex v (depth: its surface bounce, 0 the primary hit;
+ * scatters: its scattering events in the clouds so far) with throughput beta, its first
+ * continuation from a surface weighed against n_bsdf BSDF samples. A cloud vertex continues by
+ * its phase function, with weight 1 for the light its segment finds (no sky sampling there). */
 ATMO_FN void path_continue(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, path_vertex v,
-                           vec3 beta, int depth, float n_bsdf, rng_stream *g, path_parts *parts)
+                           vec3 beta, int depth, int scatters, float n_bsdf, rng_stream *g,
+                           path_parts *parts)
 {
     for (;;) {
         float u_rr = rng_next(g), u1 = rng_next(g), u2 = rng_next(g);
-        if (depth >= s->path.rr_bounce) {
+        if (depth + scatters >= s->path.rr_bounce) {
             float q = fminf(0.95f, fmaxf(beta.x, fmaxf(beta.y, beta.z)));
             if (u_rr >= q)
                 break;
             beta = v3_scale(beta, 1.0f / q);
         }
-        vec3 w = bsdf_sample_cosine(v.n, u1, u2);
-        beta = v3_mul(beta, v.albedo); /* f cos / p = albedo */
+        vec3 w, phase_weight;
+        if (v.volume) {
+            w = volume_phase_direction(s, ATMO_LUT_ARGS, v.dir, u1, u2, g, &phase_weight);
+            beta = v3_mul(beta, phase_weight); /* p / pdf */
+        } else {
+            w = bsdf_sample_cosine(v.n, u1, u2);
+            beta = v3_mul(beta, v.albedo); /* f cos / p = albedo */
+        }
         medium_ray r = medium_ray_make(s, v.p, w);
         path_hit h = surfaces_hit(s, ATMO_LUT_ARGS, &r, INFINITY);
         vec3 view_t;
-        vec3 S = path_segment(s, ATMO_LUT_ARGS, &r, &h, !s->path.sun_nee, g, &view_t);
-        float weight = s->path.sky_nee
+        float t_event;
+        vec3 S = path_segment(s, ATMO_LUT_ARGS, &r, &h, !s->path.sun_nee, g, &view_t, &t_event);
+        float weight = s->path.sky_nee && !v.volume
                            ? light_sky_power(n_bsdf, bsdf_pdf_cosine(v.n, w), 1.0f,
                                              light_sky_pdf(s, sky_env, w))
                            : 1.0f;
-        path_add(parts, h.kind == SURFACES_NONE ? PATH_PASS_SKY : PATH_PASS_VOLUME,
+        int escapes = h.kind == SURFACES_NONE && t_event < 0.0f;
+        path_add(parts,
+                 !escapes ? PATH_PASS_VOLUME : v.volume ? PATH_PASS_CLOUDS : PATH_PASS_SKY,
                  v3_mul(beta, v3_scale(S, weight)));
-        if (h.kind == SURFACES_NONE)
+        if (escapes)
             break;
         beta = v3_mul(beta, view_t);
+        if (t_event >= 0.0f) { /* a scattering in the clouds: the next vertex */
+            if (++scatters > s->path.volume_bounces)
+                break;
+            v = path_vertex_volume(s, &r, t_event);
+            path_add(parts, PATH_PASS_CLOUDS,
+                     v3_mul(beta, path_direct_sun(s, ATMO_LUT_ARGS, &v, g)));
+            continue;
+        }
         path_add(parts, PATH_PASS_EMIT, v3_mul(beta, v3_mul(h.emission, v3_from4(s->sky_factor))));
         if (++depth > s->path.bounces)
             break;
@@ -244,23 +320,33 @@ ATMO_FN void path_sample(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, i
                                                : medium_ray_from_camera(s, d);
     path_hit h = surfaces_hit(s, ATMO_LUT_ARGS, &ray, INFINITY);
     vec3 view_t;
-    vec3 S = path_segment(s, ATMO_LUT_ARGS, &ray, &h, 1, &g, &view_t);
-    path_add(parts, h.kind == SURFACES_NONE ? PATH_PASS_ENV : PATH_PASS_VOLUME, S);
-    if (h.kind == SURFACES_NONE)
+    float t_event;
+    vec3 S = path_segment(s, ATMO_LUT_ARGS, &ray, &h, 1, &g, &view_t, &t_event);
+    int escapes = h.kind == SURFACES_NONE && t_event < 0.0f;
+    path_add(parts, escapes ? PATH_PASS_ENV : PATH_PASS_VOLUME, S);
+    if (escapes)
         return;
-    path_add(parts, PATH_PASS_EMIT, v3_mul(view_t, v3_mul(h.emission, v3_from4(s->sky_factor))));
-    path_vertex v = path_vertex_at(s, &ray, &h);
-    parts->depth = h.t;
-    parts->normal = v.n;
-    parts->albedo = v.albedo;
     int n_s = s->path.secondary;
-    path_add(parts, PATH_PASS_SUN, v3_mul(view_t, path_direct_sun(s, ATMO_LUT_ARGS, &v, &g)));
-    path_add(parts, PATH_PASS_SKY,
-             v3_mul(view_t, path_direct_sky(s, ATMO_LUT_ARGS, &v, (float)n_s, &g)));
+    path_vertex v;
+    if (t_event >= 0.0f) { /* the primary vertex is a scattering in the clouds */
+        v = path_vertex_volume(s, &ray, t_event);
+        path_add(parts, PATH_PASS_CLOUDS,
+                 v3_mul(view_t, path_direct_sun(s, ATMO_LUT_ARGS, &v, &g)));
+    } else {
+        path_add(parts, PATH_PASS_EMIT,
+                 v3_mul(view_t, v3_mul(h.emission, v3_from4(s->sky_factor))));
+        v = path_vertex_at(s, &ray, &h);
+        parts->depth = h.t;
+        parts->normal = v.n;
+        parts->albedo = v.albedo;
+        path_add(parts, PATH_PASS_SUN, v3_mul(view_t, path_direct_sun(s, ATMO_LUT_ARGS, &v, &g)));
+        path_add(parts, PATH_PASS_SKY,
+                 v3_mul(view_t, path_direct_sky(s, ATMO_LUT_ARGS, &v, (float)n_s, &g)));
+    }
     vec3 beta = v3_scale(view_t, 1.0f / (float)n_s);
     for (int j = 0; j < n_s; j++) {
         rng_stream gj = rng_stream_stage(s->seed, pixel, sample, 1u + (uint)j);
-        path_continue(s, ATMO_LUT_ARGS, v, beta, 0, (float)n_s, &gj, parts);
+        path_continue(s, ATMO_LUT_ARGS, v, beta, 0, v.volume, (float)n_s, &gj, parts);
     }
 }
 
