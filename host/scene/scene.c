@@ -348,7 +348,8 @@ const atmo_param atmo_params[] = {
     ROW_VEC3("path.uniform_sky", path.uniform_sky, "W/m^2/sr/nm", 0, 1e6, 1, 1, 1,
              "path mode: radiance of the uniform test sky (path.sky = uniform)"),
     ROW_BOOL("path.ground", path.ground, 1,
-             "path mode: the planet's ground sphere is a surface (off: only objects)"),
+             "path mode: the planet's ground sphere is a surface (off: only objects; "
+             "the terrain replaces it)"),
     ROW_ENUM("path.sampler", path.sampler, sampler_names, ATMO_SAMPLER_SOBOL,
              "path mode: primary samples from Owen-scrambled Sobol or independent random"),
     ROW_FLOAT("path.filter_radius_px", path.filter_radius_px, "px", 0.5, 4, 1.5,
