@@ -246,14 +246,22 @@ int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e)
  * the terrain's surface under the camera or at camera.terrain_at_m, as the objects' anchors
  * take it: atmo_plan_terrain_surface_y), from a first plan of the scene, which has the terrain
  * (the field, a DEM's heightmap) and nothing that follows the camera yet planned for good. */
-static void resolve_camera(const atmo_scene *s, const atmo_plan *first, atmo_scene *out)
+void atmo_plan_camera_world(const atmo_plan *p, const atmo_scene *s, double out[3])
 {
-    *out = *s;
+    for (int k = 0; k < 3; k++)
+        out[k] = s->camera.position_m[k];
+    if (s->camera.on_terrain == ATMO_CAMERA_TERRAIN_OFF)
+        return;
     int at = s->camera.on_terrain == ATMO_CAMERA_TERRAIN_AT;
     double x = at ? s->camera.terrain_at_m[0] : s->camera.position_m[0];
     double z = at ? s->camera.terrain_at_m[1] : s->camera.position_m[2];
-    out->camera.position_m[1] +=
-        atmo_plan_terrain_surface_y(first, s->atmosphere.bottom_radius_m, x, z);
+    out[1] += atmo_plan_terrain_surface_y(p, s->atmosphere.bottom_radius_m, x, z);
+}
+
+static void resolve_camera(const atmo_scene *s, const atmo_plan *first, atmo_scene *out)
+{
+    *out = *s;
+    atmo_plan_camera_world(first, s, out->camera.position_m);
     out->camera.on_terrain = ATMO_CAMERA_TERRAIN_OFF;
 }
 
