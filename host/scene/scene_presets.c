@@ -33,8 +33,8 @@
  * seeds 0-24 only 6, 11 and 22 show both, the others all cloud or all terrain, as the
  * coverage field's 500 km features lie over the whole view).
  * Views 1, 2, 3, 8 and 9 and `space` have the procedural terrain; its seed 46 puts land under
- * every thesis camera (thesis-1's camera 630 m and thesis-3's 90 m above the ground: `atmo
- * terrain --at X,Z`). In the views with terrain (2, 3) the objects stand on it ("on_terrain":
+ * every thesis camera (thesis-1's camera 630 m above the ground: `atmo terrain --at X,Z`).
+ * In the views with terrain (2, 3) the objects stand on it ("on_terrain":
  * their heights above the terrain's surface), about 440 m (view 2) and 50 m (view 3) below
  * where the thesis' terrain had them, and so do the cameras (camera.on_terrain=at, their
  * heights taken at the objects' anchors), keeping presets.md's offsets from the objects: view
