@@ -19,7 +19,15 @@
  *  3. Bad input: on_terrain without terrain.enabled, terrain_at_m without on_terrain, a
  *     non-boolean on_terrain, terrain_at_m of the wrong length: each one usage error naming
  *     objects[i] and the member; --save-scene's JSON of on_terrain objects reads back to the
- *     same list. */
+ *     same list.
+ *  4. The camera on the terrain (camera.on_terrain, host/plan/plan.c), the same oracle and
+ *     bound: with `below` and y = 10 the device's clearance at the camera is 10 m; with `at`
+ *     and y = 5 the point 5 m below the camera along Y over camera.terrain_at_m has clearance
+ *     0; objects on that terrain are placed relative to the absolute camera.
+ *  5. Objects on a DEM (terrain.heightmap_file: the shipped GeoTIFF, tests/data, with GDAL):
+ *     a sphere, a box and a raised box with terrain_at_m at places over the file's 236-1076 m
+ *     relief; the device's clearance (the resampled heightmap the renderer traces) at their
+ *     anchors as in 1, the same bound. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -51,6 +59,127 @@ static void expect_error(const char *json, const char *needle)
     CHECK(rc == ATMO_ERR_USAGE);
     CHECK(rc != 0 && strstr(e.msg, needle) != NULL && strchr(e.msg, '\n') == NULL);
     printf("refused: %s\n", rc ? e.msg : "(accepted)");
+}
+
+/* The device's terrain_clearance at n camera-relative points of plan p. */
+static void device_clearance(const atmo_plan *p, const float4 *pts, int count, float *out)
+{
+    atmo_cl cl;
+    test_cl_open(&cl);
+    cl_program prog = test_plan_program(&cl, p, probe_src);
+    cl_int err;
+    cl_mem scene = clCreateBuffer(cl.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                  sizeof p->gpu, (void *)&p->gpu, &err);
+    CHECK(err == CL_SUCCESS);
+    cl_mem luts[ATMO_PLAN_MAX_BUFFERS];
+    test_precompute(&cl, prog, scene, p, luts);
+    cl_mem bp = test_cl_buffer(&cl, sizeof(float4) * (size_t)count, (void *)pts);
+    cl_mem bo = test_cl_buffer(&cl, sizeof(float) * (size_t)count, NULL);
+    cl_kernel k = clCreateKernel(prog, "clearance", &err);
+    CHECK(err == CL_SUCCESS);
+    clSetKernelArg(k, 0, sizeof scene, &scene);
+    int a = test_bind_buffers(k, luts);
+    cl_uint nn = (cl_uint)count;
+    clSetKernelArg(k, a++, sizeof bp, &bp);
+    clSetKernelArg(k, a++, sizeof bo, &bo);
+    clSetKernelArg(k, a++, sizeof nn, &nn);
+    test_cl_run_1d(&cl, k, (size_t)count);
+    test_cl_read(&cl, bo, sizeof(float) * (size_t)count, out);
+    clReleaseKernel(k);
+    clReleaseMemObject(bo);
+    clReleaseMemObject(bp);
+    test_release_luts(luts);
+    clReleaseMemObject(scene);
+    clReleaseProgram(prog);
+    atmo_cl_close(&cl);
+}
+
+/* The anchors of the plan's objects (a sphere's lowest point, a box's base centre). */
+static void anchors(const atmo_plan *p, int n, float4 *pts)
+{
+    const atmo_gpu_object *rows = atmo_plan_buffer_find((atmo_plan *)p, "objects")->host_data;
+    for (int i = 0; i < n; i++) {
+        const atmo_gpu_object *o = &rows[i];
+        if (o->kind == ATMO_OBJECT_SPHERE) {
+            pts[i] = o->a;
+            pts[i].y -= o->a.w;
+        } else {
+            pts[i].x = 0.5f * (o->a.x + o->b.x);
+            pts[i].y = o->a.y;
+            pts[i].z = 0.5f * (o->a.z + o->b.z);
+        }
+        pts[i].w = 0.0f;
+    }
+}
+
+static void camera_on_terrain(void)
+{
+    atmo_scene s;
+    atmo_plan p;
+    float4 pts[2];
+    float out[2];
+    test_scene_preset(&s, "thesis-1");
+    test_scene_set(&s, "camera.position_m=23796,10,16636");
+    test_scene_set(&s, "camera.on_terrain=below");
+    test_plan(&s, &p);
+    pts[0] = (float4){0.0f, 0.0f, 0.0f, 0.0f};
+    device_clearance(&p, pts, 1, out);
+    printf("camera.on_terrain=below, y = 10: device clearance at the camera %.4f m\n", out[0]);
+    CHECK_ABS(out[0], 10.0, 0.2);
+    atmo_plan_free(&p);
+
+    test_scene_set(&s, "camera.position_m=23000,5,13000");
+    test_scene_set(&s, "camera.on_terrain=at");
+    test_scene_set(&s, "camera.terrain_at_m=22832,13326");
+    test_scene_set(&s, "objects=[{\"type\": \"sphere\", \"center_m\": [22832, 1, 13326], "
+                       "\"radius_m\": 1, \"on_terrain\": true}]");
+    test_plan(&s, &p);
+    pts[0] = (float4){22832.0f - 23000.0f, -5.0f, 13326.0f - 13000.0f, 0.0f};
+    anchors(&p, 1, &pts[1]);
+    device_clearance(&p, pts, 2, out);
+    printf("camera.on_terrain=at, y = 5: device clearance 5 m below it over the anchor %.4f m; "
+           "the sphere on the terrain there %.4f m\n",
+           out[0], out[1]);
+    CHECK_ABS(out[0], 0.0, 0.2);
+    CHECK_ABS(out[1], 0.0, 0.2);
+    CHECK(fabs(pts[0].x - pts[1].x) < 1e-3f && fabs(pts[0].z - pts[1].z) < 1e-3f);
+    atmo_plan_free(&p);
+}
+
+static void objects_on_dem(void)
+{
+#ifdef ATMO_HAVE_GDAL
+    const char *src = getenv("ATMO_SOURCE_DIR");
+    char set[640];
+    snprintf(set, sizeof set, "terrain.heightmap_file=%s/tests/data/jacksboro_fault_dem.tif",
+             src ? src : "..");
+    atmo_scene s;
+    atmo_plan p;
+    test_scene_preset(&s, "sky-noon");
+    test_scene_set(&s, set);
+    test_scene_set(&s, "camera.position_m=0,3000,0");
+    test_scene_set(&s, "objects=[{\"type\": \"sphere\", \"center_m\": [1000, 1.5, -2000], "
+                       "\"radius_m\": 1.5, \"on_terrain\": true}, {\"type\": \"box\", \"min_m\": "
+                       "[-5000, 0, 4000], \"size_m\": [2, 1, 4], \"on_terrain\": true}, "
+                       "{\"type\": \"box\", \"min_m\": [9000, 2, -11000], \"size_m\": [1, 1, 1], "
+                       "\"on_terrain\": true, \"terrain_at_m\": [9000.5, -10999.5]}]");
+    test_plan(&s, &p);
+    float4 pts[3];
+    float out[3];
+    anchors(&p, 3, pts);
+    pts[2].y -= 2.0f; /* the raised box's base, 2 m above its anchor's surface */
+    device_clearance(&p, pts, 3, out);
+    double worst = 0;
+    for (int i = 0; i < 3; i++) {
+        worst = fmax(worst, fabs(out[i]));
+        CHECK_ABS(out[i], 0.0, 0.2);
+    }
+    printf("on_terrain on a DEM: 3 anchors, device clearance within %.3g m of the placement\n",
+           worst);
+    atmo_plan_free(&p);
+#else
+    printf("on_terrain on a DEM: not run (built without GDAL: the shipped DEM is a GeoTIFF)\n");
+#endif
 }
 
 int main(void)
@@ -123,27 +252,8 @@ int main(void)
     want[2 * SPOTS] = 2.0;
     test_require_opencl();
     test_fresh_cache_dir();
-    atmo_cl cl;
-    test_cl_open(&cl);
-    cl_program prog = test_plan_program(&cl, &p, probe_src);
-    cl_int err;
-    cl_mem scene = clCreateBuffer(cl.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                                  sizeof p.gpu, &p.gpu, &err);
-    CHECK(err == CL_SUCCESS);
-    cl_mem luts[ATMO_PLAN_MAX_BUFFERS];
-    test_precompute(&cl, prog, scene, &p, luts);
     float out[2 * SPOTS + 2];
-    cl_mem bp = test_cl_buffer(&cl, sizeof pts, pts), bo = test_cl_buffer(&cl, sizeof out, NULL);
-    cl_kernel k = clCreateKernel(prog, "clearance", &err);
-    CHECK(err == CL_SUCCESS);
-    clSetKernelArg(k, 0, sizeof scene, &scene);
-    int a = test_bind_buffers(k, luts);
-    cl_uint nn = (cl_uint)count;
-    clSetKernelArg(k, a++, sizeof bp, &bp);
-    clSetKernelArg(k, a++, sizeof bo, &bo);
-    clSetKernelArg(k, a++, sizeof nn, &nn);
-    test_cl_run_1d(&cl, k, (size_t)count);
-    test_cl_read(&cl, bo, sizeof out, out);
+    device_clearance(&p, pts, count, out);
     double worst = 0;
     for (int i = 0; i < count; i++) {
         worst = fmax(worst, fabs(out[i] - want[i]));
@@ -162,13 +272,8 @@ int main(void)
           r[0].a.z == (float)(16640 - cam[2]) && r[0].a.w == 2.0f);
     atmo_plan_free(&q);
 
-    clReleaseKernel(k);
-    clReleaseMemObject(bo);
-    clReleaseMemObject(bp);
-    test_release_luts(luts);
-    clReleaseMemObject(scene);
-    clReleaseProgram(prog);
     atmo_plan_free(&p);
-    atmo_cl_close(&cl);
+    camera_on_terrain();
+    objects_on_dem();
     return test_finish();
 }

@@ -4,7 +4,9 @@
  * Oracle: the specification itself. The defaults, ranges and enum names are written out again
  * here from the documented parameter list (independently of the registry table in scene.c), the
  * thesis presets are compared with the "direction to sun", position and rotation columns of
- * shared/reference/presets.md, and every rejection case of the validation (unknown keys, with a
+ * shared/reference/presets.md (views 2 and 3, whose objects and cameras stand on our terrain,
+ * lower than the thesis': the camera's x and z, and its height's offset from the object the
+ * thesis shows, camera y - object y, taken at that object's terrain anchor), and every rejection case of the validation (unknown keys, with a
  * suggestion; missing, malformed or non-finite values; values out of range; vectors of the wrong
  * length; unknown enum names; whole numbers not in decimal digits; NUL in a scene file's
  * strings; in JSON files also syntax errors, with their line, and values of the wrong type) must
@@ -33,6 +35,8 @@ static const char *const spec_defaults[] = {"image.width=640",
                                             "camera.pitch_deg=0",
                                             "camera.yaw_deg=0",
                                             "camera.fov_deg=45",
+                                            "camera.on_terrain=off",
+                                            "camera.terrain_at_m=0,0",
                                             "sun.zenith_deg=0",
                                             "sun.azimuth_deg=0",
                                             "sun.angular_radius_deg=0.26786",
@@ -174,6 +178,7 @@ static const struct {
     {"camera.pitch_deg", -90, 90},
     {"camera.yaw_deg", -3600, 3600},
     {"camera.fov_deg", 1, 179},
+    {"camera.terrain_at_m", -1e8, 1e8},
     {"sun.zenith_deg", 0, 180},
     {"sun.azimuth_deg", -3600, 3600},
     {"sun.angular_radius_deg", 0.01, 10},
@@ -471,6 +476,21 @@ static void test_validate(void)
 
     /* values written into the struct by code are range-checked too */
     atmo_scene_defaults(&s);
+    /* camera.on_terrain needs the terrain and a height above it */
+    {
+        atmo_scene t;
+        atmo_scene_defaults(&t);
+        CHECK(atmo_scene_assign(&t, "camera.on_terrain=below", "--set", &e) == ATMO_OK);
+        CHECK(atmo_scene_validate(&t, &e) == ATMO_ERR_USAGE &&
+              strstr(e.msg, "camera.on_terrain") && strstr(e.msg, "terrain.enabled"));
+        CHECK(atmo_scene_assign(&t, "terrain.enabled=true", "--set", &e) == ATMO_OK);
+        CHECK(atmo_scene_validate(&t, &e) == ATMO_OK);
+        t.camera.position_m[1] = -0.5;
+        CHECK(atmo_scene_validate(&t, &e) == ATMO_ERR_USAGE &&
+              strstr(e.msg, "camera.position_m") && !strchr(e.msg, '\n'));
+        CHECK(atmo_scene_assign(&t, "camera.on_terrain=yes", "--set", &e) == ATMO_ERR_USAGE &&
+              strstr(e.msg, "camera.on_terrain"));
+    }
     s.camera.fov_deg = NAN;
     CHECK(atmo_scene_validate(&s, &e) == ATMO_ERR_USAGE && strstr(e.msg, "camera.fov_deg"));
     atmo_scene_defaults(&s);
@@ -698,8 +718,25 @@ static void test_presets(void)
         snprintf(name, sizeof name, "thesis-%d", i + 1);
         atmo_scene_defaults(&s);
         CHECK(atmo_scene_apply_preset(&s, name, &e) == ATMO_OK);
-        for (int c = 0; c < 3; c++)
-            CHECK(s.camera.position_m[c] == thesis[i].pos[c]);
+        if (i == 1 || i == 2) {
+            /* presets.md's objects: view 2's sphere (centre 2022 m), view 3's open box's left
+             * wall (min 1336 m); the preset's camera and object heights are above the terrain
+             * at the same anchor */
+            static const double object_y[2] = {2022, 1336};
+            const atmo_object *o = &s.objects.list[0];
+            double ax = o->has_terrain_at ? o->terrain_at_m[0] : o->center_m[0];
+            double az = o->has_terrain_at ? o->terrain_at_m[1] : o->center_m[2];
+            double oy = o->type == ATMO_OBJECT_SPHERE ? o->center_m[1] : o->min_m[1];
+            CHECK(s.camera.on_terrain == ATMO_CAMERA_TERRAIN_AT && o->on_terrain);
+            CHECK(s.camera.terrain_at_m[0] == ax && s.camera.terrain_at_m[1] == az);
+            CHECK(s.camera.position_m[0] == thesis[i].pos[0] &&
+                  s.camera.position_m[2] == thesis[i].pos[2]);
+            CHECK_ABS(s.camera.position_m[1] - oy, thesis[i].pos[1] - object_y[i - 1], 1e-9);
+        } else {
+            for (int c = 0; c < 3; c++)
+                CHECK(s.camera.position_m[c] == thesis[i].pos[c]);
+            CHECK(s.camera.on_terrain == ATMO_CAMERA_TERRAIN_OFF);
+        }
         CHECK(s.camera.pitch_deg == thesis[i].pitch && s.camera.yaw_deg == thesis[i].yaw);
         CHECK(s.camera.fov_deg == 45 && s.camera.kind == ATMO_CAMERA_PERSPECTIVE);
         double d[3];

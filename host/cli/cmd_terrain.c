@@ -86,8 +86,10 @@ static cJSON *probe(const atmo_plan *p, const atmo_scene *s, const double at[2],
     double n[3] = {at[0] / R, sqrt(1.0 - rho2), at[1] / R}, world[3], rel[3];
     for (int k = 0; k < 3; k++)
         world[k] = n[k] * (R + surface) - (k == 1 ? R : 0.0);
+    double cam[3];
+    atmo_plan_camera_world(p, s, cam);
     for (int k = 0; k < 3; k++)
-        rel[k] = world[k] - s->camera.position_m[k];
+        rel[k] = world[k] - cam[k];
     vec3 q = v3((float)rel[0], (float)rel[1], (float)rel[2]);
     terrain_surface_point m = terrain_material(g, in_file ? hm : NULL, q, 1.0f);
     float cu, cv;

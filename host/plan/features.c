@@ -34,6 +34,7 @@ static int has_objects(const atmo_scene *s) { return s->objects.count > 0; }
 static int path_mode(const atmo_scene *s) { return s->path.mode == ATMO_RENDER_PATH; }
 /* a heightmap file is drawn as terrain, so it implies terrain.enabled */
 static int has_terrain(const atmo_scene *s) { return s->terrain.enabled || s->dem.file[0]; }
+static int path_water(const atmo_scene *s) { return path_mode(s) && has_terrain(s); }
 static int terrain_stage(const atmo_scene *s)
 {
     return has_terrain(s) && (s->atmosphere.method == ATMO_METHOD_FAST ||
@@ -164,6 +165,7 @@ static const char *const reference_fragments[] = {"kernels/atmosphere/method_ref
 static const char *const render_fragments[] = {"kernels/atmosphere/sky_cosines.h",
                                                "kernels/render/sky.cl", NULL};
 static const char *const objects_fragments[] = {"kernels/render/objects.h", NULL};
+static const char *const path_water_fragments[] = {"kernels/render/bsdf_water.h", NULL};
 static const char *const path_fragments[] = {
     "kernels/render/path_camera.h", "kernels/render/surfaces.h", "kernels/render/bsdf.h",
     "kernels/render/light_sun.h",   "kernels/render/light_sky.h", "kernels/media/cloud_walk.h",
@@ -218,6 +220,8 @@ const atmo_feature atmo_features[] = {
      "-DATMO_TERRAIN_STAGE", NULL, NULL, NULL, NULL, 0},
     /* the kernels that render with whichever method was assembled */
     {"render", -1, always, render_fragments, "", NULL, NULL, NULL, NULL, 0},
+    /* the sea's BSDF in the path tracer (over terrain/water.h) */
+    {"path_water", -1, path_water, path_water_fragments, "", NULL, NULL, NULL, NULL, 0},
     /* the path tracer's stages and its kernel path_render, over whichever method was assembled */
     {"path", -1, path_mode, path_fragments, "-DATMO_PATH", NULL, NULL, NULL, atmo_plan_path, 0},
 };

@@ -1,5 +1,6 @@
 /* plan.c — scene -> device structs, the features it contains and their kernels, buffers and
- * passes (atmo/plan.h, atmo/features.h). */
+ * passes (atmo/plan.h, atmo/features.h). A camera placed on the terrain (camera.on_terrain) is
+ * planned twice: once to learn the terrain's height under it, then with its y made absolute. */
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -8,6 +9,7 @@
 #include "atmo/colour.h"
 #include "atmo/features.h"
 #include "atmo/plan.h"
+#include "atmo/plan_terrain.h"
 
 /* The layout the kernels see: OpenCL C aligns float4 to 16 bytes, as compat.h does on the host. */
 _Static_assert(sizeof(float4) == 16, "float4 must be 16 bytes");
@@ -243,6 +245,29 @@ int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     return atmo_plan_make_cached(s, 0, 1, p, e);
 }
 
+/* camera.on_terrain: the scene with the camera's y made absolute (Y_s + y, Y_s the world Y of
+ * the terrain's surface under the camera or at camera.terrain_at_m, as the objects' anchors
+ * take it: atmo_plan_terrain_surface_y), from a first plan of the scene, which has the terrain
+ * (the field, a DEM's heightmap) and nothing that follows the camera yet planned for good. */
+void atmo_plan_camera_world(const atmo_plan *p, const atmo_scene *s, double out[3])
+{
+    for (int k = 0; k < 3; k++)
+        out[k] = s->camera.position_m[k];
+    if (s->camera.on_terrain == ATMO_CAMERA_TERRAIN_OFF)
+        return;
+    int at = s->camera.on_terrain == ATMO_CAMERA_TERRAIN_AT;
+    double x = at ? s->camera.terrain_at_m[0] : s->camera.position_m[0];
+    double z = at ? s->camera.terrain_at_m[1] : s->camera.position_m[2];
+    out[1] += atmo_plan_terrain_surface_y(p, s->atmosphere.bottom_radius_m, x, z);
+}
+
+static void resolve_camera(const atmo_scene *s, const atmo_plan *first, atmo_scene *out)
+{
+    *out = *s;
+    atmo_plan_camera_world(first, s, out->camera.position_m);
+    out->camera.on_terrain = ATMO_CAMERA_TERRAIN_OFF;
+}
+
 int atmo_plan_make_cached(const atmo_scene *s, int cache_luts, int cache_tables, atmo_plan *p,
                           atmo_err *e)
 {
@@ -250,6 +275,20 @@ int atmo_plan_make_cached(const atmo_scene *s, int cache_luts, int cache_tables,
     p->cache_luts = cache_luts;
     p->cache_tables = cache_tables;
     int rc = plan_features(s, p, e);
+    if (!rc && s->camera.on_terrain != ATMO_CAMERA_TERRAIN_OFF) {
+        atmo_scene *placed = malloc(sizeof *placed);
+        if (!placed)
+            rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the scene");
+        else
+            resolve_camera(s, p, placed);
+        atmo_plan_free(p);
+        memset(p, 0, sizeof *p);
+        p->cache_luts = cache_luts;
+        p->cache_tables = cache_tables;
+        if (!rc)
+            rc = plan_features(placed, p, e);
+        free(placed);
+    }
     if (rc)
         atmo_plan_free(p);
     return rc;

@@ -6,11 +6,8 @@
  * c - p_cam and radius, a box's corners min - p_cam and min + size - p_cam. An object with
  * on_terrain has its anchor's y (the centre's, the min's) above the terrain: y + Y_s, Y_s the
  * world Y of the terrain's surface over world (x, z) = terrain_at_m (or the sphere's centre, the
- * box's base centre), from the double-precision height field (host/terrain/terrain_ref.c) at
- * the foot of that point: the surface lies at radius r = R + S(u, v) with u = R x / r,
- * v = R z / r (kernels/terrain/terrain.h's placement), solved by fixed-point iteration from
- * r = R + S(x, z) (the foot moves by x (r - R) / R, a few metres, so the slope's change of S
- * shrinks each step by ~(r - R) / R < 1e-3), and Y_s = sqrt(r^2 - x^2 - z^2) - R. The rows
+ * box's base centre) as the renderer draws it, procedural or a DEM
+ * (atmo_plan_terrain_surface_y, host/plan/plan_terrain.c). The rows
  * are a host table the plan owns, copied into the buffer `objects` before the passes. The path
  * tracer's settings are copied from the scene's path.* keys; its render kernel is path_render
  * (kernels/render/path.cl), which a session launches in place of sky_render; with path.passes
@@ -21,16 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/plan_path.h"
-#include "atmo/terrain_ref.h"
-
-/* The world Y of the terrain's surface over world (x, z) (see the top of the file). */
-static double terrain_surface_y(const atmo_gpu_terrain *t, double R, double x, double z)
-{
-    double sea = t->sea_level_m, r = R + fmax(terrain_ref_height(&t->field, x, z, NULL, NULL), sea);
-    for (int i = 0; i < 8; i++)
-        r = R + fmax(terrain_ref_height(&t->field, R * x / r, R * z / r, NULL, NULL), sea);
-    return sqrt(r * r - x * x - z * z) - R;
-}
+#include "atmo/plan_terrain.h"
 
 static float4 rel4(const double v[3], const double cam[3], double w)
 {
@@ -59,13 +47,13 @@ int atmo_plan_objects(const atmo_scene *s, atmo_plan *p, atmo_err *e)
         atmo_gpu_object *g = &rows[i];
         g->kind = o.type;
         if (o.on_terrain) {
-            /* the scene's checks allow it only with the procedural terrain, planned before */
+            /* the scene's checks allow it only with the terrain, planned before */
             int sphere = o.type == ATMO_OBJECT_SPHERE;
             double x = o.has_terrain_at ? o.terrain_at_m[0]
                                         : sphere ? o.center_m[0] : o.min_m[0] + 0.5 * o.size_m[0];
             double z = o.has_terrain_at ? o.terrain_at_m[1]
                                         : sphere ? o.center_m[2] : o.min_m[2] + 0.5 * o.size_m[2];
-            double y = terrain_surface_y(&p->gpu.terrain, s->atmosphere.bottom_radius_m, x, z);
+            double y = atmo_plan_terrain_surface_y(p, s->atmosphere.bottom_radius_m, x, z);
             *(sphere ? &o.center_m[1] : &o.min_m[1]) += y;
         }
         if (o.type == ATMO_OBJECT_SPHERE) {

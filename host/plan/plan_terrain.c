@@ -27,12 +27,23 @@
  * procedural fBm adds nothing.
  *
  * Tolerance: half a pixel's footprint per metre of distance (tan(fov / 2) / height, the pixel
- * angle), so a hit is as exact as the image can show. */
+ * angle), so a hit is as exact as the image can show.
+ *
+ * Surface height for placing objects and cameras (atmo_plan_terrain_surface_y): the surface
+ * lies at radius r = R + S(u, v), S = max(h, sea level), with u = R x / r, v = R z / r (the
+ * foot of world (x, z) on the ground sphere: kernels/terrain/terrain.h's placement), solved by
+ * fixed-point iteration from r = R + S(x, z) (the foot moves by x (r - R) / R, a few metres,
+ * so the slope's change of S shrinks each step by ~(r - R) / R < 1e-3); Y_s = sqrt(r^2 - x^2 -
+ * z^2) - R. S is the renderer's own height: a DEM's heightmap texels read back as the kernels
+ * read them, the procedural field in double (its float evaluation differs by < 1 mm,
+ * test_terrain_noise). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/dem.h"
 #include "atmo/plan_terrain.h"
+#include "atmo/terrain_ref.h"
+#include "terrain/terrain.h"
 
 /* texels per side of the heightmap a DEM is resampled into when terrain.heightmap_size is 0 */
 #define TERRAIN_DEM_HEIGHTMAP_SIZE 1024
@@ -160,6 +171,28 @@ int atmo_plan_terrain(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     if (!rc && p->dem.width > 0)
         rc = plan_dem(s, p, e);
     return rc;
+}
+
+double atmo_plan_terrain_height(const atmo_plan *p, double u, double v)
+{
+    const atmo_gpu_terrain_field *f = &p->gpu.terrain.field;
+    const atmo_plan_buffer *base = atmo_plan_buffer_find((atmo_plan *)p, "terrain_base");
+    float gx, gy;
+    if (p->dem.width > 0 && base && base->host_data &&
+        terrain_in_heightmap(f, (float)u, (float)v, &gx, &gy)) {
+        atmo_gpu_terrain_field heights = *f;
+        heights.heightmap_format = ATMO_TERRAIN_FORMAT_FLOAT; /* the base holds heights alone */
+        return terrain_height_at(&heights, (const float *)base->host_data, (float)u, (float)v).h;
+    }
+    return terrain_ref_height(f, u, v, NULL, NULL);
+}
+
+double atmo_plan_terrain_surface_y(const atmo_plan *p, double R, double x, double z)
+{
+    double sea = p->gpu.terrain.sea_level_m, r = R + fmax(atmo_plan_terrain_height(p, x, z), sea);
+    for (int i = 0; i < 8; i++)
+        r = R + fmax(atmo_plan_terrain_height(p, R * x / r, R * z / r), sea);
+    return sqrt(r * r - x * x - z * z) - R;
 }
 
 int atmo_plan_terrain_base(atmo_plan *p, const float *heights, int nx, int nz, double x0,

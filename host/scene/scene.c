@@ -47,6 +47,7 @@
 
 /* Enum names in the order of the ATMO_* constants of scene.h and atmosphere.h. */
 static const char *const camera_kinds[] = {"perspective", "panorama", "fisheye", NULL};
+static const char *const camera_terrain_modes[] = {"off", "below", "at", NULL};
 static const char *const phase_names[] = {"cornette-shanks", "henyey-greenstein", NULL};
 static const char *const method_names[] = {"single", "march", "fast", "lut", "reference", NULL};
 static const char *const quantity_names[] = {"radiance", "luminance", NULL};
@@ -94,6 +95,12 @@ const atmo_param atmo_params[] = {
         "camera yaw in degrees: 0 looks along +Z, forward = (-cos p sin y, sin p, cos p cos y)"),
     ROW_FLOAT("camera.fov_deg", camera.fov_deg, "deg", 1, 179, 45,
               "vertical field of view of the perspective camera in degrees"),
+    ROW_ENUM("camera.on_terrain", camera.on_terrain, camera_terrain_modes,
+             ATMO_CAMERA_TERRAIN_OFF,
+             "camera.position_m's y: above sea level (off), above the terrain's surface under "
+             "the camera (below) or at camera.terrain_at_m (at: an object's anchor)"),
+    ROW_VEC2("camera.terrain_at_m", camera.terrain_at_m, "m", -1e8, 1e8, 0, 0,
+             "world X, Z of the terrain point camera.on_terrain=at measures the camera's y from"),
     ROW_FLOAT("sun.zenith_deg", sun.zenith_deg, "deg", 0, 180, 0,
               "sun zenith angle in degrees from world +Y (90 = on the horizon)"),
     ROW_FLOAT(
@@ -355,7 +362,8 @@ const atmo_param atmo_params[] = {
     ROW_VEC3("path.uniform_sky", path.uniform_sky, "W/m^2/sr/nm", 0, 1e6, 1, 1, 1,
              "path mode: radiance of the uniform test sky (path.sky = uniform)"),
     ROW_BOOL("path.ground", path.ground, 1,
-             "path mode: the planet's ground sphere is a surface (off: only objects)"),
+             "path mode: the planet's ground sphere is a surface (off: only objects; "
+             "the terrain replaces it)"),
     ROW_ENUM("path.sampler", path.sampler, sampler_names, ATMO_SAMPLER_SOBOL,
              "path mode: primary samples from Owen-scrambled Sobol or independent random"),
     ROW_FLOAT("path.filter_radius_px", path.filter_radius_px, "px", 0.5, 4, 1.5,
@@ -814,6 +822,19 @@ int atmo_scene_validate(const atmo_scene *s, atmo_err *e)
                          "bottom < top is required; reorder the three altitudes",
                          oz_bottom, oz_peak, oz_top);
     const double *c = s->camera.position_m;
+    if (s->camera.on_terrain != ATMO_CAMERA_TERRAIN_OFF) {
+        if (!s->terrain.enabled && !s->dem.file[0])
+            return atmo_fail(e, ATMO_ERR_USAGE,
+                             "camera.on_terrain=%s measures the camera's height from the "
+                             "terrain; set terrain.enabled=true or camera.on_terrain=off",
+                             camera_terrain_modes[s->camera.on_terrain]);
+        if (c[1] < 0.0)
+            return atmo_fail(e, ATMO_ERR_USAGE,
+                             "camera.position_m's y (%.9g m) is below the terrain's surface "
+                             "with camera.on_terrain=%s; use y >= 0 (metres above it)",
+                             c[1], camera_terrain_modes[s->camera.on_terrain]);
+        return ATMO_OK; /* above the terrain, which lies at or above sea level */
+    }
     double dy = c[1] + bottom;
     double r = sqrt(c[0] * c[0] + dy * dy + c[2] * c[2]);
     /* 1 m of slack: a camera placed at sea level must not fail on rounding */

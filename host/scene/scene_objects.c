@@ -5,13 +5,13 @@
  * "emission": [r, g, b]} or {"type": "box", "min_m": [x, y, z], "size_m": [sx, sy, sz], ...}:
  * world metres (Y up, origin at sea level), albedo the Lambertian reflectance in 0..1 per render
  * wavelength (default 0.8), emission the emitted spectral radiance in W m^-2 sr^-1 nm^-1
- * (default 0). "on_terrain": true places the object on the procedural terrain: the y of its
+ * (default 0). "on_terrain": true places the object on the terrain: the y of its
  * anchor (a sphere's centre, a box's min) is then metres above the terrain's surface, taken at
  * world (x, z) = "terrain_at_m": [x, z] when given (one point for a group of objects, so they
  * keep their relative heights), else at the sphere's centre or the centre of the box's base;
- * the plan evaluates the height with the terrain's double-precision reference
- * (host/plan/plan_path.c). on_terrain needs terrain.enabled and no terrain.heightmap_file (the
- * reference is the procedural field); terrain_at_m needs on_terrain. The geometry's members are
+ * the plan takes the height the renderer draws there, procedural or a DEM
+ * (host/plan/plan_terrain.c). on_terrain needs the terrain (terrain.enabled or
+ * terrain.heightmap_file); terrain_at_m needs on_terrain. The geometry's members are
  * required; a member that does not belong to the
  * element's type, a duplicate, a wrong JSON type, a non-finite or out-of-range number is an
  * error naming objects[i].member, the source and the valid range. The array comes in through
@@ -215,15 +215,10 @@ int atmo_scene_check_objects(const atmo_scene *s, atmo_err *e)
                 if (!isfinite(v[k]) || v[k] < members[m].min || v[k] > members[m].max)
                     return range_error(i, &members[m], v[k], "the scene", e);
         }
-        if (o.on_terrain && !s->terrain.enabled)
+        if (o.on_terrain && !s->terrain.enabled && !s->dem.file[0])
             return atmo_fail(e, ATMO_ERR_USAGE,
                              "objects[%d].on_terrain needs the terrain; set terrain.enabled=true "
                              "or remove on_terrain", i);
-        if (o.on_terrain && s->dem.file[0])
-            return atmo_fail(e, ATMO_ERR_USAGE,
-                             "objects[%d].on_terrain places objects on the procedural terrain, "
-                             "not on terrain.heightmap_file; give the object absolute heights",
-                             i);
         if (o.has_terrain_at && !o.on_terrain)
             return atmo_fail(e, ATMO_ERR_USAGE,
                              "objects[%d].terrain_at_m needs on_terrain; set it or remove "

@@ -27,13 +27,21 @@
  * Thesis 4, 5, 6, 8 and 9 have the fBm cloud layer (with method march, which it needs, the
  * thesis' far plane for clouds as clouds.max_distance_m, and a noise seed that gives each view
  * what the thesis' shows: seed 5 a deck under view 5's glory, seed 47 scattered cumulus around
- * view 6's sun, where seed 0 puts view 6's camera inside a cloud).
+ * view 6's sun, where seed 0 puts view 6's camera inside a cloud; seed 11 clear air around
+ * view 8's camera with clouds under 38 % of its view and terrain under the rest, where seed 5
+ * hides all of its terrain under cloud: tests/test_preset_clouds.c measures both, and of
+ * seeds 0-24 only 6, 11 and 22 show both, the others all cloud or all terrain, as the
+ * coverage field's 500 km features lie over the whole view).
  * Views 1, 2, 3, 8 and 9 and `space` have the procedural terrain; its seed 46 puts land under
- * every thesis camera (thesis-1's camera 630 m and thesis-3's 90 m above the ground: `atmo
- * terrain --at X,Z`). In the views with terrain (2, 3) the objects stand on it ("on_terrain":
- * their heights above the terrain's surface); the cameras keep presets.md's positions, so
- * view 2's camera looks down from about 500 m above its objects and view 3's from about
- * 120 m. View 7 has no terrain and keeps the thesis' absolute heights. */
+ * every thesis camera (thesis-1's camera 630 m above the ground: `atmo terrain --at X,Z`).
+ * In the views with terrain (2, 3) the objects stand on it ("on_terrain":
+ * their heights above the terrain's surface), about 440 m (view 2) and 50 m (view 3) below
+ * where the thesis' terrain had them, and so do the cameras (camera.on_terrain=at, their
+ * heights taken at the objects' anchors), keeping presets.md's offsets from the objects: view
+ * 2's camera 6 m above the sphere's centre (7 m above the terrain at the sphere's foot), view
+ * 3's 1 m above the open box's floor (1.25 m above the terrain at the box's centre, the box's
+ * floor top at 0.25 m), both at presets.md's x and z. View 7 has no terrain and keeps the
+ * thesis' absolute heights, its camera's offset from the box with them. */
 #include <string.h>
 #include "atmo/scene.h"
 
@@ -109,13 +117,14 @@ const atmo_preset atmo_presets[] = {
            "terrain.enabled=true", "terrain.seed=46"),
     PRESET("thesis-2",
            "thesis view 2: looking down at a small sphere and box, shadows" THESIS_TERRAIN_OBJECTS,
-           "camera.kind=perspective", "camera.position_m=22831,2028,13332",
-           "camera.pitch_deg=-51.5", "camera.yaw_deg=-518", "camera.fov_deg=45",
+           "camera.kind=perspective", "camera.position_m=22831,7,13332",
+           "camera.on_terrain=at", "camera.terrain_at_m=22832,13326", "camera.pitch_deg=-51.5", "camera.yaw_deg=-518", "camera.fov_deg=45",
            "sun.zenith_deg=83.222271", "sun.azimuth_deg=171.887327", THESIS_VIEW2_OBJECTS,
            "terrain.enabled=true", "terrain.seed=46"),
     PRESET("thesis-3",
            "thesis view 3: low sun near the open-box site, sun in frame" THESIS_TERRAIN_OBJECTS,
-           "camera.kind=perspective", "camera.position_m=26632,1337,10748", "camera.pitch_deg=-5",
+           "camera.kind=perspective", "camera.position_m=26632,1.25,10748", "camera.on_terrain=at",
+           "camera.terrain_at_m=26631.5,10749.5", "camera.pitch_deg=-5",
            "camera.yaw_deg=-575", "camera.fov_deg=45", "sun.zenith_deg=86.098524",
            "sun.azimuth_deg=-134.254613", THESIS_OPEN_BOX_ON_TERRAIN,
            "terrain.enabled=true", "terrain.seed=46"),
@@ -147,11 +156,13 @@ const atmo_preset atmo_presets[] = {
            "camera.pitch_deg=0", "camera.yaw_deg=0", "camera.fov_deg=45",
            "sun.zenith_deg=86.098524", "sun.azimuth_deg=-134.254613", THESIS_OPEN_BOX_OBJECTS,
            "render.mode=path", "path.bounces=4"),
-    PRESET("thesis-8", "thesis view 8: over clouds and terrain at moderate sun" THESIS_CLOUDS_TERRAIN,
+    PRESET("thesis-8",
+           "thesis view 8: over clouds and terrain at moderate sun" THESIS_CLOUDS_TERRAIN
+           " (cloud seed 11: clear air at the camera, cloud under about 40 % of the view)",
            "camera.kind=perspective", "camera.position_m=7866,5837,-143910", "camera.pitch_deg=-29",
            "camera.yaw_deg=-535", "camera.fov_deg=45", "sun.zenith_deg=81.435892",
            "sun.azimuth_deg=-170.007181",
-           "clouds.enabled=true", "clouds.seed=5", "clouds.max_distance_m=1e5",
+           "clouds.enabled=true", "clouds.seed=11", "clouds.max_distance_m=1e5",
            "atmosphere.method=march", "terrain.enabled=true", "terrain.seed=46"),
     PRESET("thesis-9", "thesis view 9: high-altitude sunset over clouds" THESIS_CLOUDS_TERRAIN,
            "camera.kind=perspective", "camera.position_m=18181,37415,3431", "camera.pitch_deg=-16",

@@ -89,6 +89,9 @@ typedef struct atmo_plan {
 int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 /* atmo_plan_make with the disk caches chosen: cache_luts as the field of that name (plain
  * atmo_plan_make: 0, for the caller to set), cache_tables for the host tables (plain: 1). */
+/* The camera's world position in metres for scene s as plan p (made from s) places it:
+ * camera.position_m, its y above the terrain's surface with camera.on_terrain. */
+void atmo_plan_camera_world(const atmo_plan *p, const atmo_scene *s, double out[3]);
 int atmo_plan_make_cached(const atmo_scene *s, int cache_luts, int cache_tables, atmo_plan *p,
                           atmo_err *e);
 /* Release what the plan owns (its host tables, the DEM) and zero it. */

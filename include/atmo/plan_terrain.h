@@ -28,6 +28,17 @@ int atmo_plan_terrain_base(atmo_plan *p, const float *heights, int nx, int nz, d
  * sphere tracer's slope bound grows by theirs and its step budget doubles. */
 int atmo_plan_terrain_detail(atmo_plan *p, double cell_m, atmo_err *e);
 
+/* After atmo_plan_terrain (and the DEM's base, for terrain.heightmap_file): the terrain's
+ * height above sea level at planar (u, v) as the renderer draws it: a DEM's heightmap texels
+ * read back bilinearly (kernels/terrain/terrain.h's terrain_height_at, float) inside the
+ * heightmap's square, the double-precision procedural field (host/terrain/terrain_ref.c)
+ * elsewhere and without a DEM. */
+double atmo_plan_terrain_height(const atmo_plan *p, double u, double v);
+
+/* The world Y of the terrain's surface (at least sea level) over world (x, z), planet radius R
+ * (plan_terrain.c). */
+double atmo_plan_terrain_surface_y(const atmo_plan *p, double R, double x, double z);
+
 /* The bound on |grad h| the sphere tracer sizes its steps by, the detail's included
  * (plan_terrain.c). */
 double atmo_terrain_slope_bound(const atmo_gpu_terrain_field *f);

@@ -15,6 +15,8 @@
 #include "atmo/status.h"
 
 enum { ATMO_QUANTITY_RADIANCE = 0, ATMO_QUANTITY_LUMINANCE = 1 };
+/* camera.on_terrain: what camera.position_m's y is measured from */
+enum { ATMO_CAMERA_TERRAIN_OFF = 0, ATMO_CAMERA_TERRAIN_BELOW = 1, ATMO_CAMERA_TERRAIN_AT = 2 };
 
 /* One object of the scene's list ("objects" in a scene file; scene_objects.c): a Lambertian
  * sphere or axis-aligned box in world metres, with an albedo and an emitted radiance at the
@@ -45,6 +47,9 @@ typedef struct atmo_scene {
         double pitch_deg;      /* thesis convention, presets.md: forward = (-cos p sin y, sin p, */
         double yaw_deg;        /*   cos p cos y), right = (cos y, 0, sin y) */
         double fov_deg;        /* vertical field of view (perspective) */
+        int on_terrain;        /* ATMO_CAMERA_TERRAIN_*: y above sea level, or above the
+                                * terrain's surface under the camera or at terrain_at_m */
+        double terrain_at_m[2]; /* world x, z of that surface point (on_terrain = at) */
     } camera;
     struct {
         double zenith_deg;     /* angle between world +Y and the direction to the sun */

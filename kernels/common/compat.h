@@ -40,6 +40,7 @@ typedef float3 vec3;
 #define floorf floor
 #define ceilf ceil
 #define fmodf fmod
+#define erff erf
 #define ATMO_GLOBAL __global
 #define ATMO_CONSTANT __constant
 ATMO_FN vec3 v3_add(vec3 a, vec3 b) { return a + b; }

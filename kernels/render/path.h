@@ -1,10 +1,11 @@
 /* path.h — the path tracer's loop: one sample of a pixel's radiance, through the stages of
- * kernels/render/ (path_camera.h, surfaces.h, bsdf.h, light_sun.h, light_sky.h) and the scene's
- * atmosphere method (sky_trace, atmosphere/sky_method.h) for the air along every segment.
+ * kernels/render/ (path_camera.h, surfaces.h, bsdf.h, bsdf_water.h, light_sun.h, light_sky.h) and
+ * the scene's atmosphere method (sky_trace, atmosphere/sky_method.h) for the air along every segment.
  *
  * The estimator of the rendering equation with participating media reduced to the
  * single-scattering form the methods integrate (the air's in-scattered light along each
- * segment comes from the method; the path's bounces are off surfaces, Lambertian):
+ * segment comes from the method; the path's bounces are off surfaces: Lambertian, and the sea's
+ * mirror and body, render/bsdf_water.h):
  *   primary ray from the camera (path_camera_sample): the first surface h along it
  *   (surfaces_hit); the segment's light S = sky_trace(t_max = t_h) (the air in front, view
  *   transmittance T) or, where the ray leaves the scene, sky_trace(INFINITY) (the sky, and the
@@ -16,6 +17,12 @@
  *     sky: beta a/pi S(w_l) cos / p_l * w_l           (light_sky.h, MIS weight w_l)
  *     continuation: w_b ~ cos / pi (bsdf.h), beta *= a; its segment's light S(w_b) counts with
  *     the MIS weight w_b, then the next vertex (emission counted there with weight 1).
+ *   at a sea vertex (SURFACES_WATER, under -DATMO_TERRAIN; bsdf_water.h): the sun term is
+ *     beta E T_sun V (glint + (1 - F) a_w / pi max(0, n . w_sun)); the sky's sample weighs the
+ *     body (1 - F) a_w / pi against its density (1 - P_m) cos / pi; the continuation is the
+ *     mirror with probability P_m (beta *= F / P_m, its segment with MIS weight 1, the sun's
+ *     disc only without the sun's NEE: the glint has it) or the body's cosine lobe
+ *     (beta *= (1 - F) a_w / (1 - P_m)).
  *   S of a direction is the air up to the first surface along it plus, where the ray escapes,
  *   the sky behind: both strategies estimate the same integral of S, so their weights sum to 1
  *   and the sum is unbiased (Veach 1997). The sun's disc is left to next-event estimation: a
@@ -63,6 +70,9 @@
 #include "render/light_sun.h"
 #include "render/light_sky.h"
 #include "render/volume_stage.h"
+#ifdef ATMO_TERRAIN
+#include "render/bsdf_water.h"
+#endif
 #endif
 
 /* The light passes (render passes, path.passes): a partition of a sample's radiance by where the
@@ -143,6 +153,8 @@ typedef struct path_vertex {
     vec3 albedo;
     vec3 dir;       /* the direction of the ray m */
     int volume;     /* 1: a scattering in the cloud layer's volume */
+    float fresnel;  /* the sea's F(n . -dir); 0 elsewhere */
+    int water;      /* 1 on the sea (bsdf_water.h) */
 } path_vertex;
 
 ATMO_FN path_vertex path_vertex_at(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m,
@@ -155,6 +167,12 @@ ATMO_FN path_vertex path_vertex_at(ATMO_GLOBAL const atmo_gpu_scene *s, const me
     v.albedo = h->albedo;
     v.dir = m->dir;
     v.volume = 0;
+    v.water = h->kind == SURFACES_WATER;
+    v.fresnel = 0.0f;
+#ifdef ATMO_TERRAIN
+    if (v.water)
+        v.fresnel = water_fresnel(-v3_dot(v.n, v.dir), WATER_INDEX);
+#endif
     return v;
 }
 
@@ -169,7 +187,25 @@ ATMO_FN path_vertex path_vertex_volume(ATMO_GLOBAL const atmo_gpu_scene *s, cons
     v.albedo = v3(0.0f, 0.0f, 0.0f);
     v.dir = m->dir;
     v.volume = 1;
+    v.water = 0;
+    v.fresnel = 0.0f;
     return v;
+}
+
+/* The probability that v's continuation takes its cosine lobe (the sea's body; 1 elsewhere). */
+ATMO_FN float path_cosine_probability(const path_vertex *v)
+{
+#ifdef ATMO_TERRAIN
+    if (v->water)
+        return 1.0f - bsdf_water_mirror_probability(v->fresnel, v->albedo);
+#endif
+    return 1.0f;
+}
+
+/* The cosine lobe's albedo at v: a, or the sea body's (1 - F) a_w. */
+ATMO_FN vec3 path_cosine_albedo(const path_vertex *v)
+{
+    return v3_scale(v->albedo, 1.0f - v->fresnel);
 }
 
 /* The sunlight E T_sun V arriving at a surface point q: V from visibility_sun_surface (the
@@ -219,6 +255,13 @@ ATMO_FN vec3 path_direct_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
     if (c <= 0.0f)
         return v3(0.0f, 0.0f, 0.0f);
     vec3 e = path_shadow(s, ATMO_LUT_ARGS, &v->q, v->p, w, g);
+#ifdef ATMO_TERRAIN
+    if (v->water)
+        return v3_mul(v3_mul(bsdf_water_sun(v->n, v3_scale(v->dir, -1.0f), w, v->fresnel,
+                                            v->albedo),
+                             e),
+                      v3_from4(s->sky_factor));
+#endif
     return v3_mul(v3_scale(v3_mul(v->albedo, e), c / ATMO_PI), v3_from4(s->sky_factor));
 }
 
@@ -233,14 +276,17 @@ ATMO_FN vec3 path_direct_sky(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
     float c = v3_dot(v->n, w);
     if (c <= 0.0f)
         return v3(0.0f, 0.0f, 0.0f);
-    float p_l = light_sky_pdf(s, sky_env, w), p_b = c / ATMO_PI;
+    float p_c = path_cosine_probability(v);
+    if (p_c <= 0.0f)
+        return v3(0.0f, 0.0f, 0.0f);
+    float p_l = light_sky_pdf(s, sky_env, w), p_b = p_c * c / ATMO_PI;
     medium_ray r = medium_ray_make(s, v->p, w);
     path_hit h = surfaces_hit(s, ATMO_LUT_ARGS, &r, INFINITY);
     vec3 view_t;
     float t_event; /* a scattering in the clouds ends S there (its light is the continuation's) */
     vec3 S = path_segment(s, ATMO_LUT_ARGS, &r, &h, 0, g, &view_t, &t_event);
     float weight = light_sky_power(1.0f, p_l, n_bsdf, p_b);
-    return v3_scale(v3_mul(v->albedo, S), c / ATMO_PI * weight / p_l);
+    return v3_scale(v3_mul(path_cosine_albedo(v), S), c / ATMO_PI * weight / p_l);
 }
 
 /* The light of a path that leaves vertex v (depth: its surface bounce, 0 the primary hit;
@@ -260,20 +306,27 @@ ATMO_FN void path_continue(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
             beta = v3_scale(beta, 1.0f / q);
         }
         vec3 w, phase_weight;
+        /* a surface's lobe from u1: the mirror below 1 - p_c, else the cosine lobe with u1
+         * rescaled */
+        float p_c = path_cosine_probability(&v);
+        int mirror = !v.volume && u1 < 1.0f - p_c;
         if (v.volume) {
             w = volume_phase_direction(s, ATMO_LUT_ARGS, v.dir, u1, u2, g, &phase_weight);
             beta = v3_mul(beta, phase_weight); /* p / pdf */
+        } else if (mirror) {
+            w = v3_sub(v.dir, v3_scale(v.n, 2.0f * v3_dot(v.dir, v.n))); /* d - 2 (n . d) n */
+            beta = v3_scale(beta, v.fresnel / (1.0f - p_c));            /* F / P_m */
         } else {
-            w = bsdf_sample_cosine(v.n, u1, u2);
-            beta = v3_mul(beta, v.albedo); /* f cos / p = albedo */
+            w = bsdf_sample_cosine(v.n, fminf((u1 - (1.0f - p_c)) / p_c, 1.0f), u2);
+            beta = v3_mul(beta, v3_scale(path_cosine_albedo(&v), 1.0f / p_c)); /* f cos / p */
         }
         medium_ray r = medium_ray_make(s, v.p, w);
         path_hit h = surfaces_hit(s, ATMO_LUT_ARGS, &r, INFINITY);
         vec3 view_t;
         float t_event;
         vec3 S = path_segment(s, ATMO_LUT_ARGS, &r, &h, !s->path.sun_nee, g, &view_t, &t_event);
-        float weight = s->path.sky_nee && !v.volume
-                           ? light_sky_power(n_bsdf, bsdf_pdf_cosine(v.n, w), 1.0f,
+        float weight = s->path.sky_nee && !v.volume && !mirror
+                           ? light_sky_power(n_bsdf, p_c * bsdf_pdf_cosine(v.n, w), 1.0f,
                                              light_sky_pdf(s, sky_env, w))
                            : 1.0f;
         int escapes = h.kind == SURFACES_NONE && t_event < 0.0f;

@@ -6,11 +6,14 @@
  * keeps its precision at planet scale, its albedo the atmosphere's ground albedo (the one the
  * methods' multiple-scattering tables assume); under -DATMO_TERRAIN the terrain
  * (kernels/terrain/): terrain_intersect's sphere-traced hit and normal, terrain_material's
- * albedo (grass, dirt, rock, snow by altitude and slope; the water body's dark albedo where the
- * height is at or below sea level: the water is Lambertian here, without the Fresnel mirror and
- * glint of the preview's terrain_shade.h); under -DATMO_OBJECTS the scene's spheres and boxes
- * (render/objects.h). The nearest wins; the terrain covers the ground sphere (its surface lies
- * at or above sea level), so it is searched up to the ground's distance.
+ * albedo (grass, dirt, rock, snow by altitude and slope); where the height is at or below sea
+ * level the hit is the sea (SURFACES_WATER: the vertical for its normal, the water body's dark
+ * albedo, shaded by render/bsdf_water.h); under -DATMO_OBJECTS the scene's spheres and boxes
+ * (render/objects.h). The nearest wins. The terrain replaces the ground sphere: its surface
+ * lies at or above sea level everywhere and its tracer ends every ray that reaches sea level
+ * (terrain.h), so the ground would add nothing but, on the sea, where the two coincide, a
+ * second surface whose float distance (the (r, mu) form's) and the tracer's differ by more
+ * than the tracer's tolerance, taking pixels from the sea at random.
  * The hit record: distance t along the ray, the outward unit normal, albedo (Lambertian, BRDF
  * albedo / pi), emitted radiance, the material kind (SURFACES_*) and the lift of new rays'
  * origins off the surface along the normal:
@@ -41,7 +44,13 @@
 #include "atmo/gpu_types.h"
 #endif
 
-enum { SURFACES_NONE = 0, SURFACES_GROUND = 1, SURFACES_OBJECT = 2, SURFACES_TERRAIN = 3 };
+enum {
+    SURFACES_NONE = 0,
+    SURFACES_GROUND = 1,
+    SURFACES_OBJECT = 2,
+    SURFACES_TERRAIN = 3,
+    SURFACES_WATER = 4
+};
 
 typedef struct path_hit {
     float t;
@@ -67,7 +76,12 @@ ATMO_FN path_hit surfaces_hit(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
     h.emission = v3(0.0f, 0.0f, 0.0f);
     h.lift = 0.0f;
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    if (s->path.ground && geometry_ray_hits_ground(m->r, m->mu, a->bottom_radius)) {
+#ifdef ATMO_TERRAIN
+    int ground = 0;
+#else
+    int ground = s->path.ground;
+#endif
+    if (ground && geometry_ray_hits_ground(m->r, m->mu, a->bottom_radius)) {
         float t = geometry_distance_to_bottom(m->r, m->mu, a->bottom_radius);
         if (t < h.t) {
             h.t = t;
@@ -84,10 +98,12 @@ ATMO_FN path_hit surfaces_hit(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
     if (terrain_intersect(s, heightmap, m->origin, m->dir, h.t, &t_ter, &n_ter) && t_ter < h.t) {
         vec3 p = v3_add(m->origin, v3_scale(m->dir, t_ter));
         float distance = v3_length(p);
+        terrain_surface_point sp = terrain_material(s, heightmap, p, distance);
+        int water = sp.weight[TERRAIN_WATER] > 0.0f;
         h.t = t_ter;
-        h.kind = SURFACES_TERRAIN;
-        h.normal = n_ter;
-        h.albedo = terrain_material(s, heightmap, p, distance).albedo;
+        h.kind = water ? SURFACES_WATER : SURFACES_TERRAIN;
+        h.normal = water ? sp.vertical : n_ter;
+        h.albedo = sp.albedo;
         h.lift = TERRAIN_SHADOW_OFFSET_M + 2.0f * s->terrain.tolerance * t_ter + 1e-6f * distance;
     }
 #endif

@@ -14,7 +14,16 @@
  *     L = E F(h . s) p(tan beta) / (4 cos(theta_v) cos^4 beta),
  *     p = exp(-tan^2 beta / sigma^2) / (pi sigma^2),
  * with h the half vector of view and sun, beta its angle to the vertical n, theta_v the view's
- * angle to n. */
+ * angle to n, times the facets' masking and shadowing G. The slope density p is Beckmann's
+ * facet distribution D = p / cos^4 beta with roughness alpha = sigma (Walter et al. 2007, eq.
+ * 25), so L / E = F D G / (4 cos theta_v) is the microfacet BRDF F D G / (4 cos theta_v
+ * cos theta_s) times cos theta_s, and G is Smith's height-correlated form for it (Heitz 2014,
+ * "Understanding the masking-shadowing function", eqs. 72 and 99):
+ *     G = 1 / (1 + Lambda(theta_v) + Lambda(theta_s)),
+ *     Lambda(theta) = (erf(a) - 1) / 2 + exp(-a^2) / (2 a sqrt(pi)),  a = 1 / (alpha tan theta).
+ * G is 1 to < 1e-3 for view and sun within 70 degrees of the vertical (a > 2.2) and keeps the
+ * glint's directional albedo below 1 at grazing views, where without it the 1 / cos theta_v
+ * factor lets it exceed 1 (2.3 at cos theta_v = 0.01). */
 #ifndef ATMO_TERRAIN_WATER_H
 #define ATMO_TERRAIN_WATER_H
 #ifndef __OPENCL_VERSION__
@@ -35,6 +44,19 @@ ATMO_FN float water_fresnel(float c, float eta)
     return 0.5f * (rs * rs + rp * rp);
 }
 
+/* Smith's Lambda of the Beckmann facets of mean square slope sigma2 for a direction of cosine
+ * c to the vertical (see the top of the file). */
+ATMO_FN float water_smith_lambda(float c, float sigma2)
+{
+    float s2 = fmaxf(1.0f - c * c, 0.0f);
+    if (s2 <= 0.0f)
+        return 0.0f;
+    float a = c / sqrtf(sigma2 * s2);
+    if (a > 9.0f) /* erfc(9) ~ 4e-37: Lambda is 0 in float */
+        return 0.0f;
+    return 0.5f * (erff(a) - 1.0f) + expf(-a * a) / (2.0f * a * sqrtf(ATMO_PI));
+}
+
 /* The glint's bidirectional factor L / E for the unit vertical n, the unit vector v toward the
  * viewer and s toward the sun. */
 ATMO_FN float water_glint(vec3 n, vec3 v, vec3 s)
@@ -47,7 +69,8 @@ ATMO_FN float water_glint(vec3 n, vec3 v, vec3 s)
     float sigma2 = 0.003f + 0.00512f * WATER_WIND_M_S;
     float tan2 = (1.0f - cb * cb) / (cb * cb);
     float p = expf(-tan2 / sigma2) / (ATMO_PI * sigma2);
-    return water_fresnel(v3_dot(h, s), WATER_INDEX) * p / (4.0f * cv * cb * cb * cb * cb);
+    float g = 1.0f / (1.0f + water_smith_lambda(cv, sigma2) + water_smith_lambda(cs, sigma2));
+    return water_fresnel(v3_dot(h, s), WATER_INDEX) * p * g / (4.0f * cv * cb * cb * cb * cb);
 }
 
 #endif
