@@ -3,6 +3,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/render.h"
+#include "atmo/session.h"
+#include "testlib.h"
 #include "testscene.h"
 
 void test_scene_preset(atmo_scene *s, const char *preset)
@@ -106,4 +108,41 @@ cl_mem test_plan_buffer(const atmo_plan *p, cl_mem luts[ATMO_PLAN_MAX_BUFFERS], 
 void test_release_luts(cl_mem luts[ATMO_PLAN_MAX_BUFFERS])
 {
     atmo_release_buffers(luts);
+}
+
+test_image test_render(const atmo_scene *s, int tile, int max_batch)
+{
+    atmo_plan p;
+    atmo_render_settings rs;
+    atmo_session *session = NULL;
+    atmo_err e;
+    test_image im = {s->image.width, s->image.height, 0, NULL, NULL};
+    size_t n3 = (size_t)im.w * im.h * 3;
+    test_plan(s, &p);
+    atmo_render_settings_default(&rs);
+    rs.tile_size = tile;
+    rs.max_batch = max_batch;
+    atmo_step step = {0};
+    atmo_step_status st;
+    im.mean = malloc(n3 * sizeof(float));
+    im.se = malloc(n3 * sizeof(float));
+    int *samples = malloc(n3 / 3 * sizeof(int));
+    if (!im.mean || !im.se || !samples || atmo_session_open(&session, &p, &rs, &e) ||
+        atmo_session_step(session, &step, &st, &e) ||
+        atmo_session_read(session, im.mean, im.se, samples, &e)) {
+        fprintf(stderr, "render failed: %s\n", e.msg);
+        exit(1);
+    }
+    CHECK(st.complete && atmo_session_get_info(session)->nonfinite == 0);
+    im.n = samples[0];
+    free(samples);
+    atmo_session_close(session);
+    atmo_plan_free(&p);
+    return im;
+}
+
+void test_image_free(test_image *im)
+{
+    free(im->mean);
+    free(im->se);
 }

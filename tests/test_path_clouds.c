@@ -36,51 +36,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "atmo/render.h"
-#include "atmo/session.h"
 #include "testlib.h"
 #include "testscene.h"
-
-typedef struct image {
-    int w, h;
-    float *mean, *se;
-} image;
-
-static image render(const atmo_scene *s, int tile, int max_batch)
-{
-    atmo_plan p;
-    atmo_render_settings rs;
-    atmo_session *session = NULL;
-    atmo_err e;
-    image im = {s->image.width, s->image.height, NULL, NULL};
-    size_t n3 = (size_t)im.w * im.h * 3;
-    test_plan(s, &p);
-    atmo_render_settings_default(&rs);
-    rs.tile_size = tile;
-    rs.max_batch = max_batch;
-    atmo_step step = {0};
-    atmo_step_status st;
-    im.mean = malloc(n3 * sizeof(float));
-    im.se = malloc(n3 * sizeof(float));
-    int *samples = malloc(n3 / 3 * sizeof(int));
-    if (!im.mean || !im.se || !samples || atmo_session_open(&session, &p, &rs, &e) ||
-        atmo_session_step(session, &step, &st, &e) ||
-        atmo_session_read(session, im.mean, im.se, samples, &e)) {
-        fprintf(stderr, "render failed: %s\n", e.msg);
-        exit(1);
-    }
-    CHECK(st.complete && atmo_session_get_info(session)->nonfinite == 0);
-    free(samples);
-    atmo_session_close(session);
-    atmo_plan_free(&p);
-    return im;
-}
-
-static void image_free(image *im)
-{
-    free(im->mean);
-    free(im->se);
-}
 
 static void set(atmo_scene *s, const char *fmt, double v)
 {
@@ -124,7 +81,7 @@ static void test_furnace(void)
         snprintf(buf, sizeof buf, "clouds.phase=%s", phases[k]);
         test_scene_set(&s, buf);
         test_scene_set(&s, "image.samples=128");
-        image im = render(&s, 64, 0);
+        test_image im = test_render(&s, 64, 0);
         int n = im.w * im.h;
         for (int c = 0; c < 3; c++) {
             double sum = 0.0, var = 0.0;
@@ -139,7 +96,7 @@ static void test_furnace(void)
             CHECK(se > 0.0);
             CHECK(fabs(z) < 4.4);
         }
-        image_free(&im);
+        test_image_free(&im);
     }
 }
 
@@ -180,7 +137,7 @@ static void test_agreement(void)
     test_scene_set(&path, "render.mode=path");
     test_scene_set(&path, "path.clouds=volume");
     set(&path, "image.samples=%g", AGREE_SAMPLES);
-    image a = render(&ref, 64, 0), b = render(&path, 64, 0);
+    test_image a = test_render(&ref, 64, 0), b = test_render(&path, 64, 0);
     int n = a.w * a.h, bad = 0;
     double z_max = 0.0;
     for (int c = 0; c < 3; c++) {
@@ -204,8 +161,8 @@ static void test_agreement(void)
     printf("agreement: %d of %d pixel-channels with |z| >= 4.4 (largest |z| %.2f)\n", bad, 3 * n,
            z_max);
     CHECK(bad == 0);
-    image_free(&a);
-    image_free(&b);
+    test_image_free(&a);
+    test_image_free(&b);
 }
 
 static void test_determinism(void)
@@ -215,7 +172,7 @@ static void test_determinism(void)
     test_scene_set(&s, "sun.irradiance_scale=1");
     test_scene_set(&s, "sun.zenith_deg=40");
     test_scene_set(&s, "image.samples=3");
-    image a = render(&s, 16, 1), b = render(&s, 3, 0);
+    test_image a = test_render(&s, 16, 1), b = test_render(&s, 3, 0);
     size_t bytes = sizeof(float) * 3 * 10 * 10;
     CHECK(memcmp(a.mean, b.mean, bytes) == 0);
     int finite = 1;
@@ -224,8 +181,8 @@ static void test_determinism(void)
     CHECK(finite);
     printf("determinism: tiles 16/3, batches 1/any %s; finite and non-negative: %s\n",
            memcmp(a.mean, b.mean, bytes) == 0 ? "bitwise equal" : "DIFFER", finite ? "yes" : "NO");
-    image_free(&a);
-    image_free(&b);
+    test_image_free(&a);
+    test_image_free(&b);
 }
 
 static void test_sweep(void)
@@ -254,14 +211,14 @@ static void test_sweep(void)
         test_scene_set(&s, "image.samples=2");
         test_scene_set(&s, cases[k][0]);
         test_scene_set(&s, cases[k][1]);
-        image im = render(&s, 16, 0);
+        test_image im = test_render(&s, 16, 0);
         int ok = 1;
         for (int i = 0; i < 3 * 16; i++)
             ok &= isfinite(im.mean[i]) && im.mean[i] >= 0.0f;
         bad_cases += !ok;
         if (!ok)
             printf("sweep: %s %s: a pixel not finite or negative\n", cases[k][0], cases[k][1]);
-        image_free(&im);
+        test_image_free(&im);
     }
     printf("sweep: %d of %d configurations finite and non-negative\n", n - bad_cases, n);
     CHECK(bad_cases == 0);

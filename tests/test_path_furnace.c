@@ -28,55 +28,12 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "atmo/render.h"
-#include "atmo/session.h"
 #include "testlib.h"
 #include "testscene.h"
 
-typedef struct image {
-    int w, h, n;
-    float *mean, *se;
-} image;
-
-static image render(const atmo_scene *s, int tile, int max_batch)
-{
-    atmo_plan p;
-    atmo_render_settings rs;
-    atmo_session *session = NULL;
-    atmo_err e;
-    image im = {s->image.width, s->image.height, 0, NULL, NULL};
-    size_t n3 = (size_t)im.w * im.h * 3;
-    test_plan(s, &p);
-    atmo_render_settings_default(&rs);
-    rs.tile_size = tile;
-    rs.max_batch = max_batch;
-    atmo_step step = {0};
-    atmo_step_status st;
-    im.mean = malloc(n3 * sizeof(float));
-    im.se = malloc(n3 * sizeof(float));
-    int *samples = malloc(n3 / 3 * sizeof(int));
-    if (!im.mean || !im.se || !samples || atmo_session_open(&session, &p, &rs, &e) ||
-        atmo_session_step(session, &step, &st, &e) ||
-        atmo_session_read(session, im.mean, im.se, samples, &e)) {
-        fprintf(stderr, "render failed: %s\n", e.msg);
-        exit(1);
-    }
-    CHECK(st.complete && atmo_session_get_info(session)->nonfinite == 0);
-    im.n = samples[0];
-    free(samples);
-    atmo_session_close(session);
-    atmo_plan_free(&p);
-    return im;
-}
-
-static void image_free(image *im)
-{
-    free(im->mean);
-    free(im->se);
-}
-
 /* z of the image mean of channel c against want; *rel_spread the largest |pixel/want - 1| */
-static double image_z(const image *im, int c, double want, double *rel_spread, double *se_out)
+static double image_z(const test_image *im, int c, double want, double *rel_spread,
+                      double *se_out)
 {
     double sum = 0.0, var = 0.0, spread = 0.0;
     int n = im->w * im->h;
@@ -121,7 +78,7 @@ static void test_furnace(void)
         test_scene_set(&s, buf);
         snprintf(buf, sizeof buf, "image.samples=%d", cases[k].samples);
         test_scene_set(&s, buf);
-        image im = render(&s, 64, 0);
+        test_image im = test_render(&s, 64, 0);
         for (int c = 0; c < 3; c++) {
             double spread, se, z = image_z(&im, c, L[c], &spread, &se);
             printf("furnace sky_nee=%d N_s=%d channel %d: z = %+.2f, se %.2g, pixel spread "
@@ -134,7 +91,7 @@ static void test_furnace(void)
                 CHECK(spread < 1e-6);
             }
         }
-        image_free(&im);
+        test_image_free(&im);
     }
 }
 
@@ -155,7 +112,7 @@ static void test_enclosure(void)
         test_scene_set(&s, buf);
         snprintf(buf, sizeof buf, "image.samples=%d", cases[k].samples);
         test_scene_set(&s, buf);
-        image im = render(&s, 64, 0);
+        test_image im = test_render(&s, 64, 0);
         double series = 0.0;
         for (int j = 0; j <= cases[k].bounces + 1; j++)
             series += pow(0.5, j);
@@ -172,7 +129,7 @@ static void test_enclosure(void)
                 CHECK(spread < 1e-6);
             }
         }
-        image_free(&im);
+        test_image_free(&im);
     }
 }
 
@@ -190,7 +147,7 @@ static void test_determinism(void)
     test_scene_set(&s, "objects=[{\"type\": \"sphere\", \"center_m\": [0, 1, 6], \"radius_m\": 1},"
                        "{\"type\": \"box\", \"min_m\": [1, 0, 5], \"size_m\": [1, 2, 1], "
                        "\"albedo\": [0.1, 0.1, 0.9], \"emission\": [0.5, 0, 0]}]");
-    image a = render(&s, 16, 1), b = render(&s, 5, 0);
+    test_image a = test_render(&s, 16, 1), b = test_render(&s, 5, 0);
     size_t bytes = sizeof(float) * 3 * 16 * 12;
     CHECK(memcmp(a.mean, b.mean, bytes) == 0);
     int finite = 1;
@@ -198,14 +155,14 @@ static void test_determinism(void)
         finite &= isfinite(a.mean[i]) && a.mean[i] >= 0.0f;
     CHECK(finite);
     s.image.seed = 5;
-    image c = render(&s, 16, 0);
+    test_image c = test_render(&s, 16, 0);
     CHECK(memcmp(a.mean, c.mean, bytes) != 0);
     printf("determinism: tiles 16/5, batches 1/any %s; another seed %s\n",
            memcmp(a.mean, b.mean, bytes) == 0 ? "bitwise equal" : "DIFFER",
            memcmp(a.mean, c.mean, bytes) != 0 ? "differs" : "is THE SAME");
-    image_free(&a);
-    image_free(&b);
-    image_free(&c);
+    test_image_free(&a);
+    test_image_free(&b);
+    test_image_free(&c);
 }
 
 int main(void)

@@ -27,4 +27,16 @@ int test_bind_buffers(cl_kernel k, cl_mem luts[ATMO_PLAN_MAX_BUFFERS]);
 cl_mem test_plan_buffer(const atmo_plan *p, cl_mem luts[ATMO_PLAN_MAX_BUFFERS], const char *name);
 void test_release_luts(cl_mem luts[ATMO_PLAN_MAX_BUFFERS]);
 
+/* A rendered image: w x h pixels, per channel the mean and its standard error (linear, RGB
+ * interleaved), and n the samples of pixel 0. */
+typedef struct test_image {
+    int w, h, n;
+    float *mean, *se;
+} test_image;
+/* Scene s rendered to completion by one session step with the given tile size and launch
+ * budget (atmo_render_settings' tile_size and max_batch); CHECKs that the step completes with
+ * no NaN/Inf pixel, exits 1 on any failure. */
+test_image test_render(const atmo_scene *s, int tile, int max_batch);
+void test_image_free(test_image *im);
+
 #endif
