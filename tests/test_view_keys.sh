@@ -26,7 +26,10 @@
 # quality scene beside it; key 3 loads thesis-3 with the --set options but camera.* and sun.*
 # (the scene file equals `atmo render --preset thesis-3 --set ... --save-scene`'s), = raises
 # the exposure by 2^(1/3) and T moves to the next tone mapper (exposure -> reinhard), and the
-# saved PNG is byte for byte `atmo render --scene` of the saved scene's.
+# saved PNG is byte for byte `atmo render --scene` of the saved scene's. thesis-3 stands its
+# camera on the terrain (camera.on_terrain); the viewer moves cameras in world metres, so its
+# scene has the camera placed (on_terrain off, y absolute: above the preset's relative y), and
+# that scene renders bitwise the preset's image.
 set -u
 atmo=$1
 work=$(mktemp -d)
@@ -103,7 +106,7 @@ fi
 # a thesis view, exposure and tone mapper keys, saved as a PNG
 printf 'press 3\npress Equal\npress T\nwait-samples 2\npress P\nquit\n' >thesis.txt
 "$atmo" render --preset thesis-3 --set image.width=16 --set image.height=8 --set image.samples=2 \
-    --set atmosphere.method=fast --save-scene want3.json
+    --set atmosphere.method=fast --save-scene want3.json --output want3.png --quiet
 if "$atmo" view "${scene[@]}" --script thesis.txt --save th.png --quiet; then
     python3 - want3.json th-001.json <<'PY' && ok || bad "the thesis view or the display keys are wrong"
 import json, sys
@@ -112,8 +115,26 @@ e = got['post']['exposure']
 print('exposure after =: %.17g (want 10 * 2^(1/3) = %.17g), tone mapper %s' % (e, 10 * 2 ** (1 / 3), got['post']['tonemap']))
 assert abs(e - 10 * 2 ** (1 / 3)) < 1e-12 and got['post']['tonemap'] == 'reinhard'
 want['post']['exposure'], want['post']['tonemap'] = e, 'reinhard'
+wc, gc = want['camera'], got['camera']
+print('camera placed: on_terrain %s -> %s, y %.6g m above the terrain -> %.9g m' % (wc['on_terrain'], gc['on_terrain'], wc['position_m'][1], gc['position_m'][1]))
+assert wc['on_terrain'] == 'at' and gc['on_terrain'] == 'off' and gc['position_m'][1] > wc['position_m'][1]
+for k in ('on_terrain', 'terrain_at_m'):
+    wc.pop(k, None), gc.pop(k, None)
+wc['position_m'][1] = gc['position_m'][1]
 assert want == got, 'the scene is not thesis-3 with the --set options but camera.* and sun.*'
 PY
+    # the placed camera is where the preset's camera stands: the same image (display keys aside)
+    python3 - th-001.json want3.json placed.json <<'PY'
+import json, sys
+got, want = (json.load(open(p)) for p in sys.argv[1:3])
+got['post'] = want['post']
+json.dump(got, open(sys.argv[3], 'w'))
+PY
+    if "$atmo" render --scene placed.json --output placed.png --quiet && cmp -s placed.png want3.png; then
+        ok
+    else
+        bad "the viewer's placed thesis-3 camera does not render the preset's image"
+    fi
     if "$atmo" render --scene th-001.json --output again.png --quiet && cmp -s th-001.png again.png; then
         ok
     else

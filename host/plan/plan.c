@@ -294,6 +294,21 @@ int atmo_plan_make_cached(const atmo_scene *s, int cache_luts, int cache_tables,
     return rc;
 }
 
+int atmo_plan_place_camera(const atmo_scene *s, atmo_scene *out, atmo_err *e)
+{
+    *out = *s;
+    if (s->camera.on_terrain == ATMO_CAMERA_TERRAIN_OFF)
+        return ATMO_OK;
+    atmo_plan first;
+    memset(&first, 0, sizeof first);
+    first.cache_tables = 1;
+    int rc = plan_features(s, &first, e);
+    if (!rc)
+        resolve_camera(s, &first, out);
+    atmo_plan_free(&first);
+    return rc;
+}
+
 /* atmo_plan_make's work: the shared structs, then each wanted feature in registry order. */
 static int plan_features(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 {

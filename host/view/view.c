@@ -406,11 +406,17 @@ int atmo_view_run(const atmo_view_options *o, atmo_err *e)
     if (!a)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the viewer");
     a->o = o;
-    a->state.scene = a->state.start = o->scene;
+    /* the controls move the camera in world metres: its y above the terrain made absolute */
+    int rc = atmo_plan_place_camera(&o->scene, &a->state.scene, e);
+    if (rc) {
+        free(a);
+        return rc;
+    }
+    a->state.start = a->state.scene;
     a->state.sets = o->sets;
     a->state.set_count = o->set_count;
     a->state.mode = VIEW_MODE_QUALITY;
-    int rc = o->script ? view_script_load(&a->script, o->script, e) : ATMO_OK;
+    rc = o->script ? view_script_load(&a->script, o->script, e) : ATMO_OK;
     if (rc) {
         free(a);
         return rc;

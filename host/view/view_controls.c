@@ -136,7 +136,8 @@ int view_controls_zoom(view_state *v, double notches)
 }
 
 /* Thesis view n over the defaults, then the user's --set list but for its camera.* and sun.*
- * keys (the view is the thesis'), keeping the display settings. */
+ * keys (the view is the thesis'), keeping the display settings; its camera placed in world
+ * metres (atmo_plan_place_camera), as the controls move it. */
 static int thesis_view(view_state *v, int n, atmo_err *e)
 {
     char name[16];
@@ -148,9 +149,8 @@ static int thesis_view(view_state *v, int n, atmo_err *e)
         if (strncmp(v->sets[i], "camera.", 7) != 0 && strncmp(v->sets[i], "sun.", 4) != 0)
             rc = atmo_scene_assign(&s, v->sets[i], "--set", e);
     s.post = v->scene.post;
-    if (rc || (rc = atmo_scene_validate(&s, e)))
+    if (rc || (rc = atmo_scene_validate(&s, e)) || atmo_plan_place_camera(&s, &v->scene, e))
         return 0;
-    v->scene = s;
     return VIEW_CHANGE_RENDER;
 }
 

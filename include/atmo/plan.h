@@ -87,11 +87,14 @@ typedef struct atmo_plan {
 /* Plan a validated scene. On failure nothing is left to release; on success the caller
  * releases the plan with atmo_plan_free once no session or probe opened with it is left. */
 int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e);
-/* atmo_plan_make with the disk caches chosen: cache_luts as the field of that name (plain
- * atmo_plan_make: 0, for the caller to set), cache_tables for the host tables (plain: 1). */
 /* The camera's world position in metres for scene s as plan p (made from s) places it:
  * camera.position_m, its y above the terrain's surface with camera.on_terrain. */
 void atmo_plan_camera_world(const atmo_plan *p, const atmo_scene *s, double out[3]);
+/* *out = s with its camera placed in the world (camera.on_terrain off, position_m absolute),
+ * from a plan of s; for callers that move the camera in world metres (the viewer). */
+int atmo_plan_place_camera(const atmo_scene *s, atmo_scene *out, atmo_err *e);
+/* atmo_plan_make with the disk caches chosen: cache_luts as the field of that name (plain
+ * atmo_plan_make: 0, for the caller to set), cache_tables for the host tables (plain: 1). */
 int atmo_plan_make_cached(const atmo_scene *s, int cache_luts, int cache_tables, atmo_plan *p,
                           atmo_err *e);
 /* Release what the plan owns (its host tables, the DEM) and zero it. */
