@@ -113,32 +113,46 @@ void test_release_luts(cl_mem luts[ATMO_PLAN_MAX_BUFFERS])
 test_image test_render(const atmo_scene *s, int tile, int max_batch)
 {
     atmo_plan p;
-    atmo_render_settings rs;
-    atmo_session *session = NULL;
-    atmo_err e;
     test_image im = {s->image.width, s->image.height, 0, NULL, NULL};
     size_t n3 = (size_t)im.w * im.h * 3;
     test_plan(s, &p);
-    atmo_render_settings_default(&rs);
-    rs.tile_size = tile;
-    rs.max_batch = max_batch;
-    atmo_step step = {0};
-    atmo_step_status st;
     im.mean = malloc(n3 * sizeof(float));
     im.se = malloc(n3 * sizeof(float));
     int *samples = malloc(n3 / 3 * sizeof(int));
-    if (!im.mean || !im.se || !samples || atmo_session_open(&session, &p, &rs, &e) ||
-        atmo_session_step(session, &step, &st, &e) ||
-        atmo_session_read(session, im.mean, im.se, samples, &e)) {
-        fprintf(stderr, "render failed: %s\n", e.msg);
+    if (!im.mean || !im.se || !samples) {
+        fprintf(stderr, "out of memory for a %d x %d image\n", im.w, im.h);
         exit(1);
     }
-    CHECK(st.complete && atmo_session_get_info(session)->nonfinite == 0);
+    if (test_render_plan(&p, tile, max_batch, im.mean, im.se, samples))
+        exit(1);
     im.n = samples[0];
     free(samples);
-    atmo_session_close(session);
     atmo_plan_free(&p);
     return im;
+}
+
+int test_render_plan(const atmo_plan *p, int tile, int max_batch, float *mean, float *se,
+                     int *samples)
+{
+    atmo_render_settings rs;
+    atmo_render_settings_default(&rs);
+    if (tile > 0)
+        rs.tile_size = tile;
+    rs.max_batch = max_batch;
+    atmo_session *session = NULL;
+    atmo_err e;
+    atmo_step step = {0};
+    atmo_step_status st;
+    int rc = 0;
+    if (atmo_session_open(&session, p, &rs, &e) || atmo_session_step(session, &step, &st, &e) ||
+        atmo_session_read(session, mean, se, samples, &e)) {
+        fprintf(stderr, "render failed: %s\n", e.msg);
+        rc = 1;
+    } else {
+        CHECK(st.complete && atmo_session_get_info(session)->nonfinite == 0);
+    }
+    atmo_session_close(session);
+    return rc;
 }
 
 void test_image_free(test_image *im)

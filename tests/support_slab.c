@@ -40,6 +40,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "atmo/quadrature.h"
 #include "testslab.h"
 
 #define SLAB_MAX_VIEWS 16
@@ -47,36 +48,12 @@
  * view's radiance by this fraction */
 #define SLAB_MODE_TOLERANCE 1e-7
 
-/* N Gauss-Legendre nodes and weights on (-1, 1) (Newton on P_N). */
-static void gauss_legendre(int n, double *x, double *w)
-{
-    for (int i = 0; i < n; i++) {
-        double z = cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
-        for (int it = 0; it < 100; it++) {
-            double p0 = 1.0, p1 = z;
-            for (int l = 2; l <= n; l++) {
-                double p2 = ((2 * l - 1) * z * p1 - (l - 1) * p0) / l;
-                p0 = p1, p1 = p2;
-            }
-            if (n == 1)
-                p1 = z, p0 = 1.0;
-            dp = n * (z * p1 - p0) / (z * z - 1.0);
-            double dz = p1 / dp;
-            z -= dz;
-            if (fabs(dz) < 1e-15)
-                break;
-        }
-        x[i] = z;
-        w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
-    }
-}
-
 void slab_moments(slab_phase_fn phase, const void *ctx, int count, double *chi)
 {
     /* theta_k = pi (k / K)^2: segments of ~1e-7 rad at the forward peak, 3e-3 rad at pi */
     enum { K = 4000, G = 4 };
     double gx[G], gw[G], *pl = malloc(sizeof *pl * (size_t)count);
-    gauss_legendre(G, gx, gw);
+    atmo_gauss_legendre(G, gx, gw);
     memset(chi, 0, sizeof *chi * (size_t)count);
     for (int k = 0; k < K; k++) {
         double a = M_PI * (double)k * k / ((double)K * K);
@@ -213,7 +190,7 @@ int slab_solve(const slab_problem *p, int nv, const double *mu_v, const double *
         doublings++;
     double tau0 = ldexp(tau, -doublings);
 
-    gauss_legendre(N, x, gw);
+    atmo_gauss_legendre(N, x, gw);
     for (int i = 0; i < N; i++)
         mu[i] = 0.5 * (x[i] + 1.0), w[i] = 0.5 * gw[i];
     mu[N] = p->mu0;

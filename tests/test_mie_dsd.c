@@ -17,38 +17,15 @@
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/mie.h"
+#include "atmo/quadrature.h"
 #include "testlib.h"
-
-#define PI 3.14159265358979323846
-
-/* Gauss-Legendre nodes and weights on [-1, 1] by Newton's method on P_n. */
-static void gauss_legendre(int n, double *x, double *w)
-{
-    for (int i = 0; i < n; i++) {
-        double z = cos(PI * (i + 0.75) / (n + 0.5)), dp = 0.0;
-        for (int it = 0; it < 100; it++) {
-            double p0 = 1.0, p1 = z;
-            for (int l = 2; l <= n; l++) {
-                double p2 = ((2.0 * l - 1.0) * z * p1 - (l - 1.0) * p0) / l;
-                p0 = p1, p1 = p2;
-            }
-            dp = n * (z * p1 - p0) / (z * z - 1.0);
-            double dz = p1 / dp;
-            z -= dz;
-            if (fabs(dz) < 1e-15)
-                break;
-        }
-        x[i] = z;
-        w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
-    }
-}
 
 static void test_cloud_c1(void)
 {
     /* the default (converged) radius rule; a fixed step of 0.5 leaves beta_100 off by 0.013 */
     enum { NG = 400 };
     static double mu[NG], w[NG], P[NG];
-    gauss_legendre(NG, mu, w);
+    atmo_gauss_legendre(NG, mu, w);
     mie_dsd d = {.kind = MIE_DSD_MODGAMMA, .alpha = 6.0, .b = 1.5, .gamma = 1.0};
     mie_bulk b;
     atmo_err e;

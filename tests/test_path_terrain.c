@@ -36,8 +36,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "atmo/render.h"
-#include "atmo/session.h"
 #include "atmo/terrain_ref.h"
 #include "terrain/terrain_material.h"
 #include "testlib.h"
@@ -48,21 +46,7 @@ static int render(atmo_scene *s, float *mean, float *se)
 {
     atmo_plan p;
     test_plan(s, &p);
-    atmo_render_settings rs;
-    atmo_render_settings_default(&rs);
-    atmo_session *session = NULL;
-    atmo_err e;
-    atmo_step step = {0};
-    atmo_step_status st;
-    int rc = 0;
-    if (atmo_session_open(&session, &p, &rs, &e) || atmo_session_step(session, &step, &st, &e) ||
-        atmo_session_read(session, mean, se, NULL, &e)) {
-        fprintf(stderr, "render failed: %s\n", e.msg);
-        rc = 1;
-    } else {
-        CHECK(atmo_session_get_info(session)->nonfinite == 0);
-    }
-    atmo_session_close(session);
+    int rc = test_render_plan(&p, 0, 0, mean, se, NULL);
     atmo_plan_free(&p);
     return rc;
 }

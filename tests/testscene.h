@@ -37,6 +37,12 @@ typedef struct test_image {
  * budget (atmo_render_settings' tile_size and max_batch); CHECKs that the step completes with
  * no NaN/Inf pixel, exits 1 on any failure. */
 test_image test_render(const atmo_scene *s, int tile, int max_batch);
+/* Plan p rendered by one session step with tile size `tile` (0: the default) and launch
+ * budget max_batch (atmo_render_settings') into mean[] and se[] (3 floats a pixel) and, unless
+ * NULL, samples[] (one int a pixel); CHECKs that the step completes with no NaN/Inf pixel.
+ * Returns 1 (the error printed) where the session fails, else 0. */
+int test_render_plan(const atmo_plan *p, int tile, int max_batch, float *mean, float *se,
+                     int *samples);
 void test_image_free(test_image *im);
 
 #endif

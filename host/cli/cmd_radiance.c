@@ -39,6 +39,7 @@
 #include "atmo/colour.h"
 #include "atmo/plan.h"
 #include "atmo/probe.h"
+#include "atmo/quadrature.h"
 #include "atmo/render.h"
 #include "atmo/scene.h"
 #include "commands.h"
@@ -109,26 +110,12 @@ static void view_direction(double zenith_deg, double azimuth_deg, double out[3])
     atmo_sun_direction(zenith_deg, azimuth_deg, out); /* the same convention for views */
 }
 
-/* Gauss-Legendre nodes and weights on [0, 1] (Newton on P_n from the Chebyshev guess). */
+/* Gauss-Legendre nodes and weights on [0, 1]: x = (1 - z) / 2, w / 2 of those on (-1, 1). */
 static void gauss_legendre01(int n, double *x, double *w)
 {
-    for (int i = 0; i < n; i++) {
-        double z = cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
-        for (int it = 0; it < 100; it++) {
-            double p0 = 1.0, p1 = z;
-            for (int k = 2; k <= n; k++) {
-                double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
-                p0 = p1, p1 = p2;
-            }
-            dp = n * (z * p1 - p0) / (z * z - 1.0);
-            double step = p1 / dp;
-            z -= step;
-            if (fabs(step) < 1e-15)
-                break;
-        }
-        x[i] = 0.5 * (1.0 - z);
-        w[i] = 1.0 / ((1.0 - z * z) * dp * dp); /* 2 / ((1 - z^2) P'^2), halved for [0, 1] */
-    }
+    atmo_gauss_legendre(n, x, w);
+    for (int i = 0; i < n; i++)
+        x[i] = 0.5 * (1.0 - x[i]), w[i] *= 0.5;
 }
 
 static void json_vec(cJSON *o, const char *key, const double v[3])

@@ -261,11 +261,24 @@ void atmo_plan_camera_world(const atmo_plan *p, const atmo_scene *s, double out[
     out[1] += atmo_plan_terrain_surface_y(p, s->atmosphere.bottom_radius_m, x, z);
 }
 
-static void resolve_camera(const atmo_scene *s, const atmo_plan *first, atmo_scene *out)
+/* *out = s with the camera placed by a first plan of s (host tables from the disk cache with
+ * cache_tables), which has the terrain (the field, a DEM's heightmap) and nothing that follows
+ * the camera planned for good. */
+static int place_camera(const atmo_scene *s, int cache_tables, atmo_scene *out, atmo_err *e)
 {
     *out = *s;
-    atmo_plan_camera_world(first, s, out->camera.position_m);
-    out->camera.on_terrain = ATMO_CAMERA_TERRAIN_OFF;
+    if (s->camera.on_terrain == ATMO_CAMERA_TERRAIN_OFF)
+        return ATMO_OK;
+    atmo_plan first;
+    memset(&first, 0, sizeof first);
+    first.cache_tables = cache_tables;
+    int rc = plan_features(s, &first, e);
+    if (!rc) {
+        atmo_plan_camera_world(&first, s, out->camera.position_m);
+        out->camera.on_terrain = ATMO_CAMERA_TERRAIN_OFF;
+    }
+    atmo_plan_free(&first);
+    return rc;
 }
 
 int atmo_plan_make_cached(const atmo_scene *s, int cache_luts, int cache_tables, atmo_plan *p,
@@ -274,17 +287,13 @@ int atmo_plan_make_cached(const atmo_scene *s, int cache_luts, int cache_tables,
     memset(p, 0, sizeof *p);
     p->cache_luts = cache_luts;
     p->cache_tables = cache_tables;
-    int rc = plan_features(s, p, e);
-    if (!rc && s->camera.on_terrain != ATMO_CAMERA_TERRAIN_OFF) {
+    int rc;
+    if (s->camera.on_terrain == ATMO_CAMERA_TERRAIN_OFF) {
+        rc = plan_features(s, p, e);
+    } else {
         atmo_scene *placed = malloc(sizeof *placed);
-        if (!placed)
-            rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the scene");
-        else
-            resolve_camera(s, p, placed);
-        atmo_plan_free(p);
-        memset(p, 0, sizeof *p);
-        p->cache_luts = cache_luts;
-        p->cache_tables = cache_tables;
+        rc = placed ? place_camera(s, cache_tables, placed, e)
+                    : atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the scene");
         if (!rc)
             rc = plan_features(placed, p, e);
         free(placed);
@@ -296,17 +305,7 @@ int atmo_plan_make_cached(const atmo_scene *s, int cache_luts, int cache_tables,
 
 int atmo_plan_place_camera(const atmo_scene *s, atmo_scene *out, atmo_err *e)
 {
-    *out = *s;
-    if (s->camera.on_terrain == ATMO_CAMERA_TERRAIN_OFF)
-        return ATMO_OK;
-    atmo_plan first;
-    memset(&first, 0, sizeof first);
-    first.cache_tables = 1;
-    int rc = plan_features(s, &first, e);
-    if (!rc)
-        resolve_camera(s, &first, out);
-    atmo_plan_free(&first);
-    return rc;
+    return place_camera(s, 1, out, e);
 }
 
 /* atmo_plan_make's work: the shared structs, then each wanted feature in registry order. */
