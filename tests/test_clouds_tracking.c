@@ -23,7 +23,9 @@
  *     radiance 1: whatever the phase function, the radiance of every ray into it is 1. Walks
  *     by delta tracking (majorant = sigma) with new directions from Henyey-Greenstein g = 0.85
  *     (exact sampling, weight 1) and from the cumulus Mie table by its CDF (phase_rows_sample,
- *     weight P / q per wavelength) must average 1 within 4.5 standard errors in each channel. */
+ *     weight P / q per wavelength), each with sun guiding 0, 0.15 and 0.3 (phase_table.h's
+ *     cloud_phase_direction, weight p / q), must average 1 within 4.5 standard errors in each
+ *     channel. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -142,16 +144,6 @@ static double check_march(const medium1d *m, int n)
     return excess;
 }
 
-/* A unit vector at cosine c to n with azimuth phi. */
-static vec3 rotate(vec3 n, float c, float phi)
-{
-    vec3 helper = fabsf(n.x) < 0.6f ? v3(1.0f, 0.0f, 0.0f) : v3(0.0f, 1.0f, 0.0f);
-    vec3 b1 = v3_normalize(v3_cross(n, helper)), b2 = v3_cross(n, b1);
-    float s = sqrtf(fmaxf(1.0f - c * c, 0.0f));
-    return v3_normalize(v3_add(v3_scale(n, c), v3_add(v3_scale(b1, s * cosf(phi)),
-                                                      v3_scale(b2, s * sinf(phi)))));
-}
-
 /* Distance from p (inside the unit sphere) along the unit d to its surface. */
 static float exit_distance(vec3 p, vec3 d)
 {
@@ -159,12 +151,15 @@ static float exit_distance(vec3 p, vec3 d)
     return -b + sqrtf(fmaxf(b * b - c, 0.0f));
 }
 
-/* The furnace: rays from outside at impact parameter b into the sphere; phase: HG (rows ==
- * NULL) or the table. */
-static void furnace(const char *what, const float4 *rows, const float *cdf, int n)
+/* The furnace: rays from outside at impact parameter b into the sphere; phase: HG g = 0.85
+ * (rows == NULL) or the table; new directions by phase_table.h's cloud_phase_direction with the
+ * sun-guiding probability eps toward the fixed direction `sun`. */
+static void furnace(const char *what, const float4 *rows, const float *cdf, int n, float eps)
 {
-    const float sigma = 5.0f, g_hg = 0.85f;
-    double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+    const float sigma = 5.0f;
+    const vec3 sun = v3_normalize(v3(0.3f, 0.8f, 0.52f)), g_hg = v3(0.8f, 0.85f, 0.9f);
+    int phase = rows ? ATMO_CLOUD_PHASE_MIE : ATMO_CLOUD_PHASE_HG;
+    double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0}, worst = 0.0;
     long scatterings = 0;
     for (int i = 0; i < N_WALKS / 4; i++) {
         rng_stream g = rng_stream_stage(23u, (uint)i, 0u, 0u);
@@ -176,27 +171,23 @@ static void furnace(const char *what, const float4 *rows, const float *cdf, int 
             if (!tracking_next(&walk, &g))
                 break; /* leaves: picks up the environment's radiance 1 */
             p = v3_add(p, v3_scale(d, walk.t));
-            float u = rng_next(&g), phi = 2.0f * ATMO_PI * rng_next(&g), c;
-            if (rows) {
-                vec3 weight;
-                /* the scattering angle's cosine between the old and the new direction */
-                c = phase_rows_sample(rows, cdf, n, u, &weight);
-                w = v3_mul(w, weight);
-            } else {
-                c = phase_henyey_greenstein_sample(g_hg, u);
-            }
-            d = rotate(d, c, phi);
+            float u1 = rng_next(&g), u2 = rng_next(&g);
+            vec3 weight;
+            d = cloud_phase_direction(phase, g_hg, 20.0f, rows, cdf, n, d, sun, eps, w, u1, u2, &g,
+                                      &weight);
+            w = v3_mul(w, weight);
             scatterings++;
         }
         float wc[3] = {w.x, w.y, w.z};
         for (int k = 0; k < 3; k++)
-            sum[k] += wc[k], sum2[k] += (double)wc[k] * wc[k];
+            sum[k] += wc[k], sum2[k] += (double)wc[k] * wc[k], worst = fmax(worst, wc[k]);
     }
     int N = N_WALKS / 4;
     for (int k = 0; k < 3; k++) {
         double mean = sum[k] / N, se = sqrt(fmax(sum2[k] / N - mean * mean, 0.0) / N);
-        printf("furnace %s, channel %d: %.6f +- %.6f (%.2f scatterings per path)\n", what, k,
-               mean, se, (double)scatterings / N);
+        printf("furnace %s, guiding %.2f, channel %d: %.6f +- %.6f (%.2f scatterings per path, "
+               "largest weight %.1f)\n",
+               what, eps, k, mean, se, (double)scatterings / N, worst);
         CHECK_ABS(mean, 1.0, Z_MAX * se + 1e-6);
     }
 }
@@ -220,7 +211,8 @@ int main(void)
         previous = excess;
     }
 
-    furnace("HG g = 0.85", NULL, NULL, 0);
+    for (int k = 0; k < 3; k++)
+        furnace("HG g = 0.85", NULL, NULL, 0, 0.15f * k);
     atmo_scene s;
     atmo_plan p;
     test_scene_preset(&s, "sky-noon");
@@ -231,7 +223,9 @@ int main(void)
     const atmo_plan_buffer *cdf = atmo_plan_buffer_find(&p, "clouds_phase_cdf");
     CHECK(rows && cdf && rows->host_data && cdf->host_data);
     if (rows && cdf)
-        furnace("cumulus Mie table", rows->host_data, cdf->host_data, p.gpu.clouds.table_size);
+        for (int k = 0; k < 3; k++)
+            furnace("cumulus Mie table", rows->host_data, cdf->host_data,
+                    p.gpu.clouds.table_size, 0.15f * k);
     atmo_plan_free(&p);
     return test_finish();
 }

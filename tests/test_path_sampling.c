@@ -81,7 +81,7 @@ static int clampi(int b, int n) { return b < 0 ? 0 : (b >= n ? n - 1 : b); }
 static void local(vec3 n, vec3 w, double *z, double *phi)
 {
     vec3 t, b;
-    bsdf_frame(n, &t, &b);
+    frame_basis(n, &t, &b);
     *z = v3_dot(w, n);
     *phi = atan2(v3_dot(w, b), v3_dot(w, t));
 }

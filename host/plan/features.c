@@ -77,8 +77,9 @@ static const char *const atmosphere_fragments[] = {
     "include/atmo/gpu_clouds.h",      "include/atmo/gpu_path.h",
     "include/atmo/gpu_terrain.h",
     "include/atmo/gpu_types.h",       "kernels/common/rng.h",
-    "kernels/common/geometry.h",      "kernels/common/phase.h",
-    "kernels/atmosphere/atmosphere.h", "kernels/common/camera.h",
+    "kernels/common/geometry.h",      "kernels/common/frame.h",
+    "kernels/common/phase.h",         "kernels/atmosphere/atmosphere.h",
+    "kernels/common/camera.h",
     "kernels/atmosphere/sky_method.h", "kernels/media/ray.h",
     "kernels/atmosphere/transmittance.cl", NULL};
 static const atmo_gpu_field atmosphere_params[] = {ATMO_GPU_FIELD(atmosphere),

@@ -186,6 +186,7 @@ int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e)
             (&g->g.x)[i] = (float)(own_g ? s->cloud.hg_g : o.g[i]);
         }
         g->diameter_um = (float)o.diameter_um;
+        g->sun_guiding = (float)s->cloud.sun_guiding;
         g->base_m = (float)s->cloud.bottom_m;
         g->top_m = (float)s->cloud.top_m;
         float *cdf = NULL;

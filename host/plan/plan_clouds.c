@@ -87,6 +87,7 @@ int atmo_plan_clouds(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     g->ms_c = (float)s->clouds.ms_c;
     g->majorant = (float)s->clouds.density;
     g->diameter_um = (float)o.diameter_um;
+    g->sun_guiding = (float)s->clouds.sun_guiding;
     g->phase = s->clouds.phase;
     g->table_size = o.count;
     g->octaves = s->clouds.octaves;

@@ -148,6 +148,10 @@ const atmo_param atmo_params[] = {
               "asymmetry g of cloud.phase=hg at every wavelength (0: the Mie table's g)"),
     ROW_BOOL("cloud.sun_disc", cloud.sun_disc, 1,
              "convolve the Mie table with the sun's disc (smooths ripples a point sun shows)"),
+    ROW_FLOAT("cloud.sun_guiding", cloud.sun_guiding, "", 0, 0.9, 0.1,
+              "method reference: probability that a scattering in the shell draws its new "
+              "direction from the phase lobe around the sun (unbiased; lowers the noise of "
+              "forward-peaked phases)"),
     ROW_BOOL("clouds.enabled", clouds.enabled, 0,
              "the fBm cloud layer: coverage x shaped 3-D fBm between two altitudes (methods "
              "single, march and reference; kernels/media/cloud_layer.h)"),
@@ -194,6 +198,10 @@ const atmo_param atmo_params[] = {
     ROW_ENUM("clouds.phase", clouds.phase, cloud_phase_names, 0,
              "cloud phase function: Mie table, Henyey-Greenstein with the table's g, or "
              "Jendersie-d'Eon for the distribution's effective diameter"),
+    ROW_FLOAT("clouds.sun_guiding", clouds.sun_guiding, "", 0, 0.9, 0.1,
+              "method reference and path.clouds=volume: probability that a scattering in the "
+              "layer draws its new direction from the phase lobe around the sun (unbiased; "
+              "lowers the noise of forward-peaked phases)"),
     ROW_INT("clouds.steps", clouds.steps, "", 1, 100000, 256,
             "the cloud marcher's most steps along a view ray"),
     ROW_FLOAT("clouds.step_m", clouds.step_m, "m", 1, 1e5, 150,

@@ -19,7 +19,8 @@ typedef struct atmo_gpu_cloud {
     int phase;           /* ATMO_CLOUD_PHASE_* (gpu_enums.h) */
     int table_size;      /* rows of the buffer cloud_phase_table (theta ascending) */
     int steps;           /* steps in optical depth per cloud segment of a view ray */
-    int pad0, pad1;
+    float sun_guiding;   /* the reference's probability of the phase lobe around the sun */
+    int pad1;
 } atmo_gpu_cloud;
 
 #endif

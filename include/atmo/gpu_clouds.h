@@ -38,7 +38,7 @@ typedef struct atmo_gpu_clouds {
     int look;              /* ATMO_CLOUDS_LOOK_* */
     uint seed;             /* the noise's seed */
     float diameter_um;     /* effective droplet diameter for Jendersie-d'Eon's fit (5..50 um) */
-    int pad0;
+    float sun_guiding;     /* the Monte Carlo walks' probability of the phase lobe around the sun */
 } atmo_gpu_clouds;
 
 #endif

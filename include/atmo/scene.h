@@ -101,6 +101,7 @@ typedef struct atmo_scene {
         int phase;             /* ATMO_CLOUD_PHASE_* */
         double hg_g;           /* g of phase hg (0: the table's g) */
         int sun_disc;          /* 0/1: Mie table convolved with the sun's disc */
+        double sun_guiding;    /* reference: probability of the phase lobe around the sun */
     } cloud;
     struct {                   /* the fBm cloud layer (kernels/media/cloud_layer.h) */
         int enabled;
@@ -129,6 +130,7 @@ typedef struct atmo_scene {
         int ms_octaves;        /* multiple-scattering octaves (1: single scattering only) */
         double ms_a, ms_b, ms_c; /* their extinction, contribution and anisotropy factors */
         int look;              /* ATMO_CLOUDS_LOOK_* */
+        double sun_guiding;    /* reference and path.clouds=volume: the same for the layer */
     } clouds;
     struct {                   /* a sphere in the camera's sun plane (Brocken spectre) */
         int enabled;

@@ -27,8 +27,9 @@
  * (zero where the ray to the sun hits the planet: the planet's shadow). W at the end of a segment
  * weighs the ground's direct light and, on the camera ray, the sun disc (E / Omega_sun, Omega_sun
  * = 2 pi (1 - cos alpha), where nu >= cos alpha and the ray misses the ground). New directions
- * sample the phase function exactly (Rayleigh = Draine with g = 0, alpha = 1; Mie: HG or
- * Cornette-Shanks, phase.h), the Lambertian ground a cosine-weighted hemisphere (weight = albedo).
+ * sample the air's phase functions exactly (Rayleigh = Draine with g = 0, alpha = 1; Mie: HG or
+ * Cornette-Shanks, phase.h), the Lambertian ground a cosine-weighted hemisphere (weight = albedo),
+ * the clouds' phase mixed with its lobe around the sun (below).
  * After 4 scattering events Russian roulette keeps a path with probability min(0.95, max w).
  *
  * Orders: order n is light that scattered (in the air or on the ground) n times; order 1 is
@@ -51,10 +52,12 @@
  * the layer's global bound (clouds.majorant x its largest extinction); so delta, spectral and
  * ratio tracking stay unbiased through it while clear air and thin cloud cost few points. The
  * sun's transmittance is ratio-tracked through air and clouds alike (visibility_sun's marched
- * light march is not used: only the opaque occluders); a scattering by the layer samples its
- * phase function: the Mie table by its CDF (phase_table.h, with the weight P / q per
- * wavelength), Henyey-Greenstein by the middle wavelength's g (weights p_c / p_y),
- * Jendersie-d'Eon exactly. Most tentative points under a bound are null collisions, so there
+ * light march is not used: only the opaque occluders); a scattering by the layer draws the new
+ * direction from its phase function (the Mie table by its CDF, Henyey-Greenstein by the middle
+ * wavelength's g, Jendersie-d'Eon exactly) mixed with the same lobe centred on the sun with
+ * probability clouds.sun_guiding, weight p_c / q per wavelength (phase_table.h's
+ * cloud_phase_direction: the forward peak's next-event estimates then come with small
+ * weights; unbiased for any guiding in [0, 1)). Most tentative points under a bound are null collisions, so there
  * the sun's next-event estimate is made only with probability keep = min(1,
  * REFERENCE_NEE_FLOOR + max sigma_s / sigma_bar) and divided by it (Russian roulette: unbiased),
  * which spares most of the ratio-tracked shadow rays. Inside opaque cloud the weights fall
@@ -67,9 +70,9 @@
  * other) is a component of media_at as well. Its majorant, its largest extinction x 1.001, is
  * added over the parts of a segment between its two spheres (reference_walk_shell, with a
  * REFERENCE_SHELL_MARGIN_M margin on the radii), so the clear air above and below keeps the
- * air's majorant; a scattering by it samples its phase as the layer's does
- * (phase_table.h's cloud_phase_sample: the Mie table's rows and CDF, HG with g per channel,
- * Jendersie-d'Eon); the sun's transmittance through it is exact, exp(-sigma l)
+ * air's majorant; a scattering by it draws its new direction as the layer's does
+ * (phase_table.h's cloud_phase_direction with cloud.sun_guiding: the Mie table's rows and CDF,
+ * HG with g per channel, Jendersie-d'Eon, each mixed with its lobe around the sun); the sun's transmittance through it is exact, exp(-sigma l)
  * for the sun's chord l through the shell, times the air's ratio-tracked transmittance
  * (reference_tracked_extinction: the air's extinction alone). The layer's roulettes (the
  * next-event keep, REFERENCE_ROULETTE_T) apply inside the shell too. The observer sphere is
@@ -87,6 +90,7 @@
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
 #include "atmosphere/atmosphere.h"
+#include "common/frame.h"
 #include "common/geometry.h"
 #include "common/phase.h"
 #include "common/rng.h"
@@ -389,39 +393,52 @@ ATMO_FN vec3 reference_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PA
                     vis);
 }
 
-/* A new direction's cosine to the old one, sampled from component k's phase function with the
- * uniform number u1 (and, for Jendersie-d'Eon's mixture, one more from g); *weight multiplies
- * the path's throughput (the phase over the sampling density: 1 where the sampling is exact). */
-ATMO_FN float reference_sample_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, int k,
-                                     float u1, rng_stream *g, vec3 *weight)
+/* The new direction at a scattering by component k of a path of throughput beta reaching it
+ * along dir, the sun toward to_sun (the path's frame), from the uniform numbers u1, u2 (azimuth
+ * 2 pi u2) and, for
+ * Jendersie-d'Eon's mixture, one more from g; *weight multiplies the path's throughput (the
+ * phase over the sampling density: 1 where the sampling is exact). The clouds draw from their
+ * phase mixed with its lobe around the sun (phase_table.h's sun guiding, cloud.sun_guiding and
+ * clouds.sun_guiding), the air from its phase exactly. */
+ATMO_FN vec3 reference_sample_direction(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                        int k, vec3 dir, vec3 to_sun, vec3 beta, float u1,
+                                        float u2, rng_stream *g, vec3 *weight)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     *weight = v3(1.0f, 1.0f, 1.0f);
 #ifdef ATMO_CLOUD
     if (k == MEDIA_CLOUD)
-        return cloud_phase_sample(s->cloud.phase, v3_from4(s->cloud.g), s->cloud.diameter_um,
-                                  cloud_phase_table, cloud_phase_cdf, s->cloud.table_size, u1, g,
-                                  weight);
+        return cloud_phase_direction(s->cloud.phase, v3_from4(s->cloud.g), s->cloud.diameter_um,
+                                     cloud_phase_table, cloud_phase_cdf, s->cloud.table_size, dir,
+                                     to_sun, s->cloud.sun_guiding, beta, u1, u2, g, weight);
 #endif
 #ifdef ATMO_CLOUDS
     if (k == MEDIA_CLOUDS) /* cloud_layer.h's sampling, shared with the path tracer */
-        return clouds_phase_sample(s, clouds_phase_table, clouds_phase_cdf, u1, g, weight);
+        return clouds_phase_direction(s, clouds_phase_table, clouds_phase_cdf, dir, to_sun, beta,
+                                      u1, u2, g, weight);
 #endif
-    (void)g;
-    return k == MEDIA_RAYLEIGH ? phase_draine_sample(0.0f, 1.0f, u1)
-           : a->mie_phase == ATMO_PHASE_HENYEY_GREENSTEIN ? phase_henyey_greenstein_sample(a->mie_g, u1)
-                                                          : phase_cornette_shanks_sample(a->mie_g, u1);
+    (void)g, (void)to_sun, (void)beta;
+    float c = k == MEDIA_RAYLEIGH ? phase_draine_sample(0.0f, 1.0f, u1)
+              : a->mie_phase == ATMO_PHASE_HENYEY_GREENSTEIN
+                  ? phase_henyey_greenstein_sample(a->mie_g, u1)
+                  : phase_cornette_shanks_sample(a->mie_g, u1);
+    return frame_direction(dir, c, 2.0f * ATMO_PI * u2);
 }
 
-/* A unit vector at cosine c to the unit vector n, with azimuth phi around it. */
-ATMO_FN vec3 reference_rotate(vec3 n, float c, float phi)
+/* The factor on the throughput of the Russian roulette's survival probability for a path
+ * leaving along a direction of cosine nu to the sun: with clouds, phase_table.h's
+ * cloud_roulette_gain of the cloud's phase at nu (sun-guided paths survive it), else 1. */
+ATMO_FN float reference_roulette_gain(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                      float nu)
 {
-    vec3 helper = fabsf(n.x) < 0.6f ? v3(1.0f, 0.0f, 0.0f) : v3(0.0f, 1.0f, 0.0f);
-    vec3 b1 = v3_normalize(v3_cross(n, helper));
-    vec3 b2 = v3_cross(n, b1);
-    float s = atmo_safe_sqrt(1.0f - c * c);
-    return v3_normalize(v3_add(v3_scale(n, c),
-                               v3_add(v3_scale(b1, s * cosf(phi)), v3_scale(b2, s * sinf(phi)))));
+#ifdef ATMO_CLOUD
+    return cloud_roulette_gain(media_phase(s, ATMO_LUT_ARGS, MEDIA_CLOUD, nu));
+#elif defined(ATMO_CLOUDS)
+    return cloud_roulette_gain(media_phase(s, ATMO_LUT_ARGS, MEDIA_CLOUDS, nu));
+#else
+    (void)s, (void)nu;
+    return 1.0f;
+#endif
 }
 
 /* One path from the camera along the ray m (its cosines; the path's frame is its own); the
@@ -553,23 +570,24 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
         /* the next vertex: a scattering in the air or a reflection on the ground */
         if (collided) {
             pos = v3_add(pos, v3_scale(dir, t_hit));
-            float u1 = rng_next(g), phi = 2.0f * ATMO_PI * rng_next(g);
+            float u1 = rng_next(g), u2 = rng_next(g);
             vec3 phase_weight;
-            float c = reference_sample_phase(s, ATMO_LUT_ARGS, chosen, u1, g, &phase_weight);
-            dir = reference_rotate(dir, c, phi);
+            dir = reference_sample_direction(s, ATMO_LUT_ARGS, chosen, dir, to_sun, ws, u1, u2,
+                                             g, &phase_weight);
             w = v3_mul(ws, phase_weight);
         } else {
             pos = v3_add(pos, v3_scale(dir, d));
             vec3 n = v3_normalize(pos);
             pos = v3_scale(n, a->bottom_radius);
             float u1 = rng_next(g), phi = 2.0f * ATMO_PI * rng_next(g);
-            dir = reference_rotate(n, sqrtf(u1), phi); /* cosine-weighted: pdf cos / pi */
+            dir = frame_direction(n, sqrtf(u1), phi); /* cosine-weighted: pdf cos / pi */
             w = v3_mul(ws, albedo);
             if (tracking_max3(w) <= 0.0f) /* a black ground ends the path */
                 break;
         }
         if (order + 1 >= REFERENCE_ROULETTE_ORDER) {
-            float keep = fminf(0.95f, tracking_max3(w));
+            float keep = fminf(0.95f, tracking_max3(w) * reference_roulette_gain(s, ATMO_LUT_ARGS,
+                                                                                 v3_dot(dir, to_sun)));
             if (rng_next(g) >= keep)
                 break;
             w = v3_scale(w, 1.0f / keep);

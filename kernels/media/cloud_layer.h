@@ -130,25 +130,21 @@ ATMO_FN vec3 clouds_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const
                           float nu)
 {
     ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
-    if (c->phase == ATMO_CLOUD_PHASE_HG)
-        return v3(phase_henyey_greenstein(nu, c->g.x), phase_henyey_greenstein(nu, c->g.y),
-                  phase_henyey_greenstein(nu, c->g.z));
-    if (c->phase == ATMO_CLOUD_PHASE_JENDERSIE_DEON) {
-        float p = phase_jendersie_deon(nu, phase_jendersie_deon_params(c->diameter_um));
-        return v3(p, p, p);
-    }
-    return phase_rows_eval(table, c->table_size, nu);
+    return cloud_phase_eval(c->phase, v3_from4(c->g), c->diameter_um, table, c->table_size, nu);
 }
 
-/* A scattering-angle cosine drawn from the layer's phase function with the uniform number u1
- * (phase_table.h's cloud_phase_sample; *weight the phase over the sampling density). */
-ATMO_FN float clouds_phase_sample(ATMO_GLOBAL const atmo_gpu_scene *s,
-                                  ATMO_GLOBAL const float4 *table, ATMO_GLOBAL const float *cdf,
-                                  float u1, rng_stream *g, vec3 *weight)
+/* The new direction at a layer vertex reached along d by a path of throughput beta, the sun
+ * toward `sun` (unit vectors of one frame): phase_table.h's cloud_phase_direction with the
+ * layer's phase and clouds.sun_guiding, uniform numbers u1, u2 (and one from g for
+ * Jendersie-d'Eon); *weight the phase over the sampling density. */
+ATMO_FN vec3 clouds_phase_direction(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                    ATMO_GLOBAL const float4 *table, ATMO_GLOBAL const float *cdf,
+                                    vec3 d, vec3 sun, vec3 beta, float u1, float u2,
+                                    rng_stream *g, vec3 *weight)
 {
     ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
-    return cloud_phase_sample(c->phase, v3_from4(c->g), c->diameter_um, table, cdf, c->table_size,
-                              u1, g, weight);
+    return cloud_phase_direction(c->phase, v3_from4(c->g), c->diameter_um, table, cdf,
+                                 c->table_size, d, sun, c->sun_guiding, beta, u1, u2, g, weight);
 }
 
 /* The parts of [t_start, t_end] of the ray from radius r with cosine mu (R the ground's radius)

@@ -91,16 +91,9 @@ ATMO_FN float cloud_shell_chord(float R, float base, float top, float h, float r
 ATMO_FN vec3 cloud_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *table,
                          float nu)
 {
-    if (s->cloud.phase == ATMO_CLOUD_PHASE_HG)
-        return v3(phase_henyey_greenstein(nu, s->cloud.g.x),
-                  phase_henyey_greenstein(nu, s->cloud.g.y),
-                  phase_henyey_greenstein(nu, s->cloud.g.z));
-    if (s->cloud.phase == ATMO_CLOUD_PHASE_JENDERSIE_DEON) {
-        float p = phase_jendersie_deon(nu, phase_jendersie_deon_params(s->cloud.diameter_um));
-        return v3(p, p, p);
-    }
     /* the light turns from -sun to -view: the scattering angle's cosine is nu */
-    return phase_rows_eval(table, s->cloud.table_size, nu);
+    return cloud_phase_eval(s->cloud.phase, v3_from4(s->cloud.g), s->cloud.diameter_um, table,
+                            s->cloud.table_size, nu);
 }
 
 /* int_0^dt e^{-x(s)} ds for an exponent linear from x0 to x1 (both >= 0):

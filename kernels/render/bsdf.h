@@ -4,28 +4,19 @@
  * lifted to the hemisphere around n, gives the direction (r cos phi, r sin phi, sqrt(1 - u1))
  * in the frame (t, b, n) with density p(w) = cos(theta) / pi per steradian (pbrt-v4 sec.
  * A.5.3). So f cos / p = albedo: a bounce's weight is the albedo itself. The frame around n is
- * the branch-free orthonormal basis of Duff et al. 2017 ("Building an orthonormal basis,
- * revisited", JCGT 6(1)). */
+ * frame.h's (Duff et al. 2017). */
 #ifndef ATMO_RENDER_BSDF_H
 #define ATMO_RENDER_BSDF_H
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
+#include "common/frame.h"
 #endif
-
-/* Unit t, b with (t, b, n) orthonormal and right-handed. */
-ATMO_FN void bsdf_frame(vec3 n, vec3 *t, vec3 *b)
-{
-    float sign = n.z >= 0.0f ? 1.0f : -1.0f;
-    float a = -1.0f / (sign + n.z), c = n.x * n.y * a;
-    *t = v3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
-    *b = v3(c, sign + n.y * n.y * a, -n.y);
-}
 
 /* The direction of (u1, u2) in the hemisphere around n, cosine-distributed. */
 ATMO_FN vec3 bsdf_sample_cosine(vec3 n, float u1, float u2)
 {
     vec3 t, b;
-    bsdf_frame(n, &t, &b);
+    frame_basis(n, &t, &b);
     float r = sqrtf(u1), phi = 2.0f * ATMO_PI * u2;
     float z = sqrtf(fmaxf(1.0f - u1, 0.0f));
     return v3_add(v3_add(v3_scale(t, r * cosf(phi)), v3_scale(b, r * sinf(phi))),

@@ -39,7 +39,7 @@
 #define LIGHT_SKY_TABLE 0.75f
 
 /* The table's frame: up (the camera's local vertical) and two horizontal axes. */
-ATMO_FN void light_sky_frame(vec3 up, vec3 *e1, vec3 *e2) { bsdf_frame(up, e1, e2); }
+ATMO_FN void light_sky_frame(vec3 up, vec3 *e1, vec3 *e2) { frame_basis(up, e1, e2); }
 
 /* Solid angle of a texel of row j. */
 ATMO_FN float light_sky_texel_omega(int j)

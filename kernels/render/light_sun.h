@@ -21,7 +21,7 @@
 ATMO_FN vec3 light_sun_sample(vec3 s, float cos_alpha, float u1, float u2)
 {
     vec3 t, b;
-    bsdf_frame(s, &t, &b);
+    frame_basis(s, &t, &b);
     float c = 1.0f - u1 * (1.0f - cos_alpha);
     float sn = sqrtf(fmaxf(1.0f - c * c, 0.0f)), phi = 2.0f * ATMO_PI * u2;
     return v3_add(v3_add(v3_scale(t, sn * cosf(phi)), v3_scale(b, sn * sinf(phi))),

@@ -300,7 +300,8 @@ ATMO_FN void path_continue(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
     for (;;) {
         float u_rr = rng_next(g), u1 = rng_next(g), u2 = rng_next(g);
         if (depth + scatters >= s->path.rr_bounce) {
-            float q = fminf(0.95f, fmaxf(beta.x, fmaxf(beta.y, beta.z)));
+            float gain = v.volume ? volume_roulette_gain(s, ATMO_LUT_ARGS, v.dir) : 1.0f;
+            float q = fminf(0.95f, fmaxf(beta.x, fmaxf(beta.y, beta.z)) * gain);
             if (u_rr >= q)
                 break;
             beta = v3_scale(beta, 1.0f / q);
@@ -311,7 +312,7 @@ ATMO_FN void path_continue(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
         float p_c = path_cosine_probability(&v);
         int mirror = !v.volume && u1 < 1.0f - p_c;
         if (v.volume) {
-            w = volume_phase_direction(s, ATMO_LUT_ARGS, v.dir, u1, u2, g, &phase_weight);
+            w = volume_phase_direction(s, ATMO_LUT_ARGS, v.dir, beta, u1, u2, g, &phase_weight);
             beta = v3_mul(beta, phase_weight); /* p / pdf */
         } else if (mirror) {
             w = v3_sub(v.dir, v3_scale(v.n, 2.0f * v3_dot(v.dir, v.n))); /* d - 2 (n . d) n */

@@ -16,8 +16,9 @@
  * has the expectation L(0): the air's part is sky_trace with t_max = t_c (or end) and the
  * method's transmittance T_a, and J_c(t_c) = int p_c L_in dw is the next vertex: next-event
  * estimation to the sun (phase p_c(nu) times the sunlight, path.h's one shadow function) and a
- * continuation drawn from p_c (clouds_phase_sample: the Mie table by its CDF, Henyey-Greenstein,
- * Jendersie-d'Eon; weight p / pdf per wavelength). The sky reaches a cloud vertex only by the
+ * continuation drawn from p_c mixed with p_c's lobe around the sun (clouds_phase_direction,
+ * phase_table.h's sun guiding: the Mie table by its CDF, Henyey-Greenstein, Jendersie-d'Eon;
+ * weight p / pdf per wavelength). The sky reaches a cloud vertex only by the
  * phase-sampled continuation (no sky sampling there, so no MIS weight: 1). The air's J_a is the
  * method's, which knows no clouds: the air in the layer's shadow is lit as if the layer were
  * not there (no cloud shadows in the air), and the air's light along a segment takes the
@@ -30,7 +31,6 @@
 #include "common/compat.h"
 #include "common/rng.h"
 #include "media/ray.h"
-#include "render/bsdf.h"
 #ifdef ATMO_CLOUDS_VOLUME
 #include "media/cloud_layer.h"
 #include "media/cloud_walk.h"
@@ -76,24 +76,37 @@ ATMO_FN vec3 volume_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, 
 #endif
 }
 
-/* A new direction at a cloud vertex reached along d: its cosine to d from the phase function
- * (u1, and g for Jendersie-d'Eon), its azimuth 2 pi u2 around d; *weight the phase over the
- * density it was drawn with. */
-ATMO_FN vec3 volume_phase_direction(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, vec3 d,
-                                    float u1, float u2, rng_stream *g, vec3 *weight)
+/* The factor on the throughput of the Russian roulette's survival probability at a cloud
+ * vertex reached along d: phase_table.h's cloud_roulette_gain of the layer's phase between d
+ * and the sun (the continuation mostly keeps d: the forward peak), so that paths the sun
+ * guiding sent toward the sun survive it; 1 without the layer's volume. */
+ATMO_FN float volume_roulette_gain(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, vec3 d)
 {
 #ifdef ATMO_CLOUDS_VOLUME
-    float c = clouds_phase_sample(s, clouds_phase_table, clouds_phase_cdf, u1, g, weight);
+    return cloud_roulette_gain(clouds_phase(s, clouds_phase_table,
+                                            v3_dot(d, v3_from4(s->sun_direction))));
 #else
-    (void)s, (void)u1, (void)g;
-    float c = 1.0f;
-    *weight = v3(0.0f, 0.0f, 0.0f);
+    (void)s, (void)d;
+    return 1.0f;
 #endif
-    vec3 t, b;
-    bsdf_frame(d, &t, &b);
-    float sn = sqrtf(fmaxf(1.0f - c * c, 0.0f)), phi = 2.0f * ATMO_PI * u2;
-    return v3_normalize(v3_add(v3_add(v3_scale(t, sn * cosf(phi)), v3_scale(b, sn * sinf(phi))),
-                               v3_scale(d, c)));
+}
+
+/* A new direction at a cloud vertex reached along d by a path of throughput beta (u1, u2, and g
+ * for Jendersie-d'Eon):
+ * cloud_layer.h's clouds_phase_direction, the phase function's lobe around d mixed with its
+ * lobe around the sun's direction (clouds.sun_guiding); *weight the phase over the density it
+ * was drawn with. */
+ATMO_FN vec3 volume_phase_direction(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, vec3 d,
+                                    vec3 beta, float u1, float u2, rng_stream *g, vec3 *weight)
+{
+#ifdef ATMO_CLOUDS_VOLUME
+    return clouds_phase_direction(s, clouds_phase_table, clouds_phase_cdf, d,
+                                  v3_from4(s->sun_direction), beta, u1, u2, g, weight);
+#else
+    (void)s, (void)beta, (void)u1, (void)u2, (void)g;
+    *weight = v3(0.0f, 0.0f, 0.0f);
+    return d;
+#endif
 }
 
 #endif
