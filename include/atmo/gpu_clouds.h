@@ -38,7 +38,11 @@ typedef struct atmo_gpu_clouds {
     int look;              /* ATMO_CLOUDS_LOOK_* */
     uint seed;             /* the noise's seed */
     float diameter_um;     /* effective droplet diameter for Jendersie-d'Eon's fit (5..50 um) */
-    int pad0;
+    int shadow_map_size;   /* the sun shadow map's nodes per horizontal axis (cloud_shadow_map.h;
+                              0 without clouds.shadow_map) */
+    int shadow_map_levels; /* its nodes between the layer's bottom and top */
+    int shadow_map_steps;  /* steps of its nodes' integrals toward the sun */
+    int pad0, pad1;
 } atmo_gpu_clouds;
 
 #endif
