@@ -83,11 +83,11 @@ ATMO_FN float clouds_shadow_map_node(ATMO_GLOBAL const atmo_gpu_scene *s,
                                     INFINITY);
 }
 
-/* The trilinear interpolation of the map at the camera-relative point p of altitude h in
- * [bottom, top]; -1 where p lies horizontally outside the map. */
-ATMO_FN float clouds_shadow_map_lookup(ATMO_GLOBAL const atmo_gpu_scene *s,
-                                       ATMO_GLOBAL const float *map, const clouds_grid_frame *f,
-                                       vec3 p, float h)
+/* The map's cell (i, j, k) around the camera-relative point p of altitude h in [bottom, top]
+ * (node (i, j, k) its low corner) and p's fractions in it along X, h, Z; 0 where p lies
+ * horizontally outside the map. */
+ATMO_FN int clouds_shadow_map_cell(ATMO_GLOBAL const atmo_gpu_scene *s, const clouds_grid_frame *f,
+                                   vec3 p, float h, int *i, int *j, int *k, vec3 *frac)
 {
     ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
     float R = s->atmosphere.bottom_radius, E = clouds_shadow_map_extent(s);
@@ -96,19 +96,32 @@ ATMO_FN float clouds_shadow_map_lookup(ATMO_GLOBAL const atmo_gpu_scene *s,
     float spacing = 2.0f * E / (float)(n - 1);
     float u = (R * v3_dot(p, f->ax) / vy + E) / spacing;
     float w = (R * v3_dot(p, f->az) / vy + E) / spacing;
-    float v = (h - c->bottom_m) / (c->top_m - c->bottom_m) * (float)(L - 1);
+    float v = clamp((h - c->bottom_m) / (c->top_m - c->bottom_m) * (float)(L - 1), 0.0f,
+                    (float)(L - 1));
     if (!(vy > 0.0f && u >= 0.0f && u <= (float)(n - 1) && w >= 0.0f && w <= (float)(n - 1)))
+        return 0;
+    *i = (int)u, *k = (int)w, *j = (int)v; /* the last nodes interpolate from the cell below */
+    *i = *i < n - 2 ? *i : n - 2, *k = *k < n - 2 ? *k : n - 2, *j = *j < L - 2 ? *j : L - 2;
+    *frac = v3(u - (float)*i, v - (float)*j, w - (float)*k);
+    return 1;
+}
+
+/* The trilinear interpolation of the map at the camera-relative point p of altitude h in
+ * [bottom, top]; -1 where p lies horizontally outside the map. */
+ATMO_FN float clouds_shadow_map_lookup(ATMO_GLOBAL const atmo_gpu_scene *s,
+                                       ATMO_GLOBAL const float *map, const clouds_grid_frame *f,
+                                       vec3 p, float h)
+{
+    int n = s->clouds.shadow_map_size, i, j, k;
+    vec3 t;
+    if (!clouds_shadow_map_cell(s, f, p, h, &i, &j, &k, &t))
         return -1.0f;
-    v = clamp(v, 0.0f, (float)(L - 1));
-    int i = (int)u, k = (int)w, j = (int)v; /* the last nodes interpolate from the cell below */
-    i = i < n - 2 ? i : n - 2, k = k < n - 2 ? k : n - 2, j = j < L - 2 ? j : L - 2;
-    float fu = u - (float)i, fw = w - (float)k, fv = v - (float)j;
     ATMO_GLOBAL const float *m0 = map + ((size_t)j * (size_t)n + (size_t)k) * (size_t)n + (size_t)i;
     ATMO_GLOBAL const float *m1 = m0 + (size_t)n * (size_t)n;
-    float a0 = m0[0] + fu * (m0[1] - m0[0]), b0 = m0[n] + fu * (m0[n + 1] - m0[n]);
-    float a1 = m1[0] + fu * (m1[1] - m1[0]), b1 = m1[n] + fu * (m1[n + 1] - m1[n]);
-    float d0 = a0 + fw * (b0 - a0), d1 = a1 + fw * (b1 - a1);
-    return d0 + fv * (d1 - d0);
+    float a0 = m0[0] + t.x * (m0[1] - m0[0]), b0 = m0[n] + t.x * (m0[n + 1] - m0[n]);
+    float a1 = m1[0] + t.x * (m1[1] - m1[0]), b1 = m1[n] + t.x * (m1[n + 1] - m1[n]);
+    float d0 = a0 + t.z * (b0 - a0), d1 = a1 + t.z * (b1 - a1);
+    return d0 + t.y * (d1 - d0);
 }
 
 /* The density integral D toward the sun from q: the map's where it covers q, else the light
