@@ -1,6 +1,6 @@
 /* test_path_cloud_shadow — cloud shadows in the path tracer: the direct sunlight a ground point
  * receives (kernels/render/path.h's path_sunlight: visibility_sun_surface, the layer's
- * clouds_sun_transmittance) is cut by the cloud layer's transmittance toward the sun.
+ * visibility_clouds_transmittance) is cut by the cloud layer's transmittance toward the sun.
  * labels: render kernel slow
  *
  * Scene: the fBm cloud layer made thin and scattered (1-3 km, fades of 500 m, coverage 0.1,

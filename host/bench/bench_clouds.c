@@ -65,21 +65,36 @@ static const cloud_view views[BENCH_CLOUDS_VIEWS] = {
 typedef struct march_config {
     const char *settings;
     const char *assignments[5];
+    int shadow; /* 1: the shadow term's error is measured too (bench_clouds_shadow.c) */
 } march_config;
 
 static const march_config march_configs[] = {
-    {"defaults", {NULL}},
+    {"defaults", {NULL}, 1},
     {"octaves 0.5/0.5/0.5 x4",
-     {"clouds.ms_a=0.5", "clouds.ms_b=0.5", "clouds.ms_c=0.5", "clouds.ms_octaves=4"}},
-    {"step 300 m", {"clouds.step_m=300", NULL}},
-    {"step 75 m", {"clouds.step_m=75", NULL}},
-    {"8 light steps", {"clouds.light_steps=8", NULL}},
-    {"16 light steps", {"clouds.light_steps=16", NULL}},
-    {"1 octave", {"clouds.ms_octaves=1", NULL}},
-    {"2 octaves", {"clouds.ms_octaves=2", NULL}},
-    {"8 octaves", {"clouds.ms_octaves=8", NULL}},
-    {"128 steps", {"clouds.steps=128", NULL}},
+     {"clouds.ms_a=0.5", "clouds.ms_b=0.5", "clouds.ms_c=0.5", "clouds.ms_octaves=4"}, 0},
+    {"step 300 m", {"clouds.step_m=300", NULL}, 0},
+    {"step 75 m", {"clouds.step_m=75", NULL}, 0},
+    {"1 light step", {"clouds.light_steps=1", NULL}, 1},
+    {"2 light steps", {"clouds.light_steps=2", NULL}, 1},
+    {"8 light steps", {"clouds.light_steps=8", NULL}, 1},
+    {"16 light steps", {"clouds.light_steps=16", NULL}, 1},
+    {"shadow map 128x16",
+     {"clouds.shadow_map=true", "clouds.shadow_map_size=128", "clouds.shadow_map_levels=16",
+      NULL},
+     1},
+    {"shadow map 256x32",
+     {"clouds.shadow_map=true", "clouds.shadow_map_size=256", "clouds.shadow_map_levels=32",
+      NULL},
+     1},
+    {"1 octave", {"clouds.ms_octaves=1", NULL}, 0},
+    {"2 octaves", {"clouds.ms_octaves=2", NULL}, 0},
+    {"8 octaves", {"clouds.ms_octaves=8", NULL}, 0},
+    {"128 steps", {"clouds.steps=128", NULL}, 0},
 };
+
+/* A 1280 x 720 frame's pixel-samples per sample of one view's rays: a per-view cost spread
+ * over a frame at one sample per pixel. */
+#define BENCH_CLOUDS_FRAME_SAMPLES (1280.0 * 720.0 / BENCH_CLOUDS_RAYS)
 
 static int view_scene(const cloud_view *v, const char *method, const char *const *extra,
                       atmo_scene *s, atmo_err *e)
@@ -102,11 +117,13 @@ static int view_scene(const cloud_view *v, const char *method, const char *const
     return atmo_scene_validate(s, e);
 }
 
-/* The view's radiance (550 nm, summed over its rays), its standard error and the probe's
- * seconds per sample of all its rays. */
+/* The view's radiance (550 nm, summed over its rays), its standard error, the probe's seconds
+ * per sample of all its rays and, unless NULL, its precompute's seconds and the shadow term's
+ * errors at the marcher's sample points added to *shadow. */
 static int view_radiance(const cloud_view *v, const char *method, const char *const *extra,
                          int samples, const char *device, double *L, double *se,
-                         double *seconds, atmo_err *e)
+                         double *seconds, double *precompute, bench_shadow_error *shadow,
+                         atmo_err *e)
 {
     atmo_scene s;
     atmo_plan plan;
@@ -128,7 +145,11 @@ static int view_radiance(const cloud_view *v, const char *method, const char *co
     if (!rc)
         rc = atmo_probe_rays(&probe, rays, BENCH_CLOUDS_RAYS, samples, mean, err, e);
     *seconds = (atmo_now_seconds() - t0) / samples;
+    if (precompute)
+        *precompute = probe.seconds_precompute;
     atmo_probe_close(&probe);
+    if (!rc && shadow)
+        rc = bench_clouds_shadow_error(&plan, rays, BENCH_CLOUDS_RAYS, shadow, e);
     atmo_plan_free(&plan);
     if (rc)
         return rc;
@@ -144,22 +165,23 @@ typedef struct reference_result {
     double L[BENCH_CLOUDS_VIEWS], se[BENCH_CLOUDS_VIEWS], seconds;
 } reference_result;
 
-/* The marcher's RMS relative view error with the assignments, and its seconds per sample. */
+/* The marcher's RMS relative view error with the assignments, its seconds per sample, its
+ * precompute's seconds summed over the views and, unless NULL, the shadow term's errors. */
 static int march_error(const char *const *extra, const reference_result *ref, const char *device,
                        double errors[BENCH_CLOUDS_VIEWS], double *rms, double *seconds,
-                       atmo_err *e)
+                       double *precompute, bench_shadow_error *shadow, atmo_err *e)
 {
     double sum = 0.0;
-    *seconds = 0.0;
+    *seconds = 0.0, *precompute = 0.0;
     for (int v = 0; v < BENCH_CLOUDS_VIEWS; v++) {
-        double L, se, t;
+        double L, se, t, pre;
         int rc = view_radiance(&views[v], "march", extra, BENCH_CLOUDS_MARCH_SAMPLES, device, &L,
-                               &se, &t, e);
+                               &se, &t, &pre, shadow, e);
         if (rc)
             return rc;
         errors[v] = L / ref->L[v] - 1.0;
         sum += errors[v] * errors[v];
-        *seconds += t;
+        *seconds += t, *precompute += pre;
     }
     *rms = sqrt(sum / BENCH_CLOUDS_VIEWS);
     return ATMO_OK;
@@ -198,7 +220,7 @@ static int fit_octaves(const char *dir, const reference_result *ref, const char 
                 for (int v = 0; v < BENCH_CLOUDS_VIEWS; v++) {
                     double L, se, t;
                     int rc = view_radiance(&views[v], "march", extra, BENCH_CLOUDS_MARCH_SAMPLES,
-                                           device, &L, &se, &t, e);
+                                           device, &L, &se, &t, NULL, NULL, e);
                     if (rc) {
                         fclose(f);
                         return rc;
@@ -251,7 +273,7 @@ int bench_clouds(const char *dir, const char *device, int quick, int fit, atmo_e
     for (int v = 0; v < BENCH_CLOUDS_VIEWS; v++) {
         double t;
         if ((rc = view_radiance(&views[v], "reference", NULL, quick ? 64 : views[v].ref_samples,
-                                device, &ref.L[v], &ref.se[v], &t, e)))
+                                device, &ref.L[v], &ref.se[v], &t, NULL, NULL, e)))
             return rc;
         ref.seconds += t;
         fprintf(stderr, "bench clouds: reference %-10s %.5e +- %.1f %% (%.3f s per sample)\n",
@@ -260,23 +282,49 @@ int bench_clouds(const char *dir, const char *device, int quick, int fit, atmo_e
     if (fit)
         return fit_octaves(dir, &ref, device, quick, e);
     enum { N_CONFIGS = sizeof march_configs / sizeof march_configs[0] };
-    bench_row out[N_CONFIGS + 3];
-    int n = 0;
+    bench_row out[N_CONFIGS + 3], shadow_rows[N_CONFIGS];
+    int n = 0, n_shadow = 0;
+    double base_precompute = 0.0;
     for (int i = 0; i < N_CONFIGS; i++) {
         if (quick && i > 0)
             break;
-        double errors[BENCH_CLOUDS_VIEWS];
+        double errors[BENCH_CLOUDS_VIEWS], precompute;
+        bench_shadow_error shadow = {0.0, 0.0, 0, 0};
+        const march_config *mc = &march_configs[i];
         bench_row *row = &out[n++];
         snprintf(row->method, sizeof row->method, "march");
-        snprintf(row->settings, sizeof row->settings, "%s", march_configs[i].settings);
-        if ((rc = march_error(march_configs[i].assignments, &ref, device, errors, &row->error,
-                              &row->seconds, e)))
+        snprintf(row->settings, sizeof row->settings, "%s", mc->settings);
+        if ((rc = march_error(mc->assignments, &ref, device, errors, &row->error, &row->seconds,
+                              &precompute, mc->shadow ? &shadow : NULL, e)))
             return rc;
-        fprintf(stderr, "bench clouds: march %-15s %.4f s per sample, RMS error %.1f %% (",
-                row->settings, row->seconds, 100.0 * row->error);
+        if (i == 0)
+            base_precompute = precompute;
+        /* the map's build: the precompute's seconds beyond the defaults', spread over a frame */
+        double build = fmax(precompute - base_precompute, 0.0);
+        int has_map = strstr(mc->settings, "shadow map") != NULL;
+        if (has_map)
+            row->seconds += build / BENCH_CLOUDS_FRAME_SAMPLES;
+        fprintf(stderr, "bench clouds: march %-18s %.4f s per sample%s, RMS error %.1f %% (",
+                row->settings, row->seconds, has_map ? " (build amortised)" : "",
+                100.0 * row->error);
         for (int v = 0; v < BENCH_CLOUDS_VIEWS; v++)
             fprintf(stderr, "%s%s %+.1f %%", v ? ", " : "", views[v].name, 100.0 * errors[v]);
         fprintf(stderr, ")\n");
+        if (has_map)
+            fprintf(stderr, "bench clouds:   map build %.2f s over the 4 views (%.2f s per view), "
+                            "%.2e s per sample amortised over a 1280x720 frame\n",
+                    build, build / BENCH_CLOUDS_VIEWS, build / BENCH_CLOUDS_FRAME_SAMPLES);
+        if (!mc->shadow)
+            continue;
+        bench_row *sr = &shadow_rows[n_shadow++];
+        snprintf(sr->method, sizeof sr->method, "%s", has_map ? "shadow map" : "light march");
+        snprintf(sr->settings, sizeof sr->settings, "%s", mc->settings);
+        sr->seconds = row->seconds;
+        sr->error = sqrt(shadow.sq_all / shadow.n_all);
+        fprintf(stderr, "bench clouds:   sun transmittance vs the whole-chord quadrature: RMS "
+                        "%.4f over %d sample points, %.4f over the %d in cloud\n",
+                sr->error, shadow.n_all, sqrt(shadow.sq_cloud / fmax(shadow.n_cloud, 1)),
+                shadow.n_cloud);
     }
     /* the reference at 64, 128 and 256 paths: its relative standard error (RMS over the views)
      * scaled from this run's to that many paths, and their time */
@@ -300,6 +348,16 @@ int bench_clouds(const char *dir, const char *device, int quick, int fit, atmo_e
                           "fBm clouds: marcher knobs vs the reference (4 views x 6 rays, 550 nm); "
                           "time per sample of the 24 rays",
                           "RMS relative error of the views", out, n, e)))
+        return rc;
+    printf("wrote %s and %s\n", csv, svg);
+    snprintf(csv, sizeof csv, "%s/clouds_shadow.csv", dir);
+    snprintf(svg, sizeof svg, "%s/clouds_shadow.svg", dir);
+    if ((rc = bench_write_csv(csv, shadow_rows, n_shadow, device ? device : "default", e)) ||
+        (rc = bench_chart(csv, svg,
+                          "fBm clouds: sun transmittance of the light march and the shadow map at the "
+                          "sample points of the marcher (4 views x 6 rays); time per sample of "
+                          "the 24 rays, the build of the map spread over a 1280x720 frame",
+                          "RMS error of T_sun (whole chord, 550 nm)", shadow_rows, n_shadow, e)))
         return rc;
     printf("wrote %s and %s\n", csv, svg);
     return ATMO_OK;

@@ -30,6 +30,11 @@ static int cloud_grid(const atmo_scene *s)
 {
     return (cloud_layer(s) && s->atmosphere.method == ATMO_METHOD_REFERENCE) || cloud_volume(s);
 }
+/* the sun shadow map of the methods' light march; the reference ratio-tracks the sun instead */
+static int cloud_shadow_map(const atmo_scene *s)
+{
+    return cloud_layer(s) && s->clouds.shadow_map && s->atmosphere.method != ATMO_METHOD_REFERENCE;
+}
 static int has_objects(const atmo_scene *s) { return s->objects.count > 0; }
 static int path_mode(const atmo_scene *s) { return s->path.mode == ATMO_RENDER_PATH; }
 /* a heightmap file is drawn as terrain, so it implies terrain.enabled */
@@ -138,6 +143,9 @@ static const char *const clouds_fragments[] = {"kernels/media/cloud_noise.h",
                                                "kernels/media/cloud_layer.h", NULL};
 static const char *const clouds_majorant_fragments[] = {"kernels/media/cloud_majorant.h",
                                                         "kernels/media/cloud_majorant.cl", NULL};
+static const char *const clouds_shadow_map_fragments[] = {
+    "kernels/media/cloud_majorant.h", "kernels/media/cloud_shadow_map.h",
+    "kernels/media/cloud_shadow_map.cl", NULL};
 static const char *const clouds_march_fragments[] = {"kernels/media/cloud_march.h", NULL};
 /* The terrain: the height field, the tracer and shadows, the surface's light, and the
  * heightmap pass, which reads only the field (the camera's placement stays out of the key). */
@@ -190,6 +198,10 @@ const atmo_feature atmo_features[] = {
      * view (never cached) */
     {"clouds_majorant", -1, cloud_grid, clouds_majorant_fragments, "", NULL, NULL, NULL,
      atmo_plan_clouds_majorant, 0},
+    /* the layer's sun shadow map for the visibility source and the marcher (over the majorant
+     * grid's frame); it follows the view (never cached) */
+    {"clouds_shadow_map", -1, cloud_shadow_map, clouds_shadow_map_fragments,
+     "-DATMO_CLOUDS_SHADOW_MAP", NULL, NULL, NULL, atmo_plan_clouds_shadow_map, 0},
     /* an opaque surface and a visibility source: before the composition of the media */
     {"terrain", -1, has_terrain, terrain_fragments, "-DATMO_TERRAIN", terrain_params,
      terrain_sources, NULL, atmo_plan_terrain, 0},

@@ -14,7 +14,9 @@
  * majorant of the Monte Carlo walk is clouds.density (the density's bound, cloud_layer.h); the
  * majorant grid (cloud_majorant.h) of the reference's walk and of the path tracer's volume stage
  * (path.clouds = volume: cloud_walk.h) refines it around the camera: a buffer of
- * CLOUDS_GRID_NX x NY x NZ cell bounds, filled by its pass for each view. With path.clouds =
+ * CLOUDS_GRID_NX x NY x NZ cell bounds, filled by its pass for each view. The sun shadow map
+ * (clouds.shadow_map, cloud_shadow_map.h) of the methods single and march is a buffer of
+ * size^2 x levels density integrals toward the sun, filled by its pass for each view. With path.clouds =
  * volume in path mode the layer is planned for the volume stage alone (-DATMO_CLOUDS_VOLUME),
  * so every atmosphere method can be the air's. */
 #include <math.h>
@@ -114,4 +116,21 @@ int atmo_plan_clouds_majorant(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     return rc ? rc
               : atmo_plan_add_pass(p, "clouds_majorant_grid", CLOUDS_GRID_NX, CLOUDS_GRID_NY,
                                    CLOUDS_GRID_NZ, 0, e);
+}
+
+int atmo_plan_clouds_shadow_map(const atmo_scene *s, atmo_plan *p, atmo_err *e)
+{
+    int n = s->clouds.shadow_map_size, levels = s->clouds.shadow_map_levels;
+    size_t bytes = sizeof(float) * (size_t)n * (size_t)n * (size_t)levels;
+    if (bytes > ATMO_CLOUDS_SHADOW_MAP_MAX_BYTES)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "clouds.shadow_map_size=%d x clouds.shadow_map_levels=%d needs %.0f MiB, "
+                         "over the %.0f MiB limit; lower either",
+                         n, levels, bytes / 1048576.0, ATMO_CLOUDS_SHADOW_MAP_MAX_BYTES / 1048576.0);
+    atmo_gpu_clouds *g = &p->gpu.clouds;
+    g->shadow_map_size = n;
+    g->shadow_map_levels = levels;
+    g->shadow_map_steps = s->clouds.shadow_map_steps;
+    int rc = atmo_plan_add_buffer(p, "clouds_shadow_map", "float", bytes, 1, NULL, e);
+    return rc ? rc : atmo_plan_add_pass(p, "clouds_shadow_map_nodes", n, levels, n, 0, e);
 }

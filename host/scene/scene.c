@@ -212,6 +212,17 @@ const atmo_param atmo_params[] = {
             "16 with the fitted octaves, atmo bench clouds)"),
     ROW_FLOAT("clouds.light_distance_m", clouds.light_distance_m, "m", 1, 1e6, 8000,
               "length of the light march toward the sun"),
+    ROW_BOOL("clouds.shadow_map", clouds.shadow_map, 0,
+             "the sun shadow map: the density toward the sun precomputed per view on a grid "
+             "around the camera (methods single and march; the reference keeps ratio "
+             "tracking), instead of the light march at each sample"),
+    ROW_INT("clouds.shadow_map_size", clouds.shadow_map_size, "", 2, 16384, 256,
+            "the shadow map's nodes per horizontal axis over the marcher's far plane "
+            "(2 x clouds.max_distance_m, at most 0.2 ground radii)"),
+    ROW_INT("clouds.shadow_map_levels", clouds.shadow_map_levels, "", 2, 1024, 32,
+            "the shadow map's nodes between clouds.bottom_m and clouds.top_m"),
+    ROW_INT("clouds.shadow_map_steps", clouds.shadow_map_steps, "", 1, 1024, 48,
+            "steps of each shadow-map node's integral over the whole chord toward the sun"),
     ROW_FLOAT("clouds.max_distance_m", clouds.max_distance_m, "m", 1, 1e8, 150000,
               "the marcher's far plane: clouds beyond it are not seen"),
     ROW_INT("clouds.ms_octaves", clouds.ms_octaves, "", 1, 16, 6,

@@ -31,6 +31,17 @@ int bench_plot_close(FILE *script_stream, char **script, const char *svg, int wi
 int bench_chart(const char *csv, const char *svg, const char *title, const char *ylabel,
                 const bench_row *rows, int n, atmo_err *e);
 
+/* Sums of the squared sun-transmittance errors of the shadow term (host/bench/
+ * bench_clouds_shadow.c) over sample points: all of them, and those in cloud. */
+typedef struct bench_shadow_error {
+    double sq_all, sq_cloud;
+    int n_all, n_cloud;
+} bench_shadow_error;
+/* Adds the shadow term's errors at the marcher's sample points of the rays (r, mu, mu_s, nu)
+ * of the plan's scene to *out: the light march, or the sun shadow map where the plan has one. */
+int bench_clouds_shadow_error(const atmo_plan *plan, const float4 *rays, int n_rays,
+                              bench_shadow_error *out, atmo_err *e);
+
 /* `atmo bench sky` (host/bench_sky.c). */
 int bench_sky(const char *dir, const char *device, int quick, atmo_err *e);
 /* `atmo bench atmosphere` (host/bench_atmosphere.c). */

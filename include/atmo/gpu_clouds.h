@@ -39,6 +39,11 @@ typedef struct atmo_gpu_clouds {
     uint seed;             /* the noise's seed */
     float diameter_um;     /* effective droplet diameter for Jendersie-d'Eon's fit (5..50 um) */
     float sun_guiding;     /* the Monte Carlo walks' probability of the phase lobe around the sun */
+    int shadow_map_size;   /* the sun shadow map's nodes per horizontal axis (cloud_shadow_map.h;
+                              0 without clouds.shadow_map) */
+    int shadow_map_levels; /* its nodes between the layer's bottom and top */
+    int shadow_map_steps;  /* steps of its nodes' integrals toward the sun */
+    int pad0;
 } atmo_gpu_clouds;
 
 #endif

@@ -15,6 +15,17 @@ int atmo_plan_clouds(const atmo_scene *s, atmo_plan *p, atmo_err *e);
  * clouds_majorant_grid; it follows the view (feature "clouds_majorant" of features.c). */
 int atmo_plan_clouds_majorant(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 
+/* The largest sun shadow map clouds.shadow_map_size^2 x clouds.shadow_map_levels floats may
+ * take (a larger one is refused with a usage error). */
+#define ATMO_CLOUDS_SHADOW_MAP_MAX_BYTES ((size_t)512 << 20)
+
+/* With clouds.shadow_map and a method other than reference (which ratio-tracks the sun's
+ * transmittance): checks its size against ATMO_CLOUDS_SHADOW_MAP_MAX_BYTES, fills gpu.clouds'
+ * shadow_map_* fields, the buffer clouds_shadow_map (size^2 x levels floats,
+ * kernels/media/cloud_shadow_map.h) and its pass clouds_shadow_map_nodes; it follows the view
+ * (feature "clouds_shadow_map" of features.c, flag -DATMO_CLOUDS_SHADOW_MAP). */
+int atmo_plan_clouds_shadow_map(const atmo_scene *s, atmo_plan *p, atmo_err *e);
+
 /* The noise's origin: the camera's world position minus the wind's displacement by
  * clouds.time_s (what gpu.clouds.origin holds; it follows the view). */
 void atmo_plan_clouds_origin(const atmo_scene *s, float4 *origin);

@@ -126,6 +126,10 @@ typedef struct atmo_scene {
         double step_m;         /* its step in cloud near the camera */
         int light_steps;       /* steps of the light march toward the sun */
         double light_distance_m; /* its length */
+        int shadow_map;        /* 0/1: the sun shadow map (kernels/media/cloud_shadow_map.h) */
+        int shadow_map_size;   /* its nodes per horizontal axis */
+        int shadow_map_levels; /* its nodes between the layer's bottom and top */
+        int shadow_map_steps;  /* steps of each node's integral toward the sun */
         double max_distance_m; /* the marcher's far plane */
         int ms_octaves;        /* multiple-scattering octaves (1: single scattering only) */
         double ms_a, ms_b, ms_c; /* their extinction, contribution and anisotropy factors */

@@ -33,6 +33,20 @@
 #ifndef ATMO_SKY_METHOD_H
 #define ATMO_SKY_METHOD_H
 
+#if !defined(__OPENCL_VERSION__) && !defined(ATMO_LUT_PARAMS) && defined(ATMO_CLOUDS) &&             \
+    defined(ATMO_CLOUDS_SHADOW_MAP)
+/* ... and its sun shadow map last (a host build under -DATMO_CLOUDS_SHADOW_MAP) */
+#define ATMO_LUT_PARAMS                                                                            \
+    const float4 *transmittance_lut, const float4 *ms_lut, const float4 *scattering_rayleigh,     \
+        const float4 *scattering_mie, const float4 *scattering_scratch,                           \
+        const float4 *cloud_phase_table, const float4 *sky_view_lut,                              \
+        const float4 *clouds_phase_table, const float *clouds_phase_cdf,                          \
+        const float *clouds_majorant, const float *clouds_shadow_map
+#define ATMO_LUT_ARGS                                                                              \
+    transmittance_lut, ms_lut, scattering_rayleigh, scattering_mie, scattering_scratch,           \
+        cloud_phase_table, sky_view_lut, clouds_phase_table, clouds_phase_cdf, clouds_majorant,  \
+        clouds_shadow_map
+#endif
 #if !defined(__OPENCL_VERSION__) && !defined(ATMO_LUT_PARAMS) && defined(ATMO_CLOUDS)
 /* ... with the fBm cloud layer's tables and majorant grid after them (a host build under
  * -DATMO_CLOUDS) */

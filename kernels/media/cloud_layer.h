@@ -171,36 +171,39 @@ ATMO_FN int clouds_shell_parts(float R, float base, float top, float r, float mu
     return n;
 }
 
-/* The light march from the point q toward the sun: the density integral D (m) over the layer,
- * with the steps' sample offset `jitter` in [0, 1). */
-ATMO_FN float clouds_sun_density(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_point *q,
-                                 float jitter)
+/* The density integral D (m) from the point q toward the sun over the layer: the part of the
+ * ray in the shell cut to `distance` from where it enters, in n steps growing as (i/n)^2 with
+ * the sample offset `jitter` in [0, 1), stopping once the optical depth passes tau_stop. */
+ATMO_FN float clouds_sun_density_steps(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_point *q,
+                                       float jitter, int n, float distance, float tau_stop)
 {
     ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
     float R = s->atmosphere.bottom_radius, lo[2], hi[2];
     int parts = clouds_shell_parts(R, c->bottom_m, c->top_m, q->r, q->mu_s, 0.0f, INFINITY, lo, hi);
     if (parts == 0)
         return 0.0f;
-    float a = lo[0], len = fminf(hi[parts - 1], a + c->light_distance_m) - a;
+    float a = lo[0], len = fminf(hi[parts - 1], a + distance) - a;
     vec3 sun = v3_from4(s->sun_direction);
-    int n = c->light_steps;
     float D = 0.0f;
     for (int i = 0; i < n; i++) {
         float x0 = (float)i / (float)n, x1 = (float)(i + 1) / (float)n;
         float dt = len * (x1 * x1 - x0 * x0), t = a + len * x0 * x0 + jitter * dt;
         float h = geometry_altitude_at(q->r, q->mu_s, t, R);
         D += clouds_density(c, v3_add(q->p, v3_scale(sun, t)), h) * dt;
-        if (D * c->extinction.y > CLOUDS_TAU_OPAQUE)
+        if (D * c->extinction.y > tau_stop)
             break;
     }
     return D;
 }
 
-/* The sun's transmittance through the layer to the point q (the marched estimate). */
-ATMO_FN vec3 clouds_sun_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_point *q)
+/* The light march from the point q toward the sun: the density integral D (m) over the layer,
+ * with the steps' sample offset `jitter` in [0, 1). */
+ATMO_FN float clouds_sun_density(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_point *q,
+                                 float jitter)
 {
-    float D = clouds_sun_density(s, q, clouds_point_jitter(q->p, s->clouds.seed));
-    return v3_exp(v3_scale(v3_from4(s->clouds.extinction), -D));
+    ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
+    return clouds_sun_density_steps(s, q, jitter, c->light_steps, c->light_distance_m,
+                                    CLOUDS_TAU_OPAQUE);
 }
 
 #endif

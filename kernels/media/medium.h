@@ -179,7 +179,7 @@ ATMO_FN void medium_piece(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
         j = v3_mul(j, cloud_shell_sun_transmittance(s, &q, s->atmosphere.bottom_radius));
 #endif
 #ifdef ATMO_CLOUDS
-        j = v3_mul(j, clouds_sun_transmittance(s, &q));
+        j = v3_mul(j, visibility_clouds_transmittance(s, ATMO_LUT_ARGS, &q));
 #endif
         out->rest = v3_add(out->rest, v3_mul(v3_mul(*T, w), j));
     }

@@ -7,8 +7,9 @@
  * (geometry.h, whose discriminant keeps its precision at planet scale); under -DATMO_CLOUD the
  * observer sphere (observer.h) at the point's camera-relative position, and the cloud shell's
  * transmittance along the sun's chord through it (cloud_shell.h); under -DATMO_CLOUDS the fBm
- * layer's light march (cloud_layer.h), so every caller gets cloud shadows in the air (light
- * shafts through gaps) and on the ground; under -DATMO_OBJECTS the scene's spheres and boxes
+ * layer's light march (cloud_layer.h), or its sun shadow map under -DATMO_CLOUDS_SHADOW_MAP
+ * (cloud_shadow_map.h, buffer `clouds_shadow_map`), so every caller gets cloud shadows in the
+ * air (light shafts through gaps) and on the ground; under -DATMO_OBJECTS the scene's spheres and boxes
  * (render/objects.h, buffer `objects`) block the ray toward the sun (a point sun: binary
  * shadows; the path tracer, -DATMO_PATH, samples the disc itself and casts soft ones, so there
  * they are left out here). Under -DATMO_TERRAIN the
@@ -33,6 +34,9 @@
 #include "media/media.h"
 #ifdef ATMO_CLOUD
 #include "media/observer.h"
+#endif
+#ifdef ATMO_CLOUDS_SHADOW_MAP
+#include "media/cloud_shadow_map.h"
 #endif
 #ifdef ATMO_OBJECTS
 #include "render/objects.h"
@@ -122,10 +126,33 @@ ATMO_FN float visibility_sun_occluders(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO
     return visibility_sun_occluders_on_ray(s, ATMO_LUT_ARGS, q, 0);
 }
 
+#ifdef ATMO_CLOUDS
+/* The density integral toward the sun from q through the fBm layer: the sun shadow map's under
+ * -DATMO_CLOUDS_SHADOW_MAP (cloud_shadow_map.h; the light march where the map does not reach),
+ * else the light march (cloud_layer.h). */
+ATMO_FN float visibility_clouds_density(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                        const medium_point *q)
+{
+#ifdef ATMO_CLOUDS_SHADOW_MAP
+    return clouds_shadow_map_density(s, clouds_shadow_map, q);
+#else
+    return clouds_sun_density(s, q, clouds_point_jitter(q->p, s->clouds.seed));
+#endif
+}
+
+/* The sun's transmittance through the fBm layer to q, exp(-extinction D). */
+ATMO_FN vec3 visibility_clouds_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                             const medium_point *q)
+{
+    float D = visibility_clouds_density(s, ATMO_LUT_ARGS, q);
+    return v3_exp(v3_scale(v3_from4(s->clouds.extinction), -D));
+}
+#endif
+
 /* v, the opaque sources' visibility of the sun from q, times the transmittance toward the sun of
  * the shadowing media (per wavelength). */
-ATMO_FN vec3 visibility_media_sun(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_point *q,
-                                  float v)
+ATMO_FN vec3 visibility_media_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                  const medium_point *q, float v)
 {
     vec3 vis = v3(v, v, v);
 #ifdef ATMO_CLOUD
@@ -134,7 +161,7 @@ ATMO_FN vec3 visibility_media_sun(ATMO_GLOBAL const atmo_gpu_scene *s, const med
 #endif
 #ifdef ATMO_CLOUDS
     if (v > 0.0f)
-        vis = v3_mul(vis, clouds_sun_transmittance(s, q));
+        vis = v3_mul(vis, visibility_clouds_transmittance(s, ATMO_LUT_ARGS, q));
 #endif
     return vis;
 }
@@ -143,7 +170,8 @@ ATMO_FN vec3 visibility_media_sun(ATMO_GLOBAL const atmo_gpu_scene *s, const med
 ATMO_FN vec3 visibility_sun_on_ray(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                    const medium_point *q, visibility_ray *vr)
 {
-    return visibility_media_sun(s, q, visibility_sun_occluders_on_ray(s, ATMO_LUT_ARGS, q, vr));
+    return visibility_media_sun(s, ATMO_LUT_ARGS, q,
+                                visibility_sun_occluders_on_ray(s, ATMO_LUT_ARGS, q, vr));
 }
 
 ATMO_FN vec3 visibility_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
@@ -165,7 +193,7 @@ ATMO_FN vec3 visibility_sun_surface(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LU
     if (observer_blocks(s->cloud.observer, q->p, v3_from4(s->sun_direction)))
         v = 0.0f;
 #endif
-    return visibility_media_sun(s, q, v);
+    return visibility_media_sun(s, ATMO_LUT_ARGS, q, v);
 }
 #endif
 
