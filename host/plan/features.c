@@ -19,11 +19,7 @@ static int ms_methods(const atmo_scene *s)
 }
 static int cloud_shell(const atmo_scene *s) { return s->cloud.enabled || s->observer.enabled; }
 /* path.clouds = volume: the path tracer scatters in the layer, the methods see only the air */
-static int cloud_volume(const atmo_scene *s)
-{
-    return s->clouds.enabled && s->path.mode == ATMO_RENDER_PATH &&
-           s->path.clouds == ATMO_PATH_CLOUDS_VOLUME;
-}
+static int cloud_volume(const atmo_scene *s) { return atmo_plan_clouds_volume(s); }
 /* the layer as a medium of the methods (media.h, visibility.h, the marcher) */
 static int cloud_layer(const atmo_scene *s) { return s->clouds.enabled && !cloud_volume(s); }
 static int cloud_grid(const atmo_scene *s)

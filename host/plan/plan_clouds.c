@@ -36,10 +36,16 @@ void atmo_plan_clouds_origin(const atmo_scene *s, float4 *origin)
     origin->w = 0.0f;
 }
 
+int atmo_plan_clouds_volume(const atmo_scene *s)
+{
+    return s->clouds.enabled && s->path.mode == ATMO_RENDER_PATH &&
+           s->path.clouds == ATMO_PATH_CLOUDS_VOLUME;
+}
+
 int atmo_plan_clouds(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 {
     int m = s->atmosphere.method, rc;
-    int volume = s->path.mode == ATMO_RENDER_PATH && s->path.clouds == ATMO_PATH_CLOUDS_VOLUME;
+    int volume = atmo_plan_clouds_volume(s);
     if (!volume && m != ATMO_METHOD_SINGLE && m != ATMO_METHOD_MARCH && m != ATMO_METHOD_REFERENCE)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "clouds.enabled works with atmosphere.method=single, march or reference "

@@ -4,6 +4,11 @@
 #define ATMO_PLAN_CLOUDS_H
 #include "atmo/plan.h"
 
+/* 1 where the layer is the path tracer's volume alone (render.mode = path, path.clouds = volume,
+ * -DATMO_CLOUDS_VOLUME): no method sees it as a medium, and the air's sunlight passes it by
+ * ratio tracking (kernels/media/visibility.h's visibility_air_volume). */
+int atmo_plan_clouds_volume(const atmo_scene *s);
+
 /* When the scene has clouds.enabled: checks the method (single, march or reference) and the
  * layer's altitudes, builds (or loads from the cache) the Mie tables of clouds.dsd into the
  * buffers clouds_phase_table and clouds_phase_cdf and fills gpu.clouds (feature "clouds" of

@@ -150,13 +150,32 @@ ATMO_FN vec3 lut_ms_ground_irradiance(ATMO_GLOBAL const atmo_gpu_scene *s,
  * default ones), no step at the horizon larger than 1.03 times its neighbours
  * (tests/test_aerial.c, which also checks that the difference still fails; its numbers:
  * docs/notes/lut_method.md). It costs view_steps lookups of the density table and of the
- * transmittance LUT instead of six table lookups. */
+ * transmittance LUT instead of six table lookups.
+ * Under -DATMO_CLOUDS_VOLUME (path.clouds = volume) the air's sunlight at each sample passes
+ * the path tracer's cloud layer (media/visibility.h, visibility_air_volume), which the tables
+ * cannot hold: every ray is marched then, a whole one with its lit ground and sun disc
+ * (medium_integrate). */
+#ifdef ATMO_CLOUDS_VOLUME
+#define LUT_TABLE_RAYS 0 /* the tables know no shadows of the volume stage's layer in the air */
+#else
+#define LUT_TABLE_RAYS 1
+#endif
+
 ATMO_FN void sky_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, const medium_ray *m,
                        float t_max, rng_stream *g, vec3 *sky, vec3 *sun, vec3 *view_t)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    if (!(t_max < INFINITY)) {
+    medium_result res;
+    if (!(t_max < INFINITY) && LUT_TABLE_RAYS) {
         lut_whole_ray(s, ATMO_LUT_ARGS, m->r, m->mu, m->mu_s, m->nu, sky, sun, view_t);
+        return;
+    }
+    if (!(t_max < INFINITY)) { /* the whole ray marched, sun disc and lit ground included */
+        medium_integrate(s, ATMO_LUT_ARGS, m, 0.0f, INFINITY, s->view_steps, rng_next(g), 1,
+                         &res);
+        *sky = medium_radiance(s, ATMO_LUT_ARGS, &res, m->nu);
+        *sun = res.sun;
+        *view_t = res.view_t;
         return;
     }
     *sky = v3(0.0f, 0.0f, 0.0f);
@@ -174,11 +193,10 @@ ATMO_FN void sky_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, con
     int ground = geometry_ray_hits_ground(r_in, mu_in, a->bottom_radius);
     float d_end = ground ? geometry_distance_to_bottom(r_in, mu_in, a->bottom_radius)
                          : geometry_distance_to_top(r_in, mu_in, a->top_radius);
-    if (d_in >= d_end) {
+    if (d_in >= d_end && LUT_TABLE_RAYS) {
         *sky = lut_sky(s, ATMO_LUT_ARGS, r_in, mu_in, mu_s_in, c.nu, ground, view_t);
         return;
     }
-    medium_result res;
     medium_integrate(s, ATMO_LUT_ARGS, &c, 0.0f, t_max, s->view_steps, rng_next(g), 1, &res);
     *sky = medium_radiance(s, ATMO_LUT_ARGS, &res, c.nu);
     *view_t = res.view_t;

@@ -388,9 +388,9 @@ ATMO_FN vec3 reference_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PA
     float vis = visibility_sun_occluders(s, ATMO_LUT_ARGS, q);
     if (vis <= 0.0f)
         return v3(0.0f, 0.0f, 0.0f);
-    return v3_scale(v3_mul(v3_from4(s->atmosphere.solar_irradiance),
-                           reference_transmittance(s, ATMO_LUT_ARGS, q, g)),
-                    vis);
+    vec3 t = v3_mul(reference_transmittance(s, ATMO_LUT_ARGS, q, g),
+                    visibility_air_volume(s, ATMO_LUT_ARGS, q));
+    return v3_scale(v3_mul(v3_from4(s->atmosphere.solar_irradiance), t), vis);
 }
 
 /* The new direction at a scattering by component k of a path of throughput beta reaching it

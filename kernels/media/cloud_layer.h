@@ -69,13 +69,18 @@ ATMO_FN uint clouds_bits(float x)
 #endif
 }
 
-/* A number in [0, 1) that is a hash of the point p (the light march's offset). */
-ATMO_FN float clouds_point_jitter(vec3 p, uint seed)
+/* A 32-bit hash of the point p's bits and seed. */
+ATMO_FN uint clouds_point_hash(vec3 p, uint seed)
 {
     uint h = rng_permute(seed ^ 0x2545f491u ^ clouds_bits(p.x));
     h = rng_permute(h ^ clouds_bits(p.y));
-    h = rng_permute(h ^ clouds_bits(p.z));
-    return (float)(h >> 8) * (1.0f / 16777216.0f);
+    return rng_permute(h ^ clouds_bits(p.z));
+}
+
+/* A number in [0, 1) that is a hash of the point p (the light march's offset). */
+ATMO_FN float clouds_point_jitter(vec3 p, uint seed)
+{
+    return (float)(clouds_point_hash(p, seed) >> 8) * (1.0f / 16777216.0f);
 }
 
 /* The height fade: 0 at the bottom and the top, 1 more than fade_m inside, smoothstep between. */

@@ -168,6 +168,12 @@ ATMO_FN void medium_piece(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
     media_sample ms = media_at(s, ATMO_LUT_ARGS, &q);
     vr->t = t;
     vec3 sun_e = medium_sunlight_on_ray(s, ATMO_LUT_ARGS, &q, vr);
+    /* the volume stage's layer toward the sun (visibility_air_volume), for the sun and the
+     * multiple-scattering source alike; not tracked where neither needs it */
+    vec3 volume_t = use_ms || sun_e.x > 0.0f || sun_e.y > 0.0f || sun_e.z > 0.0f
+                        ? visibility_air_volume(s, ATMO_LUT_ARGS, &q)
+                        : v3(1.0f, 1.0f, 1.0f);
+    sun_e = v3_mul(sun_e, volume_t);
     vec3 step;
     vec3 w = medium_segment_step3(ms.extinction, dt, &step);
     vec3 lit = v3_mul(v3_mul(*T, w), sun_e);
@@ -181,6 +187,7 @@ ATMO_FN void medium_piece(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
 #ifdef ATMO_CLOUDS
         j = v3_mul(j, visibility_clouds_transmittance(s, ATMO_LUT_ARGS, &q));
 #endif
+        j = v3_mul(j, volume_t);
         out->rest = v3_add(out->rest, v3_mul(v3_mul(*T, w), j));
     }
     *T = v3_mul(*T, step);

@@ -23,7 +23,26 @@
  * the shadowing media (per wavelength, 0..1); both get the buffers, where a source keeps its
  * data (a heightmap, a density grid). The atmosphere's own transmittance toward the
  * sun is not a visibility: the integrator takes it from the transmittance LUT, the Monte Carlo
- * reference tracks it. */
+ * reference tracks it.
+ * Under -DATMO_CLOUDS_VOLUME (path.clouds = volume) the fBm layer is the path tracer's medium
+ * (render/volume_stage.h) and no source of visibility_sun; the air's samples (medium.h's
+ * pieces, the reference's sunlight) take its transmittance toward the sun apart,
+ * visibility_air_volume (not the surfaces: the path tracer's shadow function tracks the layer
+ * for them itself). It is cloud_walk.h's ratio tracking (clouds_air_ratio: a roulette at the
+ * walk's first tentative point, then ratio tracking against the majorant grid) on a stream of
+ * its own, rng.h's stream of the render seed at the "pixel" clouds_point_hash(p, seed) of the
+ * sample point's bits. Unbiased: for a fixed point q the walk's estimate R has
+ * E[R | q] = T_clouds(q) (ratio tracking, Novak et al. 2014; each roulette divides by its
+ * survival probability) for any stream of independent uniform numbers, and the stream is a
+ * full-avalanche hash of q's bits, as independent of the path's own numbers as rng.h's
+ * counters are of each other. The point q is a function of the path's numbers (the camera,
+ * the integrator's jitter, the bounces), so for the air's integrand f at q,
+ *     E[f(q) R] = E[f(q) E[R | q]] = E[f(q) T_clouds(q)].
+ * Two samples share numbers only where their points are the same floats, which jittered
+ * samples of different paths almost never are (correlated then, not biased); and the same
+ * point gives the same estimate in any tile and launch, so the image stays a function of the
+ * seed. The estimate multiplies the sunlight and, as the marched layer's light march does,
+ * the method's multiple-scattering source (medium.h). */
 #ifndef ATMO_MEDIA_VISIBILITY_H
 #define ATMO_MEDIA_VISIBILITY_H
 #ifndef __OPENCL_VERSION__
@@ -76,6 +95,29 @@ ATMO_FN void visibility_ray_begin(ATMO_GLOBAL const atmo_gpu_scene *s, const med
     terrain_shafts_begin(s, m, end, surface_t, &vr->terrain);
 #else
     (void)s, (void)m, (void)end, (void)surface_t;
+#endif
+}
+
+#ifdef ATMO_CLOUDS_VOLUME
+/* the layer's ratio tracking toward the sun from an air sample, in kernels/media/cloud_walk.h
+ * (after the integrator: it walks with tracking.h) */
+ATMO_FN vec3 clouds_air_ratio(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float *grid,
+                              const medium_point *q, rng_stream *g);
+#endif
+
+/* The transmittance toward the sun, at a sample of the air, of the media that only the path
+ * tracer's volume stage holds (see the top of the file): under -DATMO_CLOUDS_VOLUME the fBm
+ * layer's, ratio-tracked with a stream of its own: the render seed's, at the "pixel" of a hash
+ * of the point's bits (clouds_point_hash); 1 otherwise. */
+ATMO_FN vec3 visibility_air_volume(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                   const medium_point *q)
+{
+#ifdef ATMO_CLOUDS_VOLUME
+    rng_stream g = rng_stream_stage(s->seed, clouds_point_hash(q->p, s->clouds.seed), 0u, 0u);
+    return clouds_air_ratio(s, clouds_majorant, q, &g);
+#else
+    (void)s, (void)q;
+    return v3(1.0f, 1.0f, 1.0f);
 #endif
 }
 

@@ -1,6 +1,6 @@
 /* volume_stage.h — the path tracer's scattering events in the fBm cloud layer (path.clouds =
  * volume, built with -DATMO_CLOUDS_VOLUME: the layer is then no medium of the methods, whose
- * sky_trace gives the air's light alone): the stage functions the loop (path.h) calls for a
+ * sky_trace gives the air's light alone, in the layer's shadow): the stage functions the loop (path.h) calls for a
  * segment's free flight, the sun's transmittance through the layer, and a cloud vertex's phase
  * function and continuation. Without the layer's volume they are the identity (no event, no
  * attenuation), so the loop is the same source for every build.
@@ -20,10 +20,13 @@
  * phase_table.h's sun guiding: the Mie table by its CDF, Henyey-Greenstein, Jendersie-d'Eon;
  * weight p / pdf per wavelength). The sky reaches a cloud vertex only by the
  * phase-sampled continuation (no sky sampling there, so no MIS weight: 1). The air's J_a is the
- * method's, which knows no clouds: the air in the layer's shadow is lit as if the layer were
- * not there (no cloud shadows in the air), and the air's light along a segment takes the
- * layer's spectral-tracking weight w of the whole segment, exact for a grey layer (w = 1 with
- * albedo 1; clouds.extinction_per_m > 0 gives the same extinction in every channel).
+ * method's, with the sun at each of its samples seen through the layer: the integrator
+ * multiplies the sunlight (and the multiple-scattering source, as the marched layer's does) by
+ * the layer's ratio-tracked transmittance toward the sun (media/visibility.h,
+ * visibility_air_volume), so the air in the layer's shadow is dark (light shafts, the air under
+ * an overcast). The air's light along a segment takes the layer's spectral-tracking weight w of
+ * the whole segment, exact for a grey layer (w = 1 with albedo 1; clouds.extinction_per_m > 0
+ * gives the same extinction in every channel).
  * Units: radiance W m^-2 sr^-1 nm^-1, metres, phase per steradian. */
 #ifndef ATMO_RENDER_VOLUME_STAGE_H
 #define ATMO_RENDER_VOLUME_STAGE_H
