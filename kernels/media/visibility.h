@@ -28,11 +28,11 @@
  * (render/volume_stage.h) and no source of visibility_sun; the air's samples (medium.h's
  * pieces, the reference's sunlight) take its transmittance toward the sun apart,
  * visibility_air_volume (not the surfaces: the path tracer's shadow function tracks the layer
- * for them itself). It is cloud_walk.h's ratio tracking (clouds_air_ratio: a roulette at the
- * walk's first tentative point, then ratio tracking against the majorant grid) on a stream of
- * its own, rng.h's stream of the render seed at the "pixel" clouds_point_hash(p, seed) of the
- * sample point's bits. Unbiased: for a fixed point q the walk's estimate R has
- * E[R | q] = T_clouds(q) (ratio tracking, Novak et al. 2014; each roulette divides by its
+ * for them itself). It is cloud_walk.h's ratio tracking against the majorant grid
+ * (clouds_sun_ratio, the surfaces' and cloud vertices' walk) on a stream of its own: rng.h's
+ * stream of the render seed at the "pixel" clouds_point_hash(p, seed) of the sample point's
+ * bits. Unbiased: for a fixed point q the walk's estimate R has
+ * E[R | q] = T_clouds(q) (ratio tracking, Novak et al. 2014; its roulette divides by the
  * survival probability) for any stream of independent uniform numbers, and the stream is a
  * full-avalanche hash of q's bits, as independent of the path's own numbers as rng.h's
  * counters are of each other. The point q is a function of the path's numbers (the camera,
@@ -99,9 +99,9 @@ ATMO_FN void visibility_ray_begin(ATMO_GLOBAL const atmo_gpu_scene *s, const med
 }
 
 #ifdef ATMO_CLOUDS_VOLUME
-/* the layer's ratio tracking toward the sun from an air sample, in kernels/media/cloud_walk.h
- * (after the integrator: it walks with tracking.h) */
-ATMO_FN vec3 clouds_air_ratio(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float *grid,
+/* the layer's ratio tracking toward the sun, in kernels/media/cloud_walk.h (after the
+ * integrator: it walks with tracking.h) */
+ATMO_FN vec3 clouds_sun_ratio(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float *grid,
                               const medium_point *q, rng_stream *g);
 #endif
 
@@ -114,7 +114,7 @@ ATMO_FN vec3 visibility_air_volume(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT
 {
 #ifdef ATMO_CLOUDS_VOLUME
     rng_stream g = rng_stream_stage(s->seed, clouds_point_hash(q->p, s->clouds.seed), 0u, 0u);
-    return clouds_air_ratio(s, clouds_majorant, q, &g);
+    return clouds_sun_ratio(s, clouds_majorant, q, &g);
 #else
     (void)s, (void)q;
     return v3(1.0f, 1.0f, 1.0f);
