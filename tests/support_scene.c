@@ -57,6 +57,24 @@ void test_sky_plan(const char *method, double altitude_m, double sun_zenith_deg,
     p->cache_luts = 2;
 }
 
+int test_cumulus_phase_table(atmo_plan *p, const void **rows, const void **cdf)
+{
+    atmo_scene s;
+    test_scene_preset(&s, "sky-noon");
+    test_scene_set(&s, "atmosphere.method=single");
+    test_scene_set(&s, "clouds.enabled=true");
+    test_plan(&s, p);
+    const atmo_plan_buffer *r = atmo_plan_buffer_find(p, "clouds_phase_table");
+    const atmo_plan_buffer *c = atmo_plan_buffer_find(p, "clouds_phase_cdf");
+    if (!r || !c || !r->host_data || !c->host_data) {
+        fprintf(stderr, "plan: no cloud phase table\n");
+        exit(1);
+    }
+    *rows = r->host_data;
+    *cdf = c->host_data;
+    return p->gpu.clouds.table_size;
+}
+
 cl_program test_plan_program(atmo_cl *cl, const atmo_plan *p, const char *extra)
 {
     atmo_err e;

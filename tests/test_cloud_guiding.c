@@ -212,20 +212,11 @@ int main(void)
                        NULL, 0};
     check_phase(&jd);
 
-    atmo_scene s;
     atmo_plan p;
-    test_scene_preset(&s, "sky-noon");
-    test_scene_set(&s, "atmosphere.method=single");
-    test_scene_set(&s, "clouds.enabled=true");
-    test_plan(&s, &p);
-    const atmo_plan_buffer *rows = atmo_plan_buffer_find(&p, "clouds_phase_table");
-    const atmo_plan_buffer *cdf = atmo_plan_buffer_find(&p, "clouds_phase_cdf");
-    CHECK(rows && cdf && rows->host_data && cdf->host_data);
-    if (rows && cdf) {
-        guided_phase mie = {"cumulus Mie table", ATMO_CLOUD_PHASE_MIE, v3(0, 0, 0),
-                            rows->host_data, cdf->host_data, p.gpu.clouds.table_size};
-        check_phase(&mie);
-    }
+    const void *rows, *cdf;
+    int n = test_cumulus_phase_table(&p, &rows, &cdf);
+    guided_phase mie = {"cumulus Mie table", ATMO_CLOUD_PHASE_MIE, v3(0, 0, 0), rows, cdf, n};
+    check_phase(&mie);
     atmo_plan_free(&p);
     return test_finish();
 }

@@ -213,19 +213,11 @@ int main(void)
 
     for (int k = 0; k < 3; k++)
         furnace("HG g = 0.85", NULL, NULL, 0, 0.15f * k);
-    atmo_scene s;
     atmo_plan p;
-    test_scene_preset(&s, "sky-noon");
-    test_scene_set(&s, "atmosphere.method=single");
-    test_scene_set(&s, "clouds.enabled=true");
-    test_plan(&s, &p);
-    const atmo_plan_buffer *rows = atmo_plan_buffer_find(&p, "clouds_phase_table");
-    const atmo_plan_buffer *cdf = atmo_plan_buffer_find(&p, "clouds_phase_cdf");
-    CHECK(rows && cdf && rows->host_data && cdf->host_data);
-    if (rows && cdf)
-        for (int k = 0; k < 3; k++)
-            furnace("cumulus Mie table", rows->host_data, cdf->host_data,
-                    p.gpu.clouds.table_size, 0.15f * k);
+    const void *rows, *cdf;
+    int n = test_cumulus_phase_table(&p, &rows, &cdf);
+    for (int k = 0; k < 3; k++)
+        furnace("cumulus Mie table", rows, cdf, n, 0.15f * k);
     atmo_plan_free(&p);
     return test_finish();
 }

@@ -26,6 +26,10 @@ int test_bind_buffers(cl_kernel k, cl_mem luts[ATMO_PLAN_MAX_BUFFERS]);
 /* The plan's buffer `name` in luts[] (exits 1 when the plan has none). */
 cl_mem test_plan_buffer(const atmo_plan *p, cl_mem luts[ATMO_PLAN_MAX_BUFFERS], const char *name);
 void test_release_luts(cl_mem luts[ATMO_PLAN_MAX_BUFFERS]);
+/* The default cloud layer's phase table in the sampleable format (phase_table.h: *rows the
+ * table's rows, *cdf its CDF, return value its size n) from the plan of sky-noon with
+ * clouds.enabled, which *p holds until atmo_plan_free; exits 1 when the plan has no table. */
+int test_cumulus_phase_table(atmo_plan *p, const void **rows, const void **cdf);
 
 /* A rendered image: w x h pixels, per channel the mean and its standard error (linear, RGB
  * interleaved), and n the samples of pixel 0. */
