@@ -29,7 +29,24 @@
  * (E_sky the sky's irradiance on a horizontal surface from the ms LUT, halved at the layer's
  * bottom, where the cloud above shades it). The thesis look (clouds.look = thesis) replaces the
  * octaves and the sky by the thesis' model: single scattering times the powder factor
- * 1 - e^{-2 tau_sun}, plus a constant ambient CLOUDS_THESIS_AMBIENT sigma_s E / (4 pi).
+ * 1 - e^{-2 tau_sun}, plus a constant ambient CLOUDS_THESIS_AMBIENT sigma_s E / (4 pi), and
+ * passes the clouds' light through the thesis' soft clamp.
+ *
+ * The soft clamp. The thesis works in units where the sun's irradiance is 1 and its cloud phase
+ * function p' lacks the 1/(4 pi) (p' = 4 pi p, so that its ambient CLOUDS_THESIS_AMBIENT sigma_s
+ * is the one above): the cloud light L' it computes is 4 pi / E_sun times the light L of the same
+ * model here, E_sun the sun's irradiance at the top of the atmosphere in the channel. It clamps
+ * L' softly at CLOUDS_THESIS_CLAMP = 3, which hides its 4 pi too bright forward peak; here that
+ * level is
+ *     L_clamp = CLOUDS_THESIS_CLAMP E_sun / (4 pi)   (per channel, W m^-2 sr^-1 nm^-1).
+ * Only the level 3 is the thesis'; the curve is atmo's choice, smooth and monotone with slope 1
+ * at 0 and the asymptote L_clamp:
+ *     f(L) = L_clamp (1 - e^{-L / L_clamp}) = L - L^2 / (2 L_clamp) + O(L^3)
+ * (relative deficit below L / (2 L_clamp); 1 - e^{-x} by expm1, accurate for small x). It acts on
+ * the clouds' light (the in-scattering by sigma_s of the clouds, times the view transmittance T
+ * from the ray's origin) summed over one part of the ray inside the layer, before it is added to
+ * the light of the air; a ray that crosses the layer twice (under its bottom between the parts)
+ * clamps each part alone. The physical look sums the two lights step by step, unclamped.
  * Units: radiance W m^-2 sr^-1 nm^-1, metres. */
 #ifndef ATMO_MEDIA_CLOUD_MARCH_H
 #define ATMO_MEDIA_CLOUD_MARCH_H
@@ -50,12 +67,14 @@
 #define CLOUDS_STEP_GROWTH 0.002f
 #define CLOUDS_T_MIN 1e-4f
 #define CLOUDS_THESIS_AMBIENT 0.1f
+#define CLOUDS_THESIS_CLAMP 3.0f
 
 /* The light of one step of length dt sampled at distance t (coefficients constant over it),
- * added to *L; *T and *medium_t advance over the step. `cloudy`: the layer is asked there. */
+ * added to *L, the clouds' part of it to *L_cloud instead with the thesis look; *T and *medium_t
+ * advance over the step. `cloudy`: the layer is asked there. */
 ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, const medium_ray *m,
-                         float t, float dt, int cloudy, int use_ms, int ground, vec3 *L, vec3 *T,
-                         vec3 *medium_t)
+                         float t, float dt, int cloudy, int use_ms, int ground, vec3 *L,
+                         vec3 *L_cloud, vec3 *T, vec3 *medium_t)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
@@ -121,7 +140,10 @@ ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, c
                 cloud = v3_add(cloud, v3_scale(sky, 0.5f * (1.0f + rise) / (4.0f * ATMO_PI)));
             }
         }
-        S = v3_add(S, v3_mul(sigma_c, cloud));
+        if (c->look == ATMO_CLOUDS_LOOK_THESIS)
+            *L_cloud = v3_add(*L_cloud, v3_mul(Tw, v3_mul(sigma_c, cloud)));
+        else
+            S = v3_add(S, v3_mul(sigma_c, cloud));
         *medium_t = v3_mul(*medium_t, v3_exp(v3_scale(v3_sub(ms.extinction,
                                                              atmosphere_extinction(a, q.h)),
                                                       -dt)));
@@ -130,9 +152,20 @@ ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, c
     *T = v3_mul(*T, step_t);
 }
 
-ATMO_FN void clouds_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                             const medium_ray *m, float t0, float t1, float jitter, int use_ms,
-                             int ground, vec3 *L, vec3 *T, vec3 *medium_t)
+/* The thesis' soft clamp f(L) per channel at the level L_clamp (the header): 0 where
+ * L_clamp is 0 (a channel without sunlight has no cloud light either). */
+ATMO_FN vec3 clouds_thesis_clamp(vec3 L, vec3 L_clamp)
+{
+    return v3(L_clamp.x > 0.0f ? -L_clamp.x * expm1f(-L.x / L_clamp.x) : 0.0f,
+              L_clamp.y > 0.0f ? -L_clamp.y * expm1f(-L.y / L_clamp.y) : 0.0f,
+              L_clamp.z > 0.0f ? -L_clamp.z * expm1f(-L.z / L_clamp.z) : 0.0f);
+}
+
+/* The steps over [t0, t1] (a part of the ray inside the layer): the light to *L, with the thesis
+ * look the clouds' light unclamped to *L_cloud. */
+ATMO_FN void clouds_march(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                          const medium_ray *m, float t0, float t1, float jitter, int use_ms,
+                          int ground, vec3 *L, vec3 *L_cloud, vec3 *T, vec3 *medium_t)
 {
     ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
     float start = v3_length(m->origin); /* the camera's distance to the ray's origin */
@@ -148,13 +181,28 @@ ATMO_FN void clouds_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
         if (i == 0) /* a shorter first step: the samples' steps interleave */
             dt *= fmaxf(jitter, 1e-3f);
         dt = fminf(dt, t1 - t);
-        clouds_step(s, ATMO_LUT_ARGS, m, t + jitter * dt, dt, cloudy, use_ms, ground, L, T,
-                    medium_t);
+        clouds_step(s, ATMO_LUT_ARGS, m, t + jitter * dt, dt, cloudy, use_ms, ground, L,
+                    L_cloud, T, medium_t);
         t += dt;
     }
     if (t < t1 && tracking_max3(*T) >= CLOUDS_T_MIN) /* the rest: air only */
         clouds_step(s, ATMO_LUT_ARGS, m, t + jitter * (t1 - t), t1 - t, 0, use_ms, ground, L,
-                    T, medium_t);
+                    L_cloud, T, medium_t);
+}
+
+/* media_interval's part [t0, t1] of the layer: the steps, then with the thesis look the
+ * clouds' light clamped and added to *L. */
+ATMO_FN void clouds_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                             const medium_ray *m, float t0, float t1, float jitter, int use_ms,
+                             int ground, vec3 *L, vec3 *T, vec3 *medium_t)
+{
+    vec3 cloud = v3(0.0f, 0.0f, 0.0f);
+    clouds_march(s, ATMO_LUT_ARGS, m, t0, t1, jitter, use_ms, ground, L, &cloud, T, medium_t);
+    if (s->clouds.look == ATMO_CLOUDS_LOOK_THESIS) {
+        vec3 level = v3_scale(v3_from4(s->atmosphere.solar_irradiance),
+                              CLOUDS_THESIS_CLAMP / (4.0f * ATMO_PI));
+        *L = v3_add(*L, clouds_thesis_clamp(cloud, level));
+    }
 }
 
 #endif
