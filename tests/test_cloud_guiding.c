@@ -2,7 +2,10 @@
  * cloud_guiding_pdf, cloud_phase_direction; host build of the shared header, float) for
  * Henyey-Greenstein (g = 0.8, 0.85, 0.9 per channel), Jendersie-d'Eon (20 um) and the cumulus
  * Mie table as the plan gives it to the kernels, with eps = 0.3 and the sun 40 degrees from
- * the path's direction d.
+ * the path's direction d, for a path of throughput 1 and (HG, the table) one whose largest
+ * channel is 4: the header's rule scales the sun lobe's share to eps_b = eps / 4, which the
+ * oracles below take from that rule (a sampler that ignored the throughput would draw the sun's
+ * lobe four times too often and fail the chi-square by far).
  * labels: unit stat
  *
  * Oracles:
@@ -59,6 +62,11 @@ typedef struct guided_phase {
 
 static const float diameter_um = 20.0f;
 
+/* The throughput of the path the sampler is given, and the share of the sun's lobe it implies by
+ * the header's rule eps_b = eps / max(1, beta_max). */
+static vec3 beta_now;
+static float eps_now;
+
 static float pdf_at(const guided_phase *p, float c)
 {
     return cloud_phase_pdf(p->phase, p->g_hg, diameter_um, p->rows, p->cdf, p->n, c);
@@ -99,7 +107,7 @@ static double quadrature(const guided_phase *p, vec3 d, vec3 sun, double *prob)
                     continue;
                 double share = (lobe ? ps : pd) / ((double)pd + ps);
                 double q = cloud_guiding_pdf(p->phase, p->g_hg, diameter_um, p->rows, p->cdf, p->n,
-                                             d, sun, EPS, w);
+                                             d, sun, eps_now, w);
                 double m = q * share * ring;
                 total += m;
                 prob[bin_of(d, t, b, w)] += m;
@@ -142,8 +150,10 @@ static double phase_mass(const guided_phase *p, int ch, double c0, double c1)
     return sum;
 }
 
-static void check_phase(const guided_phase *p)
+static void check_phase(const guided_phase *p, vec3 beta)
 {
+    beta_now = beta;
+    eps_now = EPS / fmaxf(1.0f, fmaxf(beta.x, fmaxf(beta.y, beta.z)));
     const vec3 d = v3_normalize(v3(0.2f, -0.3f, 0.93f));
     vec3 t, b;
     frame_basis(d, &t, &b);
@@ -151,7 +161,8 @@ static void check_phase(const guided_phase *p)
     static double prob[BINS];
     double total = quadrature(p, d, sun, prob);
     double norm = phase_mass(p, 1, -1.0, 1.0);
-    printf("%s: int q dw = %.6f (int p dw, 1-D: %.6f)\n", p->name, total, norm);
+    printf("%s, throughput max %g (eps_b %g): int q dw = %.6f (int p dw, 1-D: %.6f)\n", p->name,
+           (double)fmaxf(beta.x, fmaxf(beta.y, beta.z)), (double)eps_now, total, norm);
     CHECK_ABS(total, 1.0, QUAD_TOL);
     CHECK_ABS(norm, 1.0, 1e-4);
 
@@ -164,7 +175,7 @@ static void check_phase(const guided_phase *p)
         float u1 = rng_next(&g), u2 = rng_next(&g);
         vec3 weight;
         vec3 w = cloud_phase_direction(p->phase, p->g_hg, diameter_um, p->rows, p->cdf, p->n, d, sun,
-                                       EPS, v3(1.0f, 1.0f, 1.0f), u1, u2, &g, &weight);
+                                       EPS, beta_now, u1, u2, &g, &weight);
         int k = bin_of(d, t, b, w);
         count[k] += 1.0;
         float f[3] = {weight.x, weight.y, weight.z};
@@ -207,16 +218,18 @@ static void check_phase(const guided_phase *p)
 int main(void)
 {
     guided_phase hg = {"Henyey-Greenstein", ATMO_CLOUD_PHASE_HG, v3(0.8f, 0.85f, 0.9f), NULL, NULL, 0};
-    check_phase(&hg);
+    check_phase(&hg, v3(1.0f, 1.0f, 1.0f));
+    check_phase(&hg, v3(0.5f, 4.0f, 2.0f));
     guided_phase jd = {"Jendersie-d'Eon 20 um", ATMO_CLOUD_PHASE_JENDERSIE_DEON, v3(0, 0, 0), NULL,
                        NULL, 0};
-    check_phase(&jd);
+    check_phase(&jd, v3(1.0f, 1.0f, 1.0f));
 
     atmo_plan p;
     const void *rows, *cdf;
     int n = test_cumulus_phase_table(&p, &rows, &cdf);
     guided_phase mie = {"cumulus Mie table", ATMO_CLOUD_PHASE_MIE, v3(0, 0, 0), rows, cdf, n};
-    check_phase(&mie);
+    check_phase(&mie, v3(1.0f, 1.0f, 1.0f));
+    check_phase(&mie, v3(4.0f, 0.5f, 0.5f));
     atmo_plan_free(&p);
     return test_finish();
 }

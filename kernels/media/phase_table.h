@@ -33,12 +33,18 @@
  * u1 (u1 < eps: the sun's, with u1 / eps; else (u1 - eps) / (1 - eps)), so no extra number
  * is drawn and eps = 0 draws exactly as cloud_phase_sample with its weight. The price: away
  * from the sun f = 1 / (1 - eps), so a path's weight grows by that at each vertex that does
- * not turn toward the sun; in thick cloud (tens of vertices) that spread costs more than the
- * peak's, hence a small eps (0.1: docs/notes/clouds.md, on tests/test_cloud_slab.c) and no
- * guiding once a channel's throughput exceeds CLOUD_GUIDING_WEIGHT_MAX (a choice made from the
- * path's past alone, so the estimator stays unbiased). A Russian roulette weighing survival
- * by the throughput alone would undo the guiding (a path heading to the sun carries a small
- * weight for a large next-event estimate), so the walks weigh it by cloud_roulette_gain. */
+ * not turn toward the sun, a product that over the tens of vertices of thick cloud spreads the
+ * weights into a heavy tail. So the mixture's share is scaled down by the path's throughput,
+ *     eps_b = eps / max(1, beta_max)          (beta_max: the largest channel of beta),
+ * a choice made from the path's past alone (the estimator stays unbiased). A vertex that does
+ * not turn sunward then takes beta to beta / (1 - eps_b): for beta_max <= 1 the factor is
+ * 1 / (1 - eps) as before, and above it the growth is additive,
+ *     beta / (1 - eps / beta) - beta = eps beta / (beta - eps) <= eps / (1 - eps),
+ * so after n such vertices beta_max <= 1 + n eps / (1 - eps) instead of (1 - eps)^-n (eps 0.1
+ * and 40 vertices: 5.4 instead of 67), far inside float's range. A Russian roulette weighing
+ * survival by the throughput alone would undo the guiding (a path heading to the sun carries a
+ * small weight for a large next-event estimate), so the walks weigh it by cloud_roulette_gain
+ * (measurements: docs/notes/clouds.md). */
 #ifndef ATMO_MEDIA_PHASE_TABLE_H
 #define ATMO_MEDIA_PHASE_TABLE_H
 #ifndef __OPENCL_VERSION__
@@ -48,9 +54,6 @@
 #include "common/rng.h"
 #include "atmo/gpu_enums.h"
 #endif
-
-#define CLOUD_GUIDING_WEIGHT_MAX 1000.0f /* sun guiding only on paths of throughput up to this:
-                                           the weights' growth stops well inside float's range */
 
 /* The last row j with rows[j].w <= theta (0 <= j < n - 1). */
 ATMO_FN int phase_rows_find(ATMO_GLOBAL const float4 *rows, int n, float theta)
@@ -173,18 +176,24 @@ ATMO_FN float cloud_guiding_pdf(int phase, vec3 g_hg, float diameter_um,
            eps * cloud_phase_pdf(phase, g_hg, diameter_um, rows, cdf, n, c_s);
 }
 
+/* The probability of the sun's lobe at a vertex of a path of throughput beta, for the
+ * guiding probability eps: eps / max(1, beta_max) (the header's eps_b). */
+ATMO_FN float cloud_guiding_share(float eps, vec3 beta)
+{
+    return eps / fmaxf(1.0f, fmaxf(beta.x, fmaxf(beta.y, beta.z)));
+}
+
 /* The new direction at a cloud vertex reached along the unit d by a path of throughput beta,
- * with the unit sun direction `sun` and the sun-guiding probability eps (0 <= eps < 1; 0 where
- * beta exceeds CLOUD_GUIDING_WEIGHT_MAX in a channel): drawn from the mixture q of the header
- * with the uniform numbers u1 (lobe and cosine) and u2 (azimuth 2 pi u2), and one more from g
- * for Jendersie-d'Eon's mixture; *weight gets p_c(d . w) / q(w) per channel. */
+ * with the unit sun direction `sun` and the sun-guiding probability eps (0 <= eps < 1): drawn
+ * from the mixture q of the header with the share eps_b = cloud_guiding_share(eps, beta), the
+ * uniform numbers u1 (lobe and cosine) and u2 (azimuth 2 pi u2), and one more from g for
+ * Jendersie-d'Eon's mixture; *weight gets p_c(d . w) / q(w) per channel. */
 ATMO_FN vec3 cloud_phase_direction(int phase, vec3 g_hg, float diameter_um,
                                    ATMO_GLOBAL const float4 *rows, ATMO_GLOBAL const float *cdf,
                                    int n, vec3 d, vec3 sun, float eps, vec3 beta, float u1,
                                    float u2, rng_stream *g, vec3 *weight)
 {
-    if (fmaxf(beta.x, fmaxf(beta.y, beta.z)) > CLOUD_GUIDING_WEIGHT_MAX)
-        eps = 0.0f;
+    eps = cloud_guiding_share(eps, beta);
     int guided = u1 < eps;
     float u = guided ? u1 / eps : (u1 - eps) / (1.0f - eps);
     float c = cloud_phase_sample(phase, g_hg, diameter_um, rows, cdf, n, fminf(u, 1.0f), g,
