@@ -32,14 +32,10 @@
  * the clouds' phase mixed with its lobe around the sun (below).
  * After 4 scattering events Russian roulette keeps a path with probability
  *     P = min(P_max, gain x the largest channel of w),
- *     P_max = 1 before REFERENCE_ROULETTE_LONG events, 0.95 after,
- * and divides w by P (unbiased; gain: reference_roulette_gain, 1 in clear air). A path with
- * w gain >= 1 then goes on with its weight unchanged; a cap P_max < 1 would multiply the weight
- * of every such path by 1 / P_max at every vertex, (1 / 0.95)^40 = 7.8 over 40 vertices (an order
- * common among the largest contributions through a cloud of optical depth 10): a heavy tail of
- * rare paths of large weight (measured: docs/notes/clouds.md). The cap 0.95 from
- * REFERENCE_ROULETTE_LONG events on bounds the length of the paths through thick cloud of
- * albedo ~1, where the weights do not fall.
+ *     P_max = 1 before TRACKING_ROULETTE_LONG (256) events, 0.95 after,
+ * and divides w by P (unbiased; gain: reference_roulette_gain, 1 in clear air; the rule and
+ * why a path with w gain >= 1 keeps its weight unchanged: tracking_survival, tracking.h,
+ * shared with the path tracer).
  *
  * Orders: order n is light that scattered (in the air or on the ground) n times; order 1 is
  * single scattering plus the directly lit ground. Knobs (plan_reference.c):
@@ -115,7 +111,6 @@
 #endif
 
 #define REFERENCE_ROULETTE_ORDER 4
-#define REFERENCE_ROULETTE_LONG 256 /* events from which the roulette's survival is capped */
 #define REFERENCE_SEGMENT_POINTS 4.0f
 #define REFERENCE_NEE_FLOOR 0.05f /* with clouds: least probability of a next-event estimate */
 #define REFERENCE_ROULETTE_T 0.1f /* with clouds: weights below this go through roulette */
@@ -596,9 +591,8 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
                 break;
         }
         if (order + 1 >= REFERENCE_ROULETTE_ORDER) {
-            float cap = order + 1 < REFERENCE_ROULETTE_LONG ? 1.0f : 0.95f;
             float gain = reference_roulette_gain(s, ATMO_LUT_ARGS, v3_dot(dir, to_sun));
-            float keep = fminf(cap, tracking_max3(w) * gain);
+            float keep = tracking_survival(w, gain, order + 1);
             if (rng_next(g) >= keep)
                 break;
             w = v3_scale(w, 1.0f / keep);

@@ -40,8 +40,16 @@
  * N_s = path.secondary continuation rays leave the primary hit, each with beta / N_s (the
  * primary's direct light once, its sky MIS weighed against N_s BSDF samples); a path bounces
  * at most N_b = path.bounces times after the primary hit (the last continuation's segment and
- * the emission it finds still count); from bounce path.rr_bounce on, Russian roulette ends it
- * with probability 1 - q, q = min(0.95, max beta), and divides beta by q (unbiased).
+ * the emission it finds still count); from event path.rr_bounce on (the surface bounces and
+ * the cloud scatterings so far, depth + scatters), Russian roulette keeps it with probability
+ *     q = min(q_max, gain x max beta),  q_max = 1 before TRACKING_ROULETTE_LONG (256) events,
+ *     0.95 from there on,
+ * and divides beta by q (unbiased: E[beta'] = q beta / q = beta); gain is 1 at a surface and
+ * the clouds' cloud_roulette_gain at a cloud vertex (volume_stage.h). A path with gain x beta
+ * >= 1 goes on with beta unchanged: a cap q_max < 1 at every event would multiply the weight
+ * of such paths by 1 / q_max per vertex, a heavy tail over the tens of vertices of thick cloud
+ * (tracking_survival, tracking.h: the rule the reference's walk shares; the cap from 256
+ * events on bounds paths through cloud of albedo ~1, whose weights do not fall).
  * Units: spectral radiance, W m^-2 sr^-1 nm^-1 (the objects' emission too), times the
  * scene's sky_factor (the disc seen directly: sun_factor), as sky_render does.
  * The uniform test world (path.sky = uniform) has S = L_u on escaping rays and no air; its
@@ -64,6 +72,7 @@
 #include "common/rng.h"
 #include "atmosphere/sky_method.h"
 #include "media/medium.h"
+#include "media/tracking.h"
 #include "render/path_camera.h"
 #include "render/surfaces.h"
 #include "render/bsdf.h"
@@ -301,7 +310,7 @@ ATMO_FN void path_continue(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
         float u_rr = rng_next(g), u1 = rng_next(g), u2 = rng_next(g);
         if (depth + scatters >= s->path.rr_bounce) {
             float gain = v.volume ? volume_roulette_gain(s, ATMO_LUT_ARGS, v.dir) : 1.0f;
-            float q = fminf(0.95f, fmaxf(beta.x, fmaxf(beta.y, beta.z)) * gain);
+            float q = tracking_survival(beta, gain, depth + scatters);
             if (u_rr >= q)
                 break;
             beta = v3_scale(beta, 1.0f / q);
