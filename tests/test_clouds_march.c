@@ -19,9 +19,11 @@
  * grid, cloud_majorant.h, filled on the host as its pass fills it; host build) on the same ray
  * with orders 1..1 must agree with the quadrature within 4.5 standard errors (10000 paths);
  * with all orders it must exceed it, and the marcher with the registry's default octaves
- * (fitted by atmo bench clouds --fit) must lie within its measured bias on this ray, 41 %
- * (rounded up to FAST_BIAS_BOUND, 45 %), plus 4.5 of the reference's standard errors (4.1 %)
- * of it; the octaves before the fit (0.5, 0.5, 0.5 x 4) were 69 % below. */
+ * (fitted by atmo bench clouds --fit to four views with the sky's light, the Mie table's phase
+ * and the light march cut at 8 km, none of which this ray has) must lie within its measured
+ * bias on this ray, 47.7 % below (rounded up to FAST_BIAS_BOUND, 50 %), plus 4.5 of the
+ * reference's standard errors (3.9 %) of it; the octaves before the fit (0.5, 0.5, 0.5 x 4)
+ * were 69 % below. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -33,7 +35,7 @@
 
 /* |marcher / reference - 1| on the overcast ray with the default octaves, measured (see the
  * top of the file) and rounded up */
-#define FAST_BIAS_BOUND 0.45
+#define FAST_BIAS_BOUND 0.50
 #define LUTS lut, lut, lut, lut, lut, lut, lut, lut, cdf, grid
 
 static double sigma_at(const atmo_gpu_scene *s, const medium_ray *m, double t, double *h)
@@ -162,7 +164,7 @@ int main(void)
 
     /* the Monte Carlo reference on the same ray: single scattering (orders 1..1) must agree
      * with the quadrature within its standard error; all orders measure the marcher's
-     * multiple-scattering octaves (defaults a = b = c = 0.5, 4 octaves) against it */
+     * multiple-scattering octaves (the registry's defaults) against it */
     enum { PATHS = 10000 };
     for (int all = 0; all < 2; all++) {
         s.reference.min_order = 1;

@@ -19,8 +19,8 @@
  * with G_i the light of octave i at b = 1; G_i is measured as the difference of the marcher at
  * N = i + 1 and N = i octaves (b = 1), over a grid of a and c, and b (steps of 0.01) and N
  * (1..BENCH_CLOUDS_FIT_OCTAVES) then minimise the RMS view error in closed form. The fit's
- * values, the residual per view and the error of the old defaults (0.5, 0.5, 0.5, 4) are
- * printed and written to DIR/clouds_fit.csv. Writes DIR/clouds.csv and DIR/clouds.svg, and
+ * values and its residual per view are printed; the grid's rows (every tenth b and each new
+ * best) are written to DIR/clouds_fit.csv. Writes DIR/clouds.csv and DIR/clouds.svg, and
  * the shadow term's RMS error (bench_clouds_shadow.c) over all the marcher's sample points and
  * over those inside cloud, one series each for the light march and the shadow map, against
  * the same time per sample, to DIR/clouds_shadow.csv and DIR/clouds_shadow.svg. */
@@ -36,7 +36,7 @@
 #define BENCH_CLOUDS_RAYS 6
 #define BENCH_CLOUDS_REF_SAMPLES 256
 #define BENCH_CLOUDS_MARCH_SAMPLES 64
-#define BENCH_CLOUDS_FIT_OCTAVES 8
+#define BENCH_CLOUDS_FIT_OCTAVES 12
 
 typedef struct cloud_view {
     const char *name;
@@ -194,9 +194,10 @@ static int march_error(const char *const *extra, const reference_result *ref, co
 static int fit_octaves(const char *dir, const reference_result *ref, const char *device,
                        int quick, atmo_err *e)
 {
-    static const double a_grid[] = {0.2, 0.35, 0.5, 0.65, 0.8};
-    static const double c_grid[] = {0.4, 0.7};
-    int na = quick ? 2 : (int)(sizeof a_grid / sizeof a_grid[0]), nc = quick ? 1 : 2;
+    static const double a_grid[] = {0.05, 0.1, 0.2, 0.35, 0.5, 0.65, 0.8};
+    static const double c_grid[] = {0.4, 0.7, 0.9};
+    int na = quick ? 2 : (int)(sizeof a_grid / sizeof a_grid[0]);
+    int nc = quick ? 1 : (int)(sizeof c_grid / sizeof c_grid[0]);
     int N_max = quick ? 4 : BENCH_CLOUDS_FIT_OCTAVES;
     double best = INFINITY, best_a = 0, best_b = 0, best_c = 0, best_err[BENCH_CLOUDS_VIEWS];
     int best_n = 0;

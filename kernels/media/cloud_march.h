@@ -23,8 +23,11 @@
  *   clouds: sigma_s E T_air V sum_{i<N} b^i p_i(nu) e^{-a^i tau_sun}
  * the octaves of Wrenninge, Kulla & Lundqvist 2013 ("Oz: the great and volumetric"): octave 0 is
  * single scattering with the true phase, octave i >= 1 Henyey-Greenstein with the table's g
- * times c^i; N = ms_octaves, a, b, c = ms_a, ms_b, ms_c, by default 6, 0.2, 0.43, 0.7, fitted
- * to the reference by `atmo bench clouds --fit` (docs/notes/clouds.md). With use_ms (method march) the sky's light is added isotropically,
+ * times c^i; N = ms_octaves, a, b, c = ms_a, ms_b, ms_c, by default 12, 0.05, 0.43, 0.9,
+ * fitted to the reference by `atmo bench clouds --fit` (docs/notes/clouds.md). With a this
+ * small, octaves i >= 2 see the sun nearly unshadowed (a^2 tau_sun = tau_sun / 400): they carry
+ * the light that diffuses deep into a thick deck. With use_ms (method march) the sky's light is
+ * added isotropically,
  *   sigma_s E_sky(mu_s) / (4 pi) (1 + (h - bottom) / (top - bottom)) / 2
  * (E_sky the sky's irradiance on a horizontal surface from the ms LUT, halved at the layer's
  * bottom, where the cloud above shades it). The thesis look (clouds.look = thesis) replaces the
