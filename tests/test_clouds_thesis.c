@@ -23,6 +23,7 @@
 #include <string.h>
 #define ATMO_CLOUDS
 #include "media/cloud_march.h"
+#include "testclouds.h"
 #include "testlib.h"
 
 #define LUTS lut, lut, lut, lut, lut, lut, lut, lut, cdf, grid
@@ -38,38 +39,15 @@ int main(void)
     float cdf[2] = {0.0f, 1.0f};
     static float grid[1];
     atmo_gpu_scene s;
-    memset(&s, 0, sizeof s);
-    s.atmosphere.bottom_radius = 6360e3f;
-    s.atmosphere.top_radius = 6420e3f;
-    s.atmosphere.rayleigh_scale_height = 8000.0f;
-    s.atmosphere.mie_scale_height = 1200.0f;
+    test_overcast_scene(&s);
     s.atmosphere.rayleigh_scattering.x = 5.8e-6f, s.atmosphere.rayleigh_scattering.y = 13.5e-6f;
     s.atmosphere.rayleigh_scattering.z = 33.1e-6f;
     s.atmosphere.solar_irradiance.x = 1.5f, s.atmosphere.solar_irradiance.y = 1.9f;
     s.atmosphere.solar_irradiance.z = 1.7f;
-    s.transmittance_width = s.transmittance_height = 4;
-    s.camera.local_up.y = 1.0f;
-    s.camera.local_up.w = 6360e3f + 500.0f;
-    double sun_el = 45.0 * M_PI / 180.0;
-    s.sun_direction.x = (float)cos(sun_el), s.sun_direction.y = (float)sin(sun_el);
-    s.sun_direction.w = cosf(0.0047f);
     atmo_gpu_clouds *c = &s.clouds;
-    c->extinction.x = c->extinction.y = c->extinction.z = 10.354e-3f;
-    c->albedo.x = c->albedo.y = c->albedo.z = 0.9512f;
-    c->g.x = c->g.y = c->g.z = 0.85f;
-    c->origin.x = 23796.0f, c->origin.y = 500.0f, c->origin.z = 16636.0f;
-    c->frequency.x = 8e-5f, c->frequency.y = 16e-5f, c->frequency.z = 8e-5f;
-    c->frequency.w = 1.0f / 5e5f;
-    c->bottom_m = 1000.0f, c->top_m = 3000.0f, c->fade_m = 500.0f;
-    c->coverage = 1.0f, c->sharpness = 1.05f, c->warp_m = 3000.0f;
-    c->light_distance_m = 1e5f, c->max_distance_m = 1e6f;
-    c->phase = ATMO_CLOUD_PHASE_HG;
-    c->table_size = 1;
-    c->octaves = 6;
-    c->steps = 100000;
+    c->light_distance_m = 1e5f;
     c->step_m = 200.0f;
     c->light_steps = 8;
-    c->ms_octaves = 1;
 
     /* the level per channel, as the header derives it */
     double level[3];
