@@ -41,7 +41,7 @@ static int take_shorthand(void *args, const cli_flag *f, const char *v, atmo_err
 #define SHORTHAND(flag, t, k, text)                                                            \
     {.type = t, .name = flag, .key = k, .take = take_shorthand, .help = text}
 
-const cli_flag scene_option_flags[] = {
+const cli_flag scene_source_flags[] = {
     {.type = CLI_STRING, .name = "--preset", .metavar = "NAME",
      .offset = offsetof(scene_options, preset), .def_var = &atmo_default_preset,
      .help = "a built-in scene (atmo presets lists them)"},
@@ -49,7 +49,12 @@ const cli_flag scene_option_flags[] = {
      .help = "a JSON scene file instead of a preset (atmo params lists every key)"},
     {.type = CLI_STRING, .name = "--set", .metavar = "KEY=VALUE", .take = take_set,
      .help = "override one parameter, e.g. --set sun.zenith_deg=60 (repeatable;\n"
-             "applied in order with the shorthands below)"},
+             "applied in command-line order)"},
+    {.type = CLI_END},
+};
+
+const cli_flag scene_option_flags[] = {
+    {.type = CLI_INCLUDE, .include = scene_source_flags},
     SHORTHAND("--width", CLI_INT, "image.width", "image width in pixels (image.width)"),
     SHORTHAND("--height", CLI_INT, "image.height", "image height in pixels (image.height)"),
     SHORTHAND("--samples", CLI_INT, "image.samples",

@@ -18,7 +18,9 @@ typedef struct scene_options {
 } scene_options;
 
 /* The flags, their destinations in a scene_options (include them with CLI_INCLUDE at the
- * offset of the command's scene_options). */
+ * offset of the command's scene_options): --preset, --scene and --set alone, or those and the
+ * shorthands. */
+extern const cli_flag scene_source_flags[];
 extern const cli_flag scene_option_flags[];
 
 void scene_options_init(scene_options *o);
