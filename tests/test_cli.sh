@@ -50,6 +50,8 @@ refused "misspelt presets NAME" "did you mean 'sky-noon'" presets sky-nono
 refused "misspelt choice" "--camera: 'panoramma' is not one of .*did you mean 'panorama'" render "${small[@]}" --camera panoramma --output out/a.png
 refused "misspelt method" "did you mean 'reference'\? use one of" render "${small[@]}" --set atmosphere.method=refrence --output out/a.png
 refused "swapped letters in a choice" "did you mean 'piz'" render "${small[@]}" --exr-compression pzi --output out/a.exr
+refused "misspelt bench suite" "unknown suite 'mei' \(did you mean 'mie'\?" bench mei
+refused "misspelt cache action" "did you mean 'verify'\?" cache verfy
 refused "far preset: no guess" "^atmo render: unknown preset 'xyzzy'; use one of" render "${small[@]}" --preset xyzzy --output out/a.png
 refused "far flag: no guess" "^atmo render: unknown option '--frobnicate' \(atmo render --help\)$" render --frobnicate
 refused "far key: no guess" "unknown parameter 'qqq.zzz' \(from --set\); atmo params" render "${small[@]}" --set qqq.zzz=1 --output out/a.png
