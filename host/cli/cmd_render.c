@@ -179,6 +179,32 @@ static void handle_signals(int install, struct sigaction old[2])
         sigaction(sigs[i], install ? &sa : &old[i], install ? &old[i] : NULL);
 }
 
+/* The report's render passes (the EXR layers' channels) and what the lens flare measured and
+ * added. */
+static void report_passes_and_flare(cJSON *ren, const atmo_scene *s,
+                                    const atmo_image_layer *layers, int n_layers,
+                                    const atmo_flare_info *flare)
+{
+    cJSON *passes = cJSON_AddArrayToObject(ren, "passes");
+    for (int i = 0; i < n_layers; i++)
+        for (int c = 0; c < layers[i].channels; c++) {
+            char name[64];
+            snprintf(name, sizeof name, "%s.%s", layers[i].name, layers[i].channel_names[c]);
+            cJSON_AddItemToArray(passes, cJSON_CreateString(name));
+        }
+    if (!s->post.flare)
+        return;
+    cJSON *fl = cJSON_AddObjectToObject(ren, "flare");
+    cJSON_AddNumberToObject(fl, "sun_x_px", flare->sun_x);
+    cJSON_AddNumberToObject(fl, "sun_y_px", flare->sun_y);
+    cJSON *irr = cJSON_AddArrayToObject(fl, "sun_irradiance");
+    cJSON *add = cJSON_AddArrayToObject(fl, "added_irradiance");
+    for (int c = 0; c < 3; c++) {
+        cJSON_AddItemToArray(irr, cJSON_CreateNumber(flare->irradiance[c]));
+        cJSON_AddItemToArray(add, cJSON_CreateNumber(flare->added[c]));
+    }
+}
+
 static int write_report(const char *path, const atmo_scene *s, const atmo_render_result *r,
                           const atmo_render_settings *rs, const char *const *outputs, int n_out,
                           double seconds_write, const atmo_image_layer *layers, int n_layers,
@@ -224,24 +250,7 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON_AddNumberToObject(t, "render", r->seconds_render);
     cJSON_AddNumberToObject(t, "read_back", r->seconds_read);
     cJSON_AddNumberToObject(t, "write", seconds_write);
-    cJSON *passes = cJSON_AddArrayToObject(ren, "passes"); /* the EXR layers' channels */
-    for (int i = 0; i < n_layers; i++)
-        for (int c = 0; c < layers[i].channels; c++) {
-            char name[64];
-            snprintf(name, sizeof name, "%s.%s", layers[i].name, layers[i].channel_names[c]);
-            cJSON_AddItemToArray(passes, cJSON_CreateString(name));
-        }
-    if (s->post.flare) { /* what the lens flare measured and added */
-        cJSON *fl = cJSON_AddObjectToObject(ren, "flare");
-        cJSON_AddNumberToObject(fl, "sun_x_px", flare->sun_x);
-        cJSON_AddNumberToObject(fl, "sun_y_px", flare->sun_y);
-        cJSON *irr = cJSON_AddArrayToObject(fl, "sun_irradiance");
-        cJSON *add = cJSON_AddArrayToObject(fl, "added_irradiance");
-        for (int c = 0; c < 3; c++) {
-            cJSON_AddItemToArray(irr, cJSON_CreateNumber(flare->irradiance[c]));
-            cJSON_AddItemToArray(add, cJSON_CreateNumber(flare->added[c]));
-        }
-    }
+    report_passes_and_flare(ren, s, layers, n_layers, flare);
     cJSON *outs = cJSON_AddArrayToObject(root, "outputs");
     for (int i = 0; i < n_out; i++)
         cJSON_AddItemToArray(outs, cJSON_CreateString(outputs[i]));
