@@ -90,9 +90,12 @@ echo "{}" >keep.json
 refused "existing report" "--report 'keep.json' exists; add --force" render "${small[@]}" --output out/a.png --report keep.json
 if "$atmo" render "${small[@]}" --force --output keep.png 2>stderr.txt && ! cmp -s keep.png keep.orig; then ok; else bad "--force did not replace keep.png"; cat stderr.txt >&2; fi
 
-# plurals: one sample per pixel is "1 sample/pixel", one image "1 image"
-if "$atmo" render --width 16 --height 8 --samples 1 --output one.pfm 2>one.txt &&
-    grep -q "wrote 1 image (16x8, 1 sample/pixel" one.txt; then ok; else bad "plural: $(cat one.txt)"; fi
+# plurals: one sample per pixel is "1 sample/pixel", one image "1 image"; the cost line before
+# the render states the size, the samples (16 x 8 x 1 = 128) and the method
+if "$atmo" render --width 16 --height 8 --samples 1 --set atmosphere.method=single \
+    --output one.pfm 2>one.txt && grep -q "wrote 1 image (16x8, 1 sample/pixel" one.txt &&
+    grep -q "^atmo render: 16x8 at 1 sample/pixel (0.000128 M samples), method single; 1 frame$" one.txt
+then ok; else bad "plural or cost line: $(cat one.txt)"; fi
 
 # a good render writes every format, completely, and a report
 if "$atmo" render "${small[@]}" --camera panorama --output a.pfm --output a.png --output a.exr \

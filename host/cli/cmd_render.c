@@ -602,6 +602,28 @@ static int render_frames(const render_args *a, const atmo_scene *scene,
     return rc;
 }
 
+/* "atmo render: 640x360 at 16 samples/pixel (3.7 M samples), method fast, 1 image": what the
+ * render will cost in samples, before any work (the time follows from the first launch, in
+ * the progress line's ETA). */
+static void render_cost_line(const render_args *a, const atmo_scene *s, const frames_animation *anim)
+{
+    const atmo_param *method = atmo_param_find("atmosphere.method");
+    int frames = a->frames_text ? (anim->last - a->first) / a->step + 1 : 1;
+    int triplets = s->render.spectral_bands > 0 ? (s->render.spectral_bands + 2) / 3 : 1;
+    double samples = (double)s->image.width * s->image.height * s->image.samples * triplets;
+    if (a->part_text && !a->frames_text)
+        samples /= a->rs.parts;
+    fprintf(stderr, "atmo render: %dx%d at %s%d sample%s/pixel%s (%.3g M samples%s), method %s%s; "
+                    "%d frame%s\n",
+            s->image.width, s->image.height, a->rs.noise_target > 0.0 ? "at most " : "",
+            s->image.samples, s->image.samples == 1 ? "" : "s",
+            triplets > 1 ? " per triplet of bands" : "", 1e-6 * samples * frames,
+            a->part_text && !a->frames_text ? " in this part" : "",
+            method->names[s->atmosphere.method],
+            s->path.mode == ATMO_RENDER_PATH ? ", path traced" : "", frames,
+            frames == 1 ? "" : "s");
+}
+
 /* The scene, the animation, the parts and the outputs, all checked before any work. */
 static int render_prepare(render_args *a, atmo_scene *scene, frames_animation *anim,
                           output_paths *files, atmo_err *e)
@@ -650,6 +672,8 @@ int cmd_render(int argc, char **argv)
         fprintf(stderr, "atmo render: part %d/%d of frames %d..%d has no frame to render\n",
                 a.first - anim.first + 1, a.step, anim.first, anim.last);
     a.rs.progress = a.quiet ? 0 : (isatty(STDERR_FILENO) ? 2 : 1);
+    if (a.n_out > 0 && a.first <= anim.last && !a.quiet)
+        render_cost_line(&a, &scene, &anim);
     if (a.n_out > 0)
         rc = render_frames(&a, &scene, &anim);
     output_paths_free(&files);
