@@ -59,7 +59,29 @@ typedef struct render_args {
 
 static const char *const render_exr_codecs[] = {"piz", "none", "zip", "zips", "rle", NULL};
 
-static int take_noise(void *args, const cli_flag *f, const char *v, atmo_err *e);
+/* --noise: "1%" or a fraction "0.01", in (0, 1]. */
+static int parse_noise(const char *v, double *out, atmo_err *e)
+{
+    char *end;
+    double x = strtod(v, &end);
+    if (end != v && *end == '%' && end[1] == 0)
+        x /= 100.0;
+    else if (end == v || *end != 0)
+        x = -1.0;
+    if (!(x > 0.0 && x <= 1.0))
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "--noise needs a relative standard error such as 1%% or 0.01 (above 0, "
+                         "at most 100%%), got '%s'",
+                         v);
+    *out = x;
+    return ATMO_OK;
+}
+
+static int take_noise(void *args, const cli_flag *f, const char *v, atmo_err *e)
+{
+    (void)f;
+    return parse_noise(v, &((render_args *)args)->rs.noise_target, e);
+}
 
 #define RENDER_FLAG(member) offsetof(render_args, member)
 
@@ -271,23 +293,6 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     return rc;
 }
 
-/* --noise: "1%" or a fraction "0.01", in (0, 1]. */
-static int parse_noise(const char *v, double *out, atmo_err *e)
-{
-    char *end;
-    double x = strtod(v, &end);
-    if (end != v && *end == '%' && end[1] == 0)
-        x /= 100.0;
-    else if (end == v || *end != 0)
-        x = -1.0;
-    if (!(x > 0.0 && x <= 1.0))
-        return atmo_fail(e, ATMO_ERR_USAGE,
-                         "--noise needs a relative standard error such as 1%% or 0.01 (above 0, "
-                         "at most 100%%), got '%s'",
-                         v);
-    *out = x;
-    return ATMO_OK;
-}
 
 /* Render one scene (a frame) to res (or part): plan it, then install the signal handler (*old
  * gets the handlers it replaced, *installed 1), then render. The handler stays until the files
@@ -495,12 +500,6 @@ static int check_frame_paths(const char *const *outputs, int n_out, const char *
     return rc;
 }
 
-/* --noise: "1%" or a fraction "0.01", in (0, 1]. */
-static int take_noise(void *args, const cli_flag *f, const char *v, atmo_err *e)
-{
-    (void)f;
-    return parse_noise(v, &((render_args *)args)->rs.noise_target, e);
-}
 
 /* animation: the frames' scenes, each checked before any work */
 static int render_animation(const render_args *a, const atmo_scene *scene, frames_animation *anim,
