@@ -88,6 +88,8 @@ refused "existing output" "--output 'keep.png' exists; add --force to overwrite 
 if cmp -s keep.png keep.orig; then ok; else bad "a refused render changed keep.png"; fi
 echo "{}" >keep.json
 refused "existing report" "--report 'keep.json' exists; add --force" render "${small[@]}" --output out/a.png --report keep.json
+echo "theta_deg" >keep.csv
+refused "existing mie table" "--table 'keep.csv' exists; add --force" mie --radius-um 1 --wavelength-nm 550 --table keep.csv
 if "$atmo" render "${small[@]}" --force --output keep.png 2>stderr.txt && ! cmp -s keep.png keep.orig; then ok; else bad "--force did not replace keep.png"; cat stderr.txt >&2; fi
 
 # plurals: one sample per pixel is "1 sample/pixel", one image "1 image"; the cost line before
