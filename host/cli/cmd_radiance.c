@@ -22,7 +22,13 @@
  * Luminance: Y = BT.709 luminance of k_c L_c with k from atmo_luminance_factors(lambda, -3)
  * (Bruneton's radiance-to-luminance constants for the sky), in cd/m^2.
  * --irradiance adds, on a horizontal surface at the camera (W m^-2 nm^-1):
- *   direct = E T_sun max(mu_s, 0), from the double-precision model (atmo_ref_direct_irradiance);
+ *   direct = E T_sun V max(mu_s, 0): E T_sun max(mu_s, 0) of the atmosphere alone from the
+ *            double-precision model (atmo_ref_direct_irradiance), times V, the sun's visibility
+ *            at the camera from the device (atmo_probe_sun: visibility.h's visibility_sun, the
+ *            query every kernel's sunlight goes through: the planet, terrain and objects, and
+ *            the clouds' transmittance toward the sun, shell or layer), so whatever shades the
+ *            scene's sunlight shades the direct beam, while the atmosphere's part keeps the
+ *            double model's accuracy;
  *   sky    = int_{upper hemisphere} L cos(theta) dw of the method's radiance, by a product rule:
  *            16-point Gauss-Legendre in cos(theta) on [0, 1] times a 16-point midpoint rule in
  *            azimuth over [0, pi] (the sky is symmetric about the sun's vertical plane, so the
@@ -284,10 +290,15 @@ int cmd_radiance(int argc, char **argv)
                                         mean + n_views, NULL, &e)))
         goto cleanup_se;
 
-    double k[3], direct[3] = {0, 0, 0}, sky[3] = {0, 0, 0};
+    double k[3], direct[3] = {0, 0, 0}, sky[3] = {0, 0, 0}, sun_vis[1][3];
+    float4 camera_up = {(float)r, 1.0f, (float)mu_s, (float)mu_s};
+    if (irradiance && (rc = atmo_probe_sun(&probe, &camera_up, 1, sun_vis, &e)))
+        goto cleanup_se;
     atmo_luminance_factors(scene.render.wavelengths_nm, -3.0, k);
     if (irradiance) {
         atmo_ref_direct_irradiance(atm, r, mu_s, direct);
+        for (int c = 0; c < 3; c++)
+            direct[c] *= sun_vis[0][c];
         for (int i = 0; i < RADIANCE_QUAD; i++)
             for (int j = 0; j < RADIANCE_QUAD; j++)
                 for (int c = 0; c < 3; c++) /* 2 (symmetry) * pi / n (midpoint) * w mu L */
