@@ -4,7 +4,9 @@
  * --scene FILE; then --set KEY=VALUE and the shorthands (--width, --height, --samples, --seed,
  * --time, --camera) in command-line order. Every output's format and path is checked before
  * anything runs (output_paths.h: directory, name, limits, no two outputs in one file), so a bad
- * argument never costs a render.
+ * argument never costs a render. With atmosphere.method = auto (the default) the plan picks the
+ * method (atmo_plan_auto_method); unless --quiet, one line on stderr names it and says why, and
+ * the run report records it (render.method, render.method_auto).
  *
  * Interrupts: the first SIGINT or SIGTERM sets the render's cancel token; the precompute or the
  * render stops after the launch in flight. Samples already rendered are written, marked
@@ -132,6 +134,17 @@ static void handle_signals(int install, struct sigaction old[2])
         sigaction(sigs[i], install ? &sa : &old[i], install ? &old[i] : NULL);
 }
 
+/* The name of the method the scene renders with; *why (NULL unless atmosphere.method = auto)
+ * the plan's reason for its choice. */
+static const char *method_name(const atmo_scene *s, const char **why)
+{
+    int m = s->atmosphere.method;
+    *why = NULL;
+    if (m == ATMO_METHOD_AUTO)
+        m = atmo_plan_auto_method(s, why);
+    return atmo_param_find("atmosphere.method")->names[m];
+}
+
 static int write_report(const char *path, const atmo_scene *s, const atmo_render_result *r,
                           const atmo_render_settings *rs, const char *const *outputs, int n_out,
                           double seconds_write, const atmo_image_layer *layers, int n_layers,
@@ -150,6 +163,10 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON *ren = cJSON_AddObjectToObject(root, "render");
     cJSON_AddNumberToObject(ren, "width", r->width);
     cJSON_AddNumberToObject(ren, "height", r->height);
+    const char *why;
+    cJSON_AddStringToObject(ren, "method", method_name(s, &why));
+    if (why)
+        cJSON_AddStringToObject(ren, "method_auto", why);
     cJSON_AddNumberToObject(ren, "samples_requested", r->samples_requested);
     cJSON_AddNumberToObject(ren, "samples_min", r->samples_min);
     cJSON_AddNumberToObject(ren, "samples_max", r->samples_max);
@@ -615,6 +632,10 @@ int cmd_render(int argc, char **argv)
         return ATMO_OK;
     }
 
+    const char *why;
+    const char *method = method_name(&scene, &why);
+    if (why && !quiet)
+        fprintf(stderr, "atmo render: method %s (auto: %s)\n", method, why);
     rs.progress = quiet ? 0 : (isatty(STDERR_FILENO) ? 2 : 1);
     for (int f = frame_first; f <= frame_last && !rc; f += frame_step) {
         char names[RENDER_MAX_OUTPUTS][ATMO_TMP_PATH_MAX], report_name[ATMO_TMP_PATH_MAX];
