@@ -182,15 +182,15 @@ ATMO_FN float cloud_grid_next(float t, float grid_d, int grid_n)
 }
 
 /* One step [ta, ta + dt] of an interval, coefficients taken at the fraction `jitter` of it:
- * the cloud's octaves and the air's light (its single scattering and, with use_ms, the
- * method's multiple-scattering source: medium_air_source), each attenuated toward the sun by
- * the shell's chord (linear in t from chord0 to chord1) and toward the viewer by the cloud and
- * the air at the sample. Adds the light to *L with the running view transmittance *T, which it
- * advances over the step. */
+ * the cloud's octaves (their phases in phase[]) and the air's light (its single scattering
+ * and, with use_ms, the method's multiple-scattering source: medium_air_source), each
+ * attenuated toward the sun by the shell's chord (linear in t from chord0 to chord1) and
+ * toward the viewer by the cloud and the air at the sample. Adds the light to *L with the
+ * running view transmittance *T, which it advances over the step. */
 ATMO_FN void cloud_shell_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                              const medium_ray *m, float ta, float dt, float jitter,
-                              float chord0, float chord1, int use_ms, int ground, vec3 *L,
-                              vec3 *T)
+                              const medium_ray *m, const vec3 *phase, float ta, float dt,
+                              float jitter, float chord0, float chord1, int use_ms, int ground,
+                              vec3 *L, vec3 *T)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     vec3 sigma = v3_from4(s->cloud.extinction);
@@ -205,13 +205,9 @@ ATMO_FN void cloud_shell_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
                           visibility_sun_occluders(s, ATMO_LUT_ARGS, &q));
     vec3 k_src = v3_mul(v3_mul(sigma, v3_from4(s->cloud.albedo)), sun_e);
     vec3 air = medium_air_source(s, ATMO_LUT_ARGS, &q, m->nu, sun_e, use_ms, ground);
-    float sa = 1.0f, sb = 1.0f, sc = 1.0f;
+    float sa = 1.0f, sb = 1.0f;
     for (int i = 0; i < ATMO_CLOUD_OCTAVES; i++) {
-        vec3 p = i == 0 ? cloud_phase(s, cloud_phase_table, m->nu)
-                        : v3(phase_henyey_greenstein(m->nu, s->cloud.g.x * sc),
-                             phase_henyey_greenstein(m->nu, s->cloud.g.y * sc),
-                             phase_henyey_greenstein(m->nu, s->cloud.g.z * sc));
-        vec3 source = v3_scale(v3_mul(k_src, p), sb);
+        vec3 source = v3_scale(v3_mul(k_src, phase[i]), sb);
         if (i == 0)
             source = v3_add(source, air);
         vec3 sig_sun = v3_scale(sigma, sa);
@@ -220,7 +216,6 @@ ATMO_FN void cloud_shell_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
         *L = v3_add(*L, v3_mul(v3_mul(*T, source), w));
         sa *= CLOUD_OCTAVE_A;
         sb *= CLOUD_OCTAVE_B;
-        sc *= CLOUD_OCTAVE_C;
     }
     *T = v3_mul(*T, v3_exp(v3_scale(sigma_v, -dt)));
 }
@@ -236,7 +231,15 @@ ATMO_FN void cloud_shell_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_
                                   int use_ms, int ground, float grid_d, int grid_n, vec3 *L,
                                   vec3 *T, vec3 *shell_t)
 {
-    vec3 sigma = v3_from4(s->cloud.extinction);
+    vec3 sigma = v3_from4(s->cloud.extinction), phase[ATMO_CLOUD_OCTAVES];
+    float sc = 1.0f; /* the octaves' phases: nu is constant along the ray */
+    for (int i = 0; i < ATMO_CLOUD_OCTAVES; i++) {
+        phase[i] = i == 0 ? cloud_phase(s, cloud_phase_table, m->nu)
+                          : v3(phase_henyey_greenstein(m->nu, s->cloud.g.x * sc),
+                               phase_henyey_greenstein(m->nu, s->cloud.g.y * sc),
+                               phase_henyey_greenstein(m->nu, s->cloud.g.z * sc));
+        sc *= CLOUD_OCTAVE_C;
+    }
     float len = fminf(t1 - t0, CLOUD_TAU_CUT / sigma.y), cut = t0 + len;
     int n = s->cloud.steps, j = 1;
     float dt_cloud = len / (float)n, t = t0, chord0 = cloud_shell_chord_at(s, m, t0);
@@ -245,8 +248,8 @@ ATMO_FN void cloud_shell_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_
         float tc = j < n ? t0 + (float)j * dt_cloud : cut;
         float tb = fminf(fminf(tc, cloud_grid_next(t, grid_d, grid_n)), cut);
         float chord1 = cloud_shell_chord_at(s, m, tb);
-        cloud_shell_step(s, ATMO_LUT_ARGS, m, t, tb - t, jitter, chord0, chord1, use_ms, ground,
-                         L, T);
+        cloud_shell_step(s, ATMO_LUT_ARGS, m, phase, t, tb - t, jitter, chord0, chord1, use_ms,
+                         ground, L, T);
         if (tb >= tc)
             j++;
         t = tb;
