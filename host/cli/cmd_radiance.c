@@ -22,7 +22,13 @@
  * Luminance: Y = BT.709 luminance of k_c L_c with k from atmo_luminance_factors(lambda, -3)
  * (Bruneton's radiance-to-luminance constants for the sky), in cd/m^2.
  * --irradiance adds, on a horizontal surface at the camera (W m^-2 nm^-1):
- *   direct = E T_sun max(mu_s, 0), from the double-precision model (atmo_ref_direct_irradiance);
+ *   direct = E T_sun V max(mu_s, 0): E T_sun max(mu_s, 0) of the atmosphere alone from the
+ *            double-precision model (atmo_ref_direct_irradiance), times V, the sun's visibility
+ *            at the camera from the device (atmo_probe_sun: visibility.h's visibility_sun, the
+ *            query every kernel's sunlight goes through: the planet, terrain and objects, and
+ *            the clouds' transmittance toward the sun, shell or layer), so whatever shades the
+ *            scene's sunlight shades the direct beam, while the atmosphere's part keeps the
+ *            double model's accuracy;
  *   sky    = int_{upper hemisphere} L cos(theta) dw of the method's radiance, by a product rule:
  *            16-point Gauss-Legendre in cos(theta) on [0, 1] times a 16-point midpoint rule in
  *            azimuth over [0, pi] (the sky is symmetric about the sun's vertical plane, so the
@@ -149,7 +155,7 @@ static const cli_flag radiance_flags[] = {
     {.type = CLI_STRING, .name = "--view", .metavar = "Z,A", .take = take_view,
      .help = "a view: zenith and azimuth in degrees (repeatable)"},
     {.type = CLI_ENUM, .name = "--method", .key = "atmosphere.method", .take = take_set,
-     .help = "atmosphere method"},
+     .help = "atmosphere method (auto: march with clouds or the observer, else fast)"},
     {.type = CLI_PATH, .name = "--scene", .offset = RADIANCE_FLAG(scene_file), .def_var = &atmo_default_preset,
      .help = "JSON scene file, read first wherever it stands; without it the\npreset"},
     {.type = CLI_STRING, .name = "--set", .metavar = "K=V", .take = take_set,
@@ -194,6 +200,7 @@ typedef struct radiance_run {
     double (*mean)[3], (*se)[3], (*t_mean)[3], (*t_se)[3];
     double gx[RADIANCE_QUAD], gw[RADIANCE_QUAD];
     double r, sun[3], mu_s;
+    double sun_vis[1][3]; /* V, the sun's visibility at the camera (with --irradiance) */
 } radiance_run;
 
 static void radiance_run_free(radiance_run *run)
@@ -282,6 +289,9 @@ static int radiance_probe(const radiance_args *a, atmo_probe *probe, radiance_ru
         (rc = atmo_probe_segments(probe, run->rays, run->distances, n_views, samples, run->mean,
                                   run->se, run->t_mean, run->t_se, e)))
         return rc;
+    float4 camera_up = {(float)run->r, 1.0f, (float)run->mu_s, (float)run->mu_s};
+    if (run->n_quad && (rc = atmo_probe_sun(probe, &camera_up, 1, run->sun_vis, e)))
+        return rc;
     int quad_samples = samples / 64 > 0 ? samples / 64 : 1;
     if (run->n_quad && (rc = atmo_probe_rays(probe, run->rays + n_views, run->n_quad,
                                              quad_samples, run->mean + n_views, NULL, e)))
@@ -289,12 +299,14 @@ static int radiance_probe(const radiance_args *a, atmo_probe *probe, radiance_ru
     return ATMO_OK;
 }
 
-/* direct = E T_sun max(mu_s, 0); sky = the quadrature of L cos(theta) over the hemisphere */
+/* direct = E T_sun V max(mu_s, 0); sky = the quadrature of L cos(theta) over the hemisphere */
 static void radiance_irradiance(const atmo_atmosphere *atm, const radiance_run *run,
                                 double direct[3], double sky[3])
 {
     int n_views = run->n_views;
     atmo_ref_direct_irradiance(atm, run->r, run->mu_s, direct);
+    for (int c = 0; c < 3; c++)
+        direct[c] *= run->sun_vis[0][c];
     for (int i = 0; i < RADIANCE_QUAD; i++)
         for (int j = 0; j < RADIANCE_QUAD; j++)
             for (int c = 0; c < 3; c++) /* 2 (symmetry) * pi / n (midpoint) * w mu L */

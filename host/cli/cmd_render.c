@@ -5,7 +5,10 @@
  * --time, --camera) in command-line order. Every output's format and path is checked before
  * anything runs (output_paths.h: directory, name, limits, no two outputs in one file; an
  * existing file only with --force, overwrite.h), so a bad argument never costs a render. The
- * flags are one table (cli_flags.h), from which --help is generated with every default.
+ * flags are one table (cli_flags.h), from which --help is generated with every default. With
+ * atmosphere.method = auto (the default) the plan picks the method (atmo_plan_auto_method);
+ * unless --quiet, the cost line before the work names it and says why, and the run report
+ * records it (render.method, render.method_auto).
  *
  * Interrupts: the first SIGINT or SIGTERM sets the render's cancel token; the precompute or the
  * render stops after the launch in flight. Samples already rendered are written, marked
@@ -227,6 +230,17 @@ static void report_passes_and_flare(cJSON *ren, const atmo_scene *s,
     }
 }
 
+/* The name of the method the scene renders with; *why (NULL unless atmosphere.method = auto)
+ * the plan's reason for its choice. */
+static const char *method_name(const atmo_scene *s, const char **why)
+{
+    int m = s->atmosphere.method;
+    *why = NULL;
+    if (m == ATMO_METHOD_AUTO)
+        m = atmo_plan_auto_method(s, why);
+    return atmo_param_find("atmosphere.method")->names[m];
+}
+
 static int write_report(const char *path, const atmo_scene *s, const atmo_render_result *r,
                           const atmo_render_settings *rs, const char *const *outputs, int n_out,
                           double seconds_write, const atmo_image_layer *layers, int n_layers,
@@ -245,6 +259,10 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON *ren = cJSON_AddObjectToObject(root, "render");
     cJSON_AddNumberToObject(ren, "width", r->width);
     cJSON_AddNumberToObject(ren, "height", r->height);
+    const char *why;
+    cJSON_AddStringToObject(ren, "method", method_name(s, &why));
+    if (why)
+        cJSON_AddStringToObject(ren, "method_auto", why);
     cJSON_AddNumberToObject(ren, "samples_requested", r->samples_requested);
     cJSON_AddNumberToObject(ren, "samples_min", r->samples_min);
     cJSON_AddNumberToObject(ren, "samples_max", r->samples_max);
@@ -606,19 +624,20 @@ static int render_frames(const render_args *a, const atmo_scene *scene,
  * the progress line's ETA). */
 static void render_cost_line(const render_args *a, const atmo_scene *s, const frames_animation *anim)
 {
-    const atmo_param *method = atmo_param_find("atmosphere.method");
+    const char *why;
+    const char *method = method_name(s, &why);
     int frames = a->frames_text ? (anim->last - a->first) / a->step + 1 : 1;
     int triplets = s->render.spectral_bands > 0 ? (s->render.spectral_bands + 2) / 3 : 1;
     double samples = (double)s->image.width * s->image.height * s->image.samples * triplets;
     if (a->part_text && !a->frames_text)
         samples /= a->rs.parts;
-    fprintf(stderr, "atmo render: %dx%d at %s%d sample%s/pixel%s (%.3g M samples%s), method %s%s; "
+    fprintf(stderr, "atmo render: %dx%d at %s%d sample%s/pixel%s (%.3g M samples%s), method %s%s%s%s; "
                     "%d frame%s\n",
             s->image.width, s->image.height, a->rs.noise_target > 0.0 ? "at most " : "",
             s->image.samples, s->image.samples == 1 ? "" : "s",
             triplets > 1 ? " per triplet of bands" : "", 1e-6 * samples * frames,
             a->part_text && !a->frames_text ? " in this part" : "",
-            method->names[s->atmosphere.method],
+            method, why ? " (auto: " : "", why ? why : "", why ? ")" : "",
             s->path.mode == ATMO_RENDER_PATH ? ", path traced" : "", frames,
             frames == 1 ? "" : "s");
 }

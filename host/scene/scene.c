@@ -50,7 +50,8 @@
 static const char *const camera_kinds[] = {"perspective", "panorama", "fisheye", NULL};
 static const char *const camera_terrain_modes[] = {"off", "below", "at", NULL};
 static const char *const phase_names[] = {"cornette-shanks", "henyey-greenstein", NULL};
-static const char *const method_names[] = {"single", "march", "fast", "lut", "reference", NULL};
+static const char *const method_names[] = {"single", "march", "fast", "lut", "reference", "auto",
+                                           NULL};
 static const char *const quantity_names[] = {"radiance", "luminance", NULL};
 static const char *const tonemap_names[] = {"none",           "exposure", "reinhard",
                                             "reinhard-white", "aces",     "unreal3",
@@ -129,8 +130,9 @@ const atmo_param atmo_params[] = {
               "aerosol phase asymmetry parameter g (0 = isotropic, > 0 forward)"),
     ROW_ENUM("atmosphere.mie_phase", atmosphere.mie_phase, phase_names, ATMO_PHASE_CORNETTE_SHANKS,
              "aerosol phase function"),
-    ROW_ENUM("atmosphere.method", atmosphere.method, method_names, ATMO_METHOD_FAST,
-             "how light transport in the atmosphere is computed (see README: Methods)"),
+    ROW_ENUM("atmosphere.method", atmosphere.method, method_names, ATMO_METHOD_AUTO,
+             "how light transport in the atmosphere is computed (see README: Methods); auto: "
+             "march where the scene has clouds or the observer, else fast"),
     ROW_BOOL("cloud.enabled", cloud.enabled, 0,
              "a homogeneous cloud/fog shell (methods single, march and reference; "
              "kernels/media/cloud_shell.h)"),

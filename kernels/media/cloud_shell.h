@@ -12,17 +12,23 @@
  * two intervals inside it, cloud_shell_intervals), its own stepping inside them
  * (cloud_shell_interval), the light it takes from the sun on the way down to any point (the
  * chord through the shell, analytic: exp(-sigma l_sun), a visibility source in visibility.h),
- * and its coefficients at a point (media.h). Inside an interval it steps in equal optical depth
- * (channel y), `cloud.steps` steps up to CLOUD_TAU_CUT (beyond it the view transmittance is
- * below 1e-5), so a cloud of optical thickness 10-1000 is resolved where it is seen; the air's
- * extinction (at the interval's middle) is added to the cloud's. Within a step the sun's path
- * length in the shell is taken as linear in t, from l_0 to l_1, so with x(s) = a sigma l(s) +
- * sigma_v s the step integrates exactly
+ * and its coefficients at a point (media.h). An interval integrates everything in its part of
+ * the ray: the cloud and the air in it (the air's scattering of the sun and, with use_ms, the
+ * method's multiple-scattering source: medium_air_source). Its steps end at the cloud's break
+ * points, equal in optical depth (channel y), `cloud.steps` of them up to CLOUD_TAU_CUT (beyond
+ * it the view transmittance is below 1e-5), so a cloud of optical thickness 10-1000 is
+ * resolved where it is seen, and at the air grid's break points (medium_integrate's), so the
+ * air inside the shell is sampled at least as finely as outside it and a shell of negligible
+ * optical depth leaves the sky as the air alone makes it. Each step takes its coefficients, the
+ * atmosphere's transmittance toward the sun and the sun's occluders (the planet, the observer:
+ * visibility_sun_occluders) at the fraction `jitter` of it, sigma_v = the cloud's extinction
+ * plus the air's there. Within a step the sun's path length in the shell is taken as linear in
+ * t, from l_0 to l_1, so with x(s) = a sigma l(s) + sigma_v s the step integrates exactly
  *     int_0^dt S_0 e^{-x(s)} ds = S_0 dt (e^{-x(0)} - e^{-x(dt)}) / (x(dt) - x(0))
  * (exact for a plane-parallel slab, where the single-scattering radiance has the closed form
- * omega p(theta) E mu_s / (mu_s + mu_v) (1 - e^{-tau (1/mu_s + 1/mu_v)}) used by the tests).
- * The sun's other occluders (the planet, the observer: visibility_sun_occluders) are asked at
- * a jittered point of each step, the atmosphere's transmittance toward the sun at its start.
+ * omega p(theta) E mu_s / (mu_s + mu_v) (1 - e^{-tau (1/mu_s + 1/mu_v)}) used by the tests);
+ * the air's source takes octave 0's weight (a = 1: the sun's light reaches the air in the
+ * shell through the cloud's chord).
  *
  * Multiple scattering inside the cloud: the octaves of Wrenninge, Kulla & Lundqvist 2013
  * ("Oz: the great and volumetric", SIGGRAPH talk): octave i adds the single-scattering source
@@ -57,6 +63,11 @@
 /* The planet's and the observer's shadow at a point (visibility.h, after this file). */
 ATMO_FN float visibility_sun_occluders(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                        const medium_point *q);
+/* The air's light toward the viewer per unit length at a point under sunlight sun_e (medium.h,
+ * after this file). */
+ATMO_FN vec3 medium_air_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                               const medium_point *q, float nu, vec3 sun_e, int use_ms,
+                               int ground);
 
 /* The shell's base and top altitudes (m). */
 ATMO_FN float cloud_shell_base(ATMO_GLOBAL const atmo_gpu_scene *s)
@@ -151,69 +162,106 @@ ATMO_FN int cloud_shell_intervals(ATMO_GLOBAL const atmo_gpu_scene *s, const med
     return n;
 }
 
-/* The sun's transmittance through the atmosphere to the point at distance t along the ray (no
- * shadows), and in *chord its path length through the shell. */
-ATMO_FN vec3 cloud_air_sun_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s,
-                                         ATMO_GLOBAL const float4 *transmittance_lut, const medium_ray *m,
-                                         float t, float *chord)
+/* The sun's path length through the shell from the point at distance t along the ray. */
+ATMO_FN float cloud_shell_chord_at(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m,
+                                   float t)
 {
-    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    medium_point q = medium_ray_at(m, t, a->bottom_radius);
-    *chord = cloud_shell_chord(a->bottom_radius, cloud_shell_base(s), cloud_shell_top(s), q.h,
-                               q.r, q.mu_s);
-    return atmosphere_transmittance_to_top(a, transmittance_lut, s->transmittance_width,
-                                           s->transmittance_height, q.r, q.mu_s);
+    float R = s->atmosphere.bottom_radius;
+    medium_point q = medium_ray_at(m, t, R);
+    return cloud_shell_chord(R, cloud_shell_base(s), cloud_shell_top(s), q.h, q.r, q.mu_s);
 }
 
-/* One interval [t0, t1] inside the shell: steps equal in optical depth (channel y), octaves of
- * multiple scattering, the air's extinction (at the interval's middle) on top. Adds the light
- * to *L with the running view transmittance *T, and multiplies *shell_t by the shell's own
- * transmittance over the interval. */
-ATMO_FN void cloud_shell_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                                  const medium_ray *m, float t0, float t1, float jitter, vec3 *L,
-                                  vec3 *T, vec3 *shell_t)
+/* The end of the air grid's segment that holds t: the grid's break points are
+ * grid_d (i / grid_n)^2 (medium_integrate), the first one beyond t. */
+ATMO_FN float cloud_grid_next(float t, float grid_d, int grid_n)
+{
+    float x = (float)grid_n * sqrtf(fmaxf(t, 0.0f) / grid_d);
+    int i = (int)x + 1;
+    float g = grid_d * ((float)i / (float)grid_n) * ((float)i / (float)grid_n);
+    return g > t ? g : grid_d * ((float)(i + 1) / (float)grid_n) * ((float)(i + 1) / (float)grid_n);
+}
+
+/* One step [ta, ta + dt] of an interval, coefficients taken at the fraction `jitter` of it:
+ * the cloud's octaves (their phases in phase[]) and the air's light (its single scattering
+ * and, with use_ms, the method's multiple-scattering source: medium_air_source), each
+ * attenuated toward the sun by the shell's chord (linear in t from chord0 to chord1) and
+ * toward the viewer by the cloud and the air at the sample. Adds the light to *L with the
+ * running view transmittance *T, which it advances over the step. */
+ATMO_FN void cloud_shell_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                              const medium_ray *m, const vec3 *phase, float ta, float dt,
+                              float jitter, float chord0, float chord1, int use_ms, int ground,
+                              vec3 *L, vec3 *T)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    vec3 E = v3_from4(a->solar_irradiance);
-    vec3 sigma = v3_from4(s->cloud.extinction), albedo = v3_from4(s->cloud.albedo);
-    vec3 sigma_v = v3_add(sigma, atmosphere_extinction(
-                                     a, geometry_altitude_at(m->r, m->mu, 0.5f * (t0 + t1),
-                                                             a->bottom_radius)));
-    float len = fminf(t1 - t0, CLOUD_TAU_CUT / sigma.y);
-    int n = s->cloud.steps;
-    float dt = len / (float)n;
-    vec3 p0 = cloud_phase(s, cloud_phase_table, m->nu);
-    vec3 k_src = v3_mul(v3_mul(sigma, albedo), E);
-    float chord0, chord1;
-    vec3 sun0 = cloud_air_sun_transmittance(s, transmittance_lut, m, t0, &chord0);
-    for (int j = 0; j < n; j++) {
-        float ta = t0 + (float)j * dt;
-        vec3 sun1 = cloud_air_sun_transmittance(s, transmittance_lut, m, ta + dt, &chord1);
-        /* the occluders' shadows are sharp: asked at a jittered point of the step */
-        medium_point q = medium_ray_at(m, ta + jitter * dt, a->bottom_radius);
-        vec3 sun_t = v3_scale(sun0, visibility_sun_occluders(s, ATMO_LUT_ARGS, &q));
-        float sa = 1.0f, sb = 1.0f, sc = 1.0f;
-        for (int i = 0; i < ATMO_CLOUD_OCTAVES; i++) {
-            vec3 p = i == 0 ? p0
-                            : v3(phase_henyey_greenstein(m->nu, s->cloud.g.x * sc),
-                                 phase_henyey_greenstein(m->nu, s->cloud.g.y * sc),
-                                 phase_henyey_greenstein(m->nu, s->cloud.g.z * sc));
-            vec3 sig_sun = v3_scale(sigma, sa);
-            vec3 source = v3_scale(v3_mul(v3_mul(k_src, p), sun_t), sb);
-            vec3 x0 = v3_scale(sig_sun, chord0);
-            vec3 w = cloud_exp_mean3(x0, v3_add(v3_scale(sig_sun, chord1), v3_scale(sigma_v, dt)),
-                                     dt);
-            *L = v3_add(*L, v3_mul(v3_mul(*T, source), w));
-            sa *= CLOUD_OCTAVE_A;
-            sb *= CLOUD_OCTAVE_B;
-            sc *= CLOUD_OCTAVE_C;
-        }
-        *T = v3_mul(*T, v3_exp(v3_scale(sigma_v, -dt)));
+    vec3 sigma = v3_from4(s->cloud.extinction);
+    medium_point q = medium_ray_at(m, ta + jitter * dt, a->bottom_radius);
+    vec3 sigma_v = v3_add(sigma, atmosphere_extinction(a, q.h));
+    /* the occluders' shadows are sharp: asked at the jittered point */
+    vec3 sun_e = v3_scale(v3_mul(v3_from4(a->solar_irradiance),
+                                 atmosphere_transmittance_to_top(a, transmittance_lut,
+                                                                 s->transmittance_width,
+                                                                 s->transmittance_height, q.r,
+                                                                 q.mu_s)),
+                          visibility_sun_occluders(s, ATMO_LUT_ARGS, &q));
+    vec3 k_src = v3_mul(v3_mul(sigma, v3_from4(s->cloud.albedo)), sun_e);
+    vec3 air = medium_air_source(s, ATMO_LUT_ARGS, &q, m->nu, sun_e, use_ms, ground);
+    float sa = 1.0f, sb = 1.0f;
+    for (int i = 0; i < ATMO_CLOUD_OCTAVES; i++) {
+        vec3 source = v3_scale(v3_mul(k_src, phase[i]), sb);
+        if (i == 0)
+            source = v3_add(source, air);
+        vec3 sig_sun = v3_scale(sigma, sa);
+        vec3 w = cloud_exp_mean3(v3_scale(sig_sun, chord0),
+                                 v3_add(v3_scale(sig_sun, chord1), v3_scale(sigma_v, dt)), dt);
+        *L = v3_add(*L, v3_mul(v3_mul(*T, source), w));
+        sa *= CLOUD_OCTAVE_A;
+        sb *= CLOUD_OCTAVE_B;
+    }
+    *T = v3_mul(*T, v3_exp(v3_scale(sigma_v, -dt)));
+}
+
+/* One interval [t0, t1] inside the shell. Its steps end at the cloud's break points, equal in
+ * optical depth (channel y) up to the cut, and at the air grid's (grid_d, grid_n: those of
+ * medium_integrate), so the air inside the shell is resolved at least as finely as the grid
+ * resolves it outside: a shell of negligible depth leaves the sky as the air alone makes it.
+ * Adds the light to *L with the running view transmittance *T, and multiplies *shell_t by the
+ * shell's own transmittance over the interval. */
+ATMO_FN void cloud_shell_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                  const medium_ray *m, float t0, float t1, float jitter,
+                                  int use_ms, int ground, float grid_d, int grid_n, vec3 *L,
+                                  vec3 *T, vec3 *shell_t)
+{
+    vec3 sigma = v3_from4(s->cloud.extinction), phase[ATMO_CLOUD_OCTAVES];
+    float sc = 1.0f; /* the octaves' phases: nu is constant along the ray */
+    for (int i = 0; i < ATMO_CLOUD_OCTAVES; i++) {
+        phase[i] = i == 0 ? cloud_phase(s, cloud_phase_table, m->nu)
+                          : v3(phase_henyey_greenstein(m->nu, s->cloud.g.x * sc),
+                               phase_henyey_greenstein(m->nu, s->cloud.g.y * sc),
+                               phase_henyey_greenstein(m->nu, s->cloud.g.z * sc));
+        sc *= CLOUD_OCTAVE_C;
+    }
+    float len = fminf(t1 - t0, CLOUD_TAU_CUT / sigma.y), cut = t0 + len;
+    int n = s->cloud.steps, j = 1;
+    float dt_cloud = len / (float)n, t = t0, chord0 = cloud_shell_chord_at(s, m, t0);
+    /* each step ends at a cloud or a grid break point: at most n + grid_n + 1 of them */
+    for (int k = 0; k < n + grid_n + 1 && t < cut; k++) {
+        float tc = j < n ? t0 + (float)j * dt_cloud : cut;
+        float tb = fminf(fminf(tc, cloud_grid_next(t, grid_d, grid_n)), cut);
+        float chord1 = cloud_shell_chord_at(s, m, tb);
+        cloud_shell_step(s, ATMO_LUT_ARGS, m, phase, t, tb - t, jitter, chord0, chord1, use_ms,
+                         ground, L, T);
+        if (tb >= tc)
+            j++;
+        t = tb;
         chord0 = chord1;
-        sun0 = sun1;
     }
     /* what lies beyond the optical-depth cut */
-    *T = v3_mul(*T, v3_exp(v3_scale(sigma_v, -(t1 - t0 - len))));
+    *T = v3_mul(*T, v3_exp(v3_scale(v3_add(sigma, atmosphere_extinction(
+                                                      &s->atmosphere,
+                                                      geometry_altitude_at(m->r, m->mu,
+                                                                           0.5f * (cut + t1),
+                                                                           s->atmosphere.bottom_radius))),
+                                    -(t1 - cut))));
     *shell_t = v3_mul(*shell_t, v3_exp(v3_scale(sigma, -(t1 - t0))));
 }
 

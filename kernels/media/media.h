@@ -128,18 +128,22 @@ ATMO_FN void clouds_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
 /* Interval [t0, t1] of media_intervals integrated by its medium: adds its light to *L with
  * the running view transmittance *T, and multiplies *medium_t by the transmittance of the
  * media other than the air over it (for the sun disc behind it). use_ms and ground are those of
- * medium_integrate (a medium whose part holds air adds the air's multiple scattering too). */
+ * medium_integrate (a medium whose part holds air adds the air's multiple scattering too), and
+ * so is its air grid, break points grid_d (i / grid_n)^2, for a medium that steps the air at
+ * least as finely as the grid. */
 ATMO_FN void media_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                             const medium_ray *m, float t0, float t1, float jitter, int use_ms,
-                            int ground, vec3 *L, vec3 *T, vec3 *medium_t)
+                            int ground, float grid_d, int grid_n, vec3 *L, vec3 *T,
+                            vec3 *medium_t)
 {
 #if defined(ATMO_CLOUDS)
+    (void)grid_d, (void)grid_n;
     clouds_interval(s, ATMO_LUT_ARGS, m, t0, t1, jitter, use_ms, ground, L, T, medium_t);
 #elif defined(ATMO_CLOUD)
-    (void)use_ms, (void)ground;
-    cloud_shell_interval(s, ATMO_LUT_ARGS, m, t0, t1, jitter, L, T, medium_t);
+    cloud_shell_interval(s, ATMO_LUT_ARGS, m, t0, t1, jitter, use_ms, ground, grid_d, grid_n, L,
+                         T, medium_t);
 #else
-    (void)use_ms, (void)ground;
+    (void)use_ms, (void)ground, (void)grid_d, (void)grid_n;
 #endif
 }
 

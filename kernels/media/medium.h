@@ -130,6 +130,24 @@ ATMO_FN vec3 medium_ms_ground_irradiance(ATMO_GLOBAL const atmo_gpu_scene *s, AT
 #endif
 }
 
+/* The air's light toward the viewer per unit length at a point q of a ray with view-sun cosine
+ * nu, under the sunlight sun_e (E T_sun V): sum over the air's components of
+ * sigma_s,k p_k(nu) sun_e, plus with use_ms the method's multiple-scattering source. A medium
+ * that integrates its own part of a ray (media_interval) adds it for the air there. */
+ATMO_FN vec3 medium_air_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                               const medium_point *q, float nu, vec3 sun_e, int use_ms,
+                               int ground)
+{
+    media_sample ms = media_at(s, ATMO_LUT_ARGS, q);
+    vec3 air = v3_add(v3_mul(ms.scattering[MEDIA_RAYLEIGH],
+                             media_phase(s, ATMO_LUT_ARGS, MEDIA_RAYLEIGH, nu)),
+                      v3_mul(ms.scattering[MEDIA_MIE], media_phase(s, ATMO_LUT_ARGS, MEDIA_MIE, nu)));
+    vec3 L = v3_mul(air, sun_e);
+    if (use_ms)
+        L = v3_add(L, medium_ms_source(s, ATMO_LUT_ARGS, q, nu, &ms, ground));
+    return L;
+}
+
 typedef struct medium_result {
     vec3 single[MEDIA_COMPONENTS]; /* in-scattered sunlight of each component, without its phase */
     vec3 rest;                     /* the multiple-scattering source, the media's own intervals
@@ -256,8 +274,8 @@ ATMO_FN void medium_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
             if (lo[next] > pos)
                 medium_piece(s, ATMO_LUT_ARGS, &m, pos + jitter * (lo[next] - pos),
                              lo[next] - pos, use_ms, ground, &vr, out, &T);
-            media_interval(s, ATMO_LUT_ARGS, &m, lo[next], hi[next], jitter, use_ms, ground,
-                           &out->rest, &T, &medium_t);
+            media_interval(s, ATMO_LUT_ARGS, &m, lo[next], hi[next], jitter, use_ms, ground, d,
+                           n, &out->rest, &T, &medium_t);
             pos = fmaxf(pos, hi[next]);
             next++;
         }
