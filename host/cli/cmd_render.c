@@ -631,7 +631,7 @@ static void render_cost_line(const render_args *a, const atmo_scene *s, const fr
     double samples = (double)s->image.width * s->image.height * s->image.samples * triplets;
     if (a->part_text && !a->frames_text)
         samples /= a->rs.parts;
-    fprintf(stderr, "atmo render: %dx%d at %s%d sample%s/pixel%s (%.3g M samples%s), method %s%s%s%s; "
+    fprintf(stderr, "atmo render: %dx%d at %s%d sample%s/pixel%s (%.3g M samples%s), method %s%s%s%s%s; "
                     "%d frame%s\n",
             s->image.width, s->image.height, a->rs.noise_target > 0.0 ? "at most " : "",
             s->image.samples, s->image.samples == 1 ? "" : "s",
