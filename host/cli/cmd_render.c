@@ -51,6 +51,9 @@ static const char render_usage[] =
     "luminance (cd/m^2) with --set render.quantity=luminance. With --set render.spectral_bands=N\n"
     "(N >= 15) the scene is rendered at N wavelengths over 360-830 nm, three at a time, and\n"
     "combined through the CIE 1931 colour matching functions into linear sRGB (cd/m^2).\n"
+    "For Blender (a World environment texture) use --blender: linear Rec.709 RGB (cd/m^2)\n"
+    "with the EXR chromaticities, panoramas in Blender's world orientation, and the World\n"
+    "strength that matches the PNG's exposure printed and stored in the EXR (docs/blender.md).\n"
     "\n"
     "scene:\n"
     "  --preset NAME          a built-in scene (atmo presets; default %s)\n"
@@ -61,6 +64,8 @@ static const char render_usage[] =
     "                         image.seed and camera.kind\n"
     "  --time SECONDS         shorthand for clouds.time_s: the clouds move with the wind\n"
     "                         (frames of an animation: --time 0, 1, 2, ... -o NAME.0001.png ...)\n"
+    "  --blender              outputs for Blender: --set output.blender=true (render.quantity\n"
+    "                         luminance, post.exposure x 1e-5, panorama camera.yaw_deg -90)\n"
     "  --save-scene FILE      write the fully resolved scene as JSON (rendering it reproduces\n"
     "                         the image bit for bit); without --output nothing is rendered\n"
     "output:\n"
@@ -341,6 +346,12 @@ static int render_frame(const atmo_scene *scene_in, atmo_render_settings *rs_in,
     handle_signals(0, old);
     if (rc)
         goto runtime_error;
+    double strength, colour[3];
+    if (!quiet && atmo_outputs_blender_world(&scene, &strength, colour))
+        fprintf(stderr, "atmo render: in Blender, World > Background Strength %.6g with the "
+                        "texture multiplied by (%.4f, %.4f, %.4f) shows these files as the PNG "
+                        "before its tone map (docs/blender.md)\n",
+                strength, colour[0], colour[1], colour[2]);
     if (!quiet)
         fprintf(stderr, "atmo render: wrote %d image%s (%dx%d, %d samples/pixel%s) in %.2fs: "
                         "%.2fs device, %.2fs build%s, %.2fs precompute%s, %.2fs render, %.2fs "

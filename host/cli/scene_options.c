@@ -5,7 +5,9 @@
  * The options: --preset NAME or --scene FILE (they exclude each other), --set KEY=VALUE
  * (repeatable, applied in command-line order), and for render the shorthands --width,
  * --height, --samples, --seed, --time and --camera, each kept as the assignment it stands for
- * (image.width=N, ..., clouds.time_s=S, camera.kind=K) in its place among the --set options.
+ * (image.width=N, ..., clouds.time_s=S, camera.kind=K) in its place among the --set options;
+ * --blender (no value) stands for output.blender=true, which atmo_scene_for_blender applies
+ * after every assignment, saying on stderr what it changed.
  * A shorthand's value is at most SHORTHAND_MAX_CHARS characters (the longest any key takes);
  * a longer one is refused as a bad value. The scene is then the defaults, the preset or the
  * file, the assignments, validated (atmo/scene.h), before any work. */
@@ -32,6 +34,15 @@ void scene_options_init(scene_options *o, const char *command, int shorthands)
 int scene_options_take(scene_options *o, int argc, char **argv, int *i)
 {
     const char *a = argv[*i], *key = NULL;
+    if (strcmp(a, "--blender") == 0) {
+        if (o->set_count == SCENE_OPTIONS_MAX_SETS) {
+            fprintf(stderr, "atmo %s: more than %d --set options\n", o->command,
+                    SCENE_OPTIONS_MAX_SETS);
+            return -1;
+        }
+        o->sets[o->set_count++] = "output.blender=true";
+        return 1;
+    }
     int n_short = (int)(sizeof shorthand_keys / sizeof shorthand_keys[0]);
     for (int k = 0; o->shorthands && k < n_short; k++)
         if (strcmp(a, shorthand_keys[k].option) == 0)
@@ -70,7 +81,7 @@ int scene_options_scene(const scene_options *o, const char *file, atmo_scene *s,
 {
     if (o->preset && o->scene_file)
         return atmo_fail(e, ATMO_ERR_USAGE, "--preset and --scene exclude each other; pick one");
-    int rc = ATMO_OK;
+    int rc = ATMO_OK, end_scene = file != NULL;
     atmo_scene_defaults(s);
     if (!o->scene_file)
         rc = atmo_scene_apply_preset(s, o->preset ? o->preset : atmo_default_preset, e);
@@ -80,5 +91,8 @@ int scene_options_scene(const scene_options *o, const char *file, atmo_scene *s,
         rc = atmo_scene_load_json(s, file, e);
     for (int i = 0; i < o->set_count && !rc; i++)
         rc = atmo_scene_assign(s, o->sets[i], "--set", e);
+    char changes[256];
+    if (!rc && atmo_scene_for_blender(s, changes, sizeof changes) > 0 && !end_scene)
+        fprintf(stderr, "atmo %s: for Blender: %s\n", o->command, changes);
     return rc ? rc : atmo_scene_validate(s, e);
 }

@@ -23,7 +23,8 @@ void scene_options_init(scene_options *o, const char *command, int shorthands);
  * -1 (the command exits with ATMO_ERR_USAGE). */
 int scene_options_take(scene_options *o, int argc, char **argv, int *i);
 /* The scene: the defaults, the preset (atmo_default_preset without --preset) unless --scene was
- * given, the file (`file` if not NULL, else --scene's), the assignments in order, validated.
+ * given, the file (`file` if not NULL, else --scene's), the assignments in order, the rewrite of
+ * output.blender (atmo_scene_for_blender; said on stderr for the first scene), validated.
  * --preset with --scene is a usage error. An animation's end scene passes its own file. */
 int scene_options_scene(const scene_options *o, const char *file, atmo_scene *s, atmo_err *e);
 
