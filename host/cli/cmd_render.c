@@ -53,7 +53,8 @@ static const char render_usage[] =
     "combined through the CIE 1931 colour matching functions into linear sRGB (cd/m^2).\n"
     "For Blender (a World environment texture) use --blender: linear Rec.709 RGB (cd/m^2)\n"
     "with the EXR chromaticities, panoramas in Blender's world orientation, and the World\n"
-    "strength that matches the PNG's exposure printed and stored in the EXR (docs/blender.md).\n"
+    "strength that matches the PNG's exposure, printed and stored in the EXR\n"
+    "(docs/guide/blender.md).\n"
     "\n"
     "scene:\n"
     "  --preset NAME          a built-in scene (atmo presets; default %s)\n"
@@ -350,7 +351,7 @@ static int render_frame(const atmo_scene *scene_in, atmo_render_settings *rs_in,
     if (!quiet && atmo_outputs_blender_world(&scene, &strength, colour))
         fprintf(stderr, "atmo render: in Blender, World > Background Strength %.6g with the "
                         "texture multiplied by (%.4f, %.4f, %.4f) shows these files as the PNG "
-                        "before its tone map (docs/blender.md)\n",
+                        "before its tone map (docs/guide/blender.md)\n",
                 strength, colour[0], colour[1], colour[2]);
     if (!quiet)
         fprintf(stderr, "atmo render: wrote %d image%s (%dx%d, %d samples/pixel%s) in %.2fs: "

@@ -6,7 +6,7 @@
  * spectral mode's luminance from N bands), its unit, whether R, G, B are linear Rec.709 colour
  * (both luminance modes) or samples at wavelengths (radiance), the samples per pixel and
  * whether the render is partial. With output.blender the EXR files also carry the World
- * settings of atmo_outputs_blender_world (docs/blender.md derives them). */
+ * settings of atmo_outputs_blender_world (docs/guide/blender.md derives them). */
 #include <stdio.h>
 #include "atmo/colour.h"
 #include "atmo/outputs.h"

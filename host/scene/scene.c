@@ -406,7 +406,7 @@ const atmo_param atmo_params[] = {
     ROW_BOOL("output.blender", output.blender, 0,
              "outputs for Blender (--blender): luminance-based linear Rec.709 RGB in cd/m^2 "
              "with the EXR chromaticities, the exposure scaled to luminance, panoramas in "
-             "Blender's world orientation (docs/blender.md)"),
+             "Blender's world orientation (docs/guide/blender.md)"),
     {NULL, ATMO_PARAM_INT, 0, NULL, 0, 0, {0, 0, 0}, NULL, NULL},
 };
 

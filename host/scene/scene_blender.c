@@ -1,5 +1,5 @@
 /* scene_blender.c — output.blender: the scene rewritten so that its outputs are what Blender
- * reads as they are (docs/blender.md).
+ * reads as they are (docs/guide/blender.md).
  *
  * Colour. Blender takes a float EXR's R, G, B as its scene-linear space, linear Rec.709 (sRGB
  * primaries, D65 white), unless the file names another one. In radiance mode atmo's channels are
