@@ -50,7 +50,7 @@ check_selector() {
     shift
     local marked opened
     marked=$("$@" devices --json | python3 -c "import json,sys; d=json.load(sys.stdin); print(d['devices'][d['selected']]['name'])")
-    "$@" render --width 8 --height 8 --samples 1 --quiet --output out.pfm --report run.json 2>render.err ||
+    "$@" render --width 8 --height 8 --samples 1 --quiet --force --output out.pfm --report run.json 2>render.err ||
         { bad "$what: render failed: $(cat render.err)"; return; }
     opened=$(python3 -c "import json; print(json.load(open('run.json'))['device']['name'])")
     [ "$marked" = "$opened" ] && ok || bad "$what: devices marks '$marked', render opened '$opened'"
