@@ -61,9 +61,10 @@ const cli_flag scene_option_flags[] = {
               "seconds of cloud motion with the wind (clouds.time_s)"),
     SHORTHAND("--camera", CLI_ENUM, "camera.kind", "projection (camera.kind)"),
     {.type = CLI_BOOL, .name = "--blender", .offset = offsetof(scene_options, blender),
-     .help = "outputs for Blender (output.blender=true): linear Rec.709 RGB in cd/m^2\n"
-             "(render.quantity=luminance, post.exposure x 1e-5), panoramas in Blender's\n"
-             "world orientation (camera.yaw_deg=-90); docs/guide/blender.md"},
+     .help = "outputs for Blender (output.blender=true): linear Rec.709\n"
+             "RGB in cd/m^2 (render.quantity=luminance, post.exposure\n"
+             "x 1e-5), panoramas in Blender's world orientation\n"
+             "(camera.yaw_deg=-90); docs/guide/blender.md"},
     {.type = CLI_END},
 };
 
