@@ -53,5 +53,10 @@ install)
     sudo_install=()
     [ -w "$prefix" ] || [ ! -e "$prefix" -a -w "$(dirname "$prefix")" ] || sudo_install=("${as_root[@]}")
     "${sudo_install[@]}" cmake --install build --prefix "$prefix"
-    echo "setup: installed $prefix/bin/atmo; try: atmo presets" ;;
+    echo "setup: installed $prefix/bin/atmo; try: atmo presets"
+    case ":$PATH:" in
+    *":$prefix/bin:"*) ;;
+    *) echo "setup: $prefix/bin is not on your PATH; add it (e.g. to ~/.profile):"
+       echo "    export PATH=\"$prefix/bin:\$PATH\"" ;;
+    esac ;;
 esac

@@ -169,6 +169,7 @@ static const char *const spec_defaults[] = {"image.width=640",
                                             "path.passes=false",
                                             "path.clouds=march",
                                             "path.volume_bounces=256",
+                                            "output.blender=false",
                                             NULL};
 
 /* Ranges of the specification: key, min, max (enums and bools are checked by name). */

@@ -162,6 +162,10 @@ static const cli_command render_cli = {
         "luminance (cd/m^2) with --set render.quantity=luminance. With --set render.spectral_bands=N\n"
         "(N >= 15) the scene is rendered at N wavelengths over 360-830 nm, three at a time, and\n"
         "combined through the CIE 1931 colour matching functions into linear sRGB (cd/m^2).\n"
+        "For Blender (a World environment texture) use --blender: linear Rec.709 RGB (cd/m^2)\n"
+        "with the EXR chromaticities, panoramas in Blender's world orientation, and the World\n"
+        "strength that matches the PNG's exposure, printed and stored in the EXR\n"
+        "(docs/guide/blender.md).\n"
         "An output that exists is not replaced unless --force is given.\n",
     .flags = render_flags,
     .epilogue =
@@ -446,6 +450,13 @@ static int render_frame(const render_args *a, const atmo_scene *scene, int part_
         handle_signals(0, old);
     if (rc && rc != ATMO_INTERRUPTED_EMPTY)
         fprintf(stderr, "atmo render: %s\n", e.msg);
+    double strength, colour[3];
+    if (!rc && !a->quiet && !part_file &&
+        atmo_outputs_blender_world(scene, &strength, colour))
+        fprintf(stderr, "atmo render: in Blender, World > Background Strength %.6g with the "
+                        "texture multiplied by (%.4f, %.4f, %.4f) shows these files as the PNG "
+                        "before its tone map (docs/guide/blender.md)\n",
+                strength, colour[0], colour[1], colour[2]);
     if (!rc && !a->quiet)
         render_summary(&res, n_out, scene->render.spectral_bands > 0, seconds_write);
     if (!rc && res.interrupted)

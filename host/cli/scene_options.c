@@ -8,8 +8,10 @@
  * the scene's registry (cli_flags.c) and kept as the assignment it stands for (image.width=N,
  * ..., clouds.time_s=S, camera.kind=K) in its place among the --set options. A shorthand's
  * value is at most SHORTHAND_MAX_CHARS characters (the longest any key takes); a longer one
- * is refused as a bad value. The scene is then the defaults, the preset or the file, the
- * assignments, validated (atmo/scene.h), before any work. */
+ * is refused as a bad value. --blender stands for output.blender=true, set after the
+ * assignments; atmo_scene_for_blender then rewrites the scene for it, saying on stderr what it
+ * changed. The scene is then the defaults, the preset or the file, the assignments, validated
+ * (atmo/scene.h), before any work. */
 #include <stddef.h>
 #include <stdio.h>
 #include <string.h>
@@ -63,6 +65,11 @@ const cli_flag scene_option_flags[] = {
     SHORTHAND("--time", CLI_FLOAT, "clouds.time_s",
               "seconds of cloud motion with the wind (clouds.time_s)"),
     SHORTHAND("--camera", CLI_ENUM, "camera.kind", "projection (camera.kind)"),
+    {.type = CLI_BOOL, .name = "--blender", .offset = offsetof(scene_options, blender),
+     .help = "outputs for Blender (output.blender=true): linear Rec.709\n"
+             "RGB in cd/m^2 (render.quantity=luminance, post.exposure\n"
+             "x 1e-5), panoramas in Blender's world orientation\n"
+             "(camera.yaw_deg=-90); docs/guide/blender.md"},
     {.type = CLI_END},
 };
 
@@ -72,7 +79,7 @@ int scene_options_scene(const scene_options *o, const char *file, atmo_scene *s,
 {
     if (o->preset && o->scene_file)
         return atmo_fail(e, ATMO_ERR_USAGE, "--preset and --scene exclude each other; pick one");
-    int rc = ATMO_OK;
+    int rc = ATMO_OK, end_scene = file != NULL;
     atmo_scene_defaults(s);
     if (!o->scene_file)
         rc = atmo_scene_apply_preset(s, o->preset ? o->preset : atmo_default_preset, e);
@@ -82,5 +89,10 @@ int scene_options_scene(const scene_options *o, const char *file, atmo_scene *s,
         rc = atmo_scene_load_json(s, file, e);
     for (int i = 0; i < o->set_count && !rc; i++)
         rc = atmo_scene_assign(s, o->sets[i], "--set", e);
+    if (o->blender)
+        s->output.blender = 1;
+    char changes[256];
+    if (!rc && atmo_scene_for_blender(s, changes, sizeof changes) > 0 && !end_scene)
+        fprintf(stderr, "atmo: for Blender: %s\n", changes);
     return rc ? rc : atmo_scene_validate(s, e);
 }

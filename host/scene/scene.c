@@ -406,6 +406,10 @@ const atmo_param atmo_params[] = {
     ROW_INT("path.volume_bounces", path.volume_bounces, "", 1, 4096, 256,
             "path mode, path.clouds = volume: most scattering events in the clouds per path "
             "(Russian roulette ends most paths long before)"),
+    ROW_BOOL("output.blender", output.blender, 0,
+             "outputs for Blender (--blender): luminance-based linear Rec.709 RGB in cd/m^2 "
+             "with the EXR chromaticities, the exposure scaled to luminance, panoramas in "
+             "Blender's world orientation (docs/guide/blender.md)"),
     {NULL, ATMO_PARAM_INT, 0, NULL, 0, 0, {0, 0, 0}, NULL, NULL},
 };
 

@@ -19,4 +19,12 @@ int atmo_outputs_write(const atmo_scene *scene, const atmo_image *img, int sampl
                        int partial, int exr_compression, const char *const *outputs, int n,
                        atmo_err *e);
 
+/* Blender's World settings that show `scene`'s linear outputs as its PNG shows them, for scenes
+ * with output.blender (0 for others): the Background strength, which is post.exposure (the
+ * factor the PNG applies before its tone map), and the colour the texture is multiplied by for
+ * the white balance (1 / the sun's colour with post.white_balance, else 1, 1, 1). Every EXR of
+ * such a scene carries them as the attributes "blenderWorldStrength" and
+ * "blenderWhiteBalance". */
+int atmo_outputs_blender_world(const atmo_scene *scene, double *strength, double colour[3]);
+
 #endif

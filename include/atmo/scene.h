@@ -189,6 +189,9 @@ typedef struct atmo_scene {
         double shadow_far_m;
         int shafts;            /* bit set of ATMO_TERRAIN_SHAFT_* */
     } terrain;
+    struct {
+        int blender;           /* 0/1: outputs for Blender (atmo_scene_for_blender) */
+    } output;
 } atmo_scene;
 
 typedef enum {
@@ -285,5 +288,15 @@ char *atmo_scene_objects_json(const atmo_scene *s);
 
 /* Checks between parameters (e.g. top radius above bottom radius). */
 int atmo_scene_validate(const atmo_scene *s, atmo_err *e);
+
+/* output.blender (scene_blender.c): with it set, rewrite the scene into what Blender reads as it
+ * is: render.quantity radiance -> luminance (linear Rec.709 RGB in cd/m^2; the spectral mode is
+ * luminance already), post.exposure times ATMO_LUMINANCE_EXPOSURE_SCALE when the quantity
+ * changes (so a PNG of the same render keeps its brightness), and a panorama's camera.yaw_deg
+ * set to ATMO_BLENDER_PANORAMA_YAW_DEG (Blender's world orientation). Idempotent. Writes what
+ * it changed ("key old -> new, ...") into changes (may be NULL) and returns how many keys. */
+#define ATMO_LUMINANCE_EXPOSURE_SCALE 1e-5
+#define ATMO_BLENDER_PANORAMA_YAW_DEG (-90.0)
+int atmo_scene_for_blender(atmo_scene *s, char *changes, int size);
 
 #endif
