@@ -68,6 +68,11 @@ static const char render_usage[] =
     "  --report FILE          JSON run report: settings, device, samples, stage timings\n"
     "  --exr-compression C    EXR codec, all lossless: piz (default: smallest), none (fastest,\n"
     "                         2x the size), zip, zips, rle\n"
+    "  --denoise Q            Intel Open Image Denoise on the linear image before tone mapping\n"
+    "                         (output.denoise): auto (default: PNG outputs, quality high, where\n"
+    "                         the library is installed), off, fast, balanced or high (every\n"
+    "                         output; an EXR keeps the noisy image and the guides as layers).\n"
+    "                         Guides (albedo, normal) in path mode with path.passes=true\n"
     "progressive (path mode, render.mode=path, and every other render):\n"
     "  --noise P              stop each tile once its relative standard error is at most P\n"
     "                         (e.g. 1%% or 0.01; checked at 16, 32, 64, ... samples); the\n"
@@ -135,7 +140,8 @@ static void handle_signals(int install, struct sigaction old[2])
 static int write_report(const char *path, const atmo_scene *s, const atmo_render_result *r,
                           const atmo_render_settings *rs, const char *const *outputs, int n_out,
                           double seconds_write, const atmo_image_layer *layers, int n_layers,
-                          const atmo_flare_info *flare, atmo_err *e)
+                          const atmo_flare_info *flare, const atmo_outputs_denoise *denoised,
+                          atmo_err *e)
 {
     cJSON *root = cJSON_CreateObject();
     char *scene_text = atmo_scene_to_json(s);
@@ -184,6 +190,9 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
             snprintf(name, sizeof name, "%s.%s", layers[i].name, layers[i].channel_names[c]);
             cJSON_AddItemToArray(passes, cJSON_CreateString(name));
         }
+    cJSON *dn = atmo_outputs_denoise_json(s, denoised);
+    if (dn)
+        cJSON_AddItemToObject(ren, "denoise", dn);
     if (s->post.flare) { /* what the lens flare measured and added */
         cJSON *fl = cJSON_AddObjectToObject(ren, "flare");
         cJSON_AddNumberToObject(fl, "sun_x_px", flare->sun_x);
@@ -324,19 +333,23 @@ static int render_frame(const atmo_scene *scene_in, atmo_render_settings *rs_in,
     double tw = atmo_now_seconds();
     atmo_image img = {.width = res.width, .height = res.height, .rgb = res.rgb};
     atmo_image_layer layers[RENDER_PASS_LAYERS];
-    float *layer_data = NULL;
+    float *layer_data = NULL, *guide_data = NULL;
+    atmo_outputs_guides guides;
+    atmo_outputs_denoise denoised = {0};
     img.layer_count = part_file ? 0 : render_pass_layers(&res, layers, &layer_data);
     img.layers = layers;
-    if (img.layer_count < 0)
+    if (img.layer_count < 0 || atmo_outputs_guides_from_passes(&res, &guides, &guide_data) < 0)
         rc = atmo_fail(&e, ATMO_ERR_RUNTIME, "out of memory for the render passes");
     else
         rc = part_file ? atmo_part_write(outputs[0], &part, &e)
-                       : atmo_outputs_write(&scene, &img, res.samples_min, res.interrupted,
-                                            exr_compression, outputs, n_out, &e);
+                       : atmo_outputs_write_denoised(&scene, &img, &guides, res.samples_min,
+                                                     res.interrupted, exr_compression, outputs,
+                                                     n_out, &denoised, &e);
     double seconds_write = atmo_now_seconds() - tw;
     if (!rc && report)
         rc = write_report(report, &scene, &res, &rs, outputs, n_out, seconds_write, img.layers,
-                          img.layer_count > 0 ? img.layer_count : 0, &flare, &e);
+                          img.layer_count > 0 ? img.layer_count : 0, &flare, &denoised, &e);
+    free(guide_data);
     free(layer_data);
     handle_signals(0, old);
     if (rc)
@@ -607,6 +620,13 @@ int cmd_render(int argc, char **argv)
         goto usage_error;
     if (save_scene && (rc = atmo_scene_save_json(&scene, save_scene, &e)))
         goto runtime_error;
+    char denoise_warning[1200];
+    if (n_out > 0 && !part_file &&
+        (rc = atmo_outputs_denoise_prepare(&scene, outputs, n_out, denoise_warning,
+                                           sizeof denoise_warning, &e)))
+        goto usage_error;
+    if (n_out > 0 && !part_file && denoise_warning[0])
+        fprintf(stderr, "atmo render: %s\n", denoise_warning);
     if (n_out > 0 && frame_first > frame_last && !quiet)
         fprintf(stderr, "atmo render: part %d/%d of frames %d..%d has no frame to render\n",
                 frame_first - anim.first + 1, frame_step, anim.first, anim.last);

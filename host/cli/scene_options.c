@@ -4,8 +4,9 @@
  *
  * The options: --preset NAME or --scene FILE (they exclude each other), --set KEY=VALUE
  * (repeatable, applied in command-line order), and for render the shorthands --width,
- * --height, --samples, --seed, --time and --camera, each kept as the assignment it stands for
- * (image.width=N, ..., clouds.time_s=S, camera.kind=K) in its place among the --set options.
+ * --height, --samples, --seed, --time, --camera and --denoise, each kept as the assignment it
+ * stands for (image.width=N, ..., clouds.time_s=S, camera.kind=K, output.denoise=Q) in its place
+ * among the --set options.
  * A shorthand's value is at most SHORTHAND_MAX_CHARS characters (the longest any key takes);
  * a longer one is refused as a bad value. The scene is then the defaults, the preset or the
  * file, the assignments, validated (atmo/scene.h), before any work. */
@@ -20,6 +21,7 @@ static const struct {
 } shorthand_keys[] = {
     {"--width", "image.width"},     {"--height", "image.height"}, {"--samples", "image.samples"},
     {"--seed", "image.seed"},       {"--time", "clouds.time_s"}, {"--camera", "camera.kind"},
+    {"--denoise", "output.denoise"},
 };
 
 void scene_options_init(scene_options *o, const char *command, int shorthands)
