@@ -166,7 +166,9 @@ static int denoise_image(const atmo_scene *scene, const atmo_image *img,
                          atmo_outputs_denoise *info, atmo_err *e)
 {
     size_t floats = 3 * (size_t)img->width * img->height;
-    int guided = guides && guides->albedo && guides->normal;
+    /* noisy guides are written as layers but kept from the filter: guides whose edges carry
+     * the image's own sampling noise make OIDN keep that noise (docs/denoise.md) */
+    int guided = guides && guides->albedo && guides->normal && guides->clean;
     atmo_denoise_input in = {img->width, img->height, img->rgb,
                              guided ? guides->albedo : NULL, guided ? guides->normal : NULL,
                              guided && guides->clean, denoise_quality(scene)};

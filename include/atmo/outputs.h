@@ -10,9 +10,11 @@
  *   off       none;
  *   fast, balanced, high  every output, at that quality; missing library: a usage error.
  * A denoised EXR holds the denoised image as R, G, B and, as layers named as Blender names its
- * denoising data, the noisy image ("Noisy Image.R/G/B") and the guides the filter used
- * ("Denoising Albedo.R/G/B", "Denoising Normal.X/Y/Z", "Denoising Depth.Z"), so a compositor
- * can redo it. */
+ * denoising data, the noisy image ("Noisy Image.R/G/B") and the guides where the render has
+ * them ("Denoising Albedo.R/G/B", "Denoising Normal.X/Y/Z", "Denoising Depth.Z"), so a
+ * compositor can redo it. The filter itself uses the guides only when they are noise-free
+ * (atmo_outputs_guides.clean); the path tracer's passes are not (their edges carry the
+ * image's own sampling noise), so today it denoises the colour alone. */
 #ifndef ATMO_OUTPUTS_H
 #define ATMO_OUTPUTS_H
 #include <cjson/cJSON.h>
@@ -31,7 +33,9 @@ typedef struct atmo_outputs_guides {
     const float *albedo;
     const float *normal;
     const float *depth; /* written as a layer only; may be NULL */
-    int clean;          /* 1: free of noise (OIDN's cleanAux) */
+    int clean;          /* 1: free of noise: the filter uses them (cleanAux); 0: they are
+                           written as EXR layers only (noisy guides made the denoised image
+                           worse, docs/denoise.md) */
 } atmo_outputs_guides;
 
 /* What the denoising of one write did, for the run report. */
