@@ -60,7 +60,7 @@ static int denoise_quality(const atmo_scene *scene)
     }
 }
 
-int atmo_outputs_denoise_prepare(atmo_scene *scene, const char *const *outputs, int n,
+int atmo_outputs_denoise_prepare(const atmo_scene *scene, const char *const *outputs, int n,
                                  char *warning, int warning_size, atmo_err *e)
 {
     warning[0] = 0;
@@ -69,7 +69,6 @@ int atmo_outputs_denoise_prepare(atmo_scene *scene, const char *const *outputs, 
     atmo_err le = {{0}};
     int rc = atmo_denoise_load(&le);
     if (rc == ATMO_ERR_USAGE && scene->output.denoise == ATMO_OUTPUT_DENOISE_AUTO) {
-        scene->output.denoise = ATMO_OUTPUT_DENOISE_OFF;
         snprintf(warning, (size_t)warning_size,
                  "warning: not denoising (output.denoise=auto): %s; or --denoise off", le.msg);
         return ATMO_OK;

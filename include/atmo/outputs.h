@@ -53,10 +53,11 @@ typedef struct atmo_outputs_denoise {
 cJSON *atmo_outputs_denoise_json(const atmo_scene *scene, const atmo_outputs_denoise *info);
 
 /* Before a render: with output.denoise = auto and a PNG among outputs[0..n-1], load the library;
- * when it is not installed, set scene->output.denoise to off and write one warning line into
- * warning (else warning = ""). With an explicit quality, load it: ATMO_ERR_USAGE with how to
- * install it when it is missing. A library that is found but fails: ATMO_ERR_RUNTIME. */
-int atmo_outputs_denoise_prepare(atmo_scene *scene, const char *const *outputs, int n,
+ * when it is not installed, write one warning line into warning (else warning = ""): the
+ * writes then leave the images as rendered. With an explicit quality, load it: ATMO_ERR_USAGE
+ * with how to install it when it is missing. A library that is found but fails:
+ * ATMO_ERR_RUNTIME. */
+int atmo_outputs_denoise_prepare(const atmo_scene *scene, const char *const *outputs, int n,
                                  char *warning, int warning_size, atmo_err *e);
 
 /* The guides from a path-mode result with render passes (the primary hit's albedo, normal and
