@@ -35,7 +35,9 @@ static const char bench_usage[] =
     "              thesis-1's time per sample\n"
     "  clouds      the fBm clouds' marcher (steps, light steps, octaves) against the Monte\n"
     "              Carlo reference on four cloud views; --fit fits the multiple-scattering\n"
-    "              octaves (clouds.ms_a, ms_b, ms_c, ms_octaves) to the reference instead\n";
+    "              octaves (clouds.ms_a, ms_b, ms_c, ms_octaves) to the reference instead\n"
+    "  denoise     thesis-7 path traced at 1 to 64 spp, raw and denoised by Open Image\n"
+    "              Denoise (fast, balanced, high): error against time, where denoising pays\n";
 
 int cmd_bench(int argc, char **argv)
 {
@@ -65,15 +67,16 @@ int cmd_bench(int argc, char **argv)
     }
     if (!suite) {
         fprintf(stderr, "atmo bench: name a suite (sky, atmosphere, mie, colour, panorama, "
-                        "render, terrain, clouds); atmo bench --help\n");
+                        "render, terrain, clouds, denoise); atmo bench --help\n");
         return ATMO_ERR_USAGE;
     }
     if (strcmp(suite, "sky") != 0 && strcmp(suite, "mie") != 0 &&
         strcmp(suite, "atmosphere") != 0 && strcmp(suite, "colour") != 0 &&
         strcmp(suite, "panorama") != 0 && strcmp(suite, "render") != 0 &&
-        strcmp(suite, "terrain") != 0 && strcmp(suite, "clouds") != 0) {
+        strcmp(suite, "terrain") != 0 && strcmp(suite, "clouds") != 0 &&
+        strcmp(suite, "denoise") != 0) {
         fprintf(stderr, "atmo bench: unknown suite '%s' (suites: sky, atmosphere, mie, colour, "
-                        "panorama, render, terrain, clouds)\n",
+                        "panorama, render, terrain, clouds, denoise)\n",
                 suite);
         return ATMO_ERR_USAGE;
     }
@@ -90,6 +93,7 @@ int cmd_bench(int argc, char **argv)
              : strcmp(suite, "render") == 0 ? bench_path(dir, device, quick, &e)
              : strcmp(suite, "terrain") == 0 ? bench_terrain(dir, device, quick, &e)
              : strcmp(suite, "clouds") == 0 ? bench_clouds(dir, device, quick, fit, &e)
+             : strcmp(suite, "denoise") == 0 ? bench_denoise(dir, device, quick, &e)
                                          : bench_atmosphere(dir, device, reference, quick, &e);
     if (rc)
         fprintf(stderr, "atmo bench: %s\n", e.msg);

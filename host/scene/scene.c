@@ -345,8 +345,9 @@ const atmo_param atmo_params[] = {
              "PNG encoding curve: sRGB or a pure 2.2 gamma"),
     ROW_ENUM("output.denoise", output.denoise, denoise_names, ATMO_OUTPUT_DENOISE_AUTO,
              "Intel Open Image Denoise on the final linear image, before tone mapping: auto "
-             "(PNG outputs, quality high, where the library is installed), off, fast, balanced "
-             "or high (every output; EXR keeps the noisy image and the guides as layers)"),
+             "(PNG outputs of render.mode=path, quality high, where the library is installed), "
+             "off, fast, balanced or high (every output; EXR keeps the noisy image and the "
+             "guides as layers)"),
     /* a digital elevation model as the terrain (atmo/dem.h; `atmo dem info FILE`) */
     ROW_STRING("terrain.heightmap_file", dem.file,
                "DEM file: GeoTIFF (with GDAL), 16-bit PNG or one-channel EXR; \"\" = none"),
