@@ -15,7 +15,8 @@
 #include "commands.h"
 
 static const char *const bench_suites[] = {"sky",    "atmosphere", "mie",     "colour",
-                                           "panorama", "render",   "terrain", "clouds", NULL};
+                                           "panorama", "render",   "terrain", "clouds",
+                                           "denoise", NULL};
 
 /* The flags' destinations (bench_flags), holding the defaults before parsing. */
 typedef struct bench_args {
@@ -65,7 +66,9 @@ static const cli_command bench_cli = {
         "              thesis-1's time per sample\n"
         "  clouds      the fBm clouds' marcher (steps, light steps, octaves) against the Monte\n"
         "              Carlo reference on four cloud views; --fit fits the multiple-scattering\n"
-        "              octaves (clouds.ms_a, ms_b, ms_c, ms_octaves) to the reference instead\n",
+        "              octaves (clouds.ms_a, ms_b, ms_c, ms_octaves) to the reference instead\n"
+        "  denoise     thesis-7 path traced at 1 to 64 spp, raw and denoised by Open Image\n"
+        "              Denoise (fast, balanced, high): error against time, where denoising pays\n",
     .max_positional = 1,
 };
 
@@ -74,13 +77,13 @@ static int bench_check_suite(const char *suite, atmo_err *e)
 {
     if (!suite)
         return atmo_fail(e, ATMO_ERR_USAGE, "name a suite (sky, atmosphere, mie, colour, "
-                         "panorama, render, terrain, clouds); atmo bench --help");
+                         "panorama, render, terrain, clouds, denoise); atmo bench --help");
     for (const char *const *s = bench_suites; *s; s++)
         if (strcmp(suite, *s) == 0)
             return ATMO_OK;
     const char *near = atmo_suggest_among(suite, bench_suites);
     return atmo_fail(e, ATMO_ERR_USAGE, "unknown suite '%s' (%s%s%ssuites: sky, atmosphere, mie, "
-                     "colour, panorama, render, terrain, clouds)", suite,
+                     "colour, panorama, render, terrain, clouds, denoise)", suite,
                      near ? "did you mean '" : "", near ? near : "", near ? "'? " : "");
 }
 
@@ -108,6 +111,7 @@ int cmd_bench(int argc, char **argv)
              : strcmp(suite, "render") == 0 ? bench_path(dir, device, quick, &e)
              : strcmp(suite, "terrain") == 0 ? bench_terrain(dir, device, quick, &e)
              : strcmp(suite, "clouds") == 0 ? bench_clouds(dir, device, quick, a.fit, &e)
+             : strcmp(suite, "denoise") == 0 ? bench_denoise(dir, device, quick, &e)
                                          : bench_atmosphere(dir, device, a.reference, quick, &e);
     if (rc)
         fprintf(stderr, "atmo bench: %s\n", e.msg);

@@ -79,6 +79,12 @@ static int merge_parts(const char *const *paths, int n, const char *const *outpu
                        "'%s' holds a %dx%d image but its scene is %dx%d; render that part again",
                        paths[0], parts[0].width, parts[0].height, scene.image.width,
                        scene.image.height);
+    char denoise_warning[1200] = ""; /* output.denoise of the parts' scene, once, after */
+    if (!rc)
+        rc = atmo_outputs_denoise_prepare(&scene, outputs, n_out, denoise_warning,
+                                          sizeof denoise_warning, e);
+    if (denoise_warning[0])
+        fprintf(stderr, "atmo merge: %s\n", denoise_warning);
     if (!rc)
         rc = atmo_part_merge(parts, paths, n, scene.image.samples, &merged, e);
     if (!rc && !(rgb = malloc(sizeof(float) * 3 * (size_t)merged.width * merged.height)))

@@ -248,7 +248,8 @@ static const char *method_name(const atmo_scene *s, const char **why)
 static int write_report(const char *path, const atmo_scene *s, const atmo_render_result *r,
                           const atmo_render_settings *rs, const char *const *outputs, int n_out,
                           double seconds_write, const atmo_image_layer *layers, int n_layers,
-                          const atmo_flare_info *flare, atmo_err *e)
+                          const atmo_flare_info *flare, const atmo_outputs_denoise *denoised,
+                          atmo_err *e)
 {
     cJSON *root = cJSON_CreateObject();
     char *scene_text = atmo_scene_to_json(s);
@@ -295,6 +296,9 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON_AddNumberToObject(t, "read_back", r->seconds_read);
     cJSON_AddNumberToObject(t, "write", seconds_write);
     report_passes_and_flare(ren, s, layers, n_layers, flare);
+    cJSON *dn = atmo_outputs_denoise_json(s, denoised);
+    if (dn)
+        cJSON_AddItemToObject(ren, "denoise", dn);
     cJSON *outs = cJSON_AddArrayToObject(root, "outputs");
     for (int i = 0; i < n_out; i++)
         cJSON_AddItemToArray(outs, cJSON_CreateString(outputs[i]));
@@ -373,20 +377,24 @@ static int render_write(const render_args *a, const atmo_scene *scene,
     double tw = atmo_now_seconds();
     atmo_image img = {.width = res->width, .height = res->height, .rgb = res->rgb};
     atmo_image_layer layers[RENDER_PASS_LAYERS];
-    float *layer_data = NULL;
+    float *layer_data = NULL, *guide_data = NULL;
+    atmo_outputs_guides guides;
+    atmo_outputs_denoise denoised = {0};
     img.layer_count = part_file ? 0 : render_pass_layers(res, layers, &layer_data);
     img.layers = layers;
     int exr = atmo_exr_compression_from_name(render_exr_codecs[a->exr_codec]);
-    if (img.layer_count < 0)
+    if (img.layer_count < 0 || atmo_outputs_guides_from_passes(res, &guides, &guide_data) < 0)
         rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the render passes");
     else
         rc = part_file ? atmo_part_write(outputs[0], part, e)
-                       : atmo_outputs_write(scene, &img, res->samples_min, res->interrupted, exr,
-                                            outputs, n_out, e);
+                       : atmo_outputs_write_denoised(scene, &img, &guides, res->samples_min,
+                                                     res->interrupted, exr, outputs, n_out,
+                                                     &denoised, e);
     *seconds_write = atmo_now_seconds() - tw;
     if (!rc && report)
         rc = write_report(report, scene, res, rs, outputs, n_out, *seconds_write, img.layers,
-                          img.layer_count > 0 ? img.layer_count : 0, flare, e);
+                          img.layer_count > 0 ? img.layer_count : 0, flare, &denoised, e);
+    free(guide_data);
     free(layer_data);
     return rc;
 }
@@ -697,6 +705,16 @@ int cmd_render(int argc, char **argv)
         output_paths_free(&files);
         return cli_fail(&render_cli, rc, &e);
     }
+    /* denoising: a missing library is a usage error when asked for, a warning for auto */
+    char denoise_warning[1200] = "";
+    if (a.n_out > 0 && !(a.part_text && !a.frames_text) &&
+        (rc = atmo_outputs_denoise_prepare(&scene, a.outputs, a.n_out, denoise_warning,
+                                           sizeof denoise_warning, &e))) {
+        output_paths_free(&files);
+        return cli_fail(&render_cli, rc, &e);
+    }
+    if (denoise_warning[0])
+        fprintf(stderr, "atmo render: %s\n", denoise_warning);
     if (a.n_out > 0 && a.first > anim.last && !a.quiet)
         fprintf(stderr, "atmo render: part %d/%d of frames %d..%d has no frame to render\n",
                 a.first - anim.first + 1, a.step, anim.first, anim.last);

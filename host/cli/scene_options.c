@@ -4,9 +4,10 @@
  *
  * The options: --preset NAME or --scene FILE (they exclude each other), --set KEY=VALUE
  * (repeatable, applied in command-line order), and the shorthands --width, --height,
- * --samples, --seed, --time and --camera, each checked against its key's type and range in
+ * --samples, --seed, --time, --camera and --denoise, each checked against its key's type and range in
  * the scene's registry (cli_flags.c) and kept as the assignment it stands for (image.width=N,
- * ..., clouds.time_s=S, camera.kind=K) in its place among the --set options. A shorthand's
+ * ..., clouds.time_s=S, camera.kind=K,
+ * output.denoise=Q) in its place among the --set options. A shorthand's
  * value is at most SHORTHAND_MAX_CHARS characters (the longest any key takes); a longer one
  * is refused as a bad value. --blender stands for output.blender=true, set after the
  * assignments; atmo_scene_for_blender then rewrites the scene for it, saying on stderr what it
@@ -65,6 +66,10 @@ const cli_flag scene_option_flags[] = {
     SHORTHAND("--time", CLI_FLOAT, "clouds.time_s",
               "seconds of cloud motion with the wind (clouds.time_s)"),
     SHORTHAND("--camera", CLI_ENUM, "camera.kind", "projection (camera.kind)"),
+    SHORTHAND("--denoise", CLI_ENUM, "output.denoise",
+              "Intel Open Image Denoise before tone mapping: auto (path mode's PNG\n"
+              "outputs, high, where installed), off, fast, balanced, high (every output)\n"
+              "(output.denoise)"),
     {.type = CLI_BOOL, .name = "--blender", .offset = offsetof(scene_options, blender),
      .help = "outputs for Blender (output.blender=true): linear Rec.709\n"
              "RGB in cd/m^2 (render.quantity=luminance, post.exposure\n"

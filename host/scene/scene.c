@@ -57,6 +57,8 @@ static const char *const tonemap_names[] = {"none",           "exposure", "reinh
                                             "reinhard-white", "aces",     "unreal3",
                                             "uchimura",       "lottes",   NULL};
 static const char *const transfer_names[] = {"srgb", "gamma22", NULL};
+static const char *const denoise_names[] = {"auto", "off", "fast", "balanced", "high", NULL};
+_Static_assert(ATMO_OUTPUT_DENOISE_HIGH == 4, "enum name tables follow the order of the constants");
 /* the size-distribution presets of mie_dsd_preset (host/mie_dsd.c), in its order */
 static const char *const cloud_dsd_names[] = {"cumulus", "stratus", "fog", "corona",
                                               "thesis-disperse", "thesis-uniform", NULL};
@@ -343,6 +345,11 @@ const atmo_param atmo_params[] = {
              "divide by the sun's colour so sunlight is white"),
     ROW_ENUM("post.transfer", post.transfer, transfer_names, ATMO_TRANSFER_SRGB,
              "PNG encoding curve: sRGB or a pure 2.2 gamma"),
+    ROW_ENUM("output.denoise", output.denoise, denoise_names, ATMO_OUTPUT_DENOISE_AUTO,
+             "Intel Open Image Denoise on the final linear image, before tone mapping: auto "
+             "(PNG outputs of render.mode=path, quality high, where the library is installed), "
+             "off, fast, balanced or high (every output; EXR keeps the noisy image and the "
+             "guides as layers)"),
     /* a digital elevation model as the terrain (atmo/dem.h; `atmo dem info FILE`) */
     ROW_STRING("terrain.heightmap_file", dem.file,
                "DEM file: GeoTIFF (with GDAL), 16-bit PNG or one-channel EXR; \"\" = none"),

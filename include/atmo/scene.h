@@ -15,6 +15,15 @@
 #include "atmo/status.h"
 
 enum { ATMO_QUANTITY_RADIANCE = 0, ATMO_QUANTITY_LUMINANCE = 1 };
+/* output.denoise: auto denoises the PNG outputs of path-mode renders (quality high) where the
+ * library is installed; off, or the named quality for every output. */
+enum {
+    ATMO_OUTPUT_DENOISE_AUTO = 0,
+    ATMO_OUTPUT_DENOISE_OFF,
+    ATMO_OUTPUT_DENOISE_FAST,
+    ATMO_OUTPUT_DENOISE_BALANCED,
+    ATMO_OUTPUT_DENOISE_HIGH
+};
 /* camera.on_terrain: what camera.position_m's y is measured from */
 enum { ATMO_CAMERA_TERRAIN_OFF = 0, ATMO_CAMERA_TERRAIN_BELOW = 1, ATMO_CAMERA_TERRAIN_AT = 2 };
 
@@ -93,6 +102,9 @@ typedef struct atmo_scene {
         int flare;             /* 0/1: lens flare (perspective cameras; host/image/flare.c) */
         double flare_strength; /* its brightness relative to the default lens */
     } post;
+    struct {
+        int denoise;           /* ATMO_OUTPUT_DENOISE_*: Open Image Denoise (atmo/outputs.h) */
+    } output;
     struct {                   /* homogeneous cloud/fog shell (kernels/media/cloud_shell.h) */
         int enabled;
         double bottom_m, top_m; /* altitudes of the shell above sea level */
