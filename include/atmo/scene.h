@@ -104,6 +104,7 @@ typedef struct atmo_scene {
     } post;
     struct {
         int denoise;           /* ATMO_OUTPUT_DENOISE_*: Open Image Denoise (atmo/outputs.h) */
+        int blender;           /* 0/1: outputs for Blender (atmo_scene_for_blender) */
     } output;
     struct {                   /* homogeneous cloud/fog shell (kernels/media/cloud_shell.h) */
         int enabled;
@@ -201,9 +202,6 @@ typedef struct atmo_scene {
         double shadow_far_m;
         int shafts;            /* bit set of ATMO_TERRAIN_SHAFT_* */
     } terrain;
-    struct {
-        int blender;           /* 0/1: outputs for Blender (atmo_scene_for_blender) */
-    } output;
 } atmo_scene;
 
 typedef enum {
