@@ -447,6 +447,17 @@ int atmo_cl_list_devices(const char *selector, int json, atmo_err *e)
     return ATMO_OK;
 }
 
+int atmo_cl_check_selector(const char *selector, atmo_err *e)
+{
+    if (!selector || !*selector)
+        selector = getenv("ATMO_DEVICE");
+    cl_device_entry list[ATMO_MAX_DEVICES];
+    int n = 0, index = 0, rc;
+    if ((rc = cl_enumerate(list, &n, e)))
+        return rc;
+    return cl_choose(list, n, selector, &index, e);
+}
+
 int atmo_cl_open(atmo_cl *cl, const char *selector, atmo_err *e)
 {
     memset(cl, 0, sizeof *cl);

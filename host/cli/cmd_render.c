@@ -26,6 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include "atmo/cl_runtime.h"
 #include "atmo/clock.h"
 #include "atmo/colour.h"
 #include "atmo/fileio.h"
@@ -681,7 +682,9 @@ static int render_prepare(render_args *a, atmo_scene *scene, frames_animation *a
         a->step = a->rs.parts;
         a->rs.part = a->rs.parts = 0;
     }
-    return render_outputs(a, anim, files, e);
+    if ((rc = render_outputs(a, anim, files, e)))
+        return rc;
+    return a->n_out > 0 ? atmo_cl_check_selector(a->rs.device, e) : ATMO_OK;
 }
 
 int cmd_render(int argc, char **argv)

@@ -90,6 +90,11 @@ int atmo_cl_caps_usable(const atmo_cl_caps *caps, char *why, size_t size);
  * names no usable device is ATMO_ERR_USAGE, and nothing is printed. */
 int atmo_cl_list_devices(const char *selector, int json, atmo_err *e);
 
+/* The device a selector names (NULL: ATMO_DEVICE, else the default), by the rule atmo_cl_open
+ * uses, without opening it: a command checks its --device before any work. A selector that
+ * names no usable device is ATMO_ERR_USAGE with the devices listed. */
+int atmo_cl_check_selector(const char *selector, atmo_err *e);
+
 int atmo_cl_open(atmo_cl *cl, const char *selector, atmo_err *e);
 void atmo_cl_close(atmo_cl *cl);
 
