@@ -600,7 +600,10 @@ int cmd_render(int argc, char **argv)
     for (int i = 0; i < n_out; i++)
         outputs[i] = files.path[i];
     if ((report && (rc = output_paths_add(&files, "--report", report, &e))) ||
-        (save_scene && (rc = output_paths_add(&files, "--save-scene", save_scene, &e))))
+        (save_scene && (rc = output_paths_add(&files, "--save-scene", save_scene, &e))) ||
+        (rc = output_paths_check_input(&files, "--scene", so.scene_file, &e)) ||
+        (rc = output_paths_check_input(&files, "--scene-end", scene_end, &e)) ||
+        (rc = output_paths_check_input(&files, "terrain.heightmap_file", scene.dem.file, &e)))
         goto usage_error;
     /* numbered names: the longest (the last frame's) is checked like the others */
     if (frames_text && (rc = check_frame_paths(outputs, n_out, report, anim.last, &e)))
