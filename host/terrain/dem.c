@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/dem.h"
+#include "atmo/fileio.h"
 #include "dem_read.h"
 
 void atmo_dem_options_from_scene(const atmo_scene *s, atmo_dem_options *o)
@@ -180,11 +181,12 @@ static int read_by_signature(const char *path, const atmo_dem_options *o, atmo_d
                              atmo_err *e)
 {
     unsigned char magic[8] = {0};
-    FILE *f = fopen(path, "rb");
+    const char *why = NULL;
+    FILE *f = atmo_open_regular(path, &why); /* a FIFO would block for ever */
     if (!f)
         return atmo_fail(e, ATMO_ERR_USAGE,
-                         "cannot open heightmap '%s' (terrain.heightmap_file); check the path",
-                         path);
+                         "cannot open heightmap '%s' (terrain.heightmap_file): %s; check the "
+                         "path", path, why);
     size_t got = fread(magic, 1, sizeof magic, f);
     fclose(f);
     static const unsigned char png[8] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
