@@ -20,7 +20,7 @@ cli_begin
 unset POCL_CACHE_DIR
 export ATMO_CACHE_DIR=$work/cache TMPDIR=$work/tmp
 mkdir -p "$TMPDIR"
-r=(render --width 8 --height 8 --samples 2 --quiet)
+r=(render --width 8 --height 8 --samples 2 --quiet --force)
 
 # run NAME ARGS...: atmo ARGS (at most 120 s), exit status in rc, stderr in NAME.err
 run() { local name=$1; shift; timeout 120 "$atmo" "$@" 2>"$name.err"; rc=$?; }

@@ -18,7 +18,7 @@ atmo=$1
 cli_begin
 export TMPDIR=$work/tmp ATMO_CACHE_DIR=$work/cache
 mkdir -p "$TMPDIR"
-r=(render --width 8 --height 8 --samples 1 --quiet)
+r=(render --width 8 --height 8 --samples 1 --quiet --force)
 
 # read_fifo FIFO FILE: a reader in the background (pid in reader) that ends after 60 s at most
 read_fifo() { timeout 60 cat "$1" >"$2" & reader=$!; }
@@ -94,10 +94,10 @@ refused "two options, one FIFO" "same file" "${r[@]}" --output img.pfm --report 
 cp plain.json s.json
 ln s.json hard.json
 cp s.json s_before.json
-refused "--report = --scene" "--report 's.json' is the input --scene 's.json'" render --scene s.json --output out/a.pfm --report s.json
-refused "--save-scene = --scene (hard link)" "is the input --scene" render --scene s.json --save-scene hard.json
+refused "--report = --scene" "--report 's.json' is the input --scene 's.json'" render --force --scene s.json --output out/a.pfm --report s.json
+refused "--save-scene = --scene (hard link)" "is the input --scene" render --force --scene s.json --save-scene hard.json
 ln -s s.json s.pfm
-refused "--output = --scene (a link)" "is the input --scene" render --scene s.json --output ./out/../s.pfm
+refused "--output = --scene (a link)" "is the input --scene" render --force --scene s.json --output ./out/../s.pfm
 cmp -s s.json s_before.json && ok || bad "the scene file was changed"
 python3 - <<'PY'
 import struct, zlib
