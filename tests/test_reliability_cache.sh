@@ -5,7 +5,7 @@
 # FIFO in place of a cache entry or of the heightmap does not block; an unusable cache
 # directory (here: a regular file) is named with what is wrong, and the render runs without
 # the cache, silently with --no-kernel-cache --no-lut-cache.
-# labels: reliability cli render
+# labels: reliability cli render slow
 #
 # Oracle: the first render of the scene into an empty cache. Renders are bitwise deterministic
 # on one device, so every render that recovered (or ran without a cache) must give the same

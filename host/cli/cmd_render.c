@@ -7,13 +7,14 @@
  * existing file only with --force, overwrite.h), so a bad argument never costs a render. The
  * flags are one table (cli_flags.h), from which --help is generated with every default.
  *
- * Interrupts: the first SIGINT or SIGTERM sets the render's cancel token; the precompute or the
+ * Interrupts: the first SIGINT, SIGTERM or SIGHUP (the terminal closed) sets the render's cancel
+ * token; the precompute or the
  * render stops after the launch in flight. Samples already rendered are written, marked
  * partial (report "interrupted", file metadata), and the exit status is 3; stopped before any
  * sample (in the precompute, or in a spectral render's triplets), nothing is written and the
  * exit status is 4. A signal while the files are written lets the writing finish (the image is
  * whole). A second signal removes the temporary file being written and ends the process by
- * that signal at once. Exit statuses: 0 done, 1 runtime error, 2 usage, 3 interrupted with a
+ * that signal at once (exit status 128 + its number: 130 SIGINT, 143 SIGTERM, 129 SIGHUP). Exit statuses: 0 done, 1 runtime error, 2 usage, 3 interrupted with a
  * partial image written, 4 interrupted with nothing written. */
 #include <cjson/cJSON.h>
 #include <stddef.h>
@@ -140,16 +141,18 @@ static const cli_command render_cli = {
         "An output that exists is not replaced unless --force is given.\n",
     .flags = render_flags,
     .epilogue =
-        "Ctrl-C (SIGINT) or SIGTERM stops the precompute or the render after the launch in flight:\n"
-        "the samples finished so far are written, marked partial, with exit status 3; stopped\n"
-        "before any sample, nothing is written and the exit status is 4. A second signal stops at\n"
-        "once and removes the file being written. Exit statuses: 0 done, 1 runtime error, 2 usage\n"
-        "or input error (nothing is rendered), 3 interrupted with a partial image, 4 interrupted\n"
-        "with nothing written.\n",
+        "Ctrl-C (SIGINT), SIGTERM or SIGHUP stops the precompute or the render after the launch in\n"
+        "flight: the samples finished so far are written, marked partial, with exit status 3;\n"
+        "stopped before any sample, nothing is written and the exit status is 4. A second signal\n"
+        "stops at once and removes the file being written; the process ends by that signal (the\n"
+        "shell shows 128 + its number: 130 for SIGINT, 143 SIGTERM, 129 SIGHUP).\n"
+        "Exit statuses: 0 done, 1 runtime error, 2 usage or input error (nothing is rendered),\n"
+        "3 interrupted with a partial image, 4 interrupted with nothing written.\n",
 };
 /* What the signal handler uses: a handler takes no user data, so this file holds the one token
  * that the render it starts is given (atmo_render_settings.cancel), and the temporary names of
  * the outputs (atmo_tmp_path), computed before the handler is installed. */
+#define HANDLED_SIGNALS 3
 static atmo_cancel render_cancel;
 static volatile sig_atomic_t signals_seen;
 static char pending_tmp[OUTPUT_PATHS_MAX][ATMO_TMP_PATH_MAX];
@@ -168,14 +171,14 @@ static void on_signal(int sig)
     raise(sig);
 }
 
-/* SIGINT and SIGTERM to on_signal (install) or back to what they were. */
-static void handle_signals(int install, struct sigaction old[2])
+/* SIGINT, SIGTERM and SIGHUP to on_signal (install) or back to what they were. */
+static void handle_signals(int install, struct sigaction old[HANDLED_SIGNALS])
 {
-    static const int sigs[2] = {SIGINT, SIGTERM};
+    static const int sigs[HANDLED_SIGNALS] = {SIGINT, SIGTERM, SIGHUP};
     struct sigaction sa = {0};
     sa.sa_handler = on_signal;
     sigemptyset(&sa.sa_mask);
-    for (int i = 0; i < 2; i++)
+    for (int i = 0; i < HANDLED_SIGNALS; i++)
         sigaction(sigs[i], install ? &sa : &old[i], install ? &old[i] : NULL);
 }
 
@@ -286,7 +289,7 @@ static int parse_noise(const char *v, double *out, atmo_err *e)
  * message in e. */
 static int render_run(const render_args *a, const atmo_scene *scene, atmo_render_settings *rs,
                       int part_file, atmo_render_result *res, atmo_part *part,
-                      struct sigaction old[2], int *installed, atmo_err *e)
+                      struct sigaction old[HANDLED_SIGNALS], int *installed, atmo_err *e)
 {
     int rc, lut_cache = !a->no_lut_cache;
     /* spectral mode plans each triplet of bands itself */
@@ -391,7 +394,7 @@ static int render_frame(const render_args *a, const atmo_scene *scene, int part_
     if (report)
         atmo_tmp_path(report, pending_tmp[pending_count++]);
     rs.cancel = &render_cancel;
-    struct sigaction old[2];
+    struct sigaction old[HANDLED_SIGNALS];
     int installed = 0;
     int rc = render_run(a, scene, &rs, part_file, &res, &part, old, &installed, &e);
     if (rc == ATMO_INTERRUPTED_EMPTY) /* interrupted before any result */
