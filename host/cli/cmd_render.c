@@ -612,6 +612,12 @@ static int render_prepare(render_args *a, atmo_scene *scene, frames_animation *a
         ((rc = parse_part(a->part_text, &a->rs.part, &a->rs.parts, e)) ||
          (rc = check_part(scene, a->rs.parts, a->frames_text != NULL, a->outputs, a->n_out, e))))
         return rc;
+    if (a->part_text && !a->frames_text && (a->rs.noise_target > 0.0 || a->rs.time_limit_s > 0.0))
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "--part renders every pixel to image.samples (atmo merge needs the same "
+                         "count in all parts), so %s cannot stop it early; leave it out, or "
+                         "render the image whole",
+                         a->rs.noise_target > 0.0 ? "--noise" : "--time-limit");
     a->first = anim->first;
     a->step = 1;
     if (a->frames_text && a->part_text) { /* part I of N: frames A + I - 1, A + I - 1 + N, ... */

@@ -98,6 +98,8 @@ int atmo_render_part(const atmo_plan *plan, const atmo_render_settings *settings
         rc = atmo_session_read_sums(s, s1, s2, samples, e);
     if (!rc) {
         atmo_part_pack(part, s1, s2, samples);
+        part->input_hash =
+            atmo_part_input_hash(plan->dem.width, plan->dem.height, plan->dem.heights_m);
         atmo_render_result_from_session(s, res);
         snprintf(part->device, sizeof part->device, "%s / %s / %s", res->platform_name,
                  res->device_name, res->driver_version);
