@@ -3,7 +3,8 @@
 # is wrong: a DEM sample beyond +-1e5 m (naming the sample; a no-data sample is still filled by
 # the documented rule), a JSON key given twice anywhere in a scene (naming its path: an
 # object twice, a member twice, a key twice inside an object of the list), a NaN literal, JSON
-# nested past cJSON's limit, and a group of parameters given a non-object.
+# nested past cJSON's limit, a group of parameters given a non-object, the PNG/EXR heightmap
+# keys or a second band with a georeferenced DEM, and terrain.heightmap_detail without a file.
 # labels: reliability cli
 #
 # Oracles: include/atmo/dem.h (ATMO_DEM_MAX_HEIGHT_M, the no-data rule: a missing sample takes
@@ -39,7 +40,26 @@ import json, sys
 d = json.load(open('hole.json'))
 sys.exit(not (d['nodata_filled'] == 1 and d['min_m'] == 10 and d['max_m'] == 40))" && ok ||
         bad "a no-data sample is not filled by the rule: $(cat hole.json hole.err)"
+    # a GeoTIFF-like (GDAL) DEM: the PNG/EXR keys and a second band are refused, not ignored
+    grid plain "10 20 30 40"
+    refused "extent key with a georeferenced DEM" "plain.asc \(AAIGrid\) carries its own extent.*heightmap_file_extent_m is for PNG and EXR" \
+        dem info plain.asc --set terrain.heightmap_file_extent_m=5000
+    refused "offset key with a georeferenced DEM" "heightmap_file_offset_m is for PNG and EXR" \
+        dem info plain.asc --set terrain.heightmap_offset_m=100
+    {
+        echo '<VRTDataset rasterXSize="4" rasterYSize="4"><GeoTransform>0, 30, 0, 120, 0, -30</GeoTransform>'
+        echo "<SRS>$(sed 's/"/\&quot;/g' plain.prj)</SRS>"
+        for b in 1 2 3; do
+            echo "<VRTRasterBand dataType=\"Float32\" band=\"$b\"><SimpleSource><SourceFilename relativeToVRT=\"1\">plain.asc</SourceFilename><SourceBand>1</SourceBand></SimpleSource></VRTRasterBand>"
+        done
+        echo '</VRTDataset>'
+    } >three.vrt
+    refused "a DEM with three bands" "three.vrt \(VRT\) has 3 bands; a heightmap is one band" dem info three.vrt
 fi
+
+# terrain.heightmap_detail without a heightmap file
+refused "heightmap_detail without a heightmap" "terrain.heightmap_detail=true adds detail below a heightmap file's cells" \
+    "${r[@]}" --set terrain.heightmap_detail=true
 
 # duplicate keys, with their paths
 echo '{"sun": {"zenith_deg": 60, "zenith_deg": 70}}' >dup_member.json

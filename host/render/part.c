@@ -277,17 +277,23 @@ cleanup:
 /* Every pixel of the part has `samples` samples. */
 static int check_complete(const atmo_part *p, const char *path, int samples, atmo_err *e)
 {
-    int lo = samples, hi = samples;
-    for (size_t i = 0; i < (size_t)p->width * (size_t)p->rows; i++) {
+    size_t n = (size_t)p->width * (size_t)p->rows;
+    int lo = n ? p->samples[0] : samples, hi = lo;
+    for (size_t i = 1; i < n; i++) {
         lo = p->samples[i] < lo ? p->samples[i] : lo;
         hi = p->samples[i] > hi ? p->samples[i] : hi;
     }
-    if (lo != samples || hi != samples)
+    if (lo == samples && hi == samples)
+        return ATMO_OK;
+    if (lo == hi)
         return atmo_fail(e, ATMO_ERR_USAGE,
-                         "'%s' (part %d/%d) is incomplete: %d to %d of %d samples per pixel (an "
-                         "interrupted render); render that part again",
-                         path, p->part, p->parts, lo, hi, samples);
-    return ATMO_OK;
+                         "'%s' (part %d/%d) is incomplete: %d samples in every pixel, its "
+                         "scene %d (an interrupted render); render that part again",
+                         path, p->part, p->parts, lo, samples);
+    return atmo_fail(e, ATMO_ERR_USAGE,
+                     "'%s' (part %d/%d) is incomplete: %d to %d samples per pixel, its scene %d "
+                     "in every pixel (an interrupted render); render that part again",
+                     path, p->part, p->parts, lo, hi, samples);
 }
 
 int atmo_part_merge(const atmo_part *parts, const char *const *paths, int n, int samples,
