@@ -3,7 +3,7 @@
 # flipped bit in its pixels, parts rendered from different heightmap contents under one file
 # name, and a PNG heightmap whose chunk CRC is wrong are each refused with exit 2 and one line
 # naming the file; --part with --noise or --time-limit (which would leave parts that merge
-# cannot join) is refused before any work.
+# cannot join) is refused before any work; a --noise render's report gives each tile's noise.
 # labels: reliability cli render
 #
 # Oracles: the part format of atmo/part.h (atmoDataChecksum: FNV-1a 64 over the stored planes,
@@ -71,5 +71,25 @@ refused "--part with --noise" "--part renders every pixel.*--noise cannot stop i
     render "${scene[@]}" --part 1/2 --noise 5% --output out/p.exr
 refused "--part with --time-limit" "--time-limit cannot stop it" \
     render "${scene[@]}" --part 1/2 --time-limit 10 --output out/p.exr
+
+# a --noise render's report states the noise each tile reached: the tiles cover the image once,
+# and a tile that stopped before image.samples had met the target (the session's stopping rule,
+# atmo/session.h; the report's e is computed from the same sums, in double from float errors,
+# hence the relative slack of 1e-4)
+"$atmo" render --width 32 --height 16 --tile-size 8 --samples 256 --noise 5% --quiet \
+    --output noise.pfm --report noise.json || bad "--noise render failed"
+python3 - <<'PY' && ok || bad "the report's tiles_noise does not state each tile's noise"
+import json, sys
+r = json.load(open('noise.json'))['render']
+tiles = r.get('tiles_noise', [])
+area = sum(t['w'] * t['h'] for t in tiles)
+early = [t for t in tiles if t['samples'] < r['samples_requested']]
+ok = (len(tiles) == 8 and area == 32 * 16 and early
+      and all(t['noise'] <= r['noise_target'] * (1 + 1e-4) for t in early)
+      and all(t['noise'] > 0 for t in tiles))
+if not ok:
+    print(tiles, file=sys.stderr)
+sys.exit(not ok)
+PY
 
 cli_end test_reliability_parts

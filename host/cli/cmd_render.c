@@ -207,6 +207,17 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON_AddNumberToObject(ren, "nonfinite_samples_dropped", r->nonfinite);
     cJSON_AddNumberToObject(ren, "launches", r->launches);
     cJSON_AddNumberToObject(ren, "noise_target", rs->noise_target);
+    if (r->noise_tiles > 0) { /* the relative standard error each tile reached */
+        cJSON *tiles = cJSON_AddArrayToObject(ren, "tiles_noise");
+        for (int i = 0; i < r->noise_tiles; i++) {
+            cJSON *t = cJSON_CreateObject();
+            static const char *const keys[5] = {"x", "y", "w", "h", "samples"};
+            for (int k = 0; k < 5; k++)
+                cJSON_AddNumberToObject(t, keys[k], r->tile_rect[5 * i + k]);
+            cJSON_AddNumberToObject(t, "noise", r->tile_noise[i]);
+            cJSON_AddItemToArray(tiles, t);
+        }
+    }
     cJSON_AddNumberToObject(ren, "time_limit_s", rs->time_limit_s);
     cJSON_AddNumberToObject(ren, "tile_size", rs->tile_size);
     cJSON_AddNumberToObject(ren, "launch_budget_ms", rs->launch_budget_ms);
