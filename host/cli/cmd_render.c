@@ -14,8 +14,9 @@
  * sample (in the precompute, or in a spectral render's triplets), nothing is written and the
  * exit status is 4. A signal while the files are written lets the writing finish (the image is
  * whole). A second signal removes the temporary file being written and ends the process by
- * that signal at once (exit status 128 + its number: 130 SIGINT, 143 SIGTERM, 129 SIGHUP). Exit statuses: 0 done, 1 runtime error, 2 usage, 3 interrupted with a
- * partial image written, 4 interrupted with nothing written. */
+ * that signal at once (exit status 128 + its number: 130 SIGINT, 143 SIGTERM, 129 SIGHUP).
+ * Exit statuses: 0 done, 1 runtime error, 2 usage, 3 interrupted with a partial image written,
+ * 4 interrupted with nothing written. */
 #include <cjson/cJSON.h>
 #include <stddef.h>
 #include <math.h>
