@@ -8,8 +8,7 @@
  * flags are one table (cli_flags.h), from which --help is generated with every default.
  *
  * Interrupts: the first SIGINT, SIGTERM or SIGHUP (the terminal closed) sets the render's cancel
- * token; the precompute or the
- * render stops after the launch in flight. Samples already rendered are written, marked
+ * token; the precompute or the render stops after the launch in flight. Samples already rendered are written, marked
  * partial (report "interrupted", file metadata), and the exit status is 3; stopped before any
  * sample (in the precompute, or in a spectral render's triplets), nothing is written and the
  * exit status is 4. A signal while the files are written lets the writing finish (the image is
