@@ -79,7 +79,7 @@ for wait_s in 2 4 8; do
     [ $rc -ne 4 ] && break
 done
 [ $rc -eq 3 ] && ok || bad "interrupted part: exit $rc, want 3"
-refused "incomplete part" "'cut.exr' \\(part 1/1\\) is incomplete: [0-9]+ to [0-9]+ of 1000000 samples" \
+refused "incomplete part" "'cut.exr' \\(part 1/1\\) is incomplete: [0-9]+ (to [0-9]+ )?samples( per pixel| in every pixel), its scene 1000000" \
     merge cut.exr --output out/m.pfm
 refused "--part to a PNG" "one --output FILE.exr" render "${scene[@]}" --part 1/2 --output out/p.png
 refused "--part with two outputs" "one --output FILE.exr" render "${scene[@]}" --part 1/2 --output out/p.exr --output out/q.exr

@@ -612,7 +612,7 @@ static void test_json(void)
                         "did you mean 'sun.zenith_deg'?");
     check_json_rejected("{\"sunn\": {\"zenith_deg\": 60}}", "'sunn.zenith_deg'",
                         "'sun.zenith_deg'");
-    check_json_rejected("{\"sun\": 60}", "'sun'", "did you mean");
+    check_json_rejected("{\"sun\": 60}", "'sun'", "is a group of parameters and needs an object");
     check_json_rejected("{\"sun\": {\"zenith_deg\": \"60\"}}", "sun.zenith_deg", "a number");
     check_json_rejected("{\"sun\": {\"zenith_deg\": null}}", "sun.zenith_deg", "a number");
     check_json_rejected("{\"sun\": {\"zenith_deg\": 1e999}}", "sun.zenith_deg", "finite");

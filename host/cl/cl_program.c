@@ -77,7 +77,7 @@ static int mkdir_p(const char *dir)
     return mkdir(tmp, 0755) != 0 && errno != EEXIST ? -1 : 0;
 }
 
-int atmo_cache_dir(char *dir, size_t size)
+int atmo_cache_dir_find(char *dir, size_t size, char *why, size_t why_size)
 {
     const char *env = getenv("ATMO_CACHE_DIR");
     const char *xdg = getenv("XDG_CACHE_HOME");
@@ -88,9 +88,29 @@ int atmo_cache_dir(char *dir, size_t size)
         snprintf(dir, size, "%s/atmo", xdg);
     else if (home && *home)
         snprintf(dir, size, "%s/.cache/atmo", home);
-    else
+    else {
+        snprintf(dir, size, "(none)");
+        snprintf(why, why_size, "none of ATMO_CACHE_DIR, XDG_CACHE_HOME and HOME is set");
         return -1;
-    return mkdir_p(dir);
+    }
+    if (mkdir_p(dir) != 0) {
+        snprintf(why, why_size, "cannot create it: %s", strerror(errno));
+        return -1;
+    }
+    return atmo_cache_dir_usable(dir, why, why_size) ? 0 : -1;
+}
+
+int atmo_cache_dir(char *dir, size_t size)
+{
+    static int warned;
+    char why[256];
+    if (atmo_cache_dir_find(dir, size, why, sizeof why) == 0)
+        return 0;
+    if (!warned++)
+        fprintf(stderr, "atmo: warning: cache directory '%s' is unusable (%s); running without "
+                        "the disk cache (set ATMO_CACHE_DIR to a writable directory, or pass "
+                        "--no-kernel-cache and --no-lut-cache)\n", dir, why);
+    return -1;
 }
 
 static int dump_source(const char *dir, unsigned long long key, const char *src, atmo_err *e)

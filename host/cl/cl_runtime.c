@@ -17,6 +17,9 @@
  * loop); docs/notes/speed_io.md has the measurements. */
 #include <cjson/cJSON.h>
 #include <ctype.h>
+#include <errno.h>
+#include <ftw.h>
+#include <sys/stat.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -61,26 +64,66 @@ int atmo_cl_fail(atmo_err *e, const char *call, cl_int err)
 
 #define ATMO_MAX_DEVICES 64
 
+/* Set when atmo_cl_prepare_environment chose POCL_CACHE_DIR. */
+static int driver_cache_own = -1;
+static char driver_cache_private[4200];
+
+int atmo_cl_driver_cache_is_own(void)
+{
+    const char *env = getenv("POCL_CACHE_DIR");
+    return driver_cache_own >= 0 ? driver_cache_own : !(env && *env);
+}
+
 int atmo_cl_driver_cache_dir(char *dir, size_t size)
 {
     const char *env = getenv("POCL_CACHE_DIR");
-    char base[1024];
+    char base[1024], why[256];
     if (env && *env) {
         snprintf(dir, size, "%s", env);
         return 0;
     }
-    if (atmo_cache_dir(base, sizeof base) != 0)
+    if (atmo_cache_dir_find(base, sizeof base, why, sizeof why) != 0)
         return -1;
     snprintf(dir, size, "%s/pocl", base);
     return 0;
+}
+
+static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
+{
+    (void)st, (void)flag, (void)ftw;
+    return remove(path);
+}
+
+static void remove_private_driver_cache(void)
+{
+    nftw(driver_cache_private, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+}
+
+/* A private PoCL directory for a process whose cache directory is unusable. */
+static void use_private_driver_cache(void)
+{
+    const char *tmp = getenv("TMPDIR");
+    snprintf(driver_cache_private, sizeof driver_cache_private, "%s/atmo-pocl-XXXXXX",
+             tmp && *tmp ? tmp : "/tmp");
+    if (!mkdtemp(driver_cache_private))
+        return;
+    setenv("POCL_CACHE_DIR", driver_cache_private, 1);
+    atexit(remove_private_driver_cache);
 }
 
 void atmo_cl_prepare_environment(void)
 {
     char dir[1100];
     const char *env = getenv("POCL_CACHE_DIR");
-    if ((!env || !*env) && atmo_cl_driver_cache_dir(dir, sizeof dir) == 0)
-        setenv("POCL_CACHE_DIR", dir, 1);
+    if (driver_cache_own < 0) {
+        driver_cache_own = !(env && *env);
+        if (driver_cache_own && atmo_cl_driver_cache_dir(dir, sizeof dir) == 0 &&
+            (mkdir(dir, 0755) == 0 || errno == EEXIST)) {
+            setenv("POCL_CACHE_DIR", dir, 1);
+        } else if (driver_cache_own) {
+            use_private_driver_cache();
+        }
+    }
     setenv("POCL_WORK_GROUP_SPECIALIZATION", "0", 0);
 }
 
@@ -94,7 +137,10 @@ static int cl_enumerate(cl_device_entry *out, int *count, atmo_err *e)
 {
     cl_platform_id platforms[16];
     cl_uint np = 0;
+    static int repaired;
     atmo_cl_prepare_environment();
+    if (driver_cache_own == 1 && !driver_cache_private[0] && !repaired++)
+        atmo_cl_driver_cache_repair(getenv("POCL_CACHE_DIR"), stderr);
     cl_int err = clGetPlatformIDs(16, platforms, &np);
     if (err == -1001 || (err == CL_SUCCESS && np == 0))
         return atmo_fail(e, ATMO_ERR_RUNTIME,

@@ -10,14 +10,15 @@
  * unless --quiet, the cost line before the work names it and says why, and the run report
  * records it (render.method, render.method_auto).
  *
- * Interrupts: the first SIGINT or SIGTERM sets the render's cancel token; the precompute or the
- * render stops after the launch in flight. Samples already rendered are written, marked
+ * Interrupts: the first SIGINT, SIGTERM or SIGHUP (the terminal closed) sets the render's cancel
+ * token; the precompute or the render stops after the launch in flight. Samples already rendered are written, marked
  * partial (report "interrupted", file metadata), and the exit status is 3; stopped before any
  * sample (in the precompute, or in a spectral render's triplets), nothing is written and the
  * exit status is 4. A signal while the files are written lets the writing finish (the image is
  * whole). A second signal removes the temporary file being written and ends the process by
- * that signal at once. Exit statuses: 0 done, 1 runtime error, 2 usage, 3 interrupted with a
- * partial image written, 4 interrupted with nothing written. */
+ * that signal at once (exit status 128 + its number: 130 SIGINT, 143 SIGTERM, 129 SIGHUP).
+ * Exit statuses: 0 done, 1 runtime error, 2 usage, 3 interrupted with a partial image written,
+ * 4 interrupted with nothing written. */
 #include <cjson/cJSON.h>
 #include <stddef.h>
 #include <math.h>
@@ -170,16 +171,18 @@ static const cli_command render_cli = {
         "An output that exists is not replaced unless --force is given.\n",
     .flags = render_flags,
     .epilogue =
-        "Ctrl-C (SIGINT) or SIGTERM stops the precompute or the render after the launch in flight:\n"
-        "the samples finished so far are written, marked partial, with exit status 3; stopped\n"
-        "before any sample, nothing is written and the exit status is 4. A second signal stops at\n"
-        "once and removes the file being written. Exit statuses: 0 done, 1 runtime error, 2 usage\n"
-        "or input error (nothing is rendered), 3 interrupted with a partial image, 4 interrupted\n"
-        "with nothing written.\n",
+        "Ctrl-C (SIGINT), SIGTERM or SIGHUP stops the precompute or the render after the launch in\n"
+        "flight: the samples finished so far are written, marked partial, with exit status 3;\n"
+        "stopped before any sample, nothing is written and the exit status is 4. A second signal\n"
+        "stops at once and removes the file being written; the process ends by that signal (the\n"
+        "shell shows 128 + its number: 130 for SIGINT, 143 SIGTERM, 129 SIGHUP).\n"
+        "Exit statuses: 0 done, 1 runtime error, 2 usage or input error (nothing is rendered),\n"
+        "3 interrupted with a partial image, 4 interrupted with nothing written.\n",
 };
 /* What the signal handler uses: a handler takes no user data, so this file holds the one token
  * that the render it starts is given (atmo_render_settings.cancel), and the temporary names of
  * the outputs (atmo_tmp_path), computed before the handler is installed. */
+#define HANDLED_SIGNALS 3
 static atmo_cancel render_cancel;
 static volatile sig_atomic_t signals_seen;
 static char pending_tmp[OUTPUT_PATHS_MAX][ATMO_TMP_PATH_MAX];
@@ -198,14 +201,14 @@ static void on_signal(int sig)
     raise(sig);
 }
 
-/* SIGINT and SIGTERM to on_signal (install) or back to what they were. */
-static void handle_signals(int install, struct sigaction old[2])
+/* SIGINT, SIGTERM and SIGHUP to on_signal (install) or back to what they were. */
+static void handle_signals(int install, struct sigaction old[HANDLED_SIGNALS])
 {
-    static const int sigs[2] = {SIGINT, SIGTERM};
+    static const int sigs[HANDLED_SIGNALS] = {SIGINT, SIGTERM, SIGHUP};
     struct sigaction sa = {0};
     sa.sa_handler = on_signal;
     sigemptyset(&sa.sa_mask);
-    for (int i = 0; i < 2; i++)
+    for (int i = 0; i < HANDLED_SIGNALS; i++)
         sigaction(sigs[i], install ? &sa : &old[i], install ? &old[i] : NULL);
 }
 
@@ -276,6 +279,17 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON_AddNumberToObject(ren, "nonfinite_samples_dropped", r->nonfinite);
     cJSON_AddNumberToObject(ren, "launches", r->launches);
     cJSON_AddNumberToObject(ren, "noise_target", rs->noise_target);
+    if (r->noise_tiles > 0) { /* the relative standard error each tile reached */
+        cJSON *tiles = cJSON_AddArrayToObject(ren, "tiles_noise");
+        for (int i = 0; i < r->noise_tiles; i++) {
+            cJSON *t = cJSON_CreateObject();
+            static const char *const keys[5] = {"x", "y", "w", "h", "samples"};
+            for (int k = 0; k < 5; k++)
+                cJSON_AddNumberToObject(t, keys[k], r->tile_rect[5 * i + k]);
+            cJSON_AddNumberToObject(t, "noise", r->tile_noise[i]);
+            cJSON_AddItemToArray(tiles, t);
+        }
+    }
     cJSON_AddNumberToObject(ren, "time_limit_s", rs->time_limit_s);
     cJSON_AddNumberToObject(ren, "tile_size", rs->tile_size);
     cJSON_AddNumberToObject(ren, "launch_budget_ms", rs->launch_budget_ms);
@@ -327,7 +341,7 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
  * message in e. */
 static int render_run(const render_args *a, const atmo_scene *scene, atmo_render_settings *rs,
                       int part_file, atmo_render_result *res, atmo_part *part,
-                      struct sigaction old[2], int *installed, atmo_err *e)
+                      struct sigaction old[HANDLED_SIGNALS], int *installed, atmo_err *e)
 {
     int rc, lut_cache = !a->no_lut_cache;
     /* spectral mode plans each triplet of bands itself */
@@ -436,7 +450,7 @@ static int render_frame(const render_args *a, const atmo_scene *scene, int part_
     if (report)
         atmo_tmp_path(report, pending_tmp[pending_count++]);
     rs.cancel = &render_cancel;
-    struct sigaction old[2];
+    struct sigaction old[HANDLED_SIGNALS];
     int installed = 0;
     int rc = render_run(a, scene, &rs, part_file, &res, &part, old, &installed, &e);
     if (rc == ATMO_INTERRUPTED_EMPTY) /* interrupted before any result */
@@ -586,8 +600,8 @@ static int render_check_overwrite(const render_args *a, const frames_animation *
 }
 
 /* outputs: formats and paths, before any work; the same file twice is one output */
-static int render_outputs(render_args *a, const frames_animation *anim, output_paths *files,
-                          atmo_err *e)
+static int render_outputs(render_args *a, const atmo_scene *scene, const frames_animation *anim,
+                          output_paths *files, atmo_err *e)
 {
     int rc;
     if (a->n_out == 0 && !a->save_scene)
@@ -604,7 +618,10 @@ static int render_outputs(render_args *a, const frames_animation *anim, output_p
     for (int i = 0; i < a->n_out; i++)
         a->outputs[i] = files->path[i];
     if ((a->report && (rc = output_paths_add(files, "--report", a->report, e))) ||
-        (a->save_scene && (rc = output_paths_add(files, "--save-scene", a->save_scene, e))))
+        (a->save_scene && (rc = output_paths_add(files, "--save-scene", a->save_scene, e))) ||
+        (rc = output_paths_check_input(files, "--scene", a->so.scene_file, e)) ||
+        (rc = output_paths_check_input(files, "--scene-end", a->scene_end, e)) ||
+        (rc = output_paths_check_input(files, "terrain.heightmap_file", scene->dem.file, e)))
         return rc;
     /* numbered names: the longest (the last frame's) is checked like the others */
     if (a->frames_text && (rc = check_frame_paths(a->outputs, a->n_out, a->report, anim->last, e)))
@@ -675,6 +692,12 @@ static int render_prepare(render_args *a, atmo_scene *scene, frames_animation *a
         ((rc = parse_part(a->part_text, &a->rs.part, &a->rs.parts, e)) ||
          (rc = check_part(scene, a->rs.parts, a->frames_text != NULL, a->outputs, a->n_out, e))))
         return rc;
+    if (a->part_text && !a->frames_text && (a->rs.noise_target > 0.0 || a->rs.time_limit_s > 0.0))
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "--part renders every pixel to image.samples (atmo merge needs the same "
+                         "count in all parts), so %s cannot stop it early; leave it out, or "
+                         "render the image whole",
+                         a->rs.noise_target > 0.0 ? "--noise" : "--time-limit");
     a->first = anim->first;
     a->step = 1;
     if (a->frames_text && a->part_text) { /* part I of N: frames A + I - 1, A + I - 1 + N, ... */
@@ -682,7 +705,7 @@ static int render_prepare(render_args *a, atmo_scene *scene, frames_animation *a
         a->step = a->rs.parts;
         a->rs.part = a->rs.parts = 0;
     }
-    if ((rc = render_outputs(a, anim, files, e)))
+    if ((rc = render_outputs(a, scene, anim, files, e)))
         return rc;
     return a->n_out > 0 ? atmo_cl_check_selector(a->rs.device, e) : ATMO_OK;
 }

@@ -832,6 +832,10 @@ int atmo_scene_validate(const atmo_scene *s, atmo_err *e)
                          "atmosphere.ozone_peak_m (%.9g m) <= atmosphere.ozone_top_m (%.9g m) with "
                          "bottom < top is required; reorder the three altitudes",
                          oz_bottom, oz_peak, oz_top);
+    if (s->dem.detail && !s->dem.file[0])
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "terrain.heightmap_detail=true adds detail below a heightmap file's "
+                         "cells; set terrain.heightmap_file or the detail to false");
     const double *c = s->camera.position_m;
     if (s->camera.on_terrain != ATMO_CAMERA_TERRAIN_OFF) {
         if (!s->terrain.enabled && !s->dem.file[0])

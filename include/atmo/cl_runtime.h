@@ -18,6 +18,7 @@
 #ifndef ATMO_CL_RUNTIME_H
 #define ATMO_CL_RUNTIME_H
 #include <CL/cl.h>
+#include <stdio.h>
 #include "atmo/status.h"
 
 typedef struct atmo_cl {
@@ -107,14 +108,33 @@ int atmo_cl_build(atmo_cl *cl, const atmo_cl_build_options *o, cl_program *progr
 char *atmo_cl_assemble(const char *prelude, const char *const *fragments, int count,
                        const char *extra, atmo_err *e);
 
-/* Cache directory (created if missing); returns 0 and fills dir, or -1. */
+/* The cache directory: ATMO_CACHE_DIR, else $XDG_CACHE_HOME/atmo, else ~/.cache/atmo, created
+ * if missing. atmo_cache_dir_find returns 0 when it is usable (atmo_cache_dir_usable), else -1
+ * with the reason in why (dir still names it). atmo_cache_dir is the same for a cache that is
+ * about to be used: the first time in a process that the directory is unusable it prints one
+ * warning naming it and why, and the caller runs without that cache. */
+int atmo_cache_dir_find(char *dir, size_t size, char *why, size_t why_size);
 int atmo_cache_dir(char *dir, size_t size);
+/* 1 when dir is a directory in which a file can be created, written and removed; else 0 with
+ * the reason in why. */
+int atmo_cache_dir_usable(const char *dir, char *why, size_t size);
+/* Check every program in PoCL's cache directory pocl_dir (host/cl/cl_driver_cache.c) and
+ * remove those with a file cut short, each with one line on say (when not NULL); returns how
+ * many were removed. */
+int atmo_cl_driver_cache_repair(const char *pocl_dir, FILE *say);
+/* 1 when POCL_CACHE_DIR is atmo's own ("<cache dir>/pocl", set by atmo_cl_prepare_environment
+ * or not set yet), 0 when the user set it. */
+int atmo_cl_driver_cache_is_own(void);
 
 /* PoCL's own cache (the compiled kernels and their work-group functions, which it builds at a
  * kernel's first launch): POCL_CACHE_DIR when the user set it, else "<atmo_cache_dir>/pocl",
  * which atmo_cl_open (and every device listing) puts into POCL_CACHE_DIR before the platform is
  * opened, so both caches live in one place. Returns 0 and fills dir, or -1 (no cache dir). */
 int atmo_cl_driver_cache_dir(char *dir, size_t size);
+/* When the cache directory is unusable, PoCL (which must write its build products somewhere)
+ * gets a private temporary directory in $TMPDIR (/tmp without it), removed when atmo exits;
+ * atmo's own PoCL directory is repaired (atmo_cl_driver_cache_repair) by the first listing of
+ * the platforms, before PoCL reads it. */
 /* PoCL reads its settings once, when the ICD loader first opens it: set POCL_CACHE_DIR and
  * POCL_WORK_GROUP_SPECIALIZATION before that, each only where the user has not (without a cache
  * directory PoCL keeps its own default). setenv is not thread-safe, so a program with threads

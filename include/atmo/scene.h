@@ -290,6 +290,12 @@ int atmo_scene_save_json(const atmo_scene *s, const char *path, atmo_err *e);
  * scene's; `where` names the source for one-line errors ("--set", the file). The key
  * "objects" of --set, presets and scene files comes here. */
 int atmo_scene_set_objects(atmo_scene *s, const char *json, const char *where, atmo_err *e);
+/* A parsed JSON tree (cJSON) with a key given twice in one object: ATMO_ERR_USAGE naming the
+ * key's path below `prefix` ("sun.zenith_deg", "objects[1].type") and `where`; else ATMO_OK. cJSON keeps
+ * both members and a lookup finds the first, so the second would be silently ignored. */
+struct cJSON;
+int atmo_json_check_duplicates(const struct cJSON *root, const char *prefix, const char *where,
+                               atmo_err *e);
 /* Every object's values in range (a scene filled in by code); one-line usage error naming
  * objects[i] otherwise. */
 int atmo_scene_check_objects(const atmo_scene *s, atmo_err *e);
