@@ -20,7 +20,7 @@
  * sky_probe_segment: the same for sky_segment, ray i ending at distance[i] (m): the mean
  * in-scattered radiance in inscatter[i] and the mean transmittance in transmittance[i]. */
 
-/* The preview's objects (visibility.h): every method's pixel that sees one gets the air in
+/* The preview's objects (objects_light.h, -DATMO_OBJECTS_PREVIEW): every method's pixel that sees one gets the air in
  * front from sky_trace, stopped this fraction of the distance short of the object so a method
  * that ends its own segments at surfaces (single, march) does not count it twice, plus the
  * object's light times the view transmittance. */
@@ -30,7 +30,7 @@
 float sky_object_distance(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
                           const medium_ray *ray)
 {
-#ifdef VISIBILITY_OBJECTS
+#ifdef ATMO_OBJECTS_PREVIEW
     float t;
     if (objects_hit(objects, scene->path.object_count, ray->origin, ray->dir, 0.0f, INFINITY,
                     &t) < 0)
