@@ -14,7 +14,9 @@
  *     the air's and calls its functions (a sky-only composition names no cloud and has no
  *     intervals); it adds its flag and its phase table as a buffer of its own with host data; a
  *     sky-only scene's assembled source holds no cloud code (sizes printed: what the shell
- *     costs to compile). */
+ *     costs to compile);
+ *  4. the composition refuses two features in a slot that takes one (a registry bug) and a
+ *     buffer too small for the text. */
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/cl_runtime.h"
@@ -143,7 +145,8 @@ static void test_cloud(void)
     check_buffers(&cloud, with_table);
     CHECK(strcmp(cloud.defines, "-DATMO_CLOUD") == 0);
     int shell = fragment_at(&cloud, "kernels/media/cloud_shell.h");
-    int media = fragment_at(&cloud, "plan/media"), intervals = fragment_at(&cloud, "plan/intervals");
+    int media = fragment_at(&cloud, "plan/media");
+    int intervals = fragment_at(&cloud, "plan/intervals");
     /* a medium: after the media's contract, before the composition of the media, which comes
      * before the visibility; its stepping after the visibility, before the composition of the
      * intervals, which comes before the integrator */
@@ -190,9 +193,26 @@ static void test_cloud(void)
            n_cloud, n_cloud - n_sky);
 }
 
+/* The generator refuses a slot that takes one feature when two fill it (two media with their
+ * own stepping, two methods' sources), and composes each alone. */
+static void test_compose_single_slots(void)
+{
+    static char text[8192];
+    const atmo_feature *both_media[] = {atmo_feature_find("cloud"),
+                                        atmo_feature_find("clouds_medium")};
+    const atmo_feature *both_sources[] = {atmo_feature_find("ms_lut"), atmo_feature_find("lut")};
+    CHECK(atmo_compose(both_media, 2, ATMO_COMPOSE_INTERVALS, text, sizeof text) == -1);
+    CHECK(atmo_compose(both_sources, 2, ATMO_COMPOSE_MEDIA, text, sizeof text) == -1);
+    CHECK(atmo_compose(both_media, 1, ATMO_COMPOSE_INTERVALS, text, sizeof text) == 0);
+    CHECK(atmo_compose(both_sources + 1, 1, ATMO_COMPOSE_MEDIA, text, sizeof text) == 0 &&
+          strstr(text, "return lut_ms_source(") != NULL);
+    CHECK(atmo_compose(both_media, 2, ATMO_COMPOSE_MEDIA, text, 64) == -1); /* does not fit */
+}
+
 int main(void)
 {
     test_registry_files();
+    test_compose_single_slots();
     test_methods();
     test_cloud();
     return test_finish();

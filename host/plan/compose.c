@@ -87,14 +87,16 @@ static int compose_ms(text *t, const atmo_feature *const *f, int n)
     int twice = 0;
     const char *src = single(f, n, offsetof(atmo_slots, ms_source), &twice);
     const char *ground = single(f, n, offsetof(atmo_slots, ms_ground_irradiance), &twice);
-    put(t, "/* The method's multiple-scattering source toward the viewer at q (zero without one). */\n");
+    put(t, "/* The method's multiple-scattering source toward the viewer at q (zero without "
+           "one). */\n");
     put(t, HEAD "const medium_point *q, float nu, const media_sample *m, int ground)\n{\n", "vec3",
         "medium_ms_source");
     if (src)
         put(t, "    return %s(s, ATMO_LUT_ARGS, q, nu, m, ground);\n}\n\n", src);
     else
         put(t, "    return v3(0.0f, 0.0f, 0.0f);\n}\n\n");
-    put(t, "/* The method's sky irradiance on the ground at sun cosine mu_s (zero without one). */\n");
+    put(t, "/* The method's sky irradiance on the ground at sun cosine mu_s (zero without "
+           "one). */\n");
     put(t, HEAD "float mu_s)\n{\n", "vec3", "medium_ms_ground_irradiance");
     if (ground)
         put(t, "    return %s(s, ATMO_LUT_ARGS, mu_s);\n}\n", ground);
@@ -170,7 +172,8 @@ static void compose_sun(text *t, const atmo_feature *const *f, int n)
             put(t, "    %s(s, m, end, surface_t, &vr->%s);\n", f[i]->slots->ray_begin,
                 f[i]->name);
     put(t, "}\n\n");
-    put(t, "/* The occluders' visibility of the sun at a sample of a ray with state vr (0: none). */\n");
+    put(t, "/* The occluders' visibility of the sun at a sample of a ray with state vr (0: "
+           "none). */\n");
     put(t, "ATMO_FN float visibility_sun_occluders_on_ray(ATMO_GLOBAL const atmo_gpu_scene *s,\n"
            "                                              ATMO_LUT_PARAMS, const medium_point *q,\n"
            "                                              visibility_ray *vr)\n{\n");
@@ -197,7 +200,8 @@ static void compose_surfaces(text *t, const atmo_feature *const *f, int n)
     put(t, HEAD "const medium_ray *m, float t)\n{\n", "vec3", "visibility_surface_radiance");
     for (int i = 0; i < n; i++)
         if (SLOT(f[i], surface_radiance))
-            put(t, "    vec3 L_%d = %s(s, ATMO_LUT_ARGS, m, t);\n    if (L_%d.x >= 0.0f)\n        return L_%d;\n",
+            put(t, "    vec3 L_%d = %s(s, ATMO_LUT_ARGS, m, t);\n"
+                   "    if (L_%d.x >= 0.0f)\n        return L_%d;\n",
                 i, f[i]->slots->surface_radiance, i, i);
     put(t, "    return v3(0.0f, 0.0f, 0.0f);\n}\n");
 }

@@ -72,7 +72,8 @@ static int plan_atmosphere(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 /* The headers every kernel is compiled with: the shared GPU structs (each feature's in its own
  * header, before the scene struct that holds them), math, the atmosphere, the camera, the
  * camera-relative ray that the media and the integrator take, the media's contract and the
- * air, the planet as the first occluder of the sun, and the free-flight and ratio-tracking steps of the Monte Carlo walks. */
+ * air, the planet as the first occluder of the sun, and the free-flight and ratio-tracking
+ * steps of the Monte Carlo walks. */
 static const char *const atmosphere_fragments[] = {
     "kernels/common/compat.h",        "include/atmo/gpu_enums.h",
     "include/atmo/gpu_atmosphere.h",  "include/atmo/gpu_ms_lut.h",

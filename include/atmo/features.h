@@ -1,7 +1,8 @@
 /* features.h — the feature registry: what a scene can contain, one row per feature.
  *
  * A feature is an atmosphere method, a part that methods share (the view-ray integrator, the
- * Psi_ms LUT), the cloud shell, and later terrain, fBm clouds and objects. Its row declares
+ * Psi_ms LUT), a medium (the cloud shell, the fBm layer), an occluder or surface (terrain,
+ * objects, the observer). Its row declares
  *   - when a scene contains it (wanted),
  *   - its kernel fragments, appended to the program in registry order (so a shared part comes
  *     before the methods that call it and a medium before the methods that integrate it: no
@@ -11,7 +12,10 @@
  *   - the fragments its passes are compiled from and the features whose buffers they read
  *     (sources, needs: the cache key covers those too, atmo/render.h),
  *   - a plan function that fills its GPU struct from the scene, sizes its named buffers
- *     (atmo_plan_add_buffer) and lists its precompute passes (atmo_plan_add_pass).
+ *     (atmo_plan_add_buffer) and lists its precompute passes (atmo_plan_add_pass),
+ *   - the functions it gives the generic integrator (slots: a medium's coefficients, an
+ *     occluder, a surface, a method's multiple-scattering source), which the plan composes
+ *     into generated fragments at the rows marked `compose` (host/plan/compose.c).
  * atmo_plan_make walks the rows in order and plans the wanted ones; the kernels then see only
  * the fragments, flags and buffers of the features the scene contains. */
 #ifndef ATMO_FEATURES_H

@@ -28,7 +28,8 @@ ATMO_FN vec3 lut_ms_ground_irradiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     ATMO_GLOBAL const int *dims = s->lut.dims;
-    return lut_irradiance_lookup(a, scattering_mie + LUT_TEXELS(dims), dims, a->bottom_radius, mu_s);
+    return lut_irradiance_lookup(a, scattering_mie + LUT_TEXELS(dims), dims, a->bottom_radius,
+                                 mu_s);
 }
 
 #endif
