@@ -22,6 +22,7 @@
 #include <time.h>
 #include "atmo/cache_file.h"
 #include "atmo/cl_runtime.h"
+#include "atmo/suggest.h"
 #include "commands.h"
 
 #define KEY_HEX_DIGITS 16
@@ -237,8 +238,11 @@ int cmd_cache(int argc, char **argv)
         }
         if (action || (strcmp(argv[i], "list") && strcmp(argv[i], "verify") &&
                        strcmp(argv[i], "clear"))) {
-            fprintf(stderr, "atmo cache: unexpected argument '%s' (actions: list, verify, clear; "
-                            "run 'atmo cache --help')\n", argv[i]);
+            static const char *const actions[] = {"list", "verify", "clear", NULL};
+            const char *near = action ? NULL : atmo_suggest_among(argv[i], actions);
+            fprintf(stderr, "atmo cache: unexpected argument '%s' (%s%s%sactions: list, verify, "
+                            "clear; run 'atmo cache --help')\n", argv[i],
+                    near ? "did you mean '" : "", near ? near : "", near ? "'? " : "");
             return ATMO_ERR_USAGE;
         }
         action = argv[i];

@@ -5,7 +5,10 @@
  * --time, --camera) in command-line order. Every output's format and path is checked before
  * anything runs (output_paths.h: directory, name, limits, no two outputs in one file; an
  * existing file only with --force, overwrite.h), so a bad argument never costs a render. The
- * flags are one table (cli_flags.h), from which --help is generated with every default.
+ * flags are one table (cli_flags.h), from which --help is generated with every default. With
+ * atmosphere.method = auto (the default) the plan picks the method (atmo_plan_auto_method);
+ * unless --quiet, the cost line before the work names it and says why, and the run report
+ * records it (render.method, render.method_auto).
  *
  * Interrupts: the first SIGINT or SIGTERM sets the render's cancel token; the precompute or the
  * render stops after the launch in flight. Samples already rendered are written, marked
@@ -59,7 +62,29 @@ typedef struct render_args {
 
 static const char *const render_exr_codecs[] = {"piz", "none", "zip", "zips", "rle", NULL};
 
-static int take_noise(void *args, const cli_flag *f, const char *v, atmo_err *e);
+/* --noise: "1%" or a fraction "0.01", in (0, 1]. */
+static int parse_noise(const char *v, double *out, atmo_err *e)
+{
+    char *end;
+    double x = strtod(v, &end);
+    if (end != v && *end == '%' && end[1] == 0)
+        x /= 100.0;
+    else if (end == v || *end != 0)
+        x = -1.0;
+    if (!(x > 0.0 && x <= 1.0))
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "--noise needs a relative standard error such as 1%% or 0.01 (above 0, "
+                         "at most 100%%), got '%s'",
+                         v);
+    *out = x;
+    return ATMO_OK;
+}
+
+static int take_noise(void *args, const cli_flag *f, const char *v, atmo_err *e)
+{
+    (void)f;
+    return parse_noise(v, &((render_args *)args)->rs.noise_target, e);
+}
 
 #define RENDER_FLAG(member) offsetof(render_args, member)
 
@@ -137,6 +162,10 @@ static const cli_command render_cli = {
         "luminance (cd/m^2) with --set render.quantity=luminance. With --set render.spectral_bands=N\n"
         "(N >= 15) the scene is rendered at N wavelengths over 360-830 nm, three at a time, and\n"
         "combined through the CIE 1931 colour matching functions into linear sRGB (cd/m^2).\n"
+        "For Blender (a World environment texture) use --blender: linear Rec.709 RGB (cd/m^2)\n"
+        "with the EXR chromaticities, panoramas in Blender's world orientation, and the World\n"
+        "strength that matches the PNG's exposure, printed and stored in the EXR\n"
+        "(docs/guide/blender.md).\n"
         "An output that exists is not replaced unless --force is given.\n",
     .flags = render_flags,
     .epilogue =
@@ -179,10 +208,48 @@ static void handle_signals(int install, struct sigaction old[2])
         sigaction(sigs[i], install ? &sa : &old[i], install ? &old[i] : NULL);
 }
 
+/* The report's render passes (the EXR layers' channels) and what the lens flare measured and
+ * added. */
+static void report_passes_and_flare(cJSON *ren, const atmo_scene *s,
+                                    const atmo_image_layer *layers, int n_layers,
+                                    const atmo_flare_info *flare)
+{
+    cJSON *passes = cJSON_AddArrayToObject(ren, "passes");
+    for (int i = 0; i < n_layers; i++)
+        for (int c = 0; c < layers[i].channels; c++) {
+            char name[64];
+            snprintf(name, sizeof name, "%s.%s", layers[i].name, layers[i].channel_names[c]);
+            cJSON_AddItemToArray(passes, cJSON_CreateString(name));
+        }
+    if (!s->post.flare)
+        return;
+    cJSON *fl = cJSON_AddObjectToObject(ren, "flare");
+    cJSON_AddNumberToObject(fl, "sun_x_px", flare->sun_x);
+    cJSON_AddNumberToObject(fl, "sun_y_px", flare->sun_y);
+    cJSON *irr = cJSON_AddArrayToObject(fl, "sun_irradiance");
+    cJSON *add = cJSON_AddArrayToObject(fl, "added_irradiance");
+    for (int c = 0; c < 3; c++) {
+        cJSON_AddItemToArray(irr, cJSON_CreateNumber(flare->irradiance[c]));
+        cJSON_AddItemToArray(add, cJSON_CreateNumber(flare->added[c]));
+    }
+}
+
+/* The name of the method the scene renders with; *why (NULL unless atmosphere.method = auto)
+ * the plan's reason for its choice. */
+static const char *method_name(const atmo_scene *s, const char **why)
+{
+    int m = s->atmosphere.method;
+    *why = NULL;
+    if (m == ATMO_METHOD_AUTO)
+        m = atmo_plan_auto_method(s, why);
+    return atmo_param_find("atmosphere.method")->names[m];
+}
+
 static int write_report(const char *path, const atmo_scene *s, const atmo_render_result *r,
                           const atmo_render_settings *rs, const char *const *outputs, int n_out,
                           double seconds_write, const atmo_image_layer *layers, int n_layers,
-                          const atmo_flare_info *flare, atmo_err *e)
+                          const atmo_flare_info *flare, const atmo_outputs_denoise *denoised,
+                          atmo_err *e)
 {
     cJSON *root = cJSON_CreateObject();
     char *scene_text = atmo_scene_to_json(s);
@@ -197,6 +264,10 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON *ren = cJSON_AddObjectToObject(root, "render");
     cJSON_AddNumberToObject(ren, "width", r->width);
     cJSON_AddNumberToObject(ren, "height", r->height);
+    const char *why;
+    cJSON_AddStringToObject(ren, "method", method_name(s, &why));
+    if (why)
+        cJSON_AddStringToObject(ren, "method_auto", why);
     cJSON_AddNumberToObject(ren, "samples_requested", r->samples_requested);
     cJSON_AddNumberToObject(ren, "samples_min", r->samples_min);
     cJSON_AddNumberToObject(ren, "samples_max", r->samples_max);
@@ -224,24 +295,10 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON_AddNumberToObject(t, "render", r->seconds_render);
     cJSON_AddNumberToObject(t, "read_back", r->seconds_read);
     cJSON_AddNumberToObject(t, "write", seconds_write);
-    cJSON *passes = cJSON_AddArrayToObject(ren, "passes"); /* the EXR layers' channels */
-    for (int i = 0; i < n_layers; i++)
-        for (int c = 0; c < layers[i].channels; c++) {
-            char name[64];
-            snprintf(name, sizeof name, "%s.%s", layers[i].name, layers[i].channel_names[c]);
-            cJSON_AddItemToArray(passes, cJSON_CreateString(name));
-        }
-    if (s->post.flare) { /* what the lens flare measured and added */
-        cJSON *fl = cJSON_AddObjectToObject(ren, "flare");
-        cJSON_AddNumberToObject(fl, "sun_x_px", flare->sun_x);
-        cJSON_AddNumberToObject(fl, "sun_y_px", flare->sun_y);
-        cJSON *irr = cJSON_AddArrayToObject(fl, "sun_irradiance");
-        cJSON *add = cJSON_AddArrayToObject(fl, "added_irradiance");
-        for (int c = 0; c < 3; c++) {
-            cJSON_AddItemToArray(irr, cJSON_CreateNumber(flare->irradiance[c]));
-            cJSON_AddItemToArray(add, cJSON_CreateNumber(flare->added[c]));
-        }
-    }
+    report_passes_and_flare(ren, s, layers, n_layers, flare);
+    cJSON *dn = atmo_outputs_denoise_json(s, denoised);
+    if (dn)
+        cJSON_AddItemToObject(ren, "denoise", dn);
     cJSON *outs = cJSON_AddArrayToObject(root, "outputs");
     for (int i = 0; i < n_out; i++)
         cJSON_AddItemToArray(outs, cJSON_CreateString(outputs[i]));
@@ -262,23 +319,6 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     return rc;
 }
 
-/* --noise: "1%" or a fraction "0.01", in (0, 1]. */
-static int parse_noise(const char *v, double *out, atmo_err *e)
-{
-    char *end;
-    double x = strtod(v, &end);
-    if (end != v && *end == '%' && end[1] == 0)
-        x /= 100.0;
-    else if (end == v || *end != 0)
-        x = -1.0;
-    if (!(x > 0.0 && x <= 1.0))
-        return atmo_fail(e, ATMO_ERR_USAGE,
-                         "--noise needs a relative standard error such as 1%% or 0.01 (above 0, "
-                         "at most 100%%), got '%s'",
-                         v);
-    *out = x;
-    return ATMO_OK;
-}
 
 /* Render one scene (a frame) to res (or part): plan it, then install the signal handler (*old
  * gets the handlers it replaced, *installed 1), then render. The handler stays until the files
@@ -337,20 +377,24 @@ static int render_write(const render_args *a, const atmo_scene *scene,
     double tw = atmo_now_seconds();
     atmo_image img = {.width = res->width, .height = res->height, .rgb = res->rgb};
     atmo_image_layer layers[RENDER_PASS_LAYERS];
-    float *layer_data = NULL;
+    float *layer_data = NULL, *guide_data = NULL;
+    atmo_outputs_guides guides;
+    atmo_outputs_denoise denoised = {0};
     img.layer_count = part_file ? 0 : render_pass_layers(res, layers, &layer_data);
     img.layers = layers;
     int exr = atmo_exr_compression_from_name(render_exr_codecs[a->exr_codec]);
-    if (img.layer_count < 0)
+    if (img.layer_count < 0 || atmo_outputs_guides_from_passes(res, &guides, &guide_data) < 0)
         rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the render passes");
     else
         rc = part_file ? atmo_part_write(outputs[0], part, e)
-                       : atmo_outputs_write(scene, &img, res->samples_min, res->interrupted, exr,
-                                            outputs, n_out, e);
+                       : atmo_outputs_write_denoised(scene, &img, &guides, res->samples_min,
+                                                     res->interrupted, exr, outputs, n_out,
+                                                     &denoised, e);
     *seconds_write = atmo_now_seconds() - tw;
     if (!rc && report)
         rc = write_report(report, scene, res, rs, outputs, n_out, *seconds_write, img.layers,
-                          img.layer_count > 0 ? img.layer_count : 0, flare, e);
+                          img.layer_count > 0 ? img.layer_count : 0, flare, &denoised, e);
+    free(guide_data);
     free(layer_data);
     return rc;
 }
@@ -414,6 +458,13 @@ static int render_frame(const render_args *a, const atmo_scene *scene, int part_
         handle_signals(0, old);
     if (rc && rc != ATMO_INTERRUPTED_EMPTY)
         fprintf(stderr, "atmo render: %s\n", e.msg);
+    double strength, colour[3];
+    if (!rc && !a->quiet && !part_file &&
+        atmo_outputs_blender_world(scene, &strength, colour))
+        fprintf(stderr, "atmo render: in Blender, World > Background Strength %.6g with the "
+                        "texture multiplied by (%.4f, %.4f, %.4f) shows these files as the PNG "
+                        "before its tone map (docs/guide/blender.md)\n",
+                strength, colour[0], colour[1], colour[2]);
     if (!rc && !a->quiet)
         render_summary(&res, n_out, scene->render.spectral_bands > 0, seconds_write);
     if (!rc && res.interrupted)
@@ -486,12 +537,6 @@ static int check_frame_paths(const char *const *outputs, int n_out, const char *
     return rc;
 }
 
-/* --noise: "1%" or a fraction "0.01", in (0, 1]. */
-static int take_noise(void *args, const cli_flag *f, const char *v, atmo_err *e)
-{
-    (void)f;
-    return parse_noise(v, &((render_args *)args)->rs.noise_target, e);
-}
 
 /* animation: the frames' scenes, each checked before any work */
 static int render_animation(const render_args *a, const atmo_scene *scene, frames_animation *anim,
@@ -593,6 +638,29 @@ static int render_frames(const render_args *a, const atmo_scene *scene,
     return rc;
 }
 
+/* "atmo render: 640x360 at 16 samples/pixel (3.7 M samples), method fast, 1 image": what the
+ * render will cost in samples, before any work (the time follows from the first launch, in
+ * the progress line's ETA). */
+static void render_cost_line(const render_args *a, const atmo_scene *s, const frames_animation *anim)
+{
+    const char *why;
+    const char *method = method_name(s, &why);
+    int frames = a->frames_text ? (anim->last - a->first) / a->step + 1 : 1;
+    int triplets = s->render.spectral_bands > 0 ? (s->render.spectral_bands + 2) / 3 : 1;
+    double samples = (double)s->image.width * s->image.height * s->image.samples * triplets;
+    if (a->part_text && !a->frames_text)
+        samples /= a->rs.parts;
+    fprintf(stderr, "atmo render: %dx%d at %s%d sample%s/pixel%s (%.3g M samples%s), method %s%s%s%s%s; "
+                    "%d frame%s\n",
+            s->image.width, s->image.height, a->rs.noise_target > 0.0 ? "at most " : "",
+            s->image.samples, s->image.samples == 1 ? "" : "s",
+            triplets > 1 ? " per triplet of bands" : "", 1e-6 * samples * frames,
+            a->part_text && !a->frames_text ? " in this part" : "",
+            method, why ? " (auto: " : "", why ? why : "", why ? ")" : "",
+            s->path.mode == ATMO_RENDER_PATH ? ", path traced" : "", frames,
+            frames == 1 ? "" : "s");
+}
+
 /* The scene, the animation, the parts and the outputs, all checked before any work. */
 static int render_prepare(render_args *a, atmo_scene *scene, frames_animation *anim,
                           output_paths *files, atmo_err *e)
@@ -637,10 +705,22 @@ int cmd_render(int argc, char **argv)
         output_paths_free(&files);
         return cli_fail(&render_cli, rc, &e);
     }
+    /* denoising: a missing library is a usage error when asked for, a warning for auto */
+    char denoise_warning[1200] = "";
+    if (a.n_out > 0 && !(a.part_text && !a.frames_text) &&
+        (rc = atmo_outputs_denoise_prepare(&scene, a.outputs, a.n_out, denoise_warning,
+                                           sizeof denoise_warning, &e))) {
+        output_paths_free(&files);
+        return cli_fail(&render_cli, rc, &e);
+    }
+    if (denoise_warning[0])
+        fprintf(stderr, "atmo render: %s\n", denoise_warning);
     if (a.n_out > 0 && a.first > anim.last && !a.quiet)
         fprintf(stderr, "atmo render: part %d/%d of frames %d..%d has no frame to render\n",
                 a.first - anim.first + 1, a.step, anim.first, anim.last);
     a.rs.progress = a.quiet ? 0 : (isatty(STDERR_FILENO) ? 2 : 1);
+    if (a.n_out > 0 && a.first <= anim.last && !a.quiet)
+        render_cost_line(&a, &scene, &anim);
     if (a.n_out > 0)
         rc = render_frames(&a, &scene, &anim);
     output_paths_free(&files);

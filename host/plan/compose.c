@@ -128,11 +128,12 @@ static int compose_intervals(text *t, const atmo_feature *const *f, int n)
         put(t, "    return 0;\n}\n\n");
     put(t, "/* Interval [t0, t1] of media_intervals integrated by its medium (media.h). */\n");
     put(t, HEAD "const medium_ray *m, float t0, float t1,\n"
-           "                            float jitter, int use_ms, int ground, vec3 *L, vec3 *T,\n"
-           "                            vec3 *medium_t)\n{\n",
+           "                            float jitter, int use_ms, int ground, float grid_d,\n"
+           "                            int grid_n, vec3 *L, vec3 *T, vec3 *medium_t)\n{\n",
         "void", "media_interval");
     if (step)
-        put(t, "    %s(s, ATMO_LUT_ARGS, m, t0, t1, jitter, use_ms, ground, L, T, medium_t);\n",
+        put(t, "    %s(s, ATMO_LUT_ARGS, m, t0, t1, jitter, use_ms, ground, grid_d, grid_n, L, T,\n"
+               "       medium_t);\n",
             step);
     put(t, "}\n");
     return twice ? -1 : 0;

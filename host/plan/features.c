@@ -102,7 +102,8 @@ static const char *const atmosphere_sources[] = {
 
 /* The sun's visibility over the composed occluders and media; the one medium integrator over
  * the composed media, visibility and intervals. */
-static const char *const visibility_fragments[] = {"kernels/media/visibility.h", NULL};
+static const char *const visibility_fragments[] = {"kernels/media/visibility.h",
+                                                   "kernels/media/medium_air.h", NULL};
 static const char *const medium_fragments[] = {"kernels/media/medium.h", NULL};
 #define MEDIUM_SOURCES                                                                             \
     "kernels/media/ray.h", "kernels/media/media.h", "kernels/media/visibility.h",                  \
@@ -157,7 +158,7 @@ static const atmo_slots cloud_slots = {.component = "CLOUD",
                                        .media_phase = "cloud_shell_media_phase",
                                        .media_sun = "cloud_shell_media_sun",
                                        .media_intervals = "cloud_shell_intervals",
-                                       .media_interval = "cloud_shell_media_interval",
+                                       .media_interval = "cloud_shell_interval",
                                        .sun_occluder = "observer_sun_visibility",
                                        .surface_occluder = 1,
                                        .surface_hit = "observer_surface_hit",
@@ -179,7 +180,7 @@ static const atmo_slots clouds_slots = {.component = "CLOUDS",
                                         .media_phase = "clouds_media_phase",
                                         .media_sun = "clouds_media_sun",
                                         .media_intervals = "clouds_media_intervals",
-                                        .media_interval = "clouds_interval"};
+                                        .media_interval = "clouds_media_interval"};
 /* the volume stage's walk through the layer, over its majorant grid: the shadows it casts on
  * the air's samples of every method */
 static const char *const clouds_walk_fragments[] = {"kernels/media/cloud_walk.h", NULL};

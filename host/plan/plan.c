@@ -9,6 +9,7 @@
 #include "atmo/colour.h"
 #include "atmo/features.h"
 #include "atmo/plan.h"
+#include "atmo/plan_clouds.h"
 #include "atmo/plan_terrain.h"
 
 /* The layout the kernels see: OpenCL C aligns float4 to 16 bytes, as compat.h does on the host. */
@@ -331,9 +332,36 @@ int atmo_plan_place_camera(const atmo_scene *s, atmo_scene *out, atmo_err *e)
 }
 
 /* atmo_plan_make's work: the shared structs, then each wanted feature in registry order. */
+int atmo_plan_auto_method(const atmo_scene *s, const char **why)
+{
+    const char *reason = "a clear sky";
+    int method = ATMO_METHOD_MARCH;
+    if (s->clouds.enabled && !atmo_plan_clouds_volume(s))
+        reason = "the fBm cloud layer";
+    else if (s->cloud.enabled)
+        reason = "the cloud shell";
+    else if (s->observer.enabled)
+        reason = "the observer";
+    else
+        method = ATMO_METHOD_FAST;
+    if (why)
+        *why = reason;
+    return method;
+}
+
 static int plan_features(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 {
     int rc;
+    if (s->atmosphere.method == ATMO_METHOD_AUTO) { /* planned as the method it stands for */
+        atmo_scene *chosen = malloc(sizeof *chosen);
+        if (!chosen)
+            return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the scene");
+        *chosen = *s;
+        chosen->atmosphere.method = atmo_plan_auto_method(s, NULL);
+        rc = plan_features(chosen, p, e);
+        free(chosen);
+        return rc;
+    }
     if ((rc = atmo_scene_validate(s, e)) || (rc = atmo_atmosphere_from_scene(s, &p->atmosphere, e)))
         return rc;
     if (s->dem.file[0]) { /* a bad heightmap fails here, before any device work */

@@ -1,8 +1,11 @@
 /* cl_runtime.h — the OpenCL device, its context and queue, and program builds.
  *
  * Device choice: a selector (from --device or the ATMO_DEVICE variable) that is either a number
- * (the index in `atmo devices`' list) or a case-insensitive substring of "platform / device";
- * with none, the first GPU, else the first CPU, else the first device of any kind.
+ * (the index in `atmo devices`' list) or a case-insensitive substring of
+ * "platform (platform vendor) / device";
+ * with none, the first GPU, else the first CPU, else the first device of any kind. Only devices
+ * that meet the kernels' requirements (atmo_cl_caps_usable) are chosen: a selector that names a
+ * device that does not meet them is refused with the reason, and the default skips it.
  *
  * Programs are assembled from the embedded fragments of kernels/ (atmo/embedded.h), each preceded
  * by a #line directive naming its file, and built with "-cl-std=CL1.2" plus the plan's -D flags.
@@ -58,8 +61,37 @@ const char *atmo_cl_error_string(cl_int err);
 /* Format "CALL failed: ERROR" into e and return ATMO_ERR_RUNTIME. */
 int atmo_cl_fail(atmo_err *e, const char *call, cl_int err);
 
-/* Print every platform and device (name, type, compute units, memory, fp64, driver). */
-int atmo_cl_list_devices(int json, atmo_err *e);
+/* The largest work group atmo launches: 8 x 8 render tiles (session.c), 8 x 8 x 1 and
+ * 4 x 4 x 4 precompute passes (precompute.c). */
+#define ATMO_CL_WORK_GROUP_ITEMS 64
+#define ATMO_CL_WORK_ITEM_MIN_X 8
+#define ATMO_CL_WORK_ITEM_MIN_Y 8
+#define ATMO_CL_WORK_ITEM_MIN_Z 4
+
+/* What the kernels need of a device, as clGetDeviceInfo reports it. */
+typedef struct atmo_cl_caps {
+    int available;                 /* CL_DEVICE_AVAILABLE */
+    int compiler;                  /* CL_DEVICE_COMPILER_AVAILABLE: kernels build from source */
+    char c_version[128];           /* CL_DEVICE_OPENCL_C_VERSION, "OpenCL C <major>.<minor> ..." */
+    cl_device_fp_config single_fp; /* CL_DEVICE_SINGLE_FP_CONFIG */
+    size_t max_work_group;         /* CL_DEVICE_MAX_WORK_GROUP_SIZE */
+    size_t max_work_item[3];       /* CL_DEVICE_MAX_WORK_ITEM_SIZES */
+} atmo_cl_caps;
+
+/* The caps of a device (unreadable fields stay 0 or ""). */
+void atmo_cl_query_caps(cl_device_id device, atmo_cl_caps *caps);
+
+/* 1 if a device with these caps can run atmo's kernels; else 0 and why not, one phrase, in why:
+ * not available, no compiler, OpenCL C below 1.2 (the kernels are OpenCL C 1.2), float without
+ * Inf/NaN or round-to-nearest (the kernels test for NaN and rely on IEEE rounding), or work
+ * groups smaller than ATMO_CL_WORK_GROUP_ITEMS (8 x 8 x 4 items). */
+int atmo_cl_caps_usable(const atmo_cl_caps *caps, char *why, size_t size);
+
+/* Print every platform and its devices (name, vendor, type, versions, compute units, memory),
+ * why a device is skipped, and which one a render would use with this selector (NULL: the
+ * ATMO_DEVICE variable, else the default); json: the same as one JSON object. A selector that
+ * names no usable device is ATMO_ERR_USAGE, and nothing is printed. */
+int atmo_cl_list_devices(const char *selector, int json, atmo_err *e);
 
 int atmo_cl_open(atmo_cl *cl, const char *selector, atmo_err *e);
 void atmo_cl_close(atmo_cl *cl);

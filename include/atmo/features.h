@@ -41,8 +41,9 @@ typedef struct atmo_gpu_field {
  *   media_intervals       int (s, const medium_ray *m, float t_start, float t_end, float *lo,
  *                         float *hi): the parts of the ray it steps itself (at most one medium)
  *   media_interval        void (s, ATMO_LUT_PARAMS, const medium_ray *m, float t0, float t1,
- *                         float jitter, int use_ms, int ground, vec3 *L, vec3 *T,
- *                         vec3 *medium_t): that stepping
+ *                         float jitter, int use_ms, int ground, float grid_d, int grid_n,
+ *                         vec3 *L, vec3 *T, vec3 *medium_t): that stepping (grid_d, grid_n:
+ *                         the integrator's air grid, break points grid_d (i / grid_n)^2)
  *   ms_source             vec3 (s, ATMO_LUT_PARAMS, const medium_point *q, float nu,
  *                         const media_sample *m, int ground): a method's multiple-scattering
  *                         source (at most one method)

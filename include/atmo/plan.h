@@ -94,6 +94,11 @@ typedef struct atmo_plan {
 /* Plan a validated scene. On failure nothing is left to release; on success the caller
  * releases the plan with atmo_plan_free once no session or probe opened with it is left. */
 int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e);
+/* The method atmosphere.method = auto plans the scene with (atmo_plan_make resolves it): march
+ * where the scene has a medium that fast and lut do not integrate (the fBm cloud layer as a
+ * medium of the methods, the cloud shell, the observer; march is the cheapest method with
+ * multiple scattering that does), else fast. *why (unless NULL) says which, for the user. */
+int atmo_plan_auto_method(const atmo_scene *s, const char **why);
 /* The camera's world position in metres for scene s as plan p (made from s) places it:
  * camera.position_m, its y above the terrain's surface with camera.on_terrain. */
 void atmo_plan_camera_world(const atmo_plan *p, const atmo_scene *s, double out[3]);

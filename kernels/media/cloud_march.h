@@ -206,4 +206,14 @@ ATMO_FN void clouds_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
     }
 }
 
+/* The layer's media_interval in the plan's composition (media.h): clouds_interval, whose own
+ * steps follow the pixel's footprint, not the air grid (grid_d, grid_n unused). */
+ATMO_FN void clouds_media_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                   const medium_ray *m, float t0, float t1, float jitter,
+                                   int use_ms, int ground, float grid_d, int grid_n, vec3 *L,
+                                   vec3 *T, vec3 *medium_t)
+{
+    clouds_interval(s, ATMO_LUT_ARGS, m, t0, t1, jitter, use_ms, ground, L, T, medium_t);
+}
+
 #endif

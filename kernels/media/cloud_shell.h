@@ -12,17 +12,23 @@
  * two intervals inside it, cloud_shell_intervals), its own stepping inside them
  * (cloud_shell_interval), the light it takes from the sun on the way down to any point (the
  * chord through the shell, analytic: exp(-sigma l_sun), a visibility source in visibility.h),
- * and its coefficients at a point (media.h). Inside an interval it steps in equal optical depth
- * (channel y), `cloud.steps` steps up to CLOUD_TAU_CUT (beyond it the view transmittance is
- * below 1e-5), so a cloud of optical thickness 10-1000 is resolved where it is seen; the air's
- * extinction (at the interval's middle) is added to the cloud's. Within a step the sun's path
- * length in the shell is taken as linear in t, from l_0 to l_1, so with x(s) = a sigma l(s) +
- * sigma_v s the step integrates exactly
+ * and its coefficients at a point (media.h). An interval integrates everything in its part of
+ * the ray: the cloud and the air in it (the air's scattering of the sun and, with use_ms, the
+ * method's multiple-scattering source: medium_air_source). Its steps end at the cloud's break
+ * points, equal in optical depth (channel y), `cloud.steps` of them up to CLOUD_TAU_CUT (beyond
+ * it the view transmittance is below 1e-5), so a cloud of optical thickness 10-1000 is
+ * resolved where it is seen, and at the air grid's break points (medium_integrate's), so the
+ * air inside the shell is sampled at least as finely as outside it and a shell of negligible
+ * optical depth leaves the sky as the air alone makes it. Each step takes its coefficients, the
+ * atmosphere's transmittance toward the sun and the sun's occluders (the planet, the observer:
+ * visibility_sun_occluders) at the fraction `jitter` of it, sigma_v = the cloud's extinction
+ * plus the air's there. Within a step the sun's path length in the shell is taken as linear in
+ * t, from l_0 to l_1, so with x(s) = a sigma l(s) + sigma_v s the step integrates exactly
  *     int_0^dt S_0 e^{-x(s)} ds = S_0 dt (e^{-x(0)} - e^{-x(dt)}) / (x(dt) - x(0))
  * (exact for a plane-parallel slab, where the single-scattering radiance has the closed form
- * omega p(theta) E mu_s / (mu_s + mu_v) (1 - e^{-tau (1/mu_s + 1/mu_v)}) used by the tests).
- * The sun's other occluders (the planet, the observer: visibility_sun_occluders) are asked at
- * a jittered point of each step, the atmosphere's transmittance toward the sun at its start.
+ * omega p(theta) E mu_s / (mu_s + mu_v) (1 - e^{-tau (1/mu_s + 1/mu_v)}) used by the tests);
+ * the air's source takes octave 0's weight (a = 1: the sun's light reaches the air in the
+ * shell through the cloud's chord).
  *
  * Multiple scattering inside the cloud: the octaves of Wrenninge, Kulla & Lundqvist 2013
  * ("Oz: the great and volumetric", SIGGRAPH talk): octave i adds the single-scattering source

@@ -179,8 +179,8 @@ ATMO_FN void medium_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
             if (lo[next] > pos)
                 medium_piece(s, ATMO_LUT_ARGS, &m, pos + jitter * (lo[next] - pos),
                              lo[next] - pos, use_ms, ground, &vr, out, &T);
-            media_interval(s, ATMO_LUT_ARGS, &m, lo[next], hi[next], jitter, use_ms, ground,
-                           &out->rest, &T, &medium_t);
+            media_interval(s, ATMO_LUT_ARGS, &m, lo[next], hi[next], jitter, use_ms, ground, d,
+                           n, &out->rest, &T, &medium_t);
             pos = fmaxf(pos, hi[next]);
             next++;
         }
