@@ -83,7 +83,7 @@ int main(void)
 
     /* build twice: the second is served by the cache (ctest gives this test its own cache dir) */
     const char *fragments[] = {"kernels/common/compat.h"};
-    atmo_cl_build_options o = {fragments, 1, "", NULL, 1, good, NULL};
+    atmo_cl_build_options o = {fragments, 1, "", NULL, 1, good, NULL, NULL};
     atmo_cl_build_info first, second;
     cl_program p1, p2;
     CHECK(atmo_cl_build(&cl, &o, &p1, &first, &e) == ATMO_OK);
@@ -105,7 +105,7 @@ int main(void)
     clReleaseProgram(p2);
 
     /* a different option set is a different key */
-    atmo_cl_build_options o2 = {fragments, 1, "-DATMO_SOMETHING=1", NULL, 1, good, NULL};
+    atmo_cl_build_options o2 = {fragments, 1, "-DATMO_SOMETHING=1", NULL, 1, good, NULL, NULL};
     atmo_cl_build_info third;
     cl_program p3;
     CHECK(atmo_cl_build(&cl, &o2, &p3, &third, &e) == ATMO_OK && third.key != first.key &&
@@ -114,7 +114,7 @@ int main(void)
 
     /* a failing build names the call and where the source would be dumped, and dumps it */
     char dir[] = "test-cl-runtime-dump";
-    atmo_cl_build_options ob = {fragments, 1, "", dir, 0, bad, NULL};
+    atmo_cl_build_options ob = {fragments, 1, "", dir, 0, bad, NULL, NULL};
     atmo_cl_build_info bi;
     cl_program pb = NULL;
     fprintf(stderr, "(a build log of a deliberately broken kernel follows)\n");
@@ -128,7 +128,7 @@ int main(void)
     rmdir(dir);
 
     /* #line directives name every fragment */
-    char *src = atmo_cl_assemble(NULL, fragments, 1, good, &e);
+    char *src = atmo_cl_assemble(NULL, fragments, NULL, 1, good, &e);
     CHECK(src && strstr(src, "#line 1 \"kernels/common/compat.h\"") &&
           strstr(src, "#line 1 \"extra\""));
     free(src);

@@ -2,6 +2,7 @@
  * optical depth, for every method (kernels/media/cloud_shell.h in the medium integrator and the
  * Monte Carlo reference), and a shell that no ray meets changes nothing.
  * labels: kernel
+ * composes: atmosphere cloud visibility cloud_march medium
  *
  * Oracle: the closed-form bound on what a medium of optical depth tau can do to the light.
  * The sky (default atmosphere, sun zenith 50 deg, camera on the ground, views at zenith 0, 60
@@ -40,8 +41,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#define ATMO_CLOUD
-#include "media/medium.h"
+#include "kernels_composed.h"
 #include "testlib.h"
 #include "testprobe.h"
 #include "testscene.h"

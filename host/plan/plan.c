@@ -186,7 +186,13 @@ static int add_feature(const atmo_scene *s, const atmo_feature *f, atmo_plan *p,
     if (p->feature_count == ATMO_PLAN_MAX_FEATURES)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "too many features (a build bug)");
     p->features[p->feature_count++] = f;
-    for (const char *const *frag = f->fragments; *frag; frag++) {
+    if (f->compose) { /* generated once every feature is planned (make_prelude) */
+        if (p->fragment_count == ATMO_PLAN_MAX_FRAGMENTS)
+            return atmo_fail(e, ATMO_ERR_RUNTIME, "too many kernel fragments (a build bug)");
+        p->fragment_group[p->fragment_count] = (unsigned char)f->compose;
+        p->fragments[p->fragment_count++] = atmo_compose_name(f->compose);
+    }
+    for (const char *const *frag = f->fragments; frag && *frag; frag++) {
         if (p->fragment_count == ATMO_PLAN_MAX_FRAGMENTS)
             return atmo_fail(e, ATMO_ERR_RUNTIME, "too many kernel fragments (a build bug)");
         p->fragments[p->fragment_count++] = *frag;
@@ -197,9 +203,21 @@ static int add_feature(const atmo_scene *s, const atmo_feature *f, atmo_plan *p,
     return f->plan ? f->plan(s, p, e) : ATMO_OK;
 }
 
-/* The buffer parameter and argument lists (plan.h), in buffer order. */
+void atmo_plan_fragment_texts(const atmo_plan *p, const char *texts[ATMO_PLAN_MAX_FRAGMENTS])
+{
+    for (int i = 0; i < p->fragment_count; i++)
+        texts[i] = p->fragment_group[i] ? p->composed[p->fragment_group[i]] : NULL;
+}
+
+/* The buffer parameter and argument lists (plan.h), in buffer order, the media's components,
+ * and the composition of the slots the features fill. */
 static int make_prelude(atmo_plan *p, atmo_err *e)
 {
+    _Static_assert(ATMO_PLAN_COMPOSE_GROUPS == ATMO_COMPOSE_GROUPS, "one text per group");
+    for (int g = ATMO_COMPOSE_NONE + 1; g < ATMO_COMPOSE_GROUPS; g++)
+        if (atmo_compose(p->features, p->feature_count, g, p->composed[g], sizeof p->composed[g]))
+            return atmo_fail(e, ATMO_ERR_RUNTIME, "cannot compose the kernels' %s (a build bug)",
+                             atmo_compose_name(g));
     static const char *const heads[3] = {"ATMO_LUT_PARAMS", "ATMO_LUT_OUT_PARAMS",
                                          "ATMO_LUT_ARGS"};
     int rc = ATMO_OK;
@@ -218,6 +236,10 @@ static int make_prelude(atmo_plan *p, atmo_err *e)
         if (!rc)
             rc = append(p->prelude, sizeof p->prelude, "%s%s", "\n", "", e);
     }
+    size_t used = strlen(p->prelude);
+    if (!rc && atmo_compose_components(p->features, p->feature_count, p->prelude + used,
+                                       sizeof p->prelude - used))
+        rc = atmo_fail(e, ATMO_ERR_RUNTIME, "plan text overflows (a build bug)");
     return rc;
 }
 

@@ -47,6 +47,9 @@ typedef struct atmo_cl_build_options {
     const char *extra_source;     /* appended after the fragments (tests' probe kernels), or NULL */
     const char *prelude;          /* generated source before the fragments (the plan's buffer
                                      lists, atmo/plan.h), or NULL */
+    const char *const *texts;     /* per fragment: its generated text (the plan's composition,
+                                     atmo/features.h) or NULL for an embedded file; NULL: all
+                                     embedded */
 } atmo_cl_build_options;
 
 typedef struct atmo_cl_build_info {
@@ -104,9 +107,10 @@ int atmo_cl_build(atmo_cl *cl, const atmo_cl_build_options *o, cl_program *progr
                   atmo_cl_build_info *info, atmo_err *e);
 
 /* The assembled source (malloc'd), as the build sees it; prelude (may be NULL) goes first,
- * extra (may be NULL) last. */
-char *atmo_cl_assemble(const char *prelude, const char *const *fragments, int count,
-                       const char *extra, atmo_err *e);
+ * extra (may be NULL) last; fragment i is texts[i] where texts and texts[i] are not NULL
+ * (generated source, named fragments[i] in #line), else the embedded file fragments[i]. */
+char *atmo_cl_assemble(const char *prelude, const char *const *fragments,
+                       const char *const *texts, int count, const char *extra, atmo_err *e);
 
 /* The cache directory: ATMO_CACHE_DIR, else $XDG_CACHE_HOME/atmo, else ~/.cache/atmo, created
  * if missing. atmo_cache_dir_find returns 0 when it is usable (atmo_cache_dir_usable), else -1

@@ -23,17 +23,17 @@
  * occluders and the shadowing media toward the sun, per wavelength; the atmosphere's own
  * transmittance not included), the query every kernel's sunlight goes through. */
 
-/* The preview's objects (visibility.h): every method's pixel that sees one gets the air in
- * front from sky_trace, stopped this fraction of the distance short of the object so a method
- * that ends its own segments at surfaces (single, march) does not count it twice, plus the
- * object's light times the view transmittance. */
+/* The preview's objects (objects_light.h, -DATMO_OBJECTS_PREVIEW): every method's pixel that
+ * sees one gets the air in front from sky_trace, stopped this fraction of the distance short of
+ * the object so a method that ends its own segments at surfaces (single, march) does not count
+ * it twice, plus the object's light times the view transmittance. */
 #define SKY_OBJECT_SHORTEN 0.99999f
 
 /* The distance to the object a camera ray sees before the ground, or -1. */
 float sky_object_distance(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
                           const medium_ray *ray)
 {
-#ifdef VISIBILITY_OBJECTS
+#ifdef ATMO_OBJECTS_PREVIEW
     float t;
     if (objects_hit(objects, scene->path.object_count, ray->origin, ray->dir, 0.0f, INFINITY,
                     &t) < 0)
