@@ -8,7 +8,7 @@
  * density 0.5: optical depths toward the sun of 0-3, where the default layer's are > 20 under
  * every cloud; method march), the sun 30 degrees from the zenith, the ground sphere seen
  * straight down from 900 m (below the layer; fov 90 degrees, 8 x 8 pixels over 1.8 km, the
- * pixel filter shrunk to sigma 0.1 px within 0.5 px, 16 samples, no bounces: the Sun pass is
+ * pixel filter shrunk to sigma 0.1 px within 0.5 px, 16 samples, one reflection: the Sun pass is
  * the primary hit's sunlight alone), the light march given 1000 steps over the whole layer
  * (clouds.light_steps, clouds.light_distance_m). The camera's x is the first on the x axis, in
  * 250 m steps, whose patch's edges (x -+ 800 m) have T < 0.6 on one side and T > 0.9 on the
@@ -139,7 +139,7 @@ static void scene_at(atmo_scene *s, double x, double density, int volume)
         "render.mode=path", "path.passes=true", "atmosphere.method=march", "clouds.enabled=true",
         "clouds.light_steps=1000", "clouds.light_distance_m=100000", "sun.zenith_deg=30",
         "sun.azimuth_deg=0", "camera.pitch_deg=-90", "camera.yaw_deg=0", "camera.fov_deg=90",
-        "path.bounces=0", "path.sky_nee=false", "path.filter_sigma_px=0.1",
+        "path.bounces=1", "path.sky_nee=false", "path.filter_sigma_px=0.1",
         "clouds.bottom_m=1000", "clouds.top_m=3000", "clouds.fade_m=500", "clouds.coverage=0.1", "path.filter_radius_px=0.5", "image.width=8", "image.height=8", "image.samples=16", NULL};
     for (int i = 0; keys[i]; i++)
         test_scene_set(s, keys[i]);

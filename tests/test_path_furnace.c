@@ -14,11 +14,11 @@
  *    both ways). With N_s = 3 secondary rays the same.
  * 2. The sphere with the light inside (pbrt's furnace variant; oracle: closed form). The camera
  *    at the centre of a sphere of radius 2 m with emission L_e = (1, 2, 3) and albedo a = 0.5,
- *    the sky black: a path sees L_e at each of its vertices, weighted a^k, so with N_b bounces
- *    after the primary hit (the last continuation's hit still counted)
- *        L = L_e sum_{k=0}^{N_b + 1} a^k,
- *    N_b = 20 with Russian roulette from bounce 3 (unbiased): the image mean within 4.4
- *    standard errors of that; and N_b = 1 without roulette, 1.75 L_e, where every sample
+ *    the sky black: a path sees L_e at each of its vertices, weighted a^k, so with N_b
+ *    reflections (the camera ray's hit, then each reflection's continuation hit)
+ *        L = L_e sum_{k=0}^{N_b} a^k,
+ *    N_b = 20 with Russian roulette from event 3 (unbiased): the image mean within 4.4
+ *    standard errors of that; and N_b = 2 without roulette, 1.75 L_e, where every sample
  *    equals it (the enclosure catches every ray: zero variance, 1e-6).
  * 3. Determinism (oracle: the renderer's contract). A path-traced scene with the atmosphere
  *    (method single), the ground and two objects, 16 x 12 pixels at 3 samples, rendered with
@@ -98,7 +98,7 @@ static void test_furnace(void)
 static void test_enclosure(void)
 {
     static const double Le[3] = {1.0, 2.0, 3.0};
-    struct { int bounces, rr, samples; } cases[] = {{20, 3, 64}, {1, 64, 2}};
+    struct { int bounces, rr, samples; } cases[] = {{20, 3, 64}, {2, 64, 2}};
     for (int k = 0; k < 2; k++) {
         atmo_scene s;
         char buf[96];
@@ -114,7 +114,7 @@ static void test_enclosure(void)
         test_scene_set(&s, buf);
         test_image im = test_render(&s, 64, 0);
         double series = 0.0;
-        for (int j = 0; j <= cases[k].bounces + 1; j++)
+        for (int j = 0; j <= cases[k].bounces; j++)
             series += pow(0.5, j);
         for (int c = 0; c < 3; c++) {
             double spread, se, z = image_z(&im, c, Le[c] * series, &spread, &se);

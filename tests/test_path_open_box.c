@@ -8,7 +8,7 @@
  * uniform: sky radiance L_u = (0.05, 0.08, 0.12) in every direction, no air, no ground) under
  * the sun at zenith 40 degrees, azimuth -135 (from the front left and above, so it shines into
  * the box through its open top and front) with the solar irradiance E of the render
- * wavelengths unattenuated; N_b = 3 bounces, Russian roulette from bounce 2, N_s = 2, sky
+ * wavelengths unattenuated; N_b = 3 reflections, Russian roulette from event 2, N_s = 2, sky
  * sampling with MIS; 16 x 12 pixels, 128 samples.
  * Oracle: a host path tracer written here in double (its own ray-box and ray-sphere tests,
  * camera, rejection-sampled truncated Gaussian pixel filter, its own cosine sampling, sun NEE
@@ -183,7 +183,7 @@ static d3 radiance(double px, double py)
         k = trace(o, d, &t, &n);
         if (k < 0)
             return add(L, mul(beta, sky_l));
-        if (depth + 1 > BOUNCES)
+        if (depth + 2 > BOUNCES) /* the hit would be reflection depth + 2 */
             return L;
     }
 }

@@ -18,7 +18,7 @@
  *  2. A shadow behind a ridge: the thesis terrain (seed 46) seen straight down from 1 km over
  *     the world's origin (fov 10 degrees, 16 x 16), the sun placed behind the highest summit
  *     within 60 km (aimed from the origin at the point 300 m below the summit's top, about 1
- *     degree high), in the uniform world with a black sky and no bounces (N_b = 0), so a
+ *     degree high), in the uniform world with a black sky and one reflection (N_b = 1), so a
  *     pixel's radiance is the sunlight its terrain reflects directly; the pixel filter shrunk
  *     to sigma 0.1 px truncated at 0.5 px (a pixel's samples lie within 0.5 px of its centre).
  *     The host's double-precision terrain (host/terrain/terrain_ref.c) classifies pixels: for
@@ -212,7 +212,7 @@ static int ridge_shadow(void)
     static const char *const keys[] = {
         "terrain.enabled=true", "terrain.seed=46", "camera.pitch_deg=-90", "camera.yaw_deg=0",
         "camera.fov_deg=10", "terrain.shadow=exact", "terrain.shadow_far_m=20000",
-        "render.mode=path", "path.sky=uniform", "path.uniform_sky=0,0,0", "path.bounces=0",
+        "render.mode=path", "path.sky=uniform", "path.uniform_sky=0,0,0", "path.bounces=1",
         "path.filter_radius_px=0.5", "path.filter_sigma_px=0.1", "image.width=16",
         "image.height=16", "image.samples=16", NULL};
     for (int i = 0; keys[i]; i++)

@@ -376,11 +376,13 @@ const atmo_param atmo_params[] = {
              "preview: primary rays with the method (objects lit by sun and sky irradiance); "
              "path: the progressive path tracer with bounces (kernels/render/path.h)"),
     ROW_INT("path.bounces", path.bounces, "", 0, 64, 5,
-            "path mode: diffuse bounces after the primary hit (N_b)"),
+            "path mode: reflections off surfaces per path (N_b; 0: the camera ray's light "
+            "alone, 1: direct light, each more one order of indirect light)"),
     ROW_INT("path.secondary", path.secondary, "", 1, 64, 1,
             "path mode: secondary rays per primary hit (N_s)"),
-    ROW_INT("path.rr_bounce", path.rr_bounce, "", 0, 64, 3,
-            "path mode: Russian roulette from this bounce on"),
+    ROW_INT("path.rr_bounce", path.rr_bounce, "", 0, 64, 4,
+            "path mode: Russian roulette from this event on (reflections and cloud "
+            "scatterings so far)"),
     ROW_BOOL("path.sun_nee", path.sun_nee, 1,
              "path mode: next-event estimation to the sun disc (soft shadows)"),
     ROW_BOOL("path.sky_nee", path.sky_nee, 1,

@@ -22,7 +22,7 @@
  * The thesis objects (presets.md) are in the views that show them: the sphere and the blue box
  * of view 2, the open box (four boxes: left, right, floor, back wall; no ceiling, no front) and
  * its three small spheres in views 3 and 7, at the thesis' world positions (they sat on its
- * terrain). View 7 is path traced (render.mode = path, 4 bounces): light enters
+ * terrain). View 7 is path traced (render.mode = path, 5 bounces, the thesis' N_b): light enters
  * the open box from above and bounces inside it.
  * Thesis 4, 5, 6, 8 and 9 have the fBm cloud layer (with method march, which it needs, the
  * thesis' far plane for clouds as clouds.max_distance_m, and a noise seed that gives each view
@@ -155,7 +155,7 @@ const atmo_preset atmo_presets[] = {
            "camera.kind=perspective", "camera.position_m=26631.5,1336.5,10747.5",
            "camera.pitch_deg=0", "camera.yaw_deg=0", "camera.fov_deg=45",
            "sun.zenith_deg=86.098524", "sun.azimuth_deg=-134.254613", THESIS_OPEN_BOX_OBJECTS,
-           "render.mode=path", "path.bounces=4"),
+           "render.mode=path", "path.bounces=5"),
     PRESET("thesis-8",
            "thesis view 8: over clouds and terrain at moderate sun" THESIS_CLOUDS_TERRAIN
            " (cloud seed 11: clear air at the camera, cloud under about 40 % of the view)",

@@ -36,9 +36,9 @@ typedef struct atmo_gpu_object {
 typedef struct atmo_gpu_path {
     float4 uniform_sky;  /* xyz: the test sky's radiance (sky = ATMO_PATH_SKY_UNIFORM) */
     int object_count;    /* elements of the buffer `objects` */
-    int bounces;         /* N_b: surface bounces after the primary hit */
+    int bounces;         /* N_b: reflections off surfaces per path (0: the camera ray alone) */
     int secondary;       /* N_s: secondary rays per primary hit */
-    int rr_bounce;       /* Russian roulette from this bounce on */
+    int rr_bounce;       /* Russian roulette from this event on (reflections + scatterings) */
     int sun_nee;         /* 1: next-event estimation to the sun disc */
     int sky_nee;         /* 1: sky sampling combined with BSDF sampling by MIS */
     int sky;             /* ATMO_PATH_SKY_* */

@@ -165,9 +165,9 @@ typedef struct atmo_scene {
     } dem;
     struct {                   /* render.mode = path (kernels/render/path.h) */
         int mode;              /* ATMO_RENDER_* */
-        int bounces;           /* N_b */
+        int bounces;           /* N_b: reflections off surfaces per path */
         int secondary;         /* N_s */
-        int rr_bounce;         /* Russian roulette from this bounce on */
+        int rr_bounce;         /* Russian roulette from this event on */
         int sun_nee, sky_nee;  /* 0/1 */
         int sky;               /* ATMO_PATH_SKY_* */
         double uniform_sky[3]; /* the uniform test sky's radiance */

@@ -38,9 +38,13 @@
  * (path.clouds = march: the method marches the layer along each segment, octave multiple
  * scattering, cloud_march.h; no vertex is ever in a cloud.)
  * N_s = path.secondary continuation rays leave the primary hit, each with beta / N_s (the
- * primary's direct light once, its sky MIS weighed against N_s BSDF samples); a path bounces
- * at most N_b = path.bounces times after the primary hit (the last continuation's segment and
- * the emission it finds still count); from event path.rr_bounce on (the surface bounces and
+ * primary's direct light once, its sky MIS weighed against N_s BSDF samples); a path reflects
+ * off surfaces at most N_b = path.bounces times, as pbrt's maxdepth counts: a reflection is
+ * the vertex's next-event estimation and its continuation (whose segment and the emission it
+ * finds count), so N_b = 0 is the camera ray's light alone (the sky, the sun's disc, the air
+ * in front, the emission of the surface it hits), N_b = 1 adds the direct light of the first
+ * hit, and each further bounce one order of indirect light (cloud scatterings are counted
+ * apart, by path.volume_bounces); from event path.rr_bounce on (the surface reflections and
  * the cloud scatterings so far, depth + scatters), Russian roulette keeps it with probability
  *     q = min(q_max, gain x max beta),  q_max = 1 before TRACKING_ROULETTE_LONG (256) events,
  *     0.95 from there on,
@@ -298,8 +302,8 @@ ATMO_FN vec3 path_direct_sky(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
     return v3_scale(v3_mul(path_cosine_albedo(v), S), c / ATMO_PI * weight / p_l);
 }
 
-/* The light of a path that leaves vertex v (depth: its surface bounce, 0 the primary hit;
- * scatters: its scattering events in the clouds so far) with throughput beta, its first
+/* The light of a path that leaves vertex v (depth: its reflections off surfaces so far, v's
+ * included; scatters: its scattering events in the clouds so far) with throughput beta, its first
  * continuation from a surface weighed against n_bsdf BSDF samples. A cloud vertex continues by
  * its phase function, with weight 1 for the light its segment finds (no sky sampling there). */
 ATMO_FN void path_continue(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, path_vertex v,
@@ -402,6 +406,8 @@ ATMO_FN void path_sample(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, i
         parts->depth = h.t;
         parts->normal = v.n;
         parts->albedo = v.albedo;
+        if (s->path.bounces == 0) /* no reflection: the surface shows its emission alone */
+            return;
         path_add(parts, PATH_PASS_SUN, v3_mul(view_t, path_direct_sun(s, ATMO_LUT_ARGS, &v, &g)));
         path_add(parts, PATH_PASS_SKY,
                  v3_mul(view_t, path_direct_sky(s, ATMO_LUT_ARGS, &v, (float)n_s, &g)));
@@ -409,7 +415,7 @@ ATMO_FN void path_sample(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, i
     vec3 beta = v3_scale(view_t, 1.0f / (float)n_s);
     for (int j = 0; j < n_s; j++) {
         rng_stream gj = rng_stream_stage(s->seed, pixel, sample, 1u + (uint)j);
-        path_continue(s, ATMO_LUT_ARGS, v, beta, 0, v.volume, (float)n_s, &gj, parts);
+        path_continue(s, ATMO_LUT_ARGS, v, beta, !v.volume, v.volume, (float)n_s, &gj, parts);
     }
 }
 
