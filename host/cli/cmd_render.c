@@ -35,6 +35,7 @@
 #include "atmo/image.h"
 #include "atmo/part.h"
 #include "atmo/plan.h"
+#include "atmo/plan_terrain.h"
 #include "atmo/render.h"
 #include "atmo/scene.h"
 #include "atmo/spectral_render.h"
@@ -339,6 +340,41 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
  * gets the handlers it replaced, *installed 1), then render. The handler stays until the files
  * are written: a signal then lets the writing finish. Returns the status; an error leaves its
  * message in e. */
+/* A camera under the terrain's surface (or the sea's) sees the ground from inside: one warning,
+ * before the build and the precompute, with the camera's height and the surface's there, both
+ * world Y in metres; the surface from the renderer's own heights (atmo_plan_terrain_surface_y:
+ * a DEM's heightmap texels as the kernels read them, the procedural field in double). */
+static void warn_camera_under_terrain(const atmo_plan *p, const atmo_scene *s)
+{
+    if (!atmo_plan_buffer_find((atmo_plan *)p, "heightmap"))
+        return;
+    double cam[3];
+    atmo_plan_camera_world(p, s, cam);
+    double ground = atmo_plan_terrain_surface_y(p, s->atmosphere.bottom_radius_m, cam[0], cam[2]);
+    if (!(cam[1] < ground))
+        return;
+    int sea = atmo_plan_terrain_height(p, cam[0], cam[2]) <= (double)p->gpu.terrain.sea_level_m;
+    fprintf(stderr,
+            "atmo render: warning: the camera is under the %s: at x = %.1f, z = %.1f m its height "
+            "is %.1f m and the %s's surface is at %.1f m; raise camera.position_m's y above it, "
+            "or set camera.on_terrain=below to give y above the surface\n",
+            sea ? "sea" : "terrain", cam[0], cam[2], cam[1], sea ? "sea" : "terrain", ground);
+}
+
+/* warn_camera_under_terrain for a spectral render, which plans each triplet of bands itself:
+ * the terrain of a plan of its first triplet. */
+static void warn_camera_under_terrain_spectral(const atmo_scene *scene, int lut_cache)
+{
+    atmo_scene first = *scene;
+    atmo_plan plan;
+    atmo_err e = {{0}};
+    first.render.spectral_bands = 0;
+    if (atmo_plan_make_cached(&first, lut_cache, lut_cache, &plan, &e))
+        return; /* the render's own plan reports the error */
+    warn_camera_under_terrain(&plan, scene);
+    atmo_plan_free(&plan);
+}
+
 static int render_run(const render_args *a, const atmo_scene *scene, atmo_render_settings *rs,
                       int part_file, atmo_render_result *res, atmo_part *part,
                       struct sigaction old[HANDLED_SIGNALS], int *installed, atmo_err *e)
@@ -349,6 +385,10 @@ static int render_run(const render_args *a, const atmo_scene *scene, atmo_render
     atmo_plan plan;
     if (!spectral && (rc = atmo_plan_make_cached(scene, lut_cache, lut_cache, &plan, e)))
         return rc;
+    if (spectral)
+        warn_camera_under_terrain_spectral(scene, lut_cache);
+    else
+        warn_camera_under_terrain(&plan, scene);
     handle_signals(1, old);
     *installed = 1;
     char *scene_json = part_file ? atmo_scene_to_json(scene) : NULL;
@@ -657,8 +697,9 @@ static int render_frames(const render_args *a, const atmo_scene *scene,
 }
 
 /* "atmo render: 640x360 at 16 samples/pixel (3.7 M samples), method fast, 1 image": what the
- * render will cost in samples, before any work (the time follows from the first launch, in
- * the progress line's ETA). */
+ * render will cost in samples, before any work. Its time follows once the first pass over the
+ * image is timed: the session prints "about N s" then (host/render/session.c), and the
+ * progress line's ETA refines it. */
 static void render_cost_line(const render_args *a, const atmo_scene *s, const frames_animation *anim)
 {
     const char *why;
