@@ -25,7 +25,7 @@ static int take_set(void *args, const cli_flag *f, const char *v, atmo_err *e)
 }
 
 static const cli_flag dem_flags[] = {
-    {.type = CLI_STRING, .name = "--set", .metavar = "KEY=VALUE", .take = take_set,
+    {.type = CLI_STRING, .name = "--set", .metavar = "KEY=VALUE", .take = take_set, .def = "none",
      .help = "PNG/EXR: terrain.heightmap_file_extent_m (east-west size, m);\n"
              "PNG: terrain.heightmap_scale_m, terrain.heightmap_offset_m;\n"
              "terrain.heightmap_nodata (neighbours or sea-level) (repeatable)"},

@@ -172,14 +172,17 @@ static int take_angles(void *args, const cli_flag *f, const char *v, atmo_err *e
 
 static const cli_flag mie_flags[] = {
     {.type = CLI_STRING, .name = "--radius-um", .metavar = "R", .take = take_radius,
+     .def = "none: this or --dsd",
      .help = "one droplet's radius: 2 pi R / lambda in [1e-6, 2e4] and R <= 5000 um\n"
              "(at 550 nm: 8.75e-8 to 1750 um)"},
     {.type = CLI_STRING, .name = "--dsd", .metavar = "NAME|SPEC", .take = take_dsd,
+     .def = "none: this or --radius-um",
      .help = "preset (cumulus stratus fog corona thesis-disperse thesis-uniform) or\n"
              "mono:R | gamma:REFF,VEFF | lognormal:RG,SIGMA_G | modgamma:ALPHA,B,GAMMA\n"
              "(radii in um; optional ,max=RMAX cut)"},
     {.type = CLI_FLOAT, .name = "--wavelength-nm", .metavar = "L", .min = 100.0, .max = 1e5,
-     .take = take_wavelength, .help = "a wavelength in nm (repeatable, at least one)"},
+     .take = take_wavelength, .def = "none: required",
+     .help = "a wavelength in nm (repeatable, at least one)"},
     {.type = CLI_STRING, .name = "--index", .metavar = "N+Ki", .take = take_index,
      .def = "water (n Daimon & Masumura 2007, k Segelstein 1981)",
      .help = "relative refractive index, e.g. 1.33+1e-8i (k >= 0 absorbs)"},

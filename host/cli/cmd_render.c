@@ -144,7 +144,7 @@ static const cli_flag render_flags[] = {
      .help = "render frames A to B; each output NAME.EXT becomes NAME.0001.EXT\n"
              "...; with --part I/N, part I renders frames A+I-1, A+I-1+N, ..."},
     {.type = CLI_STRING, .name = "--animate", .metavar = "KEY=V0..V1", .offset = RENDER_FLAG(animate),
-     .repeat = FRAMES_MAX_KEYS, .count_offset = RENDER_FLAG(n_animate),
+     .repeat = FRAMES_MAX_KEYS, .count_offset = RENDER_FLAG(n_animate), .def = "none",
      .help = "move a float key linearly from V0 (frame A) to V1 (frame B)"},
     {.type = CLI_PATH, .name = "--scene-end", .offset = RENDER_FLAG(scene_end), .def = "none",
      .help = "move every float and vector key in which the end scene differs\n"

@@ -72,6 +72,7 @@ static int take_at(void *args, const cli_flag *f, const char *v, atmo_err *e)
 
 static const cli_flag terrain_flags[] = {
     {.type = CLI_STRING, .name = "--at", .metavar = "X,Z", .take = take_at,
+     .def = "none: required",
      .help = "a point: planar coordinates in metres (repeatable, at least one)"},
     {.type = CLI_INCLUDE, .include = scene_source_flags, .offset = offsetof(terrain_args, so)},
     {.type = CLI_BOOL, .name = "--json", .offset = offsetof(terrain_args, json),

@@ -49,8 +49,8 @@ const cli_flag scene_source_flags[] = {
      .offset = offsetof(scene_options, preset), .def_var = &atmo_default_preset,
      .help = "a built-in scene (atmo presets lists them)"},
     {.type = CLI_PATH, .name = "--scene", .offset = offsetof(scene_options, scene_file),
-     .help = "a JSON scene file instead of a preset (atmo params lists every key)"},
-    {.type = CLI_STRING, .name = "--set", .metavar = "KEY=VALUE", .take = take_set,
+     .def = "none: the preset", .help = "a JSON scene file instead of a preset (atmo params lists every key)"},
+    {.type = CLI_STRING, .name = "--set", .metavar = "KEY=VALUE", .take = take_set, .def = "none",
      .help = "override one parameter, e.g. --set sun.zenith_deg=60 (repeatable;\n"
              "applied in command-line order)"},
     {.type = CLI_END},
