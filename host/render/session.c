@@ -41,7 +41,11 @@ struct atmo_session {
     atmo_session_info info;
     double progress_start, progress_last;
     int data_incomplete; /* an interrupted precompute: 1 the view's passes, 2 all passes */
-    double rate_start, rate_start_done; /* after the first launch: the rate's origin, or -1 */
+    /* the cost of each tile: seconds per pixel-sample of the latest timed launch that covered
+     * it (0: none yet); the first launch after a restart is not timed */
+    double *tile_cost;
+    double *row_cost, *row_pixels; /* per tile row, for remaining_seconds: the timed tiles' */
+    int launches_since_restart, predicted; /* predicted: the first pass's estimate printed */
 };
 
 void atmo_render_settings_default(atmo_render_settings *s)
@@ -58,6 +62,97 @@ int atmo_cancel_requested(const atmo_cancel *c) { return c && c->requested; }
 
 static size_t round_up(int n, int m) { return (size_t)((n + m - 1) / m * m); }
 
+/* The launch's seconds shared among its tiles by their pixels: each tile's cost per
+ * pixel-sample. The first launch after a restart carries one-time costs (the driver finishing
+ * the kernel's compilation, the first batch size) and prices nothing. */
+static void account_launch(atmo_session *s, const atmo_tile *t, double seconds)
+{
+    if (s->launches_since_restart++ == 0)
+        return;
+    double cost = seconds / ((double)t->w * t->h * t->sample_count);
+    for (int r = 0; r < t->tiles_down; r++)
+        for (int c = 0; c < t->tiles_across; c++)
+            s->tile_cost[t->index + r * s->tiles.columns + c] = cost;
+}
+
+/* The cost per pixel-sample of a tile of row r not yet timed: the mean over the timed tiles of
+ * the nearest tile rows that have any (both sides at equal distance): costs follow the image's
+ * rows (sky on top, terrain below), and the first pass visits the rows spread over the image
+ * (tiles.c), so an untimed row lies between timed ones. */
+static double row_prior(const atmo_session *s, int r)
+{
+    for (int d = 0; d < s->tiles.rows; d++) {
+        double cost = 0.0, pixels = 0.0;
+        for (int k = r - d; k <= r + d; k += d > 0 ? 2 * d : 1)
+            if (k >= 0 && k < s->tiles.rows) {
+                cost += s->row_cost[k];
+                pixels += s->row_pixels[k];
+            }
+        if (pixels > 0.0)
+            return cost / pixels;
+    }
+    return 0.0;
+}
+
+/* The seconds the samples still to do up to target will take: each tile's remaining
+ * pixel-samples (none once it met the noise target) at its own cost (the work left, priced
+ * tile by tile: sky tiles are cheap, terrain tiles dear), a tile not yet timed at its row's
+ * prior (row_prior). -1 before any launch is timed. *fraction: the share of pixel-samples
+ * done. */
+static double remaining_seconds(atmo_session *s, int target, double *fraction)
+{
+    double done = 0.0, total = 0.0, timed = 0.0, remaining = 0.0;
+    int columns = s->tiles.columns;
+    for (int r = 0; r < s->tiles.rows; r++)
+        s->row_cost[r] = s->row_pixels[r] = 0.0;
+    for (int i = 0; i < s->tiles.count; i++) {
+        atmo_tile tile;
+        atmo_tiles_get(&s->tiles, i, &tile);
+        double pixels = (double)tile.w * tile.h;
+        int n = s->tiles.converged[i] ? target : tile.samples; /* converged: met the noise target */
+        int left = n < target ? target - n : 0;
+        done += (double)(target - left) * pixels;
+        total += (double)target * pixels;
+        if (s->tile_cost[i] > 0.0) {
+            s->row_cost[i / columns] += s->tile_cost[i] * pixels;
+            s->row_pixels[i / columns] += pixels;
+            timed += pixels;
+            remaining += s->tile_cost[i] * pixels * left;
+        }
+    }
+    *fraction = total > 0.0 ? done / total : 1.0;
+    for (int r = 0; r < s->tiles.rows; r++) {
+        double prior = -1.0;
+        for (int i = r * columns; i < (r + 1) * columns; i++) {
+            atmo_tile tile;
+            atmo_tiles_get(&s->tiles, i, &tile);
+            int n = s->tiles.converged[i] ? target : tile.samples;
+            if (s->tile_cost[i] > 0.0 || n >= target)
+                continue;
+            if (timed <= 0.0)
+                return -1.0;
+            if (prior < 0.0)
+                prior = row_prior(s, r);
+            remaining += prior * (double)tile.w * tile.h * (target - n);
+        }
+    }
+    return remaining;
+}
+
+/* Once the first pass over the image is done (every tile has a sample), the render's predicted
+ * time, on its own line: elapsed plus remaining. */
+static void report_prediction(atmo_session *s, double elapsed, double eta, int target)
+{
+    for (int i = 0; i < s->tiles.count; i++)
+        if (s->tiles.samples[i] == 0 && !s->tiles.converged[i])
+            return;
+    s->predicted = 1;
+    fprintf(stderr, "%satmo render: about %.0f s to render %s%d sample%s/pixel (timed on the "
+                    "first pass over the image, %.1f s)\n",
+            s->settings.progress == 2 ? "\r\033[K" : "", elapsed + eta,
+            s->noise > 0.0 ? "at most " : "", target, target == 1 ? "" : "s", elapsed);
+}
+
 /* Progress on stderr: a bar redrawn in place on a terminal, a line every few seconds otherwise. */
 static void report_progress(atmo_session *s, int target, int finished)
 {
@@ -65,30 +160,17 @@ static void report_progress(atmo_session *s, int target, int finished)
     int mode = s->settings.progress;
     if (!mode)
         return;
-    double done = 0.0, total = 0.0;
-    for (int i = 0; i < s->tiles.count; i++) {
-        atmo_tile tile;
-        atmo_tiles_get(&s->tiles, i, &tile);
-        int n = s->tiles.converged[i] ? target : tile.samples; /* converged: met the noise target */
-        done += (double)(n < target ? n : target) * tile.w * tile.h;
-        total += (double)target * tile.w * tile.h;
-    }
-    /* The first launch carries one-time costs (the driver finishing the kernel's compilation,
-     * the first batch size): the ETA is the rate measured from its end, none before that. */
-    if (s->rate_start < 0.0) {
-        s->rate_start = t;
-        s->rate_start_done = done;
-    }
+    double f, remaining = remaining_seconds(s, target, &f), elapsed = t - s->progress_start;
+    if (!finished && !s->predicted && remaining > 0.0)
+        report_prediction(s, elapsed, remaining, target);
     if (!finished && t - s->progress_last < (mode == 2 ? 0.2 : 5.0))
         return;
     s->progress_last = t;
-    double f = total > 0 ? done / total : 1.0;
-    double elapsed = t - s->progress_start, measured = done - s->rate_start_done;
     char eta[32] = "ETA --";
     if (finished)
         snprintf(eta, sizeof eta, "ETA 0.0s");
-    else if (measured > 0.0 && t > s->rate_start)
-        snprintf(eta, sizeof eta, "ETA %.1fs", (total - done) * (t - s->rate_start) / measured);
+    else if (remaining >= 0.0)
+        snprintf(eta, sizeof eta, "ETA %.1fs", remaining);
     if (mode == 2) {
         char bar[41];
         int n = (int)(f * 40.0);
@@ -190,7 +272,9 @@ static int restart(atmo_session *s, atmo_err *e)
     atmo_tiles_reset(&s->tiles);
     s->info.nonfinite = 0;
     s->progress_start = atmo_now_seconds();
-    s->rate_start = -1.0;
+    memset(s->tile_cost, 0, sizeof *s->tile_cost * (size_t)s->tiles.count);
+    s->launches_since_restart = 0;
+    s->predicted = 0;
     return ATMO_OK;
 }
 
@@ -263,6 +347,13 @@ int atmo_session_open(atmo_session **out, const atmo_plan *plan, const atmo_rend
     if ((rc = atmo_tiles_init_part(&s->tiles, plan->width, plan->height, rs->tile_size, rs->part,
                                     rs->parts, e)))
         goto cleanup;
+    s->tile_cost = calloc((size_t)(s->tiles.count + 2 * s->tiles.rows), sizeof *s->tile_cost);
+    if (!s->tile_cost) {
+        rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for %d tiles", s->tiles.count);
+        goto cleanup;
+    }
+    s->row_cost = s->tile_cost + s->tiles.count;
+    s->row_pixels = s->row_cost + s->tiles.rows;
     double t0 = atmo_now_seconds();
     if ((rc = atmo_cl_open(&s->cl, rs->device, e)))
         goto cleanup;
@@ -326,6 +417,7 @@ void atmo_session_close(atmo_session *s)
     if (s->cl_open)
         atmo_cl_close(&s->cl);
     atmo_tiles_free(&s->tiles);
+    free(s->tile_cost);
     free(s);
 }
 
@@ -418,7 +510,9 @@ int atmo_session_step(atmo_session *s, const atmo_step *step, atmo_step_status *
         double tl = atmo_now_seconds();
         if ((rc = launch(s, &t, e)))
             break;
-        atmo_tiles_done(&s->tiles, &t, 1e3 * (atmo_now_seconds() - tl), s->settings.launch_budget_ms,
+        double seconds = atmo_now_seconds() - tl;
+        account_launch(s, &t, seconds);
+        atmo_tiles_done(&s->tiles, &t, 1e3 * seconds, s->settings.launch_budget_ms,
                         s->settings.max_batch, s->settings.max_tiles);
         status->launches++;
         s->info.launches++;

@@ -10,7 +10,15 @@
  * to every tile, or max_tiles), then to samples per launch (up to max_batch): a launch then
  * covers as much of the image as the budget allows before any pixel gets a second sample, and
  * a fast scene needs a few launches per sample pass instead of one per tile. Whole tile rows go
- * into one launch only where they touch (a part's bands are apart: atmo/tiles.h). */
+ * into one launch only where they touch (a part's bands are apart: atmo/tiles.h).
+ *
+ * The first pass over the image (a tile's first sample) takes its launches from the tile rows
+ * in turn, in the bit-reversed order of their indices (top, bottom, middle, the quarters, ...),
+ * each launch within one row from its first tile without a sample, so the tiles timed first
+ * sample the whole image from top to bottom: a sky row costs a fraction of a terrain row, and
+ * the session's estimate of the time left (session.c) prices the tiles not yet timed from the
+ * nearest rows timed. Later passes go in image order. The order of launches changes no pixel:
+ * each pixel's samples still arrive in sample order. */
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/tiles.h"
@@ -116,6 +124,7 @@ void atmo_tiles_reset(atmo_tiles *t)
     memset(t->samples, 0, sizeof *t->samples * (size_t)t->count);
     memset(t->converged, 0, (size_t)t->count);
     t->cursor = 0;
+    t->spread = 0;
 }
 
 int atmo_tiles_is_checkpoint(int n)
@@ -143,10 +152,34 @@ static int row_holds(const atmo_tiles *t, int row, int n)
     return 1;
 }
 
+/* The first pass's next tile: the first tile without a sample in the row at or after position
+ * t->spread of the rows' bit-reversed order (cyclic), which then moves past that row; -1 when
+ * every tile has a sample (or has converged). */
+static int first_pass_tile(atmo_tiles *t)
+{
+    int bits = 0;
+    while ((1 << bits) < t->rows)
+        bits++;
+    for (int k = 0; k < (1 << bits); k++) {
+        int j = (t->spread + k) % (1 << bits), row = 0;
+        for (int b = 0; b < bits; b++) /* j's bits reversed */
+            row |= (j >> b & 1) << (bits - 1 - b);
+        if (row >= t->rows)
+            continue;
+        for (int c = 0; c < t->columns; c++)
+            if (t->samples[row * t->columns + c] == 0 && !t->converged[row * t->columns + c]) {
+                t->spread = (j + 1) % (1 << bits);
+                return row * t->columns + c;
+            }
+    }
+    return -1;
+}
+
 int atmo_tiles_next(atmo_tiles *t, int target, atmo_tile *launch)
 {
+    int first = target > 0 ? first_pass_tile(t) : -1;
     for (int k = 0; k < t->count; k++) {
-        int i = (t->cursor + k) % t->count;
+        int i = first >= 0 ? first : (t->cursor + k) % t->count;
         int n = t->samples[i], remaining = target - n;
         if (remaining <= 0 || t->converged[i])
             continue;
@@ -154,7 +187,7 @@ int atmo_tiles_next(atmo_tiles *t, int target, atmo_tile *launch)
             remaining = next_checkpoint(n) - n;
         int column = i % t->columns, row = i / t->columns, across = 1, down = 1;
         int h = t->row_h[row];
-        if (column == 0 && t->group >= t->columns && row_holds(t, row, n)) {
+        if (column == 0 && n > 0 && t->group >= t->columns && row_holds(t, row, n)) {
             int want = t->group / t->columns;
             while (down < want && row + down < t->rows &&
                    t->row_y[row + down] == t->row_y[row] + h && row_holds(t, row + down, n))

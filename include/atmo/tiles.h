@@ -4,7 +4,8 @@
  * The image is cut into square tiles of one size (the last column and row partial), the unit
  * of the sample counts. Samples are added in round-robin passes over the tiles: the next launch
  * starts at the first tile at or after the cursor that has fewer samples than the target, so
- * every tile gets a batch before any gets a second. One launch covers several tiles when tiles
+ * every tile gets a batch before any gets a second (the first pass takes its rows spread over
+ * the image instead, tiles.c). One launch covers several tiles when tiles
  * are cheap: a rectangle of tiles that hold the same sample count (a run within a tile row, or
  * whole tile rows from a row's first tile). How many tiles and how many samples per launch
  * follow one adapted quantity, the work per launch, so that a launch takes about the launch
@@ -56,6 +57,7 @@ typedef struct atmo_tiles {
     int *row_of_y;      /* per pixel row: its tile row, -1 outside the part */
     int *samples;       /* per tile */
     int cursor;         /* where the next search starts */
+    int spread;         /* the first pass: the next position in its order of rows (tiles.c) */
     int batch;          /* samples per launch, adapted */
     int group;          /* tiles per launch, adapted */
     unsigned char *converged; /* per tile: 1 once its noise target is met */
