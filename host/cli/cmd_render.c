@@ -710,14 +710,15 @@ static void render_cost_line(const render_args *a, const atmo_scene *s, const fr
     if (a->part_text && !a->frames_text)
         samples /= a->rs.parts;
     fprintf(stderr, "atmo render: %dx%d at %s%d sample%s/pixel%s (%.3g M samples%s), method %s%s%s%s%s; "
-                    "%d frame%s\n",
+                    "%d frame%s%s\n",
             s->image.width, s->image.height, a->rs.noise_target > 0.0 ? "at most " : "",
             s->image.samples, s->image.samples == 1 ? "" : "s",
             triplets > 1 ? " per triplet of bands" : "", 1e-6 * samples * frames,
             a->part_text && !a->frames_text ? " in this part" : "",
             method, why ? " (auto: " : "", why ? why : "", why ? ")" : "",
             s->path.mode == ATMO_RENDER_PATH ? ", path traced" : "", frames,
-            frames == 1 ? "" : "s");
+            frames == 1 ? "" : "s",
+            s->image.samples > 1 ? "; the time follows the first pass over the image" : "");
 }
 
 /* The scene, the animation, the parts and the outputs, all checked before any work. */
