@@ -87,6 +87,7 @@ static const char *const atmosphere_fragments[] = {
     "kernels/common/camera.h",
     "kernels/atmosphere/sky_method.h", "kernels/media/ray.h",
     "kernels/media/media.h",          "kernels/media/planet.h", "kernels/media/tracking.h",
+    "kernels/media/majorant_walk.h",
     "kernels/atmosphere/transmittance.cl", NULL};
 static const atmo_slots atmosphere_slots = {.sun_occluder = "planet_sun_visibility",
                                             .surface_occluder = 1};

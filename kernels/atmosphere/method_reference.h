@@ -103,6 +103,7 @@
 #include "media/media.h"
 #include "media/ray.h"
 #include "media/tracking.h"
+#include "media/majorant_walk.h"
 #include "media/visibility.h"
 #ifdef ATMO_CLOUDS
 #include "media/cloud_majorant.h"
@@ -174,8 +175,8 @@ ATMO_FN float reference_clouds_outside(ATMO_GLOBAL const atmo_gpu_scene *s, floa
  * majorant, max(air + clouds, least) (clouds: the grid cell's bound, or `outside` beyond the
  * grid; least: a floor on the rate, for short cut segments). */
 typedef struct reference_walk {
-    tracking_walk w;
-    float air, outside, least;
+    majorant_walk w;
+    float air, outside;
 #ifdef ATMO_CLOUD
     int shell_parts;                   /* the parts of the walk inside the cloud shell (0..2) */
     float shell_lo[2], shell_hi[2];    /* their ends (m along the walk) */
@@ -194,7 +195,7 @@ ATMO_FN void reference_walk_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LU
 #ifdef ATMO_CLOUDS
     float seg_end, b = clouds_grid_segment(&rw->grid, clouds_majorant, rw->w.t, &seg_end);
     float clouds = b < 0.0f ? rw->outside : b * rw->scale;
-    tracking_segment(&rw->w, fmaxf(rw->air + clouds, rw->least), seg_end);
+    walk_segment(&rw->w, rw->air + clouds, seg_end);
 #elif defined(ATMO_CLOUD)
     (void)s;
     float seg_end = INFINITY, shell = 0.0f;
@@ -208,10 +209,10 @@ ATMO_FN void reference_walk_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LU
             break;
         }
     }
-    tracking_segment(&rw->w, fmaxf(rw->air + rw->outside + shell, rw->least), seg_end);
+    walk_segment(&rw->w, rw->air + rw->outside + shell, seg_end);
 #else
     (void)s;
-    tracking_segment(&rw->w, fmaxf(rw->air + rw->outside, rw->least), INFINITY);
+    walk_segment(&rw->w, rw->air + rw->outside, INFINITY);
 #endif
 }
 
@@ -221,8 +222,8 @@ ATMO_FN reference_walk reference_walk_begin(ATMO_GLOBAL const atmo_gpu_scene *s,
                                             float outside, float least)
 {
     reference_walk rw;
-    rw.w = tracking_begin(end, 1.0f);
-    rw.air = air, rw.outside = outside, rw.least = least;
+    rw.w = walk_begin(end, least);
+    rw.air = air, rw.outside = outside;
 #ifdef ATMO_CLOUD
     rw.shell_parts = 0; /* the shell joins the walk by reference_walk_shell */
     rw.shell = 0.0f;
@@ -234,7 +235,6 @@ ATMO_FN reference_walk reference_walk_begin(ATMO_GLOBAL const atmo_gpu_scene *s,
 #else
     (void)origin, (void)dir;
 #endif
-    reference_walk_segment(s, ATMO_LUT_ARGS, &rw);
     return rw;
 }
 
@@ -268,7 +268,6 @@ ATMO_FN void reference_walk_shell(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_
         }
     }
     rw->shell = tracking_max3(v3_from4(s->cloud.extinction)) * 1.001f;
-    reference_walk_segment(s, ATMO_LUT_ARGS, rw);
 }
 #endif
 
@@ -276,13 +275,10 @@ ATMO_FN void reference_walk_shell(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_
 ATMO_FN int reference_walk_next(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                 reference_walk *rw, rng_stream *g)
 {
-    float tau = tracking_depth(g);
-    while (!tracking_advance(&rw->w, &tau)) {
-        if (rw->w.t >= rw->w.end)
-            return 0;
+    int ev;
+    while ((ev = walk_next(&rw->w, g)) == WALK_SEGMENT)
         reference_walk_segment(s, ATMO_LUT_ARGS, rw);
-    }
-    return rw->w.t < rw->w.end;
+    return ev == WALK_POINT;
 }
 
 /* The path's frame (see the top of the file) in the world's axes: a path point X (planet-
@@ -371,7 +367,7 @@ ATMO_FN vec3 reference_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_L
         medium_point x;
         x.p = v3_add(q->p, v3_scale(sun, rw.w.t));
         x.h = geometry_altitude_at(r, mu, rw.w.t, a->bottom_radius);
-        T = tracking_ratio(&rw.w, T, reference_tracked_extinction(s, ATMO_LUT_ARGS, &x));
+        T = walk_ratio(&rw.w, T, reference_tracked_extinction(s, ATMO_LUT_ARGS, &x));
 #ifdef REFERENCE_CLOUDY
         T = tracking_roulette(T, REFERENCE_ROULETTE_T, g);
 #endif
@@ -542,12 +538,12 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
                 }
             }
             if (more && !collided) {
-                int k = tracking_spectral_pick(&rw.w, g, &ws, ms.scattering, MEDIA_COMPONENTS,
+                int k = walk_pick(&rw.w, g, &ws, ms.scattering, MEDIA_COMPONENTS,
                                                ms.extinction);
                 if (k >= 0)
                     collided = 1, chosen = k, t_hit = t;
             }
-            W = tracking_ratio(&rw.w, W, ms.extinction);
+            W = walk_ratio(&rw.w, W, ms.extinction);
 #ifdef REFERENCE_CLOUDY
             /* once the segment's collision is chosen, only W-weighted estimates are left */
             if (collided || !more) {

@@ -11,14 +11,15 @@
  *     sigma_bar = b_cell max_c k_c x 1.001   inside the majorant grid (cloud_majorant.h's DDA,
  *                                            b_cell the cell's density bound)
  *     sigma_bar = density max_c k_c x 1.001  beyond the grid (the global bound d <= density)
- * and 0 between the parts (no point there: the walk moves to the next part's start). The same
- * tracking.h walk spends each tentative point's optical depth -ln(1 - u) over these segments.
+ * and 0 between the parts (no point there: the walk moves to the next part's start). The one
+ * majorant walk (majorant_walk.h) spends each tentative point's optical depth -ln(1 - u) over
+ * these segments, asking clouds_walk_segment for each.
  *
  * Free flight (clouds_free_flight; spectral tracking, Kutz et al. 2017, one scattering
  * component): at each tentative point, scatter with sigma_s = albedo sigma_t or null with
  * sigma_bar - sigma_t, picked with probabilities proportional to max_c of w sigma_s and
  * w (sigma_bar - sigma_t), the vec3 weight w multiplied by sigma_event / (sigma_bar P_event)
- * (tracking_spectral_pick): absorption folds into the weight, so the first scattering point t_c
+ * (walk_pick): absorption folds into the weight, so the first scattering point t_c
  * has density T(0, t_c) sigma_s(t_c) in every channel after the weight. For a grey layer
  * (k and the albedo the same in every channel: clouds.extinction_per_m > 0) both events
  * multiply w by the same 1 - (1 - albedo) sigma_t / sigma_bar (the ratio-tracking weight of the
@@ -38,8 +39,8 @@
  * (go on with probability P and weight 1 / P, else 0: unbiased, but at P = 1/4 on thesis-6 in
  * path mode 2.8 times less CPU time for 23 times the median pixel's variance:
  * docs/notes/path.md).
- * Random numbers: the caller's stream, one per tentative point, one per pick where the density is
- * not zero, one per roulette. Units: metres, 1/m. */
+ * Random numbers: the caller's stream, one per tentative point (none over the gaps between the
+ * parts), one per pick where the density is not zero, one per roulette. Units: metres, 1/m. */
 #ifndef ATMO_MEDIA_CLOUD_WALK_H
 #define ATMO_MEDIA_CLOUD_WALK_H
 #ifdef ATMO_CLOUDS_VOLUME
@@ -49,6 +50,7 @@
 #include "common/rng.h"
 #include "media/ray.h"
 #include "media/tracking.h"
+#include "media/majorant_walk.h"
 #include "media/cloud_layer.h"
 #include "media/cloud_majorant.h"
 #include "atmo/gpu_types.h"
@@ -57,7 +59,7 @@
 #define CLOUDS_WALK_ROULETTE_T 0.1f /* shadow weights below this go through roulette */
 
 typedef struct clouds_walk {
-    tracking_walk w;
+    majorant_walk w;
     clouds_grid_walk grid;
     float scale;        /* density -> extinction bound: max_c k_c x 1.001, 1/m */
     float outside;      /* the rate beyond the grid, 1/m */
@@ -72,16 +74,16 @@ ATMO_FN void clouds_walk_segment(clouds_walk *cw, ATMO_GLOBAL const float *grid)
     while (cw->part < cw->parts && t >= cw->hi[cw->part])
         cw->part++;
     if (cw->part >= cw->parts) {
-        tracking_segment(&cw->w, 0.0f, cw->w.end);
+        walk_segment(&cw->w, 0.0f, cw->w.end);
         return;
     }
     if (t < cw->lo[cw->part]) {
-        tracking_segment(&cw->w, 0.0f, cw->lo[cw->part]);
+        walk_segment(&cw->w, 0.0f, cw->lo[cw->part]);
         return;
     }
     float seg_end, b = clouds_grid_segment(&cw->grid, grid, t, &seg_end);
-    tracking_segment(&cw->w, b < 0.0f ? cw->outside : b * cw->scale,
-                     fminf(seg_end, cw->hi[cw->part]));
+    walk_segment(&cw->w, b < 0.0f ? cw->outside : b * cw->scale,
+                 fminf(seg_end, cw->hi[cw->part]));
 }
 
 /* The walk of the ray origin + t dir (camera-relative, dir unit; radius r and cosine mu at the
@@ -95,33 +97,21 @@ ATMO_FN clouds_walk clouds_walk_begin(ATMO_GLOBAL const atmo_gpu_scene *s,
     cw.parts = clouds_shell_parts(s->atmosphere.bottom_radius, c->bottom_m, c->top_m, r, mu,
                                   0.0f, end, cw.lo, cw.hi);
     cw.part = 0;
-    cw.w = tracking_begin(cw.parts > 0 ? cw.hi[cw.parts - 1] : 0.0f, 0.0f);
+    cw.w = walk_begin(cw.parts > 0 ? cw.hi[cw.parts - 1] : 0.0f, 0.0f);
     cw.scale = tracking_max3(v3_from4(c->extinction)) * 1.001f;
     cw.outside = c->majorant * cw.scale;
     clouds_grid_frame f = clouds_grid_frame_make(s);
     cw.grid = clouds_grid_begin(&f, origin, dir, cw.w.end);
-    if (cw.parts > 0)
-        clouds_walk_segment(&cw, grid);
     return cw;
 }
 
 /* The next tentative point (cw->w.t, rate cw->w.sigma_bar there); 0 once past the end. */
 ATMO_FN int clouds_walk_next(clouds_walk *cw, ATMO_GLOBAL const float *grid, rng_stream *g)
 {
-    if (cw->parts == 0)
-        return 0;
-    float tau = tracking_depth(g);
-    for (;;) {
-        if (cw->w.sigma_bar > 0.0f) {
-            if (tracking_advance(&cw->w, &tau))
-                return cw->w.t < cw->w.end;
-        } else {
-            cw->w.t = cw->w.seg_end; /* no point where the rate is zero */
-        }
-        if (cw->w.t >= cw->w.end)
-            return 0;
+    int ev;
+    while ((ev = walk_next(&cw->w, g)) == WALK_SEGMENT)
         clouds_walk_segment(cw, grid);
-    }
+    return ev == WALK_POINT;
 }
 
 /* The layer's extinction at distance t of the walk's ray. */
@@ -146,7 +136,7 @@ ATMO_FN int clouds_free_flight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL 
         if (tracking_max3(sigma_t) <= 0.0f)
             continue; /* a null point for certain: the weight is unchanged */
         vec3 sigma_s = v3_mul(sigma_t, v3_from4(s->clouds.albedo));
-        if (tracking_spectral_pick(&cw.w, g, w, &sigma_s, 1, sigma_t) == 0) {
+        if (walk_pick(&cw.w, g, w, &sigma_s, 1, sigma_t) == 0) {
             *t_hit = cw.w.t;
             return 1;
         }
@@ -161,7 +151,7 @@ ATMO_FN vec3 clouds_sun_ratio(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL c
     vec3 sun = v3_from4(s->sun_direction), T = v3(1.0f, 1.0f, 1.0f);
     clouds_walk cw = clouds_walk_begin(s, grid, q->p, sun, q->r, q->mu_s, INFINITY);
     while (clouds_walk_next(&cw, grid, g)) {
-        T = tracking_ratio(&cw.w, T, clouds_walk_extinction(s, q->p, sun, q->r, q->mu_s, cw.w.t));
+        T = walk_ratio(&cw.w, T, clouds_walk_extinction(s, q->p, sun, q->r, q->mu_s, cw.w.t));
         T = tracking_roulette(T, CLOUDS_WALK_ROULETTE_T, g);
         if (tracking_max3(T) <= 0.0f)
             break;
