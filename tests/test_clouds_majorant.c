@@ -1,7 +1,7 @@
 /* test_clouds_majorant — the fBm cloud layer's majorant grid (kernels/media/cloud_majorant.h,
  * its pass cloud_majorant.cl) bounds the density in every cell, and the reference's ratio
- * tracking through it (method_reference.h's reference_transmittance: the piecewise-constant
- * walk of tracking.h over the grid's cells, with Russian roulette) estimates the transmittance
+ * tracking through it (media_walk.h's media_walk_sun_transmittance: the one majorant walk over
+ * the grid's cells, majorant_walk.h, with Russian roulette) estimates the transmittance
  * without bias. Scene: thesis-6 (the camera inside the layer, the sun 28 degrees high) with
  * method reference.
  * labels: kernel stat
@@ -52,7 +52,7 @@ static const char probe[] =
     "  medium_ray m = medium_ray_make(s, v3(o.x, o.y, o.z), v3_from4(s->sun_direction));\n"
     "  medium_point q = medium_ray_at(&m, 0.0f, s->atmosphere.bottom_radius);\n"
     "  rng_stream g = rng_stream_stage(11u, item, 0u, 0u);\n"
-    "  out[item] = reference_transmittance(s, ATMO_LUT_ARGS, &q, &g).y;\n"
+    "  out[item] = media_walk_sun_transmittance(s, ATMO_LUT_ARGS, &q, &g).y;\n"
     "}\n";
 
 /* The green extinction at the point t along the sun's ray from q (what the walk sees). */

@@ -1,5 +1,5 @@
-/* test_clouds_tracking — the transmittance estimators of kernels/media/tracking.h (delta and
- * ratio tracking, host build of the shared header), the bias of a naive jittered ray march, and
+/* test_clouds_tracking — the transmittance estimators of kernels/media/majorant_walk.h (delta and
+ * ratio tracking under a constant majorant, host build of the shared header), the bias of a naive jittered ray march, and
  * a furnace for the random walk with the clouds' tabulated Mie phase (phase_table.h).
  * labels: unit stat
  *
@@ -33,6 +33,7 @@
 #include "common/phase.h"
 #include "common/rng.h"
 #include "media/tracking.h"
+#include "media/majorant_walk.h"
 #include "media/phase_table.h"
 #include "atmo/plan.h"
 #include "testlib.h"
@@ -57,11 +58,20 @@ static double tau_of(const medium1d *m)
     return m->s0 * (m->L + m->amp * (1.0 - cos(2.0 * M_PI * m->f * m->L)) / (2.0 * M_PI * m->f));
 }
 
+/* The next tentative point of a walk under the constant majorant sigma_bar (one segment). */
+static int next_point(majorant_walk *w, float sigma_bar, rng_stream *g)
+{
+    int ev;
+    while ((ev = walk_next(w, g)) == WALK_SEGMENT)
+        walk_segment(w, sigma_bar, INFINITY);
+    return ev == WALK_POINT;
+}
+
 /* One delta-tracking walk: 1 if it leaves the medium without a real collision. */
 static double delta_walk(const medium1d *m, float sigma_bar, rng_stream *g)
 {
-    tracking_walk w = tracking_begin((float)m->L, sigma_bar);
-    while (tracking_next(&w, g))
+    majorant_walk w = walk_begin((float)m->L, 0.0f);
+    while (next_point(&w, sigma_bar, g))
         if (rng_next(g) < sigma_at(m, w.t) / sigma_bar)
             return 0.0;
     return 1.0;
@@ -70,11 +80,11 @@ static double delta_walk(const medium1d *m, float sigma_bar, rng_stream *g)
 /* One ratio-tracking walk: the product of (1 - sigma / sigma_bar) over the tentative points. */
 static double ratio_walk(const medium1d *m, float sigma_bar, rng_stream *g)
 {
-    tracking_walk w = tracking_begin((float)m->L, sigma_bar);
+    majorant_walk w = walk_begin((float)m->L, 0.0f);
     vec3 W = v3(1.0f, 1.0f, 1.0f);
-    while (tracking_next(&w, g)) {
+    while (next_point(&w, sigma_bar, g)) {
         float s = (float)sigma_at(m, w.t);
-        W = tracking_ratio(&w, W, v3(s, s, s));
+        W = walk_ratio(&w, W, v3(s, s, s));
     }
     return W.y;
 }
@@ -167,8 +177,8 @@ static void furnace(const char *what, const float4 *rows, const float *cdf, int 
         vec3 p = v3(b, -sqrtf(1.0f - b * b), 0.0f), d = v3(0.0f, 1.0f, 0.0f);
         vec3 w = v3(1.0f, 1.0f, 1.0f);
         for (int bounce = 0; bounce < 100000; bounce++) {
-            tracking_walk walk = tracking_begin(exit_distance(p, d), sigma);
-            if (!tracking_next(&walk, &g))
+            majorant_walk walk = walk_begin(exit_distance(p, d), 0.0f);
+            if (!next_point(&walk, sigma, &g))
                 break; /* leaves: picks up the environment's radiance 1 */
             p = v3_add(p, v3_scale(d, walk.t));
             float u1 = rng_next(&g), u2 = rng_next(&g);

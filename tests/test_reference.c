@@ -14,7 +14,7 @@
  *      oracle of 1 is measured for N = 16 ... 1024 samples; the fitted log-log slope must be
  *      -1/2 within 0.15 (the RMS of 64 estimates has a relative spread of 1/sqrt(128) = 9 %,
  *      which over a factor 64 in N gives a slope spread of about 0.03; a bias would flatten it).
- *   3. Transmittance: the ratio-tracking estimator reference_transmittance against
+ *   3. Transmittance: the ratio-tracking estimator media_walk_sun_transmittance (media_walk.h) against
  *      atmo_ref_transmittance (z-test, |z| < 4) on vertical, slanted and grazing rays, and
  *      against the closed form exp(-beta H (1 - e^{-Z/H})) of a vertical ray through a pure
  *      exponential Rayleigh atmosphere of thickness Z; and the sun disc output, W E / Omega_sun.
@@ -51,7 +51,7 @@ static const char probe_src[] =
     "  medium_point x;\n" /* the ray's start at radius q.x, toward cosine q.y */
     "  x.p = v3(0.0f, 0.0f, 0.0f); x.r = q.x; x.h = q.x - s->atmosphere.bottom_radius;\n"
     "  x.mu = q.y; x.mu_s = q.y;\n"
-    "  out[i] = (float4)(reference_transmittance(s, ATMO_LUT_ARGS, &x, &g), 0.0f);\n"
+    "  out[i] = (float4)(media_walk_sun_transmittance(s, ATMO_LUT_ARGS, &x, &g), 0.0f);\n"
     "}\n";
 
 typedef struct ctx {

@@ -14,7 +14,7 @@
 #include <string.h>
 #include "atmo/features.h"
 
-#define COMPOSE_TEXT 8192
+#define COMPOSE_TEXT 16384
 
 static int wanted(const atmo_feature *f, int argc, char **argv)
 {

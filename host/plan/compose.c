@@ -82,6 +82,81 @@ static void compose_media_at(text *t, const atmo_feature *const *f, int n)
     put(t, "    return x;\n}\n\n");
 }
 
+/* The media of the Monte Carlo walk (kernels/media/media_walk.h): their majorants, summed over
+ * the media that give one (a walk toward the sun, shadow != 0, leaves out those whose sun
+ * transmittance is exact and takes that from media_sun_attenuate's terms instead), the
+ * extinction such a walk tracks, and each component's direction sampling and roulette gain. */
+static void compose_majorant(text *t, const atmo_feature *const *f, int n)
+{
+    int tracked = 0;
+    for (int i = 0; i < n; i++)
+        tracked += SLOT(f[i], majorant_begin) != NULL;
+    put(t, "/* The media with a majorant of their own (beyond the air's). */\n");
+    put(t, "#define MEDIA_TRACKED %d\n\n", tracked);
+    put(t, "/* Their majorants' states along one ray. */\n");
+    put(t, "typedef struct media_majorant {\n    int shadow; /* a walk toward the sun */\n");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], majorant_begin))
+            put(t, "    %s %s;\n", f[i]->slots->majorant_state, f[i]->name);
+    put(t, "} media_majorant;\n\n");
+    put(t, "ATMO_FN void media_majorant_begin(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,\n"
+           "                                  vec3 origin, vec3 dir, float r, float mu, float end,\n"
+           "                                  int shadow, media_majorant *mm)\n{\n"
+           "    mm->shadow = shadow;\n");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], majorant_begin))
+            put(t, "    %s%s(s, ATMO_LUT_ARGS, origin, dir, r, mu, end, &mm->%s);\n",
+                f[i]->slots->sun_exact ? "if (!shadow)\n        " : "",
+                f[i]->slots->majorant_begin, f[i]->name);
+    put(t, "}\n\n");
+    put(t, "/* The media's majorant from t up to *seg_end (the air's is the walk's own). */\n");
+    put(t, HEAD "media_majorant *mm, float t, float *seg_end)\n{\n", "float",
+        "media_majorant_segment");
+    put(t, "    float rate = 0.0f, e = INFINITY;\n    *seg_end = INFINITY;\n");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], majorant_begin))
+            put(t, "    %s{\n        rate += %s(s, ATMO_LUT_ARGS, &mm->%s, t, &e);\n"
+                   "        *seg_end = fminf(*seg_end, e);\n    }\n",
+                f[i]->slots->sun_exact ? "if (!mm->shadow) " : "",
+                f[i]->slots->majorant_segment, f[i]->name);
+    put(t, "    (void)e;\n    return rate;\n}\n\n");
+
+    put(t, "/* The extinction a walk toward the sun tracks: the media's, less the exact ones'. */\n");
+    put(t, HEAD "const medium_point *q)\n{\n", "vec3", "media_tracked_extinction");
+    put(t, "    media_sample m = media_air_at(s, q);\n");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], media_add) && !f[i]->slots->sun_exact)
+            put(t, "    %s(s, ATMO_LUT_ARGS, q, &m);\n", f[i]->slots->media_add);
+    put(t, "    return m.extinction;\n}\n\n");
+    put(t, "/* x times the sun's transmittance to q through the media whose sun is exact. */\n");
+    put(t, HEAD "const medium_point *q, vec3 x)\n{\n", "vec3", "media_sun_exact_attenuate");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], media_sun) && f[i]->slots->sun_exact)
+            put(t, "    x = v3_mul(x, %s(s, ATMO_LUT_ARGS, q));\n", f[i]->slots->media_sun);
+    put(t, "    return x;\n}\n\n");
+
+    put(t, "/* A new direction at a scattering by component k (the air's: its phase, exactly). */\n");
+    put(t, HEAD "int k, vec3 dir, vec3 to_sun,\n"
+           "                                      vec3 beta, float u1, float u2, rng_stream *g,\n"
+           "                                      vec3 *weight)\n{\n", "vec3",
+        "media_phase_direction");
+    for (int i = 0; i < n; i++) {
+        const atmo_slots *sl = f[i]->slots;
+        const char *comp = sl ? (sl->walk_component ? sl->walk_component : sl->component) : NULL;
+        if (sl && sl->media_direction && comp)
+            put(t, "    if (k == MEDIA_%s)\n        return %s(s, ATMO_LUT_ARGS, dir, to_sun, beta, "
+                   "u1, u2, g, weight);\n", comp, sl->media_direction);
+    }
+    put(t, "    return media_air_direction(s, k, dir, u1, u2, weight);\n}\n\n");
+    put(t, "/* The factor on a path's roulette survival leaving at cosine nu to the sun. */\n");
+    put(t, HEAD "float nu)\n{\n", "float", "media_roulette_gain");
+    put(t, "    float gain = 1.0f;\n");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], roulette_gain))
+            put(t, "    gain *= %s(s, ATMO_LUT_ARGS, nu);\n", f[i]->slots->roulette_gain);
+    put(t, "    return gain;\n}\n\n");
+}
+
 static int compose_ms(text *t, const atmo_feature *const *f, int n)
 {
     int twice = 0;
@@ -218,6 +293,7 @@ int atmo_compose(const atmo_feature *const *f, int n, int group, char *out, size
         atmo_compose_name(group));
     if (group == ATMO_COMPOSE_MEDIA) {
         compose_media_at(&t, f, n);
+        compose_majorant(&t, f, n);
         rc = compose_ms(&t, f, n);
     } else if (group == ATMO_COMPOSE_SUN) {
         compose_sun(&t, f, n);

@@ -26,6 +26,11 @@ static int cloud_grid(const atmo_scene *s)
 {
     return (cloud_layer(s) && s->atmosphere.method == ATMO_METHOD_REFERENCE) || cloud_volume(s);
 }
+/* the layer as a medium of the reference's walk */
+static int cloud_tracked(const atmo_scene *s)
+{
+    return cloud_layer(s) && s->atmosphere.method == ATMO_METHOD_REFERENCE;
+}
 /* the sun shadow map of the methods' light march; the reference ratio-tracks the sun instead */
 static int cloud_shadow_map(const atmo_scene *s)
 {
@@ -86,7 +91,8 @@ static const char *const atmosphere_fragments[] = {
     "kernels/common/phase.h",         "kernels/atmosphere/atmosphere.h",
     "kernels/common/camera.h",
     "kernels/atmosphere/sky_method.h", "kernels/media/ray.h",
-    "kernels/media/media.h",          "kernels/media/planet.h", "kernels/media/tracking.h",
+    "kernels/media/tracking.h",       "kernels/media/majorant_walk.h",
+    "kernels/media/media.h",          "kernels/media/planet.h",
     "kernels/atmosphere/transmittance.cl", NULL};
 static const atmo_slots atmosphere_slots = {.sun_occluder = "planet_sun_visibility",
                                             .surface_occluder = 1};
@@ -103,10 +109,12 @@ static const char *const atmosphere_sources[] = {
 /* The sun's visibility over the composed occluders and media; the one medium integrator over
  * the composed media, visibility and intervals. */
 static const char *const visibility_fragments[] = {"kernels/media/visibility.h",
-                                                   "kernels/media/medium_air.h", NULL};
+                                                   "kernels/media/medium_air.h",
+                                                   "kernels/media/media_walk.h", NULL};
 static const char *const medium_fragments[] = {"kernels/media/medium.h", NULL};
 #define MEDIUM_SOURCES                                                                             \
-    "kernels/media/ray.h", "kernels/media/media.h", "kernels/media/visibility.h",                  \
+    "kernels/media/ray.h", "kernels/media/tracking.h", "kernels/media/media.h",                    \
+        "kernels/media/visibility.h",                                                              \
         "kernels/media/observer.h", "kernels/media/medium.h"
 
 /* Psi_ms: its lookups (the source of march and fast) before the media's composition, its
@@ -152,6 +160,7 @@ static const char *const needs_transmittance[] = {"atmosphere", NULL};
 static const char *const cloud_fragments[] = {"kernels/media/observer.h",
                                               "kernels/media/phase_table.h",
                                               "kernels/media/cloud_shell.h",
+                                              "kernels/media/cloud_shell_walk.h",
                                               "kernels/media/observer_surface.h", NULL};
 static const atmo_slots cloud_slots = {.component = "CLOUD",
                                        .media_add = "cloud_shell_media_add",
@@ -162,14 +171,23 @@ static const atmo_slots cloud_slots = {.component = "CLOUD",
                                        .sun_occluder = "observer_sun_visibility",
                                        .surface_occluder = 1,
                                        .surface_hit = "observer_surface_hit",
-                                       .surface_radiance = "observer_surface_radiance"};
+                                       .surface_radiance = "observer_surface_radiance",
+                                       .majorant_state = "cloud_shell_majorant",
+                                       .majorant_begin = "cloud_shell_majorant_begin",
+                                       .majorant_segment = "cloud_shell_majorant_segment",
+                                       .sun_exact = 1,
+                                       .media_direction = "cloud_shell_media_direction",
+                                       .roulette_gain = "cloud_shell_roulette_gain"};
 /* the shell's own stepping, after the visibility it asks */
 static const char *const cloud_march_fragments[] = {"kernels/media/cloud_shell_march.h", NULL};
 static const char *const clouds_fragments[] = {"kernels/media/cloud_noise.h",
                                                "kernels/media/phase_table.h",
                                                "kernels/media/cloud_layer.h", NULL};
+/* the grid and the layer's majorant over it (cloud_walk.h: the walk's slots below, the volume
+ * stage's walk) */
 static const char *const clouds_majorant_fragments[] = {"kernels/media/cloud_majorant.h",
-                                                        "kernels/media/cloud_majorant.cl", NULL};
+                                                        "kernels/media/cloud_majorant.cl",
+                                                        "kernels/media/cloud_walk.h", NULL};
 static const char *const clouds_shadow_map_fragments[] = {
     "kernels/media/cloud_majorant.h", "kernels/media/cloud_shadow_map.h",
     "kernels/media/cloud_shadow_map.cl", NULL};
@@ -183,8 +201,14 @@ static const atmo_slots clouds_slots = {.component = "CLOUDS",
                                         .media_interval = "clouds_media_interval"};
 /* the volume stage's walk through the layer, over its majorant grid: the shadows it casts on
  * the air's samples of every method */
-static const char *const clouds_walk_fragments[] = {"kernels/media/cloud_walk.h", NULL};
 static const atmo_slots clouds_walk_slots = {.volume_sun = "clouds_volume_sun"};
+/* the layer as a medium of the reference's walk: its majorant, its scattering's sampling */
+static const atmo_slots clouds_tracked_slots = {.majorant_state = "clouds_track",
+                                                .majorant_begin = "clouds_track_begin",
+                                                .majorant_segment = "clouds_track_segment",
+                                                .walk_component = "CLOUDS",
+                                                .media_direction = "clouds_media_direction",
+                                                .roulette_gain = "clouds_roulette_gain"};
 static const char *const clouds_march_fragments[] = {"kernels/media/cloud_march.h", NULL};
 /* The terrain: the height field, the tracer and shadows, the surface's light, and the
  * heightmap pass, which reads only the field (the camera's placement stays out of the key). */
@@ -250,8 +274,9 @@ const atmo_feature atmo_features[] = {
      * view (never cached) */
     {"clouds_majorant", -1, cloud_grid, clouds_majorant_fragments, "", NULL, NULL, NULL,
      atmo_plan_clouds_majorant, 0, NULL, 0},
-    {"clouds_walk", -1, cloud_volume, clouds_walk_fragments, "", NULL, NULL, NULL, NULL, 0,
-     &clouds_walk_slots, 0},
+    {"clouds_walk", -1, cloud_volume, NULL, "", NULL, NULL, NULL, NULL, 0, &clouds_walk_slots, 0},
+    {"clouds_tracked", -1, cloud_tracked, NULL, "", NULL, NULL, NULL, NULL, 0,
+     &clouds_tracked_slots, 0},
     /* the layer's sun shadow map for the visibility source and the marcher (over the majorant
      * grid's frame); it follows the view (never cached) */
     {"clouds_shadow_map", -1, cloud_shadow_map, clouds_shadow_map_fragments,

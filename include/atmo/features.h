@@ -63,6 +63,22 @@ typedef struct atmo_gpu_field {
  *   surface_radiance      vec3 (s, ATMO_LUT_PARAMS, const medium_ray *m, float t): the light
  *                         of its surface at distance t toward the ray's origin, x < 0 where the
  *                         surface there is not its own (the last surface asked may assume it is)
+ * A medium in the Monte Carlo walk (kernels/media/majorant_walk.h, media_walk.h):
+ *   majorant_state        the type STATE of its majorant along one ray
+ *   majorant_begin        void (s, ATMO_LUT_PARAMS, vec3 origin, vec3 dir, float r, float mu,
+ *                         float end, STATE *st): starts it on origin + t dir, t in [0, end]
+ *                         (r, mu: radius and cosine to the vertical at the origin)
+ *   majorant_segment      float (s, ATMO_LUT_PARAMS, STATE *st, float t, float *seg_end): its
+ *                         majorant (1/m, >= its extinction) from t up to *seg_end, for t
+ *                         increasing from call to call
+ *   sun_exact             1: its media_sun is exact (closed form), so the walks toward the sun
+ *                         take it from there and do not track it
+ *   walk_component        the component whose sampling the next two give (default: component)
+ *   media_direction       vec3 (s, ATMO_LUT_PARAMS, vec3 dir, vec3 to_sun, vec3 beta, float u1,
+ *                         float u2, rng_stream *g, vec3 *weight): a new direction at a
+ *                         scattering by it (weight: phase over the sampling density)
+ *   roulette_gain         float (s, ATMO_LUT_PARAMS, float nu): the factor on a path's
+ *                         roulette survival leaving at cosine nu to the sun (tracking.h)
  * The composition asks the features in registry order, so a row's place also orders its
  * occluders and surfaces. */
 typedef struct atmo_slots {
@@ -75,6 +91,9 @@ typedef struct atmo_slots {
     int surface_occluder;
     const char *ray_occluder, *ray_state, *ray_begin;
     const char *surface_hit, *surface_radiance;
+    const char *majorant_state, *majorant_begin, *majorant_segment;
+    int sun_exact;
+    const char *walk_component, *media_direction, *roulette_gain;
 } atmo_slots;
 
 /* The generated composition fragments (compose.c): a registry row with compose != 0 has no
@@ -83,7 +102,11 @@ typedef struct atmo_slots {
 enum {
     ATMO_COMPOSE_NONE,
     ATMO_COMPOSE_MEDIA,     /* media_at, media_phase, media_sun_attenuate, medium_ms_source,
-                               medium_ms_ground_irradiance, visibility_air_volume */
+                               medium_ms_ground_irradiance, visibility_air_volume; the walk's
+                               MEDIA_TRACKED, media_majorant, media_majorant_begin,
+                               media_majorant_segment, media_tracked_extinction,
+                               media_sun_exact_attenuate, media_phase_direction,
+                               media_roulette_gain */
     ATMO_COMPOSE_SUN,       /* visibility_ray, visibility_ray_begin, visibility_sun_occluders,
                                visibility_sun_occluders_on_ray, visibility_surface_occluders */
     ATMO_COMPOSE_SURFACES,  /* visibility_surface_hit, visibility_surface_radiance */

@@ -73,7 +73,7 @@ typedef struct atmo_plan {
     char defines[256];
     char prelude[1024];            /* generated: the buffer parameter and argument lists, the
                                       media's components */
-    char composed[ATMO_PLAN_COMPOSE_GROUPS][4096]; /* generated: the slots' composition
+    char composed[ATMO_PLAN_COMPOSE_GROUPS][8192]; /* generated: the slots' composition
                                       (atmo/features.h, atmo_compose), per group */
     atmo_plan_buffer buffers[ATMO_PLAN_MAX_BUFFERS];
     int buffer_count;

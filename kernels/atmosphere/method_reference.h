@@ -11,9 +11,11 @@
  * Light transport (radiative transfer equation with a point sun of irradiance E):
  *   L(x, w) = int_0^d T(x, x_t) [sigma_R p_R + sigma_M,s p_M](x_t) * (E T_sun(x_t) + L_ms) dt
  *           + T(x, x_d) L_ground,      L_ground = (rho / pi) (E T_sun mu_s+ + int L cos dw)
- * Each segment is walked with the tentative collisions of a homogeneous Poisson process of
- * rate sigma_bar (a majorant: the extinction bound at the lowest altitude the segment reaches,
- * Rayleigh and Mie at that altitude plus the ozone peak, times 1.001). At every tentative point:
+ * Each segment is walked by the one majorant walk through the composed media (media_walk.h over
+ * majorant_walk.h): tentative collisions of a Poisson process of rate sigma_bar, the air's
+ * bound on the segment (its extinction at the lowest altitude the segment reaches plus the
+ * ozone peak, times 1.001) plus the media's own piecewise-constant majorants (a cloud shell's
+ * parts, a cloud layer's majorant grid: the features' slots). At every tentative point:
  *   - next-event estimation to the sun with the ratio-tracking weight W = prod (1 - sigma_t/sigma_bar)
  *     of the points before it (Novak et al. 2014): by Campbell's theorem
  *     E[sum W sigma_s/sigma_bar f] = int T sigma_s f dt, so single scattering is sampled along the
@@ -23,17 +25,19 @@
  *     collision with probabilities proportional to max over channels of w * sigma_R, w * sigma_M,s
  *     and w * (sigma_bar - sigma_t); the vec3 weight w is multiplied by sigma_event /
  *     (sigma_bar P_event), so every channel stays unbiased with one shared path.
- * The sun's transmittance T_sun is ratio tracking too, with its own majorant, towards a point sun
- * (zero where the ray to the sun hits the planet: the planet's shadow). W at the end of a segment
+ * The sun's transmittance T_sun is the walk's shadow query (media_walk_sun_transmittance: ratio
+ * tracking toward a point sun, the media of exact sun transmittance in closed form), zero
+ * where an occluder hides the sun (the planet's shadow). W at the end of a segment
  * weighs the ground's direct light and, on the camera ray, the sun disc (E / Omega_sun, Omega_sun
  * = 2 pi (1 - cos alpha), where nu >= cos alpha and the ray misses the ground). New directions
- * sample the air's phase functions exactly (Rayleigh = Draine with g = 0, alpha = 1; Mie: HG or
- * Cornette-Shanks, phase.h), the Lambertian ground a cosine-weighted hemisphere (weight = albedo),
- * the clouds' phase mixed with its lobe around the sun (below).
+ * come from the composed media_phase_direction: the air's phase functions exactly (Rayleigh =
+ * Draine with g = 0, alpha = 1; Mie: HG or Cornette-Shanks, phase.h), a medium's its own
+ * sampling (the clouds: their phase mixed with its lobe around the sun, below); the Lambertian
+ * ground a cosine-weighted hemisphere (weight = albedo).
  * After 4 scattering events Russian roulette keeps a path with probability
  *     P = min(P_max, gain x the largest channel of w),
  *     P_max = 1 before TRACKING_ROULETTE_LONG (256) events, 0.95 after,
- * and divides w by P (unbiased; gain: reference_roulette_gain, 1 in clear air; the rule and
+ * and divides w by P (unbiased; gain: the composed media_roulette_gain, 1 in clear air; the rule and
  * why a path with w gain >= 1 keeps its weight unchanged: tracking_survival, tracking.h,
  * shared with the path tracer).
  *
@@ -49,42 +53,32 @@
  * paths would see no tentative point there, and the few that do would carry the whole
  * estimate; 4 points per segment cut its standard error about 2.7 times for about 1.5 times
  * the time (measured on tests/test_aerial.c's rays: docs/notes/reference_segments.md).
- * Clouds (-DATMO_CLOUDS): the fBm layer is one more component of media_at. The majorant of a
- * segment is then piecewise constant (tracking.h's segments, walked by reference_walk_next):
- * the air's bound plus, inside the layer's majorant grid (cloud_majorant.h: the density bound
- * of each cell the segment crosses, walked by a 3-D DDA), the cell's bound times the layer's
- * largest extinction, and outside the grid, where the segment reaches the layer's altitudes,
- * the layer's global bound (clouds.majorant x its largest extinction); so delta, spectral and
- * ratio tracking stay unbiased through it while clear air and thin cloud cost few points. The
- * sun's transmittance is ratio-tracked through air and clouds alike (visibility_sun's marched
- * light march is not used: only the opaque occluders); a scattering by the layer draws the new
- * direction from its phase function (the Mie table by its CDF, Henyey-Greenstein by the middle
- * wavelength's g, Jendersie-d'Eon exactly) mixed with the same lobe centred on the sun with
- * probability clouds.sun_guiding, weight p_c / q per wavelength (phase_table.h's
+ * Clouds. A cloud medium (the fBm layer, cloud_walk.h; the homogeneous shell,
+ * cloud_shell_walk.h; they exclude each other) is one more component of media_at and adds its
+ * majorant to the walk's: the layer the density bound of each grid cell the segment crosses
+ * (cloud_majorant.h's DDA) times its largest extinction, its global bound beyond the grid,
+ * zero outside its shell; the shell its largest extinction over the parts of the segment
+ * between its spheres. So delta, spectral and ratio tracking stay unbiased through them while
+ * clear air and thin cloud cost few points. The sun's transmittance is ratio-tracked through
+ * the layer (visibility_sun's marched light march is not used: only the opaque occluders) and
+ * exact through the shell (exp(-sigma l) for the sun's chord l, the slot's sun_exact). A
+ * scattering by a cloud draws its new direction from its phase function (the Mie table by its
+ * CDF, Henyey-Greenstein, Jendersie-d'Eon) mixed with the same lobe centred on the sun with
+ * probability sun_guiding, weight p_c / q per wavelength (phase_table.h's
  * cloud_phase_direction: the forward peak's next-event estimates then come with small
- * weights; unbiased for any guiding in [0, 1)). Most tentative points under a bound are null collisions, so there
- * the sun's next-event estimate is made only with probability keep = min(1,
- * REFERENCE_NEE_FLOOR + max sigma_s / sigma_bar) and divided by it (Russian roulette: unbiased),
- * which spares most of the ratio-tracked shadow rays. Inside opaque cloud the weights fall
- * fast: a shadow ray's ratio-tracking weight below REFERENCE_ROULETTE_T, and the view
- * segment's W below REFERENCE_ROULETTE_T times its weight at the segment's start once the
- * segment's collision is chosen, go through Russian roulette (tracking_roulette: every estimate
- * is linear in the weight, so it stays unbiased), which ends such walks after a few optical
- * depths instead of kilometres of cloud.
- * The homogeneous cloud shell (-DATMO_CLOUD, cloud_shell.h; it and the layer exclude each
- * other) is a component of media_at as well. Its majorant, its largest extinction x 1.001, is
- * added over the parts of a segment between its two spheres (reference_walk_shell, with a
- * REFERENCE_SHELL_MARGIN_M margin on the radii), so the clear air above and below keeps the
- * air's majorant; a scattering by it draws its new direction as the layer's does
- * (phase_table.h's cloud_phase_direction with cloud.sun_guiding: the Mie table's rows and CDF,
- * HG with g per channel, Jendersie-d'Eon, each mixed with its lobe around the sun); the sun's transmittance through it is exact, exp(-sigma l)
- * for the sun's chord l through the shell, times the air's ratio-tracked transmittance
- * (reference_tracked_extinction: the air's extinction alone). The layer's roulettes (the
- * next-event keep, REFERENCE_ROULETTE_T) apply inside the shell too. The observer sphere is
- * not a source of this method (plan_cloud.c refuses it: its silhouette is lit through the
- * transmittance LUT).
+ * weights; unbiased for any guiding in [0, 1)). Where such a medium is present
+ * (MEDIA_TRACKED > 0), most tentative points under its bound are null collisions, so the sun's
+ * next-event estimate is made only with probability keep = min(1, REFERENCE_NEE_FLOOR +
+ * max sigma_s / sigma_bar) and divided by it (Russian roulette: unbiased), which spares most
+ * of the shadow rays; and inside opaque cloud, where the weights fall fast, a shadow ray's
+ * weight below MEDIA_WALK_ROULETTE_T and the view segment's W below REFERENCE_ROULETTE_T times
+ * its weight at the segment's start once the segment's collision is chosen go through Russian
+ * roulette (tracking_roulette: every estimate is linear in the weight, so it stays unbiased),
+ * which ends such walks after a few optical depths instead of kilometres of cloud. The
+ * observer sphere is not a source of this method (plan_cloud.c refuses it: its silhouette is
+ * lit through the transmittance LUT).
  * Interfaces: the coefficients come from media_at (media.h), the occluders from
- * visibility_sun_occluders (visibility.h) at each point, the walk from tracking.h. The path
+ * visibility_sun_occluders (visibility.h) at each point, the walk from media_walk.h. The path
  * lives in its own planet-centred frame (the start of the path at (0, r, 0)); reference_frame
  * maps its points and directions to the world's camera-relative coordinates, so the 3-D media
  * (the cloud layer) and visibility sources see the positions the other methods see.
@@ -103,10 +97,9 @@
 #include "media/media.h"
 #include "media/ray.h"
 #include "media/tracking.h"
+#include "media/majorant_walk.h"
+#include "media/media_walk.h"
 #include "media/visibility.h"
-#ifdef ATMO_CLOUDS
-#include "media/cloud_majorant.h"
-#endif
 #include "atmo/gpu_types.h"
 #endif
 
@@ -114,176 +107,6 @@
 #define REFERENCE_SEGMENT_POINTS 4.0f
 #define REFERENCE_NEE_FLOOR 0.05f /* with clouds: least probability of a next-event estimate */
 #define REFERENCE_ROULETTE_T 0.1f /* with clouds: weights below this go through roulette */
-#if defined(ATMO_CLOUD) || defined(ATMO_CLOUDS)
-#define REFERENCE_CLOUDY /* a cloud medium (the shell or the layer): the roulettes below */
-#endif
-#define REFERENCE_SHELL_MARGIN_M 10.0f /* the shell's majorant covers its radii +- this */
-
-/* Lowest altitude along the ray from r along mu up to distance d (the ray's end). */
-ATMO_FN float reference_min_altitude(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r,
-                                       float mu, float d)
-{
-    if (mu >= 0.0f || d <= 0.0f)
-        return r - a->bottom_radius;
-    if (-r * mu >= d) /* still descending at the end */
-        return geometry_altitude_at(r, mu, d, a->bottom_radius);
-    float perigee = r * atmo_safe_sqrt(1.0f - mu * mu);
-    return fmaxf(perigee - a->bottom_radius, 0.0f);
-}
-
-/* A bound on the extinction of every channel above altitude h_min. The 10 m margin covers
- * the float rounding of the altitude (about 0.5 m at 6400 km). */
-ATMO_FN float reference_majorant(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float h_min)
-{
-    float h = fmaxf(h_min - 10.0f, 0.0f);
-    float ozone = h < a->ozone_peak ? 1.0f : atmosphere_ozone_tent(a, h);
-    vec3 bound = v3_add(v3_add(v3_scale(v3_from4(a->rayleigh_scattering),
-                                        expf(-h / a->rayleigh_scale_height)),
-                               v3_scale(v3_from4(a->mie_extinction), expf(-h / a->mie_scale_height))),
-                        v3_scale(v3_from4(a->ozone_absorption), ozone));
-    return fmaxf(tracking_max3(bound), 1e-12f) * 1.001f;
-}
-
-/* The air's majorant on the segment from radius r with cosine mu to distance d (above its
- * lowest altitude). */
-ATMO_FN float reference_segment_majorant(ATMO_GLOBAL const atmo_gpu_scene *s, float r, float mu,
-                                         float d)
-{
-    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    return reference_majorant(a, reference_min_altitude(a, r, mu, d));
-}
-
-/* The fBm layer's global bound on that segment where it reaches the layer's altitudes, else 0
- * (the majorant outside the layer's grid). */
-ATMO_FN float reference_clouds_outside(ATMO_GLOBAL const atmo_gpu_scene *s, float r, float mu,
-                                       float d)
-{
-#ifdef ATMO_CLOUDS
-    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    float h_min = reference_min_altitude(a, r, mu, d);
-    float h_max = fmaxf(r - a->bottom_radius, geometry_altitude_at(r, mu, d, a->bottom_radius));
-    if (h_min - 10.0f < s->clouds.top_m && h_max + 10.0f > s->clouds.bottom_m)
-        return s->clouds.majorant * tracking_max3(v3_from4(s->clouds.extinction)) * 1.001f;
-#else
-    (void)s, (void)r, (void)mu, (void)d;
-#endif
-    return 0.0f;
-}
-
-/* A segment's walk: the tentative points of tracking.h under the media's piecewise-constant
- * majorant, max(air + clouds, least) (clouds: the grid cell's bound, or `outside` beyond the
- * grid; least: a floor on the rate, for short cut segments). */
-typedef struct reference_walk {
-    tracking_walk w;
-    float air, outside, least;
-#ifdef ATMO_CLOUD
-    int shell_parts;                   /* the parts of the walk inside the cloud shell (0..2) */
-    float shell_lo[2], shell_hi[2];    /* their ends (m along the walk) */
-    float shell;                       /* the majorant the shell adds there (1/m) */
-#endif
-#ifdef ATMO_CLOUDS
-    float scale; /* density -> extinction bound: the layer's largest extinction, x 1.001 */
-    clouds_grid_walk grid;
-#endif
-} reference_walk;
-
-/* The majorant of the segment that starts at the walk's point. */
-ATMO_FN void reference_walk_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                                    reference_walk *rw)
-{
-#ifdef ATMO_CLOUDS
-    float seg_end, b = clouds_grid_segment(&rw->grid, clouds_majorant, rw->w.t, &seg_end);
-    float clouds = b < 0.0f ? rw->outside : b * rw->scale;
-    tracking_segment(&rw->w, fmaxf(rw->air + clouds, rw->least), seg_end);
-#elif defined(ATMO_CLOUD)
-    (void)s;
-    float seg_end = INFINITY, shell = 0.0f;
-    for (int k = 0; k < rw->shell_parts; k++) {
-        if (rw->w.t < rw->shell_lo[k]) { /* clear air up to the next part */
-            seg_end = rw->shell_lo[k];
-            break;
-        }
-        if (rw->w.t < rw->shell_hi[k]) {
-            shell = rw->shell, seg_end = rw->shell_hi[k];
-            break;
-        }
-    }
-    tracking_segment(&rw->w, fmaxf(rw->air + rw->outside + shell, rw->least), seg_end);
-#else
-    (void)s;
-    tracking_segment(&rw->w, fmaxf(rw->air + rw->outside, rw->least), INFINITY);
-#endif
-}
-
-/* The walk along origin + t dir (camera-relative, dir unit) over [0, end]. */
-ATMO_FN reference_walk reference_walk_begin(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                                            vec3 origin, vec3 dir, float end, float air,
-                                            float outside, float least)
-{
-    reference_walk rw;
-    rw.w = tracking_begin(end, 1.0f);
-    rw.air = air, rw.outside = outside, rw.least = least;
-#ifdef ATMO_CLOUD
-    rw.shell_parts = 0; /* the shell joins the walk by reference_walk_shell */
-    rw.shell = 0.0f;
-#endif
-#ifdef ATMO_CLOUDS
-    rw.scale = tracking_max3(v3_from4(s->clouds.extinction)) * 1.001f;
-    clouds_grid_frame f = clouds_grid_frame_make(s);
-    rw.grid = clouds_grid_begin(&f, origin, dir, end);
-#else
-    (void)origin, (void)dir;
-#endif
-    reference_walk_segment(s, ATMO_LUT_ARGS, &rw);
-    return rw;
-}
-
-#ifdef ATMO_CLOUD
-/* Adds the cloud shell to a walk that starts at radius r with cosine mu to the vertical: over
- * the parts of the walk between the spheres of radii R + base - REFERENCE_SHELL_MARGIN_M and
- * R + top + REFERENCE_SHELL_MARGIN_M (geometry_sphere_roots: the ray's distances to a sphere of
- * radius R + z are the roots of t^2 + 2 r mu t + (h - z)(r + R + z), h = r - R) the majorant
- * gains the shell's largest extinction x 1.001; the margin covers the float rounding of the
- * altitude media_at tests (< 1 m at 6400 km), so sigma_bar >= sigma_t everywhere and the walk
- * stays unbiased, while the clear air above and below keeps the air's majorant alone. */
-ATMO_FN void reference_walk_shell(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                                  reference_walk *rw, float r, float mu)
-{
-    float R = s->atmosphere.bottom_radius, h = r - R, b = r * mu;
-    float base = s->cloud.base_m - REFERENCE_SHELL_MARGIN_M;
-    float top = s->cloud.top_m + REFERENCE_SHELL_MARGIN_M, o0, o1, i0, i1;
-    rw->shell_parts = 0;
-    if (!(s->cloud.top_m > s->cloud.base_m) ||
-        !geometry_sphere_roots(b, (h - top) * (r + R + top), &o0, &o1))
-        return;
-    float lo[2] = {o0, 0.0f}, hi[2] = {o1, 0.0f};
-    int parts = 1;
-    if (base > 0.0f && geometry_sphere_roots(b, (h - base) * (r + R + base), &i0, &i1))
-        hi[0] = i0, lo[1] = i1, hi[1] = o1, parts = 2;
-    for (int k = 0; k < parts; k++) {
-        float l = fmaxf(lo[k], 0.0f), u = fminf(hi[k], rw->w.end);
-        if (u > l) {
-            rw->shell_lo[rw->shell_parts] = l, rw->shell_hi[rw->shell_parts] = u;
-            rw->shell_parts++;
-        }
-    }
-    rw->shell = tracking_max3(v3_from4(s->cloud.extinction)) * 1.001f;
-    reference_walk_segment(s, ATMO_LUT_ARGS, rw);
-}
-#endif
-
-/* The next tentative point (rw->w.t, rate rw->w.sigma_bar there); 0 once past the end. */
-ATMO_FN int reference_walk_next(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                                reference_walk *rw, rng_stream *g)
-{
-    float tau = tracking_depth(g);
-    while (!tracking_advance(&rw->w, &tau)) {
-        if (rw->w.t >= rw->w.end)
-            return 0;
-        reference_walk_segment(s, ATMO_LUT_ARGS, rw);
-    }
-    return rw->w.t < rw->w.end;
-}
 
 /* The path's frame (see the top of the file) in the world's axes: a path point X (planet-
  * centred in the path's frame) is at the camera-relative world position
@@ -337,53 +160,6 @@ ATMO_FN medium_point reference_point(ATMO_GLOBAL const atmo_gpu_atmosphere *a,
     return medium_ray_at(&m, t, a->bottom_radius);
 }
 
-/* The extinction the sun's walk ratio-tracks at the point x: the media's, less the cloud
- * shell's, whose transmittance toward the sun is its chord's (reference_transmittance). Under
- * -DATMO_CLOUD the media are the air and the shell (the fBm layer excludes the shell:
- * plan_cloud.c), so that is the air's extinction, computed as media_at computes it. */
-ATMO_FN vec3 reference_tracked_extinction(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                                          const medium_point *x)
-{
-#ifdef ATMO_CLOUD
-    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    return atmosphere_extinction_at(a, x->h, expf(-x->h / a->rayleigh_scale_height),
-                                    expf(-x->h / a->mie_scale_height));
-#else
-    return media_at(s, ATMO_LUT_ARGS, x).extinction;
-#endif
-}
-
-/* Transmittance toward the sun from the point q to the top of the atmosphere by ratio tracking
- * (the ray must not hit the ground); unbiased, each factor 1 - sigma_t / sigma_bar in [0, 1].
- * The cloud shell's factor is exact instead: exp(-sigma l) for the sun's chord l through it
- * (cloud_shell_sun_transmittance), no noise and no walk through the shell. */
-ATMO_FN vec3 reference_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                                     const medium_point *q, rng_stream *g)
-{
-    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    float r = q->r, mu = q->mu_s;
-    float d = geometry_distance_to_top(r, mu, a->top_radius);
-    vec3 T = v3(1.0f, 1.0f, 1.0f), sun = v3_from4(s->sun_direction);
-    reference_walk rw = reference_walk_begin(s, ATMO_LUT_ARGS, q->p, sun, d,
-                                             reference_segment_majorant(s, r, mu, d),
-                                             reference_clouds_outside(s, r, mu, d), 0.0f);
-    while (reference_walk_next(s, ATMO_LUT_ARGS, &rw, g)) {
-        medium_point x;
-        x.p = v3_add(q->p, v3_scale(sun, rw.w.t));
-        x.h = geometry_altitude_at(r, mu, rw.w.t, a->bottom_radius);
-        T = tracking_ratio(&rw.w, T, reference_tracked_extinction(s, ATMO_LUT_ARGS, &x));
-#ifdef REFERENCE_CLOUDY
-        T = tracking_roulette(T, REFERENCE_ROULETTE_T, g);
-#endif
-        if (tracking_max3(T) <= 0.0f)
-            break;
-    }
-#ifdef ATMO_CLOUD
-    T = v3_mul(T, cloud_shell_sun_transmittance(s, q, a->bottom_radius));
-#endif
-    return T;
-}
-
 /* E T_sun at the point q: zero where an opaque source hides the sun (the planet), else the
  * media's transmittance by ratio tracking (every medium is tracked, none taken from
  * visibility_sun's marched estimates). */
@@ -393,57 +169,9 @@ ATMO_FN vec3 reference_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PA
     float vis = visibility_sun_occluders(s, ATMO_LUT_ARGS, q);
     if (vis <= 0.0f)
         return v3(0.0f, 0.0f, 0.0f);
-    vec3 t = v3_mul(reference_transmittance(s, ATMO_LUT_ARGS, q, g),
+    vec3 t = v3_mul(media_walk_sun_transmittance(s, ATMO_LUT_ARGS, q, g),
                     visibility_air_volume(s, ATMO_LUT_ARGS, q));
     return v3_scale(v3_mul(v3_from4(s->atmosphere.solar_irradiance), t), vis);
-}
-
-/* The new direction at a scattering by component k of a path of throughput beta reaching it
- * along dir, the sun toward to_sun (the path's frame), from the uniform numbers u1, u2 (azimuth
- * 2 pi u2) and, for
- * Jendersie-d'Eon's mixture, one more from g; *weight multiplies the path's throughput (the
- * phase over the sampling density: 1 where the sampling is exact). The clouds draw from their
- * phase mixed with its lobe around the sun (phase_table.h's sun guiding, cloud.sun_guiding and
- * clouds.sun_guiding), the air from its phase exactly. */
-ATMO_FN vec3 reference_sample_direction(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                                        int k, vec3 dir, vec3 to_sun, vec3 beta, float u1,
-                                        float u2, rng_stream *g, vec3 *weight)
-{
-    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    *weight = v3(1.0f, 1.0f, 1.0f);
-#ifdef ATMO_CLOUD
-    if (k == MEDIA_CLOUD)
-        return cloud_phase_direction(s->cloud.phase, v3_from4(s->cloud.g), s->cloud.diameter_um,
-                                     cloud_phase_table, cloud_phase_cdf, s->cloud.table_size, dir,
-                                     to_sun, s->cloud.sun_guiding, beta, u1, u2, g, weight);
-#endif
-#ifdef ATMO_CLOUDS
-    if (k == MEDIA_CLOUDS) /* cloud_layer.h's sampling, shared with the path tracer */
-        return clouds_phase_direction(s, clouds_phase_table, clouds_phase_cdf, dir, to_sun, beta,
-                                      u1, u2, g, weight);
-#endif
-    (void)g, (void)to_sun, (void)beta;
-    float c = k == MEDIA_RAYLEIGH ? phase_draine_sample(0.0f, 1.0f, u1)
-              : a->mie_phase == ATMO_PHASE_HENYEY_GREENSTEIN
-                  ? phase_henyey_greenstein_sample(a->mie_g, u1)
-                  : phase_cornette_shanks_sample(a->mie_g, u1);
-    return frame_direction(dir, c, 2.0f * ATMO_PI * u2);
-}
-
-/* The factor on the throughput of the Russian roulette's survival probability for a path
- * leaving along a direction of cosine nu to the sun: with clouds, phase_table.h's
- * cloud_roulette_gain of the cloud's phase at nu (sun-guided paths survive it), else 1. */
-ATMO_FN float reference_roulette_gain(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                                      float nu)
-{
-#ifdef ATMO_CLOUD
-    return cloud_roulette_gain(media_phase(s, ATMO_LUT_ARGS, MEDIA_CLOUD, nu));
-#elif defined(ATMO_CLOUDS)
-    return cloud_roulette_gain(media_phase(s, ATMO_LUT_ARGS, MEDIA_CLOUDS, nu));
-#else
-    (void)s, (void)nu;
-    return 1.0f;
-#endif
 }
 
 /* One path from the camera along the ray m (its cosines; the path's frame is its own); the
@@ -496,13 +224,9 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
         if (blocked)
             d = t_max, ground = 0;
         /* on a cut segment, at least REFERENCE_SEGMENT_POINTS tentative points */
-        reference_walk rw = reference_walk_begin(
-            s, ATMO_LUT_ARGS, reference_world_point(&frame, pos), reference_world_dir(&frame, dir),
-            d, reference_segment_majorant(s, r0, mu0, d), reference_clouds_outside(s, r0, mu0, d),
-            blocked ? REFERENCE_SEGMENT_POINTS / d : 0.0f);
-#ifdef ATMO_CLOUD
-        reference_walk_shell(s, ATMO_LUT_ARGS, &rw, r0, mu0);
-#endif
+        media_walk rw = media_walk_begin(s, ATMO_LUT_ARGS, reference_world_point(&frame, pos),
+                                         reference_world_dir(&frame, dir), r0, mu0, d,
+                                         blocked ? REFERENCE_SEGMENT_POINTS / d : 0.0f, 0);
         int count = order + 1 >= min_order; /* light reaching the camera through this segment's
                                                next-event estimates has order + 1 events */
         int more = max_order == 0 || order + 1 < max_order;
@@ -512,26 +236,24 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
         vec3 W = w, ws = w;
         int collided = 0, chosen = 0;
         float t_hit = 0.0f;
-#ifdef REFERENCE_CLOUDY
         float w_roulette = REFERENCE_ROULETTE_T * tracking_max3(w);
-#endif
-        while (reference_walk_next(s, ATMO_LUT_ARGS, &rw, g)) {
+        while (media_walk_next(s, ATMO_LUT_ARGS, &rw, g)) {
             float t = rw.w.t, sigma_bar = rw.w.sigma_bar;
             medium_point q = reference_point(a, &frame, pos, dir, r0, mu0, mus0, nu0, t);
             media_sample ms = media_at(s, ATMO_LUT_ARGS, &q);
             if (count && tracking_max3(W) > 0.0f) {
                 float keep = 1.0f;
-#ifdef REFERENCE_CLOUDY
-                /* under the clouds' majorant most points are null: the estimate is made with
-                 * probability keep (>= REFERENCE_NEE_FLOOR, more where it scatters) and
-                 * divided by it, which keeps it unbiased and spares most shadow rays */
-                vec3 sigma_s = ms.scattering[0];
-                for (int k = 1; k < MEDIA_COMPONENTS; k++)
-                    sigma_s = v3_add(sigma_s, ms.scattering[k]);
-                keep = fminf(1.0f, REFERENCE_NEE_FLOOR + tracking_max3(sigma_s) / sigma_bar);
-                if (keep < 1.0f && rng_next(g) >= keep)
-                    keep = 0.0f;
-#endif
+                if (MEDIA_TRACKED > 0) {
+                    /* under the clouds' majorant most points are null: the estimate is made
+                     * with probability keep (>= REFERENCE_NEE_FLOOR, more where it scatters)
+                     * and divided by it, which keeps it unbiased and spares most shadow rays */
+                    vec3 sigma_s = ms.scattering[0];
+                    for (int k = 1; k < MEDIA_COMPONENTS; k++)
+                        sigma_s = v3_add(sigma_s, ms.scattering[k]);
+                    keep = fminf(1.0f, REFERENCE_NEE_FLOOR + tracking_max3(sigma_s) / sigma_bar);
+                    if (keep < 1.0f && rng_next(g) >= keep)
+                        keep = 0.0f;
+                }
                 if (keep > 0.0f) {
                     vec3 sun_light = reference_sunlight(s, ATMO_LUT_ARGS, &q, g);
                     vec3 scat = v3_mul(ms.scattering[0], phase[0]);
@@ -542,20 +264,18 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
                 }
             }
             if (more && !collided) {
-                int k = tracking_spectral_pick(&rw.w, g, &ws, ms.scattering, MEDIA_COMPONENTS,
+                int k = walk_pick(&rw.w, g, &ws, ms.scattering, MEDIA_COMPONENTS,
                                                ms.extinction);
                 if (k >= 0)
                     collided = 1, chosen = k, t_hit = t;
             }
-            W = tracking_ratio(&rw.w, W, ms.extinction);
-#ifdef REFERENCE_CLOUDY
+            W = walk_ratio(&rw.w, W, ms.extinction);
             /* once the segment's collision is chosen, only W-weighted estimates are left */
-            if (collided || !more) {
+            if (MEDIA_TRACKED > 0 && (collided || !more)) {
                 W = tracking_roulette(W, w_roulette, g);
                 if (tracking_max3(W) <= 0.0f)
                     break;
             }
-#endif
         }
         if (ground && count) { /* the directly lit ground, seen through the segment */
             medium_point q = reference_point(a, &frame, pos, dir, r0, mu0, mus0, nu0, d);
@@ -577,8 +297,8 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
             pos = v3_add(pos, v3_scale(dir, t_hit));
             float u1 = rng_next(g), u2 = rng_next(g);
             vec3 phase_weight;
-            dir = reference_sample_direction(s, ATMO_LUT_ARGS, chosen, dir, to_sun, ws, u1, u2,
-                                             g, &phase_weight);
+            dir = media_phase_direction(s, ATMO_LUT_ARGS, chosen, dir, to_sun, ws, u1, u2, g,
+                                        &phase_weight);
             w = v3_mul(ws, phase_weight);
         } else {
             pos = v3_add(pos, v3_scale(dir, d));
@@ -591,7 +311,7 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
                 break;
         }
         if (order + 1 >= REFERENCE_ROULETTE_ORDER) {
-            float gain = reference_roulette_gain(s, ATMO_LUT_ARGS, v3_dot(dir, to_sun));
+            float gain = media_roulette_gain(s, ATMO_LUT_ARGS, v3_dot(dir, to_sun));
             float keep = tracking_survival(w, gain, order + 1);
             if (rng_next(g) >= keep)
                 break;

@@ -1,24 +1,28 @@
-/* cloud_walk.h — the fBm cloud layer alone as a tracked medium (-DATMO_CLOUDS_VOLUME, where no
- * method sees the layer): the tentative points of a ray through the layer's majorant, a free
- * flight to the first real scattering by spectral tracking, and the sun's transmittance through
- * the layer by ratio tracking, for the path tracer's volume stage (render/volume_stage.h).
+/* cloud_walk.h — the fBm cloud layer in the Monte Carlo walk (majorant_walk.h): its majorant
+ * along a ray over the majorant grid (the slots of the one walk, media_walk.h, where the layer
+ * is a medium of method reference), its scattering's direction and roulette gain there, and,
+ * where the layer is the path tracer's medium alone (-DATMO_CLOUDS_VOLUME, no method sees it),
+ * the free flight to its first real scattering and the sun's transmittance through it for the
+ * volume stage (render/volume_stage.h).
  *
- * Majorant. The layer's extinction is sigma_t(x) = d(x) k, d the density (cloud_layer.h) and k
- * its extinction per unit density per wavelength. Along the ray origin + t dir it is zero
- * outside the layer's shell, so the walk takes tentative points only in the parts of the ray
- * inside the shell (clouds_shell_parts: at most two, in order); there the rate is piecewise
- * constant, as the reference's walk has it (method_reference.h):
+ * Majorant (clouds_track_begin, clouds_track_segment). The layer's extinction is
+ * sigma_t(x) = d(x) k, d the density (cloud_layer.h) and k its extinction per unit density per
+ * wavelength. Along the ray origin + t dir it is zero outside the layer's shell, so the majorant
+ * is zero outside the parts of the ray inside the shell (clouds_shell_parts: at most two, in
+ * order; the shell's radii widened by CLOUDS_TRACK_MARGIN_M, which covers the float rounding
+ * of the altitudes the density sees), and piecewise constant inside them:
  *     sigma_bar = b_cell max_c k_c x 1.001   inside the majorant grid (cloud_majorant.h's DDA,
  *                                            b_cell the cell's density bound)
  *     sigma_bar = density max_c k_c x 1.001  beyond the grid (the global bound d <= density)
- * and 0 between the parts (no point there: the walk moves to the next part's start). The same
- * tracking.h walk spends each tentative point's optical depth -ln(1 - u) over these segments.
+ * and 0 between the parts (no point and no random number there: the walk moves to the next
+ * part's start). The one majorant walk spends each tentative point's optical depth
+ * -ln(1 - u) over these segments.
  *
  * Free flight (clouds_free_flight; spectral tracking, Kutz et al. 2017, one scattering
  * component): at each tentative point, scatter with sigma_s = albedo sigma_t or null with
  * sigma_bar - sigma_t, picked with probabilities proportional to max_c of w sigma_s and
  * w (sigma_bar - sigma_t), the vec3 weight w multiplied by sigma_event / (sigma_bar P_event)
- * (tracking_spectral_pick): absorption folds into the weight, so the first scattering point t_c
+ * (walk_pick): absorption folds into the weight, so the first scattering point t_c
  * has density T(0, t_c) sigma_s(t_c) in every channel after the weight. For a grey layer
  * (k and the albedo the same in every channel: clouds.extinction_per_m > 0) both events
  * multiply w by the same 1 - (1 - albedo) sigma_t / sigma_bar (the ratio-tracking weight of the
@@ -38,17 +42,17 @@
  * (go on with probability P and weight 1 / P, else 0: unbiased, but at P = 1/4 on thesis-6 in
  * path mode 2.8 times less CPU time for 23 times the median pixel's variance:
  * docs/notes/path.md).
- * Random numbers: the caller's stream, one per tentative point, one per pick where the density is
- * not zero, one per roulette. Units: metres, 1/m. */
+ * Random numbers: the caller's stream, one per tentative point (none over the gaps between the
+ * parts), one per pick where the density is not zero, one per roulette. Units: metres, 1/m. */
 #ifndef ATMO_MEDIA_CLOUD_WALK_H
 #define ATMO_MEDIA_CLOUD_WALK_H
-#ifdef ATMO_CLOUDS_VOLUME
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
 #include "common/geometry.h"
 #include "common/rng.h"
 #include "media/ray.h"
 #include "media/tracking.h"
+#include "media/majorant_walk.h"
 #include "media/cloud_layer.h"
 #include "media/cloud_majorant.h"
 #include "atmo/gpu_types.h"
@@ -56,72 +60,92 @@
 
 #define CLOUDS_WALK_ROULETTE_T 0.1f /* shadow weights below this go through roulette */
 
-typedef struct clouds_walk {
-    tracking_walk w;
+#define CLOUDS_TRACK_MARGIN_M 10.0f /* the majorant covers the shell's radii +- this */
+
+typedef struct clouds_track {
     clouds_grid_walk grid;
     float scale;        /* density -> extinction bound: max_c k_c x 1.001, 1/m */
     float outside;      /* the rate beyond the grid, 1/m */
     float lo[2], hi[2]; /* the ray's parts inside the shell */
     int parts, part;    /* their count; the one the walk is in or before */
-} clouds_walk;
+} clouds_track;
 
-/* The rate from the walk's point to the end of its segment (see the top of the file). */
-ATMO_FN void clouds_walk_segment(clouds_walk *cw, ATMO_GLOBAL const float *grid)
-{
-    float t = cw->w.t;
-    while (cw->part < cw->parts && t >= cw->hi[cw->part])
-        cw->part++;
-    if (cw->part >= cw->parts) {
-        tracking_segment(&cw->w, 0.0f, cw->w.end);
-        return;
-    }
-    if (t < cw->lo[cw->part]) {
-        tracking_segment(&cw->w, 0.0f, cw->lo[cw->part]);
-        return;
-    }
-    float seg_end, b = clouds_grid_segment(&cw->grid, grid, t, &seg_end);
-    tracking_segment(&cw->w, b < 0.0f ? cw->outside : b * cw->scale,
-                     fminf(seg_end, cw->hi[cw->part]));
-}
-
-/* The walk of the ray origin + t dir (camera-relative, dir unit; radius r and cosine mu at the
- * origin) over [0, end]. */
-ATMO_FN clouds_walk clouds_walk_begin(ATMO_GLOBAL const atmo_gpu_scene *s,
-                                      ATMO_GLOBAL const float *grid, vec3 origin, vec3 dir,
-                                      float r, float mu, float end)
+/* The layer's majorant on the ray origin + t dir (camera-relative, dir unit; radius r and
+ * cosine mu at the origin) over [0, end]. */
+ATMO_FN void clouds_track_begin(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, vec3 origin,
+                                vec3 dir, float r, float mu, float end, clouds_track *m)
 {
     ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
-    clouds_walk cw;
-    cw.parts = clouds_shell_parts(s->atmosphere.bottom_radius, c->bottom_m, c->top_m, r, mu,
-                                  0.0f, end, cw.lo, cw.hi);
-    cw.part = 0;
-    cw.w = tracking_begin(cw.parts > 0 ? cw.hi[cw.parts - 1] : 0.0f, 0.0f);
-    cw.scale = tracking_max3(v3_from4(c->extinction)) * 1.001f;
-    cw.outside = c->majorant * cw.scale;
+    m->parts = clouds_shell_parts(s->atmosphere.bottom_radius, c->bottom_m - CLOUDS_TRACK_MARGIN_M,
+                                  c->top_m + CLOUDS_TRACK_MARGIN_M, r, mu, 0.0f, end, m->lo,
+                                  m->hi);
+    m->part = 0;
+    m->scale = tracking_max3(v3_from4(c->extinction)) * 1.001f;
+    m->outside = c->majorant * m->scale;
     clouds_grid_frame f = clouds_grid_frame_make(s);
-    cw.grid = clouds_grid_begin(&f, origin, dir, cw.w.end);
-    if (cw.parts > 0)
-        clouds_walk_segment(&cw, grid);
+    m->grid = clouds_grid_begin(&f, origin, dir, m->parts > 0 ? m->hi[m->parts - 1] : 0.0f);
+}
+
+/* The majorant from t (not before the last call's) up to *seg_end (see the top of the file). */
+ATMO_FN float clouds_track_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                   clouds_track *m, float t, float *seg_end)
+{
+    while (m->part < m->parts && t >= m->hi[m->part])
+        m->part++;
+    if (m->part >= m->parts) {
+        *seg_end = INFINITY;
+        return 0.0f;
+    }
+    if (t < m->lo[m->part]) {
+        *seg_end = m->lo[m->part];
+        return 0.0f;
+    }
+    float e, b = clouds_grid_segment(&m->grid, clouds_majorant, t, &e);
+    *seg_end = fminf(e, m->hi[m->part]);
+    return b < 0.0f ? m->outside : b * m->scale;
+}
+
+/* A new direction at a scattering by the layer (cloud_layer.h's sampling, shared with the path
+ * tracer's cloud vertices). */
+ATMO_FN vec3 clouds_media_direction(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, vec3 dir,
+                                    vec3 to_sun, vec3 beta, float u1, float u2, rng_stream *g,
+                                    vec3 *weight)
+{
+    return clouds_phase_direction(s, clouds_phase_table, clouds_phase_cdf, dir, to_sun, beta, u1,
+                                  u2, g, weight);
+}
+
+/* The roulette gain of a path leaving at cosine nu to the sun (phase_table.h). */
+ATMO_FN float clouds_roulette_gain(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float nu)
+{
+    return cloud_roulette_gain(clouds_phase(s, clouds_phase_table, nu));
+}
+
+/* The layer alone as a walk (the volume stage's medium): the one walk under its majorant. */
+typedef struct clouds_walk {
+    majorant_walk w;
+    clouds_track track;
+} clouds_walk;
+
+ATMO_FN clouds_walk clouds_walk_begin(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                      vec3 origin, vec3 dir, float r, float mu, float end)
+{
+    clouds_walk cw;
+    clouds_track_begin(s, ATMO_LUT_ARGS, origin, dir, r, mu, end, &cw.track);
+    cw.w = walk_begin(end, 0.0f);
     return cw;
 }
 
 /* The next tentative point (cw->w.t, rate cw->w.sigma_bar there); 0 once past the end. */
-ATMO_FN int clouds_walk_next(clouds_walk *cw, ATMO_GLOBAL const float *grid, rng_stream *g)
+ATMO_FN int clouds_walk_next(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                             clouds_walk *cw, rng_stream *g)
 {
-    if (cw->parts == 0)
-        return 0;
-    float tau = tracking_depth(g);
-    for (;;) {
-        if (cw->w.sigma_bar > 0.0f) {
-            if (tracking_advance(&cw->w, &tau))
-                return cw->w.t < cw->w.end;
-        } else {
-            cw->w.t = cw->w.seg_end; /* no point where the rate is zero */
-        }
-        if (cw->w.t >= cw->w.end)
-            return 0;
-        clouds_walk_segment(cw, grid);
+    int ev;
+    while ((ev = walk_next(&cw->w, g)) == WALK_SEGMENT) {
+        float seg_end, rate = clouds_track_segment(s, ATMO_LUT_ARGS, &cw->track, cw->w.t, &seg_end);
+        walk_segment(&cw->w, rate, seg_end);
     }
+    return ev == WALK_POINT;
 }
 
 /* The layer's extinction at distance t of the walk's ray. */
@@ -135,18 +159,18 @@ ATMO_FN vec3 clouds_walk_extinction(ATMO_GLOBAL const atmo_gpu_scene *s, vec3 or
 
 /* The free flight along the ray m over [0, end]: 1 with the first scattering's distance in
  * *t_hit, else 0; *w the spectral-tracking weight (see the top of the file). */
-ATMO_FN int clouds_free_flight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float *grid,
+ATMO_FN int clouds_free_flight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                const medium_ray *m, float end, rng_stream *g, float *t_hit,
                                vec3 *w)
 {
     *w = v3(1.0f, 1.0f, 1.0f);
-    clouds_walk cw = clouds_walk_begin(s, grid, m->origin, m->dir, m->r, m->mu, end);
-    while (clouds_walk_next(&cw, grid, g)) {
+    clouds_walk cw = clouds_walk_begin(s, ATMO_LUT_ARGS, m->origin, m->dir, m->r, m->mu, end);
+    while (clouds_walk_next(s, ATMO_LUT_ARGS, &cw, g)) {
         vec3 sigma_t = clouds_walk_extinction(s, m->origin, m->dir, m->r, m->mu, cw.w.t);
         if (tracking_max3(sigma_t) <= 0.0f)
             continue; /* a null point for certain: the weight is unchanged */
         vec3 sigma_s = v3_mul(sigma_t, v3_from4(s->clouds.albedo));
-        if (tracking_spectral_pick(&cw.w, g, w, &sigma_s, 1, sigma_t) == 0) {
+        if (walk_pick(&cw.w, g, w, &sigma_s, 1, sigma_t) == 0) {
             *t_hit = cw.w.t;
             return 1;
         }
@@ -155,13 +179,13 @@ ATMO_FN int clouds_free_flight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL 
 }
 
 /* The layer's transmittance toward the sun's centre from the point q (ratio tracking). */
-ATMO_FN vec3 clouds_sun_ratio(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float *grid,
+ATMO_FN vec3 clouds_sun_ratio(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                               const medium_point *q, rng_stream *g)
 {
     vec3 sun = v3_from4(s->sun_direction), T = v3(1.0f, 1.0f, 1.0f);
-    clouds_walk cw = clouds_walk_begin(s, grid, q->p, sun, q->r, q->mu_s, INFINITY);
-    while (clouds_walk_next(&cw, grid, g)) {
-        T = tracking_ratio(&cw.w, T, clouds_walk_extinction(s, q->p, sun, q->r, q->mu_s, cw.w.t));
+    clouds_walk cw = clouds_walk_begin(s, ATMO_LUT_ARGS, q->p, sun, q->r, q->mu_s, INFINITY);
+    while (clouds_walk_next(s, ATMO_LUT_ARGS, &cw, g)) {
+        T = walk_ratio(&cw.w, T, clouds_walk_extinction(s, q->p, sun, q->r, q->mu_s, cw.w.t));
         T = tracking_roulette(T, CLOUDS_WALK_ROULETTE_T, g);
         if (tracking_max3(T) <= 0.0f)
             break;
@@ -192,8 +216,7 @@ ATMO_FN vec3 clouds_volume_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PAR
                                const medium_point *q)
 {
     rng_stream g = rng_stream_stage(s->seed, clouds_point_hash(q->p, s->clouds.seed), 0u, 0u);
-    return clouds_sun_ratio(s, clouds_majorant, q, &g);
+    return clouds_sun_ratio(s, ATMO_LUT_ARGS, q, &g);
 }
 
-#endif
 #endif

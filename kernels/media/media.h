@@ -27,8 +27,10 @@
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
 #include "atmosphere/atmosphere.h"
+#include "common/frame.h"
 #include "common/phase.h"
 #include "media/ray.h"
+#include "media/tracking.h"
 #include "atmo/gpu_types.h"
 #endif
 
@@ -76,6 +78,49 @@ ATMO_FN vec3 media_air_phase(ATMO_GLOBAL const atmo_gpu_scene *s, int k, float n
 {
     float p = k == MEDIA_RAYLEIGH ? phase_rayleigh(nu) : media_mie_phase(&s->atmosphere, nu);
     return v3(p, p, p);
+}
+
+/* The lowest altitude (m) along the ray from radius r with cosine mu up to distance d. */
+ATMO_FN float media_min_altitude(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r, float mu,
+                                 float d)
+{
+    if (mu >= 0.0f || d <= 0.0f)
+        return r - a->bottom_radius;
+    if (-r * mu >= d) /* still descending at the end */
+        return geometry_altitude_at(r, mu, d, a->bottom_radius);
+    float perigee = r * atmo_safe_sqrt(1.0f - mu * mu);
+    return fmaxf(perigee - a->bottom_radius, 0.0f);
+}
+
+/* The air's majorant (1/m) on the ray from radius r with cosine mu up to distance d: the
+ * extinction of every channel is at most Rayleigh's and Mie's at the lowest altitude h of the
+ * ray plus the ozone's peak (both densities fall with altitude), times 1.001; h is lowered by
+ * 10 m, which covers the float rounding of the altitudes media_air_at sees (~0.5 m at 6400 km). */
+ATMO_FN float media_air_majorant(ATMO_GLOBAL const atmo_gpu_scene *s, float r, float mu, float d)
+{
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    float h = fmaxf(media_min_altitude(a, r, mu, d) - 10.0f, 0.0f);
+    float ozone = h < a->ozone_peak ? 1.0f : atmosphere_ozone_tent(a, h);
+    vec3 bound = v3_add(v3_add(v3_scale(v3_from4(a->rayleigh_scattering),
+                                        expf(-h / a->rayleigh_scale_height)),
+                               v3_scale(v3_from4(a->mie_extinction), expf(-h / a->mie_scale_height))),
+                        v3_scale(v3_from4(a->ozone_absorption), ozone));
+    return fmaxf(tracking_max3(bound), 1e-12f) * 1.001f;
+}
+
+/* A new direction at a scattering by the air's component k of a ray along dir, from the
+ * uniform numbers u1 (the cosine) and u2 (azimuth 2 pi u2): Rayleigh (Draine with g = 0,
+ * alpha = 1) or the aerosols' Henyey-Greenstein / Cornette-Shanks, sampled exactly (*weight 1). */
+ATMO_FN vec3 media_air_direction(ATMO_GLOBAL const atmo_gpu_scene *s, int k, vec3 dir, float u1,
+                                 float u2, vec3 *weight)
+{
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    *weight = v3(1.0f, 1.0f, 1.0f);
+    float c = k == MEDIA_RAYLEIGH ? phase_draine_sample(0.0f, 1.0f, u1)
+              : a->mie_phase == ATMO_PHASE_HENYEY_GREENSTEIN
+                  ? phase_henyey_greenstein_sample(a->mie_g, u1)
+                  : phase_cornette_shanks_sample(a->mie_g, u1);
+    return frame_direction(dir, c, 2.0f * ATMO_PI * u2);
 }
 
 /* A piece's weight w = (1 - e^{-x}) / sigma, x = sigma dt, from its transmittance e = e^{-x}:

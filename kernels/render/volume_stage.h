@@ -48,7 +48,7 @@ ATMO_FN float volume_flight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS
 {
 #ifdef ATMO_CLOUDS_VOLUME
     float t;
-    return clouds_free_flight(s, clouds_majorant, m, end, g, &t, w) ? t : -1.0f;
+    return clouds_free_flight(s, ATMO_LUT_ARGS, m, end, g, &t, w) ? t : -1.0f;
 #else
     (void)s, (void)m, (void)end, (void)g;
     *w = v3(1.0f, 1.0f, 1.0f);
@@ -61,7 +61,7 @@ ATMO_FN vec3 volume_sun_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_
                                       const medium_point *q, rng_stream *g)
 {
 #ifdef ATMO_CLOUDS_VOLUME
-    return clouds_sun_ratio(s, clouds_majorant, q, g);
+    return clouds_sun_ratio(s, ATMO_LUT_ARGS, q, g);
 #else
     (void)s, (void)q, (void)g;
     return v3(1.0f, 1.0f, 1.0f);
