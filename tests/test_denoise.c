@@ -65,7 +65,8 @@ static const char *const objects_keys[] = {
     "\"size_m\": [2, 2, 2], \"albedo\": [0.3, 0.6, 0.4]}]",
     NULL};
 
-/* Render the scene of keys at spp samples with seed, with passes. Exits 1 on failure. */
+/* Render the scene of keys at spp samples with seed, with passes and the guide pass. Exits 1
+ * on failure. */
 static void render_scene(const char *const *keys, int spp, int seed, atmo_render_result *r)
 {
     atmo_scene s;
@@ -87,6 +88,7 @@ static void render_scene(const char *const *keys, int spp, int seed, atmo_render
     test_plan(&s, &p);
     atmo_render_settings rs;
     atmo_render_settings_default(&rs);
+    rs.guides = 1;
     atmo_err e;
     if (atmo_render(&p, &rs, r, &e)) {
         fprintf(stderr, "render failed: %s\n", e.msg);
@@ -142,11 +144,16 @@ static double rel_error(const float *x, const atmo_render_result *ref, const uns
     return sqrt(fmax(s.d2 - s.var, 0.0) / s.ref2);
 }
 
-static void denoise(const atmo_render_result *raw, int quality, float *out)
+/* raw denoised as the writes do it (atmo_outputs_denoise_rgb): with guides (the guide pass's,
+ * clean) or the colour alone. */
+static void denoise(const atmo_render_result *raw, int quality, int guided, float *out)
 {
-    atmo_denoise_input in = {W, H, raw->rgb, NULL, NULL, 0, quality};
+    atmo_outputs_guides g = {0};
+    float *block = NULL;
+    if (guided)
+        CHECK(atmo_outputs_guides_from_passes(raw, &g, &block) == 1 && g.clean && !block);
     atmo_err e;
-    if (atmo_denoise_run(&in, out, &e)) {
+    if (atmo_outputs_denoise_rgb(raw->rgb, W, H, guided ? &g : NULL, quality, out, &e)) {
         fprintf(stderr, "denoise failed: %s\n", e.msg);
         exit(1);
     }
@@ -169,15 +176,17 @@ static void check_scene(const char *name, const char *const *keys, atmo_render_r
     double e_raw = rel_error(raw.rgb, ref, NULL), b_raw = rel_error(raw.rgb, ref, band);
     printf("%s: raw %d spp %.2f %% (silhouette band of %d pixels: %.2f %%)\n", name, RAW_SPP,
            100.0 * e_raw, band_pixels, 100.0 * b_raw);
-    for (int q = ATMO_DENOISE_FAST; q <= ATMO_DENOISE_HIGH; q++) {
-        denoise(&raw, q, out);
-        double e_dn = rel_error(out, ref, NULL), b_dn = rel_error(out, ref, band);
-        printf("  denoised %-8s %.2f %% (%.2fx lower), band %.2f %%\n",
-               atmo_denoise_quality_name(q), 100.0 * e_dn, e_raw / e_dn, 100.0 * b_dn);
-        if (q == ATMO_DENOISE_HIGH)
-            CHECK(e_dn * FACTOR_MIN <= e_raw);
-        CHECK(band_pixels > 0 && b_dn <= b_raw);
-    }
+    for (int guided = 0; guided <= 1; guided++)
+        for (int q = ATMO_DENOISE_FAST; q <= ATMO_DENOISE_HIGH; q++) {
+            denoise(&raw, q, guided, out);
+            double e_dn = rel_error(out, ref, NULL), b_dn = rel_error(out, ref, band);
+            printf("  denoised %-8s %-7s %.2f %% (%.2fx lower), band %.2f %%\n",
+                   atmo_denoise_quality_name(q), guided ? "guided" : "colour", 100.0 * e_dn,
+                   e_raw / e_dn, 100.0 * b_dn);
+            if (guided && q == ATMO_DENOISE_HIGH)
+                CHECK(e_dn * FACTOR_MIN <= e_raw);
+            CHECK(band_pixels > 0 && b_dn <= b_raw);
+        }
     free(out);
     atmo_render_result_free(&raw);
 }
@@ -248,9 +257,10 @@ static void check_exr_layers(const atmo_render_result *r)
     atmo_err e;
     atmo_exr_file f = {0};
     int rc = atmo_outputs_write_denoised(&s, &img, &g, 4, 0, ATMO_EXR_DEFAULT, &path, 1, &info, &e);
-    CHECK(rc == ATMO_OK && info.applied && !info.guided && info.quality == ATMO_DENOISE_FAST);
+    CHECK(rc == ATMO_OK && info.applied && info.guided && info.clean_aux &&
+          info.quality == ATMO_DENOISE_FAST);
     if (rc == ATMO_OK && atmo_exr_read(path, &f, &e) == ATMO_OK) {
-        denoise(r, ATMO_DENOISE_FAST, want);
+        denoise(r, ATMO_DENOISE_FAST, 1, want);
         static const char *const names[] = {"R", "G", "B", "Noisy Image.R", "Noisy Image.G",
                                             "Noisy Image.B", "Denoising Albedo.R",
                                             "Denoising Albedo.G", "Denoising Albedo.B",

@@ -450,6 +450,7 @@ static int render_frame(const render_args *a, const atmo_scene *scene, int part_
     if (report)
         atmo_tmp_path(report, pending_tmp[pending_count++]);
     rs.cancel = &render_cancel;
+    rs.guides = !part_file && atmo_outputs_want_guides(scene, outputs, n_out);
     struct sigaction old[HANDLED_SIGNALS];
     int installed = 0;
     int rc = render_run(a, scene, &rs, part_file, &res, &part, old, &installed, &e);
