@@ -34,7 +34,7 @@
  * past `count` return at once; albedo[pixel] = (albedo, disc share), normal[pixel] = (normal,
  * depth). */
 
-#define GUIDES_GRID 4
+#define GUIDES_GRID 8
 #define GUIDES_NO_HIT_DEPTH_M 1e10f
 
 /* The camera ray of cell (i, j) of pixel (x, y) under the scene's mode's pixel filter. */
