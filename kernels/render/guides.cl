@@ -34,6 +34,8 @@
  * past `count` return at once; albedo[pixel] = (albedo, disc share), normal[pixel] = (normal,
  * depth). */
 
+/* 8 x 8 rays: at 4 x 4 the radial-angular grid samples the path tracer's Gaussian too coarsely
+ * and the guided filter lost a tenth of its gain (docs/guide/denoise.md) */
 #define GUIDES_GRID 8
 #define GUIDES_NO_HIT_DEPTH_M 1e10f
 
