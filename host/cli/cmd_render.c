@@ -405,6 +405,7 @@ static int render_write(const render_args *a, const atmo_scene *scene,
                        : atmo_outputs_write_denoised(scene, &img, &guides, res->samples_min,
                                                      res->interrupted, exr, outputs, n_out,
                                                      &denoised, e);
+    denoised.guide_seconds = res->seconds_guides;
     *seconds_write = atmo_now_seconds() - tw;
     if (!rc && report)
         rc = write_report(report, scene, res, rs, outputs, n_out, *seconds_write, img.layers,

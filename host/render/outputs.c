@@ -110,6 +110,8 @@ cJSON *atmo_outputs_denoise_json(const atmo_scene *scene, const atmo_outputs_den
         cJSON_AddBoolToObject(d, "clean_aux", info->clean_aux);
         cJSON_AddBoolToObject(d, "sun_disc_kept_out", info->sun_disc_kept);
         cJSON_AddNumberToObject(d, "seconds", info->seconds);
+        if (info->guided)
+            cJSON_AddNumberToObject(d, "guide_pass_seconds", info->guide_seconds);
     }
     return d;
 }
@@ -234,7 +236,7 @@ static int denoise_image(const atmo_scene *scene, const atmo_image *img,
                                       denoise_quality(scene), *out, e);
     *info = (atmo_outputs_denoise){!rc, denoise_quality(scene), guided, guided,
                                    atmo_denoise_version(), atmo_now_seconds() - t0,
-                                   !rc && guides && guides->disc};
+                                   !rc && guides && guides->disc, 0.0};
     return rc;
 }
 

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "atmo/clock.h"
 #include "atmo/guides.h"
 #include "atmo/render.h"
 #include "atmo/tiles.h"
@@ -92,8 +93,11 @@ static int render_guides(atmo_session *s, atmo_render_result *res, atmo_err *e)
     size_t pixels = (size_t)p->width * (size_t)p->height;
     if (!(res->guides = malloc(sizeof(float) * ATMO_GUIDES_FLOATS * pixels)))
         return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the denoiser's guides");
-    return atmo_session_guides(s, res->guides, res->guides + 3 * pixels,
-                               res->guides + 6 * pixels, res->guides + 7 * pixels, e);
+    double t0 = atmo_now_seconds();
+    int rc = atmo_session_guides(s, res->guides, res->guides + 3 * pixels,
+                                 res->guides + 6 * pixels, res->guides + 7 * pixels, e);
+    res->seconds_guides = atmo_now_seconds() - t0;
+    return rc;
 }
 
 int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,

@@ -53,6 +53,7 @@ typedef struct atmo_outputs_denoise {
     int version;        /* OIDN's, major * 10000 + minor * 100 + patch (0: not loaded) */
     double seconds;     /* the filter, device creation included */
     int sun_disc_kept;  /* 1: the sun's disc was kept out of the filter (guides' disc) */
+    double guide_seconds; /* the guide pass (set by the caller that rendered it) */
 } atmo_outputs_denoise;
 
 /* The run report's "denoise" object: the setting, whether it was applied, and how (quality,

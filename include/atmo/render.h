@@ -24,6 +24,7 @@ typedef struct atmo_render_result {
     float *guides;             /* with settings->guides: the denoiser's guides (atmo/guides.h),
                                   ATMO_GUIDES_FLOATS planes: albedo (W H 3), normal (W H 3),
                                   depth (W H), disc (W H); else NULL */
+    double seconds_guides;     /* the guide pass */
     int *samples;              /* width x height samples per pixel */
     int noise_tiles;           /* with a noise target: the tiles, and per tile (x, y, w, h,
                                   samples) in tile_rect[5 i ...] and the relative standard
