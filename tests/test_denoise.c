@@ -10,31 +10,39 @@
  * squares, atmo_render_result.se). So
  *     e(X) = sqrt((sum (X - R)^2 - sum se_R^2) / sum R^2)
  * is the relative RMS error of X against T, the reference's own noise removed. The checks:
- *   - e(denoised, quality high, the filter atmo runs: the colour alone) <= e(raw) / FACTOR_MIN.
- *     Measured at 48 x 32 (docs/denoise.md): 2.4x (sky), 2.1x (terrain), 2.1x (objects).
- *     Most of the raw error sits on the silhouettes (the pixel filter's 4 samples give a noisy
- *     edge coverage), where the sum is carried by about a hundred pixels: the estimate of each
- *     factor then varies by about 6 % (sqrt(2 / 300) per sum), so FACTOR_MIN = 1.7 lies three
- *     of those below the smallest factor measured. The issue's expectation of 3x is not met at
- *     this size with the colour alone; it is with noise-free guides (3.4x on the sky scene with
- *     the reference's own guides), which atmo does not render yet.
+ *   - e(denoised, quality high, as the writes run it: the guide pass's albedo and normal,
+ *     cleanAux) <= e(raw) / FACTOR_<scene>. Measured at 48 x 32 with the guide pass's 8 x 8
+ *     rays per pixel (docs/guide/denoise.md): 3.13x (sky), 2.05x (terrain), 2.42x (limb),
+ *     2.71x (objects); the colour alone gives 2.44x, 2.09x, 2.20x, 2.07x. Most of the raw error
+ *     sits on the silhouettes (the pixel filter's 4 samples give a noisy edge coverage), where
+ *     the sum is carried by about a hundred pixels: the estimate of each factor then varies by
+ *     about 6 % (sqrt(2 / 300) per sum), so each FACTOR_ lies three of those (18 %) below its
+ *     scene's measured factor. The issue's expectation of 3x is met on the sky scene only.
+ *   - The guides help: e(guided) <= e(colour alone) on the sky and objects scenes (measured
+ *     0.78 and 0.77 of it; the ratio's estimate varies by about 8 %), and at most 1.25 of it
+ *     on the terrain and the limb, where they measured 1.02 and 0.91 (no worse within three
+ *     of those).
  *   - Edges: on the band of pixels where a surface's silhouette against the sky lies (a pixel
  *     and its 8 neighbours disagree on whether the reference's samples mostly hit a surface),
  *     the error of the denoised image does not exceed the raw image's (the same estimate on the
- *     band alone; measured 18.7 % raw, 5.5 % denoised on the sky scene's horizon).
- * Oracle 2, closed forms, for the guides (atmo_outputs_guides_from_passes) of the objects scene
- * at REF_SPP: a pixel whose samples all hit the sphere has the sphere's albedo (to 1e-5, the
- * float rounding of a mean of 128 values; the box's albedo differs by 0.1 or more), a normal
- * of unit length up to its averaging (the mean of unit normals over the pixel filter's reach
- * of 1.5 px = 2.1 degrees of view, 0.22 m at 6 m, about 13 degrees of the unit sphere: |n| >=
- * cos 13 deg = 0.97, and <= 1 to float rounding) whose direction matches the closed form
- * n = (t d - c) / R at the pixel's centre within 2 degrees; a pixel of open sky has albedo 1 and normal 0
+ *     band alone; measured guided: 18.7 % raw, 3.4 % denoised on the sky scene's horizon,
+ *     19.5 % -> 9.7 % on the planet's limb).
+ * Oracle 2, closed forms, for the guides (atmo_outputs_guides_from_passes: the guide pass's)
+ * of the objects scene: a pixel whose guide rays all hit the sphere has the sphere's albedo
+ * (to 1e-5, the float rounding of a mean of 64 values; the box's albedo differs by 0.1 or
+ * more), a normal of unit length up to its averaging (the mean of unit normals over the pixel
+ * filter's reach of 1.5 px = 2.1 degrees of view, 0.22 m at 6 m, about 13 degrees of the unit
+ * sphere: |n| >= cos 13 deg = 0.97, and <= 1 to float rounding) whose direction matches the
+ * closed form n = (t d - c) / R at the pixel's centre within 2 degrees (tests/test_guides.c
+ * checks the guides tighter, in both modes); a pixel of open sky has albedo 1 and normal 0
  * (OIDN's convention); the ground far below the horizon has normal (0, 1, 0) (a sphere of
  * 6360 km: within 1e-4). Oracle 3, exact: a denoised EXR holds what the filter gave as R, G, B
  * and the noisy image and the guides as its Blender-named layers, value for value.
  * Scenes (48 x 32 pixels, path mode): a clear sky over the planet's ground (the horizon is the
- * silhouette), procedural terrain seen from 600 m at a grazing angle under a uniform sky, and a
- * sphere and a box on the ground under a uniform sky. Without the library the test exits 77
+ * silhouette), procedural terrain seen from 600 m at a grazing angle under a uniform sky, the
+ * planet from 2000 km (preset space: its limb against space is the silhouette), and a sphere
+ * and a box on the ground under a uniform sky. A cloud view (path.clouds = volume) is not
+ * among them: its 128-spp reference takes minutes on two cores. Without the library the test exits 77
  * saying how to install it (setup.sh installs it, so CI runs it). */
 #include <math.h>
 #include <stdlib.h>
@@ -50,7 +58,12 @@
 #define H 32
 #define REF_SPP 128
 #define RAW_SPP 4
-#define FACTOR_MIN 1.7
+/* the smallest factor raw / guided (quality high) each scene must reach, and the largest ratio
+ * guided / colour alone it may show (measured and derived in the header) */
+#define FACTOR_SKY 2.5
+#define FACTOR_TERRAIN 1.65
+#define FACTOR_LIMB 1.95
+#define FACTOR_OBJECTS 2.2
 #define NO_HIT_DEPTH_M 1e10
 
 typedef struct sums {
@@ -65,13 +78,14 @@ static const char *const objects_keys[] = {
     "\"size_m\": [2, 2, 2], \"albedo\": [0.3, 0.6, 0.4]}]",
     NULL};
 
-/* Render the scene of keys at spp samples with seed, with passes. Exits 1 on failure. */
+/* Render the scene of keys at spp samples with seed, with passes and the guide pass. Exits 1
+ * on failure. */
 static void render_scene(const char *const *keys, int spp, int seed, atmo_render_result *r)
 {
     atmo_scene s;
     char buf[64];
-    test_scene_preset(&s, "sky-noon");
-    for (int i = 0; keys[i]; i++)
+    test_scene_preset(&s, strncmp(keys[0], "preset=", 7) == 0 ? keys[0] + 7 : "sky-noon");
+    for (int i = strncmp(keys[0], "preset=", 7) == 0; keys[i]; i++)
         test_scene_set(&s, keys[i]);
     test_scene_set(&s, "render.mode=path");
     test_scene_set(&s, "path.passes=true");
@@ -87,6 +101,7 @@ static void render_scene(const char *const *keys, int spp, int seed, atmo_render
     test_plan(&s, &p);
     atmo_render_settings rs;
     atmo_render_settings_default(&rs);
+    rs.guides = 1;
     atmo_err e;
     if (atmo_render(&p, &rs, r, &e)) {
         fprintf(stderr, "render failed: %s\n", e.msg);
@@ -142,18 +157,24 @@ static double rel_error(const float *x, const atmo_render_result *ref, const uns
     return sqrt(fmax(s.d2 - s.var, 0.0) / s.ref2);
 }
 
-static void denoise(const atmo_render_result *raw, int quality, float *out)
+/* raw denoised as the writes do it (atmo_outputs_denoise_rgb): with guides (the guide pass's,
+ * clean) or the colour alone. */
+static void denoise(const atmo_render_result *raw, int quality, int guided, float *out)
 {
-    atmo_denoise_input in = {W, H, raw->rgb, NULL, NULL, 0, quality};
+    atmo_outputs_guides g = {0};
+    float *block = NULL;
+    if (guided)
+        CHECK(atmo_outputs_guides_from_passes(raw, &g, &block) == 1 && g.clean && !block);
     atmo_err e;
-    if (atmo_denoise_run(&in, out, &e)) {
+    if (atmo_outputs_denoise_rgb(raw->rgb, W, H, guided ? &g : NULL, quality, out, &e)) {
         fprintf(stderr, "denoise failed: %s\n", e.msg);
         exit(1);
     }
 }
 
 /* The error factors of one scene; the reference is left in *ref for the caller. */
-static void check_scene(const char *name, const char *const *keys, atmo_render_result *ref)
+static void check_scene(const char *name, const char *const *keys, double factor_min,
+                        double guided_vs_colour_max, atmo_render_result *ref)
 {
     atmo_render_result raw;
     render_scene(keys, REF_SPP, 1, ref);
@@ -167,17 +188,22 @@ static void check_scene(const char *name, const char *const *keys, atmo_render_r
     for (int i = 0; i < W * H; i++)
         band_pixels += band[i];
     double e_raw = rel_error(raw.rgb, ref, NULL), b_raw = rel_error(raw.rgb, ref, band);
+    double e_colour = 0.0;
     printf("%s: raw %d spp %.2f %% (silhouette band of %d pixels: %.2f %%)\n", name, RAW_SPP,
            100.0 * e_raw, band_pixels, 100.0 * b_raw);
-    for (int q = ATMO_DENOISE_FAST; q <= ATMO_DENOISE_HIGH; q++) {
-        denoise(&raw, q, out);
-        double e_dn = rel_error(out, ref, NULL), b_dn = rel_error(out, ref, band);
-        printf("  denoised %-8s %.2f %% (%.2fx lower), band %.2f %%\n",
-               atmo_denoise_quality_name(q), 100.0 * e_dn, e_raw / e_dn, 100.0 * b_dn);
-        if (q == ATMO_DENOISE_HIGH)
-            CHECK(e_dn * FACTOR_MIN <= e_raw);
-        CHECK(band_pixels > 0 && b_dn <= b_raw);
-    }
+    for (int guided = 0; guided <= 1; guided++)
+        for (int q = ATMO_DENOISE_FAST; q <= ATMO_DENOISE_HIGH; q++) {
+            denoise(&raw, q, guided, out);
+            double e_dn = rel_error(out, ref, NULL), b_dn = rel_error(out, ref, band);
+            printf("  denoised %-8s %-7s %.2f %% (%.2fx lower), band %.2f %%\n",
+                   atmo_denoise_quality_name(q), guided ? "guided" : "colour", 100.0 * e_dn,
+                   e_raw / e_dn, 100.0 * b_dn);
+            if (!guided && q == ATMO_DENOISE_HIGH)
+                e_colour = e_dn;
+            if (guided && q == ATMO_DENOISE_HIGH)
+                CHECK(e_dn * factor_min <= e_raw && e_dn <= e_colour * guided_vs_colour_max);
+            CHECK(band_pixels > 0 && b_dn <= b_raw);
+        }
     free(out);
     atmo_render_result_free(&raw);
 }
@@ -187,8 +213,9 @@ static void check_guides(const atmo_render_result *ref)
 {
     atmo_outputs_guides g;
     float *data;
-    CHECK(atmo_outputs_guides_from_passes(ref, &g, &data) == 1);
-    if (!data)
+    int have = atmo_outputs_guides_from_passes(ref, &g, &data);
+    CHECK(have == 1 && g.clean);
+    if (have != 1)
         return;
     double forward[3], right[3], up[3], c[3] = {0.8, -0.5, 6.0};
     atmo_camera_basis(-10.0, 0.0, forward, right, up);
@@ -248,9 +275,10 @@ static void check_exr_layers(const atmo_render_result *r)
     atmo_err e;
     atmo_exr_file f = {0};
     int rc = atmo_outputs_write_denoised(&s, &img, &g, 4, 0, ATMO_EXR_DEFAULT, &path, 1, &info, &e);
-    CHECK(rc == ATMO_OK && info.applied && !info.guided && info.quality == ATMO_DENOISE_FAST);
+    CHECK(rc == ATMO_OK && info.applied && info.guided && info.clean_aux &&
+          info.quality == ATMO_DENOISE_FAST);
     if (rc == ATMO_OK && atmo_exr_read(path, &f, &e) == ATMO_OK) {
-        denoise(r, ATMO_DENOISE_FAST, want);
+        denoise(r, ATMO_DENOISE_FAST, 1, want);
         static const char *const names[] = {"R", "G", "B", "Noisy Image.R", "Noisy Image.G",
                                             "Noisy Image.B", "Denoising Albedo.R",
                                             "Denoising Albedo.G", "Denoising Albedo.B",
@@ -295,16 +323,19 @@ int main(void)
     CHECK(rc == ATMO_OK);
     printf("Open Image Denoise %d (%s)\n", atmo_denoise_version(), atmo_denoise_library_path());
     static const char *const sky[] = {"sun.zenith_deg=60", "camera.pitch_deg=-5", NULL};
+    static const char *const limb[] = {"preset=space", NULL};
     static const char *const terrain[] = {
         "terrain.enabled=true", "camera.position_m=0,600,0", "camera.pitch_deg=-8",
         "sun.zenith_deg=60", "path.sky=uniform", "path.uniform_sky=0.05,0.08,0.12",
         "path.bounces=2", NULL};
     atmo_render_result ref;
-    check_scene("clear sky over the ground", sky, &ref);
+    check_scene("clear sky over the ground", sky, FACTOR_SKY, 1.0, &ref);
     atmo_render_result_free(&ref);
-    check_scene("terrain", terrain, &ref);
+    check_scene("terrain", terrain, FACTOR_TERRAIN, 1.25, &ref);
     atmo_render_result_free(&ref);
-    check_scene("objects", objects_keys, &ref);
+    check_scene("the planet's limb from 2000 km", limb, FACTOR_LIMB, 1.25, &ref);
+    atmo_render_result_free(&ref);
+    check_scene("objects", objects_keys, FACTOR_OBJECTS, 1.0, &ref);
     check_guides(&ref);
     check_exr_layers(&ref);
     atmo_render_result_free(&ref);

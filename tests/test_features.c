@@ -106,9 +106,11 @@ static void test_methods(void)
         CHECK(fragment_at(&p, "kernels/media/medium.h") >= 0 &&
               fragment_at(&p, "kernels/media/medium.h") < fragment_at(&p, m->own));
         CHECK(fragment_at(&p, "kernels/media/cloud_shell.h") < 0);
-        /* common headers first, the render kernels last */
+        /* common headers first, the render kernels last: the image's, then the guide pass's */
         CHECK(fragment_at(&p, "kernels/common/compat.h") == 0);
-        CHECK(fragment_at(&p, "kernels/render/sky.cl") == p.fragment_count - 1);
+        CHECK(fragment_at(&p, "kernels/render/guides.cl") == p.fragment_count - 1);
+        CHECK(fragment_at(&p, "kernels/render/sky.cl") >= 0 &&
+              fragment_at(&p, "kernels/render/sky.cl") < p.fragment_count - 1);
         /* passes: the transmittance LUT's first, each pass owned by a planned feature */
         CHECK(p.pass_count >= 1 && strcmp(p.passes[0].kernel, "transmittance_lut") == 0);
         for (int i = 0; i < p.pass_count; i++)

@@ -445,6 +445,7 @@ static int render_write(const render_args *a, const atmo_scene *scene,
                        : atmo_outputs_write_denoised(scene, &img, &guides, res->samples_min,
                                                      res->interrupted, exr, outputs, n_out,
                                                      &denoised, e);
+    denoised.guide_seconds = res->seconds_guides;
     *seconds_write = atmo_now_seconds() - tw;
     if (!rc && report)
         rc = write_report(report, scene, res, rs, outputs, n_out, *seconds_write, img.layers,
@@ -490,6 +491,7 @@ static int render_frame(const render_args *a, const atmo_scene *scene, int part_
     if (report)
         atmo_tmp_path(report, pending_tmp[pending_count++]);
     rs.cancel = &render_cancel;
+    rs.guides = !part_file && atmo_outputs_want_guides(scene, outputs, n_out);
     struct sigaction old[HANDLED_SIGNALS];
     int installed = 0;
     int rc = render_run(a, scene, &rs, part_file, &res, &part, old, &installed, &e);

@@ -256,6 +256,10 @@ static const char *const path_fragments[] = {
     "kernels/render/light_sun.h",   "kernels/render/light_sky.h",
     "kernels/render/volume_stage.h", "kernels/render/path.h",     "kernels/render/path.cl",
     NULL};
+/* the denoiser's guides, noise-free, in every mode: the first surface of fixed rays per pixel
+ * (render/guides.cl; surfaces.h is the path tracer's own where it is assembled) */
+static const char *const guides_fragments[] = {"kernels/render/surfaces.h",
+                                               "kernels/render/guides.cl", NULL};
 
 const atmo_feature atmo_features[] = {
     {"atmosphere", -1, always, atmosphere_fragments, "", atmosphere_params, atmosphere_sources,
@@ -342,6 +346,7 @@ const atmo_feature atmo_features[] = {
     /* the path tracer's stages and its kernel path_render, over whichever method was assembled */
     {"path", -1, path_mode, path_fragments, "-DATMO_PATH", NULL, NULL, NULL, atmo_plan_path, 0,
      NULL, 0},
+    {"guides", -1, always, guides_fragments, "", NULL, NULL, NULL, NULL, 0, NULL, 0},
 };
 const int atmo_feature_count = (int)(sizeof atmo_features / sizeof atmo_features[0]);
 

@@ -16,6 +16,7 @@
 #include "atmo/colour.h"
 #include "atmo/denoise.h"
 #include "atmo/gpu_path.h"
+#include "atmo/guides.h"
 #include "atmo/outputs.h"
 
 /* the path tracer's depth of a sample that hits nothing (kernels/render/path.h) */
@@ -107,7 +108,10 @@ cJSON *atmo_outputs_denoise_json(const atmo_scene *scene, const atmo_outputs_den
         cJSON_AddStringToObject(d, "quality", atmo_denoise_quality_name(info->quality));
         cJSON_AddStringToObject(d, "guides", info->guided ? "albedo, normal" : "none");
         cJSON_AddBoolToObject(d, "clean_aux", info->clean_aux);
+        cJSON_AddBoolToObject(d, "sun_disc_kept_out", info->sun_disc_kept);
         cJSON_AddNumberToObject(d, "seconds", info->seconds);
+        if (info->guided)
+            cJSON_AddNumberToObject(d, "guide_pass_seconds", info->guide_seconds);
     }
     return d;
 }
@@ -117,6 +121,15 @@ int atmo_outputs_guides_from_passes(const atmo_render_result *r, atmo_outputs_gu
 {
     memset(g, 0, sizeof *g);
     *block = NULL;
+    if (r->guides) {
+        size_t pixels = (size_t)r->width * r->height;
+        g->albedo = r->guides;
+        g->normal = r->guides + 3 * pixels;
+        g->depth = r->guides + 6 * pixels;
+        g->disc = r->guides + 7 * pixels;
+        g->clean = 1;
+        return 1;
+    }
     if (r->pass_planes < ATMO_PATH_PASS_PLANES || !r->passes)
         return 0;
     size_t pixels = (size_t)r->width * r->height;
@@ -165,24 +178,65 @@ static int denoise_layers(const atmo_image *img, const float *noisy,
     return n;
 }
 
+int atmo_outputs_want_guides(const atmo_scene *scene, const char *const *outputs, int n)
+{
+    return any_denoised(scene, outputs, n) && atmo_denoise_version() > 0 &&
+           atmo_guides_apply(scene);
+}
+
+/* The brightest value of each channel over the pixels whose guide rays miss the sun's disc. */
+static void brightest_without_disc(const float *rgb, const float *disc, size_t pixels,
+                                   float top[3])
+{
+    top[0] = top[1] = top[2] = 0.0f;
+    for (size_t i = 0; i < pixels; i++)
+        for (int c = 0; c < 3 && disc[i] == 0.0f; c++)
+            top[c] = rgb[3 * i + c] > top[c] ? rgb[3 * i + c] : top[c];
+}
+
+int atmo_outputs_denoise_rgb(const float *rgb, int width, int height,
+                             const atmo_outputs_guides *guides, int quality, float *out,
+                             atmo_err *e)
+{
+    size_t pixels = (size_t)width * height;
+    /* noisy guides are written as layers but kept from the filter: guides whose edges carry
+     * the image's own sampling noise make OIDN keep that noise (docs/guide/denoise.md) */
+    int guided = guides && guides->albedo && guides->normal && guides->clean;
+    const float *disc = guides ? guides->disc : NULL;
+    float *base = disc ? malloc(sizeof(float) * 3 * pixels) : NULL;
+    if (disc && !base)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the denoiser's input");
+    float top[3];
+    if (disc) { /* the disc's pixels enter clamped; what lies above is added back after */
+        brightest_without_disc(rgb, disc, pixels, top);
+        for (size_t i = 0; i < 3 * pixels; i++)
+            base[i] = disc[i / 3] > 0.0f && rgb[i] > top[i % 3] ? top[i % 3] : rgb[i];
+    }
+    atmo_denoise_input in = {width, height, disc ? base : rgb,
+                             guided ? guides->albedo : NULL, guided ? guides->normal : NULL,
+                             guided, quality};
+    int rc = atmo_denoise_run(&in, out, e);
+    for (size_t i = 0; !rc && disc && i < 3 * pixels; i++)
+        out[i] += rgb[i] - base[i];
+    free(base);
+    return rc;
+}
+
 /* The denoised image of img into *out (malloc'd), and what was done into *info. */
 static int denoise_image(const atmo_scene *scene, const atmo_image *img,
                          const atmo_outputs_guides *guides, float **out,
                          atmo_outputs_denoise *info, atmo_err *e)
 {
     size_t floats = 3 * (size_t)img->width * img->height;
-    /* noisy guides are written as layers but kept from the filter: guides whose edges carry
-     * the image's own sampling noise make OIDN keep that noise (docs/denoise.md) */
     int guided = guides && guides->albedo && guides->normal && guides->clean;
-    atmo_denoise_input in = {img->width, img->height, img->rgb,
-                             guided ? guides->albedo : NULL, guided ? guides->normal : NULL,
-                             guided && guides->clean, denoise_quality(scene)};
     if (!(*out = malloc(sizeof(float) * floats)))
         return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the denoised image");
     double t0 = atmo_now_seconds();
-    int rc = atmo_denoise_run(&in, *out, e);
-    *info = (atmo_outputs_denoise){!rc, in.quality, guided, in.clean_aux, atmo_denoise_version(),
-                                   atmo_now_seconds() - t0};
+    int rc = atmo_outputs_denoise_rgb(img->rgb, img->width, img->height, guides,
+                                      denoise_quality(scene), *out, e);
+    *info = (atmo_outputs_denoise){!rc, denoise_quality(scene), guided, guided,
+                                   atmo_denoise_version(), atmo_now_seconds() - t0,
+                                   !rc && guides && guides->disc, 0.0};
     return rc;
 }
 
@@ -209,7 +263,7 @@ int atmo_outputs_write_denoised(const atmo_scene *scene, const atmo_image *img,
                  "luminance (linear sRGB from spectral radiance at %g, %g and %g nm, Bruneton "
                  "2016 section 14.3)",
                  w[0], w[1], w[2]);
-    char denoise_note[96];
+    char denoise_note[128];
     atmo_image_meta meta = {
         .quantity = lum ? lum_quantity : "spectral radiance",
         .unit = lum ? "cd m^-2" : "W m^-2 sr^-1 nm^-1",
@@ -249,7 +303,7 @@ int atmo_outputs_write_denoised(const atmo_scene *scene, const atmo_image *img,
         snprintf(denoise_note, sizeof denoise_note,
                  "Intel Open Image Denoise %d.%d.%d, RT filter, quality %s, %s", done.version / 10000,
                  done.version / 100 % 100, done.version % 100, atmo_denoise_quality_name(done.quality),
-                 done.guided ? "albedo and normal guides" : "no guides");
+                 done.guided ? "albedo and normal guides (clean)" : "no guides");
     for (int i = 0; i < n && !rc; i++) {
         atmo_image out = *img;
         atmo_image_layer layers[OUTPUTS_MAX_LAYERS];

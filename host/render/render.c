@@ -4,6 +4,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "atmo/clock.h"
+#include "atmo/guides.h"
 #include "atmo/render.h"
 #include "atmo/tiles.h"
 
@@ -11,6 +13,8 @@ void atmo_render_result_free(atmo_render_result *r)
 {
     free(r->rgb);
     free(r->passes);
+    free(r->guides);
+    r->guides = NULL;
     free(r->se);
     free(r->tile_rect);
     free(r->tile_noise);
@@ -82,6 +86,20 @@ static int tile_noise(const atmo_render_settings *settings, atmo_render_result *
     return ATMO_OK;
 }
 
+/* The denoiser's guides of the session's image into res->guides. */
+static int render_guides(atmo_session *s, atmo_render_result *res, atmo_err *e)
+{
+    const atmo_plan *p = atmo_session_plan(s);
+    size_t pixels = (size_t)p->width * (size_t)p->height;
+    if (!(res->guides = malloc(sizeof(float) * ATMO_GUIDES_FLOATS * pixels)))
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the denoiser's guides");
+    double t0 = atmo_now_seconds();
+    int rc = atmo_session_guides(s, res->guides, res->guides + 3 * pixels,
+                                 res->guides + 6 * pixels, res->guides + 7 * pixels, e);
+    res->seconds_guides = atmo_now_seconds() - t0;
+    return rc;
+}
+
 int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
                 atmo_render_result *res, atmo_err *e)
 {
@@ -115,6 +133,8 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
     }
     if (!rc)
         rc = atmo_session_read(s, res->rgb, res->se, res->samples, e);
+    if (!rc && settings->guides)
+        rc = render_guides(s, res, e);
     if (!rc) {
         atmo_render_result_from_session(s, res);
         /* with a noise target or a time limit, fewer samples than requested are the point;

@@ -10,6 +10,15 @@
  * >= 30 Hz" figure: the share of turns over 33 ms, and the longest), with the time from a change
  * to its first image on screen (the draft, or an error).
  *
+ * Denoised display (key N, view_state.denoise): while the frame has fewer than
+ * VIEW_DENOISE_MAX_SPP samples per pixel, the texture holds the frame through Open Image
+ * Denoise (atmo_outputs_denoise_rgb at quality fast, the colour alone: the viewer renders no
+ * guide pass), redone whenever the frame's request, phase or fewest samples change, in place of
+ * the finished tiles' sub-images; the render thread's accumulation and every save (P,
+ * --output) keep the image as rendered. From VIEW_DENOISE_MAX_SPP samples on, or with the key
+ * off again, the texture gets the rendered frame back. A missing library turns it off with
+ * its message in the title.
+ *
  * A screenshot (--screenshot-after N) is taken when the script, if any, has run to its end and
  * the current view's image has N samples per pixel: the image goes through view_save_image,
  * then the window as drawn (view_window_capture), and the viewer exits. */
@@ -19,12 +28,12 @@
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/clock.h"
+#include "atmo/denoise.h"
 #include "atmo/view.h"
 #include "view_controls.h"
 #include "view_mode.h"
 #include "view_overlay.h"
 #include "view_render_thread.h"
-#include "atmo/outputs.h"
 #include "atmo/outputs.h"
 #include "view_save.h"
 #include "view_script.h"
@@ -35,6 +44,9 @@
 #define VIEW_TILE_FPS 30.0
 #define VIEW_HOLD_TICK (1.0 / 60.0)
 #define VIEW_MAX_KEYS 64
+/* the denoised display's limit: at 64 samples a path-traced frame is about as clean as the
+ * denoised 4 (docs/guide/denoise.md) */
+#define VIEW_DENOISE_MAX_SPP 64
 
 typedef struct view_app {
     const atmo_view_options *o;
@@ -59,6 +71,10 @@ typedef struct view_app {
     int latency_count;
     unsigned last_generation_shown; /* the newest request whose image was on screen */
     int changes, changes_shown;     /* requests; of those, with an image on screen */
+    float *denoised;                /* the denoised display's image (malloc'd), or NULL */
+    int denoised_on_screen;         /* the texture holds it */
+    unsigned denoised_generation;   /* the frame it was made from: request, phase, samples */
+    int denoised_phase, denoised_samples;
 } view_app;
 
 static volatile sig_atomic_t interrupted;
@@ -239,10 +255,11 @@ static void title(view_app *a)
                  f->phase == VIEW_PHASE_DONE ? " (done)" : "", 100.0 * f->noise, f->seconds);
     char text[512];
     snprintf(text, sizeof text,
-             "atmo view | %s %s %dx%d | %s | h %.4g m | sun %.1f/%.1f deg | exposure %.3g %s",
+             "atmo view | %s %s %dx%d | %s%s | h %.4g m | sun %.1f/%.1f deg | exposure %.3g %s",
              view_mode_name(a->state.mode), m->names[r.atmosphere.method], r.image.width,
-             r.image.height, state, view_altitude_m(s), s->sun.zenith_deg, s->sun.azimuth_deg,
-             s->post.exposure, t->names[s->post.tonemap]);
+             r.image.height, state, a->denoised_on_screen ? ", denoised" : "",
+             view_altitude_m(s), s->sun.zenith_deg, s->sun.azimuth_deg, s->post.exposure,
+             t->names[s->post.tonemap]);
     view_window_title(&a->win, text);
 }
 
@@ -268,6 +285,48 @@ static void overlay(view_app *a)
 }
 
 /* New tiles into the texture; the frame's statistics into a->shown. */
+/* Whether the frame is to be shown denoised: the key is on, the library loads (else the key
+ * goes off, with its message) and the frame has few samples. */
+static int denoise_wanted(view_app *a, const view_frame *f)
+{
+    atmo_err le;
+    if (!a->state.denoise || f->samples_max >= VIEW_DENOISE_MAX_SPP)
+        return 0;
+    if (atmo_denoise_load(&le)) {
+        a->state.denoise = 0;
+        snprintf(a->message, sizeof a->message, "N (denoise): %.900s", le.msg);
+        return 0;
+    }
+    return 1;
+}
+
+/* The denoised display of f into the texture, when f differs from the frame it was made from
+ * or the texture holds something else. A failing filter turns the key off, with its message. */
+static void show_denoised(view_app *a, const view_frame *f, int resized)
+{
+    atmo_err de;
+    if (a->denoised_on_screen && !resized && f->generation == a->denoised_generation &&
+        f->phase == a->denoised_phase && f->samples_min == a->denoised_samples)
+        return;
+    float *out = realloc(a->denoised, sizeof(float) * 3 * (size_t)f->width * f->height);
+    if (!out || atmo_outputs_denoise_rgb(f->rgb, f->width, f->height, NULL, ATMO_DENOISE_FAST,
+                                         out, &de)) {
+        snprintf(a->message, sizeof a->message, "N (denoise): %.900s",
+                 out ? de.msg : "out of memory for the denoised image");
+        a->state.denoise = 0;
+        if (out)
+            a->denoised = out;
+        return;
+    }
+    a->denoised = out;
+    view_window_upload(&a->win, out, f->width, 0, 0, f->width, f->height);
+    a->denoised_on_screen = 1;
+    a->denoised_generation = f->generation;
+    a->denoised_phase = f->phase;
+    a->denoised_samples = f->samples_min;
+    a->redraw = 1;
+}
+
 static int take_frame(view_app *a, atmo_err *e)
 {
     view_frame *f = view_renderer_acquire(a->renderer);
@@ -276,9 +335,14 @@ static int take_frame(view_app *a, atmo_err *e)
         int resized = f->width != a->win.tex_width || f->height != a->win.tex_height;
         rc = view_window_image(&a->win, f->width, f->height, e);
         a->redraw |= resized || f->all_dirty || f->rect_count > 0;
-        if (!rc && (resized || f->all_dirty))
+        int denoise = !rc && denoise_wanted(a, f);
+        if (denoise)
+            show_denoised(a, f, resized);
+        else if (!rc && (resized || f->all_dirty || a->denoised_on_screen)) {
             view_window_upload(&a->win, f->rgb, f->width, 0, 0, f->width, f->height);
-        else if (!rc)
+            a->denoised_on_screen = 0;
+            a->redraw = 1;
+        } else if (!rc)
             for (int i = 0; i < f->rect_count; i++)
                 view_window_upload(&a->win, f->rgb, f->width, f->rects[i].x, f->rects[i].y,
                                    f->rects[i].w, f->rects[i].h);
@@ -460,6 +524,7 @@ cleanup:
     view_window_close(&a->win);
     view_overlay_free(&a->overlay);
     view_script_free(&a->script);
+    free(a->denoised);
     free(a);
     return rc;
 }

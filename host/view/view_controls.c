@@ -25,7 +25,8 @@
  *
  * Display: = and - (or keypad + and -) change post.exposure by a third of a stop (2^(1/3));
  * T cycles post.tonemap forward (Shift+T backward). Neither restarts the accumulation: the
- * shader applies them to the same linear image. */
+ * shader applies them to the same linear image. N toggles the denoised display (view.c): the
+ * frame on screen, not the accumulation, goes through the denoiser while it has few samples. */
 #include <GLFW/glfw3.h>
 #include <math.h>
 #include <stdio.h>
@@ -49,6 +50,7 @@ const char atmo_view_keys[] =
     "  Tab              fast preview / progressive quality\n"
     "  = -              exposure up/down (1/3 stop)\n"
     "  T                next tone mapper (Shift+T: previous)\n"
+    "  N                denoised display while samples are few (on/off)\n"
     "  H or F1          help and status overlay\n"
     "  P                save the image and its scene file\n"
     "  Esc              quit\n";
@@ -187,6 +189,9 @@ int view_controls_key(view_state *v, int key, int mods, atmo_err *e)
     case GLFW_KEY_T:
         s->post.tonemap = (s->post.tonemap + ((mods & VIEW_MOD_SHIFT) ? tonemaps - 1 : 1)) %
                           tonemaps;
+        return VIEW_CHANGE_DISPLAY;
+    case GLFW_KEY_N:
+        v->denoise = !v->denoise;
         return VIEW_CHANGE_DISPLAY;
     case GLFW_KEY_H:
     case GLFW_KEY_F1:

@@ -11,6 +11,8 @@ typedef struct view_state {
     int set_count;
     int mode;                /* VIEW_MODE_* */
     int help;                /* the overlay is shown */
+    int denoise;             /* N: the display shows the frame denoised while it has few
+                                samples (view.c) */
 } view_state;
 
 /* What a control changed (bit flags). */

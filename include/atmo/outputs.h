@@ -13,9 +13,12 @@
  * A denoised EXR holds the denoised image as R, G, B and, as layers named as Blender names its
  * denoising data, the noisy image ("Noisy Image.R/G/B") and the guides where the render has
  * them ("Denoising Albedo.R/G/B", "Denoising Normal.X/Y/Z", "Denoising Depth.Z"), so a
- * compositor can redo it. The filter itself uses the guides only when they are noise-free
- * (atmo_outputs_guides.clean); the path tracer's passes are not (their edges carry the
- * image's own sampling noise), so today it denoises the colour alone. */
+ * compositor can redo it. The filter uses the guides only when they are noise-free
+ * (atmo_outputs_guides.clean): the guide pass's (atmo/guides.h), as clean auxiliary images
+ * (OIDN's cleanAux); the path tracer's passes carry the image's own sampling noise on their
+ * edges and are written as layers only. The sun's disc is kept out of the filter where the
+ * guides say where it is (the pixels with disc > 0 enter it clamped to the brightest pixel
+ * without the disc, and the rest is added back after), so the filter does not spread it. */
 #ifndef ATMO_OUTPUTS_H
 #define ATMO_OUTPUTS_H
 #include <cjson/cJSON.h>
@@ -34,6 +37,8 @@ typedef struct atmo_outputs_guides {
     const float *albedo;
     const float *normal;
     const float *depth; /* written as a layer only; may be NULL */
+    const float *disc;  /* share of each pixel's guide rays that see the sun's disc; may be
+                           NULL */
     int clean;          /* 1: free of noise: the filter uses them (cleanAux); 0: they are
                            written as EXR layers only (noisy guides made the denoised image
                            worse, docs/denoise.md) */
@@ -47,6 +52,8 @@ typedef struct atmo_outputs_denoise {
     int clean_aux;
     int version;        /* OIDN's, major * 10000 + minor * 100 + patch (0: not loaded) */
     double seconds;     /* the filter, device creation included */
+    int sun_disc_kept;  /* 1: the sun's disc was kept out of the filter (guides' disc) */
+    double guide_seconds; /* the guide pass (set by the caller that rendered it) */
 } atmo_outputs_denoise;
 
 /* The run report's "denoise" object: the setting, whether it was applied, and how (quality,
@@ -62,14 +69,26 @@ cJSON *atmo_outputs_denoise_json(const atmo_scene *scene, const atmo_outputs_den
 int atmo_outputs_denoise_prepare(const atmo_scene *scene, const char *const *outputs, int n,
                                  char *warning, int warning_size, atmo_err *e);
 
-/* The guides from a path-mode result with render passes (the primary hit's albedo, normal and
- * depth averaged over the pixel's samples), in OIDN's conventions: a sample that escapes (to
- * the sky, or scattered in a volume cloud before any surface) counts as albedo 1 and normal 0;
- * its share of the pixel is the mean depth over 1e10 m (the passes' no-hit depth). The data
- * lives in *block (malloc'd; the caller frees it). Returns 0 and no guides for a result without
- * passes, 1 with guides, -1 when out of memory. */
+/* The guides of a result: the guide pass's (r->guides, atmo/guides.h; clean) where the render
+ * made one, else those of a path-mode result with render passes (the primary hit's albedo,
+ * normal and depth averaged over the pixel's samples; not clean), in OIDN's conventions: a
+ * sample that escapes (to the sky, or scattered in a volume cloud before any surface) counts as
+ * albedo 1 and normal 0; its share of the pixel is the mean depth over 1e10 m (the passes'
+ * no-hit depth). The passes' guides live in *block (malloc'd; the caller frees it; NULL for
+ * the guide pass's, which stay r's). Returns 0 and no guides for a result with neither, 1 with
+ * guides, -1 when out of memory. */
 int atmo_outputs_guides_from_passes(const atmo_render_result *r, atmo_outputs_guides *g,
                                     float **block);
+
+/* Whether a render of `scene` to outputs[0..n-1] wants the guide pass: some output is denoised,
+ * the library is loaded (after atmo_outputs_denoise_prepare) and atmo_guides_apply(scene). */
+int atmo_outputs_want_guides(const atmo_scene *scene, const char *const *outputs, int n);
+
+/* Denoise the W x H x 3 linear image rgb into out (quality ATMO_DENOISE_*, guides may be NULL)
+ * as the writes do: guided only by clean guides, the sun's disc kept out of the filter. */
+int atmo_outputs_denoise_rgb(const float *rgb, int width, int height,
+                             const atmo_outputs_guides *guides, int quality, float *out,
+                             atmo_err *e);
 
 /* Write img (the mean image of `scene`) to each of outputs[0..n-1]: denoised as
  * output.denoise says (guides may be NULL: the colour alone), post-processing and the files'

@@ -21,6 +21,10 @@ typedef struct atmo_render_result {
                                   are NULL) */
     float *passes;             /* pass_planes x width x height x 4 means (atmo_session_read_passes) */
     float *se;                 /* width x height x 3 standard errors of rgb */
+    float *guides;             /* with settings->guides: the denoiser's guides (atmo/guides.h),
+                                  ATMO_GUIDES_FLOATS planes: albedo (W H 3), normal (W H 3),
+                                  depth (W H), disc (W H); else NULL */
+    double seconds_guides;     /* the guide pass */
     int *samples;              /* width x height samples per pixel */
     int noise_tiles;           /* with a noise target: the tiles, and per tile (x, y, w, h,
                                   samples) in tile_rect[5 i ...] and the relative standard

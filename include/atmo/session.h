@@ -60,6 +60,7 @@ typedef struct atmo_render_settings {
                                   (atmo/tiles.h); parts = 0: the whole image */
     double noise_target;       /* atmo_render: the step's noise target (0: none) */
     double time_limit_s;       /* atmo_render: no new launch after this long (0: none) */
+    int guides;                /* atmo_render: also the denoiser's guides (atmo/guides.h) */
 } atmo_render_settings;
 
 void atmo_render_settings_default(atmo_render_settings *s);
