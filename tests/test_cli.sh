@@ -51,6 +51,7 @@ refused "misspelt choice" "--camera: 'panoramma' is not one of .*did you mean 'p
 refused "misspelt method" "did you mean 'reference'\? use one of" render "${small[@]}" --set atmosphere.method=refrence --output out/a.png
 refused "swapped letters in a choice" "did you mean 'piz'" render "${small[@]}" --exr-compression pzi --output out/a.exr
 refused "misspelt bench suite" "unknown suite 'mei' \(did you mean 'mie'\?" bench mei
+refused "unknown bench view" "--views: unknown view 'thesis-10'" bench views --views thesis-10 --output out/bench
 refused "misspelt cache action" "did you mean 'verify'\?" cache verfy
 refused "far preset: no guess" "^atmo render: unknown preset 'xyzzy'; use one of" render "${small[@]}" --preset xyzzy --output out/a.png
 refused "far flag: no guess" "^atmo render: unknown option '--frobnicate' \(atmo render --help\)$" render --frobnicate

@@ -16,11 +16,11 @@
 
 static const char *const bench_suites[] = {"sky",    "atmosphere", "mie",     "colour",
                                            "panorama", "render",   "terrain", "clouds",
-                                           "denoise", NULL};
+                                           "denoise",  "views",    NULL};
 
 /* The flags' destinations (bench_flags), holding the defaults before parsing. */
 typedef struct bench_args {
-    const char *dir, *device, *reference;
+    const char *dir, *device, *reference, *views;
     int quick, fit;
 } bench_args;
 
@@ -36,6 +36,9 @@ static const cli_flag bench_flags[] = {
      .help = "fewer settings (for tests)"},
     {.type = CLI_BOOL, .name = "--fit", .offset = BENCH_FLAG(fit),
      .help = "clouds: fit the multiple-scattering octaves instead"},
+    {.type = CLI_STRING, .name = "--views", .metavar = "LIST", .offset = BENCH_FLAG(views),
+     .def = "all: thesis-1,...,thesis-9",
+     .help = "views: the thesis views to measure, comma-separated"},
     {.type = CLI_PATH, .name = "--reference", .offset = BENCH_FLAG(reference),
      .help = "atmosphere: the Monte Carlo reference table"},
     {.type = CLI_END},
@@ -43,7 +46,7 @@ static const cli_flag bench_flags[] = {
 
 static const cli_command bench_cli = {
     .name = "bench",
-    .synopsis = "SUITE [--output DIR] [--device N|NAME] [--quick] [--fit]",
+    .synopsis = "SUITE [--output DIR] [--device N|NAME] [--quick] [--fit] [--views LIST]",
     .about =
         "Measures error against a high-quality reference and time for each setting of a method,\n"
         "and writes DIR/SUITE.csv and the chart DIR/SUITE.svg (gnuplot).\n",
@@ -68,7 +71,10 @@ static const cli_command bench_cli = {
         "              Carlo reference on four cloud views; --fit fits the multiple-scattering\n"
         "              octaves (clouds.ms_a, ms_b, ms_c, ms_octaves) to the reference instead\n"
         "  denoise     thesis-7 path traced at 1 to 64 spp, raw and denoised by Open Image\n"
-        "              Denoise (fast, balanced, high): error against time, where denoising pays\n",
+        "              Denoise (fast, balanced, high): error against time, where denoising pays\n"
+        "  views       each thesis view in the default mode: two-seed noise against time at\n"
+        "              1280x720 (1-16 spp) and bias against the path-traced reference at 320x180\n"
+        "              (cached in DIR/views_ref/); --quick: 320x180 and 80x45; --views to choose\n",
     .max_positional = 1,
 };
 
@@ -77,13 +83,13 @@ static int bench_check_suite(const char *suite, atmo_err *e)
 {
     if (!suite)
         return atmo_fail(e, ATMO_ERR_USAGE, "name a suite (sky, atmosphere, mie, colour, "
-                         "panorama, render, terrain, clouds, denoise); atmo bench --help");
+                         "panorama, render, terrain, clouds, denoise, views); atmo bench --help");
     for (const char *const *s = bench_suites; *s; s++)
         if (strcmp(suite, *s) == 0)
             return ATMO_OK;
     const char *near = atmo_suggest_among(suite, bench_suites);
     return atmo_fail(e, ATMO_ERR_USAGE, "unknown suite '%s' (%s%s%ssuites: sky, atmosphere, mie, "
-                     "colour, panorama, render, terrain, clouds, denoise)", suite,
+                     "colour, panorama, render, terrain, clouds, denoise, views)", suite,
                      near ? "did you mean '" : "", near ? near : "", near ? "'? " : "");
 }
 
@@ -95,7 +101,7 @@ int cmd_bench(int argc, char **argv)
     int rc, n = 0;
     if (!cli_parse(&bench_cli, &a, argc, argv, &suite, &n, &rc))
         return rc;
-    if ((rc = bench_check_suite(suite, &e)))
+    if ((rc = bench_check_suite(suite, &e)) || (rc = bench_views_check(a.views, &e)))
         return cli_fail(&bench_cli, rc, &e);
     if (mkdir(a.dir, 0755) != 0 && errno != EEXIST) {
         fprintf(stderr, "atmo bench: cannot create output directory '%s': %s\n", a.dir,
@@ -112,6 +118,7 @@ int cmd_bench(int argc, char **argv)
              : strcmp(suite, "terrain") == 0 ? bench_terrain(dir, device, quick, &e)
              : strcmp(suite, "clouds") == 0 ? bench_clouds(dir, device, quick, a.fit, &e)
              : strcmp(suite, "denoise") == 0 ? bench_denoise(dir, device, quick, &e)
+             : strcmp(suite, "views") == 0 ? bench_views(dir, device, a.views, quick, &e)
                                          : bench_atmosphere(dir, device, a.reference, quick, &e);
     if (rc)
         fprintf(stderr, "atmo bench: %s\n", e.msg);

@@ -77,6 +77,15 @@ int bench_terrain(const char *dir, const char *device, int quick, atmo_err *e);
  * (host/bench/bench_clouds.c). Writes DIR/clouds.csv and DIR/clouds.svg, or DIR/clouds_fit.csv. */
 int bench_clouds(const char *dir, const char *device, int quick, int fit, atmo_err *e);
 
+/* `atmo bench views`: each thesis view (views: a comma-separated subset, NULL all) in the
+ * default mode, two-seed noise against time at 1280 x 720 and bias against the cached
+ * path-traced reference at 320 x 180 (quick: 320 x 180 and 80 x 45) (host/bench/bench_views.c).
+ * Writes DIR/views_VIEW.csv and DIR/views_VIEW.svg per view, the references to DIR/views_ref/. */
+int bench_views(const char *dir, const char *device, const char *views, int quick, atmo_err *e);
+/* ATMO_ERR_USAGE naming the first name of the comma-separated views that is not a thesis view
+ * (NULL: all, fine). */
+int bench_views_check(const char *views, atmo_err *e);
+
 /* `atmo bench denoise`: the path tracer's error against time without and with Open Image
  * Denoise (fast, balanced, high) by samples per pixel on thesis-7 (host/bench/bench_denoise.c).
  * Writes DIR/denoise.csv and DIR/denoise.svg; without the library, its load error. */

@@ -26,11 +26,23 @@
  * times c^i; N = ms_octaves, a, b, c = ms_a, ms_b, ms_c, by default 12, 0.05, 0.43, 0.9,
  * fitted to the reference by `atmo bench clouds --fit` (docs/notes/clouds.md). With a this
  * small, octaves i >= 2 see the sun nearly unshadowed (a^2 tau_sun = tau_sun / 400): they carry
- * the light that diffuses deep into a thick deck. With use_ms (method march) the sky's light is
+ * the light that diffuses deep into a thick deck. In an absorbing cloud (albedo w < 1) diffuse
+ * light decays with depth at least as e^{-k_d tau}, the diffusion exponent
+ *     k_d = sqrt(3 (1 - w)(1 - w g))
+ * (the diffusion approximation's eigenvalue; 0.16 for the thesis' w 0.9512 and g 0.86): so an
+ * octave i >= 1 whose a^i is below k_d keeps e^{-a^i tau_sun} within a diffusion length 1 / k_d
+ * of the lit side, where the fit holds, and decays at the rate k_d beyond it,
+ *     e^{-a^i tau_sun - (k_d - a^i) max(tau_sun - 1 / k_d, 0)},
+ * and the light march that feeds it stops only where the last octave is opaque (not where
+ * tau_sun passes CLOUDS_TAU_OPAQUE, which capped the deep octaves' tau and let a deck of any
+ * depth pass about a third of the sun's light). With w = 1 (k_d = 0) the octaves are the fit's
+ * alone. With use_ms (method march) the sky's light is
  * added isotropically,
  *   sigma_s E_sky(mu_s) / (4 pi) (1 + (h - bottom) / (top - bottom)) / 2
  * (E_sky the sky's irradiance on a horizontal surface from the ms LUT, halved at the layer's
- * bottom, where the cloud above shades it). The thesis look (clouds.look = thesis) replaces the
+ * bottom, where the cloud above shades it), times the same deep decay at a = 0 over the
+ * vertical optical depth mu_s tau_sun (plane-parallel: the sky's light comes down through the
+ * deck too). The thesis look (clouds.look = thesis) replaces the
  * octaves and the sky by the thesis' model: single scattering times the powder factor
  * 1 - e^{-2 tau_sun}, plus a constant ambient CLOUDS_THESIS_AMBIENT sigma_s E / (4 pi), and
  * passes the clouds' light through the thesis' soft clamp.
@@ -70,6 +82,54 @@
 #define CLOUDS_THESIS_AMBIENT 0.1f
 #define CLOUDS_THESIS_CLAMP 3.0f
 
+/* The diffusion exponent k_d = sqrt(3 (1 - w)(1 - w g)) per channel (w the albedo, g the
+ * asymmetry): the rate, per unit optical depth, at which diffuse light decays deep in an
+ * absorbing medium (the header). */
+ATMO_FN vec3 clouds_diffusion_exponent(ATMO_GLOBAL const atmo_gpu_clouds *c)
+{
+    return v3(sqrtf(3.0f * (1.0f - c->albedo.x) * fmaxf(1.0f - c->albedo.x * c->g.x, 0.0f)),
+              sqrtf(3.0f * (1.0f - c->albedo.y) * fmaxf(1.0f - c->albedo.y * c->g.y, 0.0f)),
+              sqrtf(3.0f * (1.0f - c->albedo.z) * fmaxf(1.0f - c->albedo.z * c->g.z, 0.0f)));
+}
+
+/* One octave's transmittance toward the sun (the header): e^{-a tau} within a diffusion length
+ * 1 / k_d of the lit side, and from there on decaying at least as fast as diffuse light does,
+ *     e^{-a tau - max(k_d - a, 0) max(tau - 1 / k_d, 0)}   per channel. */
+ATMO_FN float clouds_octave_channel(float tau, float a, float k_d)
+{
+    float deep = k_d > a ? (k_d - a) * fmaxf(tau - 1.0f / k_d, 0.0f) : 0.0f;
+    return expf(-a * tau - deep);
+}
+
+ATMO_FN vec3 clouds_octave_transmittance(vec3 tau, float a, vec3 k_d)
+{
+    return v3(clouds_octave_channel(tau.x, a, k_d.x), clouds_octave_channel(tau.y, a, k_d.y),
+              clouds_octave_channel(tau.z, a, k_d.z));
+}
+
+/* The density integral D toward the sun for the octaves: the light march stops only once the
+ * last octave's optical depth a_N tau_sun passes CLOUDS_TAU_OPAQUE (a_N = max(a^(N-1), k_d),
+ * the smallest channel's k_d), not once tau_sun does, which would cap the deep octaves' tau at
+ * CLOUDS_TAU_OPAQUE and let them see the sun through any deck; the shadow map's integral has no
+ * stop. */
+ATMO_FN float clouds_octave_light_density(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                          const medium_point *q, vec3 k_d)
+{
+#ifdef ATMO_CLOUDS_SHADOW_MAP
+    return clouds_light_density(s, ATMO_LUT_ARGS, q);
+#else
+    ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
+    float a_n = 1.0f;
+    if (c->look != ATMO_CLOUDS_LOOK_THESIS) {
+        a_n = powf(c->ms_a, (float)(c->ms_octaves - 1));
+        a_n = fmaxf(a_n, fminf(k_d.x, fminf(k_d.y, k_d.z)));
+    }
+    return clouds_sun_density_steps(s, q, clouds_point_jitter(q->p, c->seed), c->light_steps,
+                                    c->light_distance_m,
+                                    (CLOUDS_TAU_OPAQUE + 1.0f) / fmaxf(a_n, 1e-30f));
+#endif
+}
+
 /* The light of one step of length dt sampled at distance t (coefficients constant over it),
  * added to *L, the clouds' part of it to *L_cloud instead with the thesis look; *T and *medium_t
  * advance over the step. `cloudy`: the layer is asked there. */
@@ -96,7 +156,8 @@ ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, c
     vec3 w = medium_segment_step3(ms.extinction, dt, &step_t);
     vec3 Tw = v3_mul(*T, w);
     float occluded = visibility_sun_occluders(s, ATMO_LUT_ARGS, &q);
-    float D = occluded > 0.0f ? clouds_light_density(s, ATMO_LUT_ARGS, &q) : 0.0f;
+    vec3 k_d = clouds_diffusion_exponent(c);
+    float D = occluded > 0.0f ? clouds_octave_light_density(s, ATMO_LUT_ARGS, &q, k_d) : 0.0f;
     vec3 tau_sun = v3_scale(v3_from4(c->extinction), D), cloud_t = v3_exp(v3_scale(tau_sun, -1.0f));
     vec3 sun_e = v3(0.0f, 0.0f, 0.0f);
     if (occluded > 0.0f)
@@ -129,7 +190,7 @@ ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, c
                                 : v3(phase_henyey_greenstein(m->nu, c->g.x * kc),
                                      phase_henyey_greenstein(m->nu, c->g.y * kc),
                                      phase_henyey_greenstein(m->nu, c->g.z * kc));
-                vec3 t_i = v3_exp(v3_scale(tau_sun, -ka));
+                vec3 t_i = i == 0 ? cloud_t : clouds_octave_transmittance(tau_sun, ka, k_d);
                 cloud = v3_add(cloud, v3_scale(v3_mul(v3_mul(p, sun_e), t_i), kb));
                 ka *= c->ms_a;
                 kb *= c->ms_b;
@@ -137,7 +198,9 @@ ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, c
             }
             if (use_ms) {
                 float rise = clamp((q.h - c->bottom_m) / (c->top_m - c->bottom_m), 0.0f, 1.0f);
-                vec3 sky = medium_ms_ground_irradiance(s, ATMO_LUT_ARGS, q.mu_s);
+                vec3 sky = v3_mul(medium_ms_ground_irradiance(s, ATMO_LUT_ARGS, q.mu_s),
+                                  clouds_octave_transmittance(
+                                      v3_scale(tau_sun, fmaxf(q.mu_s, 0.0f)), 0.0f, k_d));
                 cloud = v3_add(cloud, v3_scale(sky, 0.5f * (1.0f + rise) / (4.0f * ATMO_PI)));
             }
         }
