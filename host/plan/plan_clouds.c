@@ -8,6 +8,9 @@
  * phase table is always the distribution's (phase_table.h's rows), normalised and given its
  * sampling CDF by atmo_plan_phase_cdf (plan_cloud.c).
  *
+ * Level of detail: the kernels filter the noise to a footprint of clouds.lod pixels at each
+ * point's distance (cloud_layer.h), from a pixel's angle at the image's centre.
+ *
  * Placement: the noise's origin is the camera's world position (double) minus the wind's
  * displacement v t (direction (sin a, 0, cos a), a = clouds.wind_azimuth_deg), rounded to float
  * once, so a kernel's noise point p + origin is exact to float rounding of the sum. The global
@@ -25,6 +28,18 @@
 #include "atmo/plan_cloud.h"
 #include "atmo/plan_clouds.h"
 #include "media/cloud_majorant.h"
+
+/* A pixel's angle (rad) at the image's centre: the perspective's 2 tan(fov/2) / height, the
+ * panorama's 2 pi / width, the fisheye's fov / height. */
+static double pixel_angle(const atmo_scene *s)
+{
+    double fov = s->camera.fov_deg * M_PI / 180.0;
+    if (s->camera.kind == ATMO_CAMERA_PANORAMA)
+        return 2.0 * M_PI / s->image.width;
+    if (s->camera.kind == ATMO_CAMERA_FISHEYE)
+        return fov / s->image.height;
+    return 2.0 * tan(0.5 * fov) / s->image.height;
+}
 
 void atmo_plan_clouds_origin(const atmo_scene *s, float4 *origin)
 {
@@ -104,6 +119,7 @@ int atmo_plan_clouds(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     g->ms_octaves = s->clouds.ms_octaves;
     g->look = s->clouds.look;
     g->seed = (uint)s->clouds.seed;
+    g->footprint = (float)(s->clouds.lod * pixel_angle(s));
     float *cdf = NULL;
     if ((rc = atmo_plan_phase_cdf(o.rows, o.count, p, &cdf, e)))
         return rc;

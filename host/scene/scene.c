@@ -230,6 +230,10 @@ const atmo_param atmo_params[] = {
             "steps of each shadow-map node's integral over the whole chord toward the sun"),
     ROW_FLOAT("clouds.max_distance_m", clouds.max_distance_m, "m", 1, 1e8, 150000,
               "the marcher's far plane: clouds beyond it are not seen"),
+    ROW_FLOAT("clouds.lod", clouds.lod, "", 0, 16, 1,
+              "level of detail: octaves of the cloud noise finer than this many pixels' footprint "
+              "at their distance are replaced by their mean and spread (0: every octave, "
+              "point-sampled; kernels/media/cloud_layer.h)"),
     ROW_INT("clouds.ms_octaves", clouds.ms_octaves, "", 1, 16, 12,
             "multiple-scattering octaves of the marcher (1: single scattering only; 12 fitted to "
             "the reference by atmo bench clouds --fit)"),

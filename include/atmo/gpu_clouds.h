@@ -43,7 +43,8 @@ typedef struct atmo_gpu_clouds {
                               0 without clouds.shadow_map) */
     int shadow_map_levels; /* its nodes between the layer's bottom and top */
     int shadow_map_steps;  /* steps of its nodes' integrals toward the sun */
-    int pad0;
+    float footprint;       /* the noise's level of detail: a pixel's footprint per metre of
+                              distance from the camera (rad, times clouds.lod; 0: every octave) */
 } atmo_gpu_clouds;
 
 #endif

@@ -144,6 +144,7 @@ typedef struct atmo_scene {
         int shadow_map_levels; /* its nodes between the layer's bottom and top */
         int shadow_map_steps;  /* steps of each node's integral toward the sun */
         double max_distance_m; /* the marcher's far plane */
+        double lod;            /* the noise's footprint in pixels (0: every octave everywhere) */
         int ms_octaves;        /* multiple-scattering octaves (1: single scattering only) */
         double ms_a, ms_b, ms_c; /* their extinction, contribution and anisotropy factors */
         int look;              /* ATMO_CLOUDS_LOOK_* */

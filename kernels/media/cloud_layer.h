@@ -14,6 +14,21 @@
  * The fBm lies in [0, 1) (cloud_noise.h), so d <= density everywhere (the majorant of the
  * Monte Carlo walk) and d = 0 wherever c = 0: the cheap coverage test (the coverage field
  * before the fade, 4 octaves instead of N + 3) is exact at its point for skipping clear air.
+ * Level of detail: far from the camera a pixel spans many of the fBm's cells, and the density
+ * point-sampled there changes from sample to sample and pixel to pixel (sparkle, speckled cloud
+ * fields from orbit). The shape fBm is therefore filtered to the footprint F = footprint |p| of
+ * a pixel at the point's distance |p| from the camera (footprint: the pixel's angle times
+ * clouds.lod, from the plan; 0 with clouds.lod = 0): cloud_noise.h's noise_fbm_lod replaces
+ * the octaves finer than F (in lattice units of the axis of highest frequency) by their mean.
+ * The threshold c - fbm then moves only where the unresolved octaves would have moved it both
+ * ways, so the fraction of a region under cloud is kept (the mean of a far view within 0.4 % of
+ * the point-sampled one on thesis-4, docs/notes/clouds-lod.md), where the expected density over
+ * the footprint would spread opaque cloud over every partly covered pixel (12 % brighter). The
+ * filtered fBm stays in [0, 1), so d <= density c^sharpness still bounds it for the majorants.
+ * The coverage field is not filtered: its finest cells (coverage_scale_m / 8) are wider than a
+ * pixel's footprint within the far planes. The path tracer's bounces and the light march
+ * toward the sun use the same rule (the distance from the camera), so every method sees one
+ * medium.
  * Optics (host/plan/plan_clouds.c): sigma_t = d x extinction per unit density, sigma_s =
  * albedo sigma_t, the phase function the droplet distribution's Mie table (phase_table.h), its
  * Henyey-Greenstein with the table's g, or Jendersie & d'Eon 2023.
@@ -116,22 +131,27 @@ ATMO_FN float clouds_coverage(ATMO_GLOBAL const atmo_gpu_clouds *c, vec3 p)
     return clouds_coverage_field(c, v3_add(p, v3_from4(c->origin)));
 }
 
-/* The density d at the world noise point x of altitude h, given its coverage cov > 0. */
-ATMO_FN float clouds_density_covered(ATMO_GLOBAL const atmo_gpu_clouds *c, vec3 x, float cov)
+/* The density d at the world noise point x, given its coverage cov > 0, filtered to a footprint
+ * of footprint_m metres (0: every octave). */
+ATMO_FN float clouds_density_covered(ATMO_GLOBAL const atmo_gpu_clouds *c, vec3 x, float cov,
+                                     float footprint_m)
 {
     vec3 f = v3_from4(c->frequency);
     vec3 warp = noise_warp(v3_scale(v3_mul(x, f), CLOUDS_WARP_FREQUENCY), c->seed);
     vec3 xw = v3_add(x, v3_scale(warp, c->warp_m));
-    float d = cov - noise_fbm(v3_mul(xw, f), c->octaves, c->seed);
+    float fp = footprint_m * fmaxf(f.x, fmaxf(f.y, f.z));
+    float d = cov - noise_fbm_lod(v3_mul(xw, f), c->octaves, fp, c->seed);
     return d > 0.0f ? c->density * powf(d, c->sharpness) : 0.0f;
 }
 
-/* The density at a camera-relative point p of altitude h (0 outside the layer). */
+/* The density at a camera-relative point p of altitude h (0 outside the layer), filtered to
+ * the pixel's footprint at p's distance from the camera. */
 ATMO_FN float clouds_density(ATMO_GLOBAL const atmo_gpu_clouds *c, vec3 p, float h)
 {
     vec3 x = v3_add(p, v3_from4(c->origin));
     float cov = clouds_coverage_world(c, x, h);
-    return cov > 0.0f ? clouds_density_covered(c, x, cov) : 0.0f;
+    float footprint_m = c->footprint > 0.0f ? c->footprint * v3_length(p) : 0.0f;
+    return cov > 0.0f ? clouds_density_covered(c, x, cov, footprint_m) : 0.0f;
 }
 
 /* The phase function per steradian at view-sun cosine nu, per wavelength. */

@@ -11,6 +11,9 @@
  * fBm (Musgrave, in Ebert et al., "Texturing and Modeling", ch. 16):
  *     fbm(x) = sum_{i<N} 2^-i v(2^i x + o_i) / sum_{i<N} 2^-i,  in [0, 1)
  * with a lattice offset o_i per octave (from the seed) that keeps the octaves' lattices apart.
+ * Its level of detail (noise_fbm_lod) leaves out the octaves finer than a footprint and puts
+ * their mean in their place (frequency clamping, Lagae et al. 2010, "A survey of procedural
+ * noise functions", sec. 4).
  * The domain warp (Quilez 2002, "domain warping") samples a field at x + A (2 w(x) - 1), w a
  * vector of three value noises.
  *
@@ -68,19 +71,36 @@ ATMO_FN float noise_value(vec3 x, uint seed)
     return noise_lerp(a, b, w);
 }
 
-/* fBm of `octaves` octaves at x (lattice units of the first octave), in [0, 1). */
-ATMO_FN float noise_fbm(vec3 x, int octaves, uint seed)
+/* fBm of `octaves` octaves at x (lattice units of the first octave) filtered to a footprint of
+ * `footprint` lattice units of the first octave (level of detail), in [0, 1): octave i, whose
+ * cells are 2^-i wide, has k_i = footprint 2^i of its cells in a footprint; it is evaluated in
+ * full where a cell spans two footprints or more (k_i <= 1/2), replaced by its mean 1/2 where it
+ * spans one or less (k_i >= 1; not evaluated), and blended linearly between, with the
+ * evaluated share e_i = clamp(2 - 2 k_i, 0, 1). With footprint 0 it is the plain fBm. */
+ATMO_FN float noise_fbm_lod(vec3 x, int octaves, float footprint, uint seed)
 {
-    float sum = 0.0f, norm = 0.0f, amp = 1.0f;
+    float sum = 0.0f, norm = 0.0f, amp = 1.0f, k = footprint;
     for (int i = 0; i < octaves; i++) {
-        /* a per-octave lattice offset: 1/4 and 1/2-cell multiples are exact in float */
-        float o = (float)(i * 37) + 0.25f * (float)(i & 3);
-        sum += amp * noise_value(v3(x.x + o, x.y - o, x.z + 0.5f * o), seed + (uint)i);
+        float e = clamp(2.0f - 2.0f * k, 0.0f, 1.0f), v = 0.5f;
+        if (e > 0.0f) {
+            /* a per-octave lattice offset: 1/4 and 1/2-cell multiples are exact in float */
+            float o = (float)(i * 37) + 0.25f * (float)(i & 3);
+            float n = noise_value(v3(x.x + o, x.y - o, x.z + 0.5f * o), seed + (uint)i);
+            v = e < 1.0f ? noise_lerp(0.5f, n, e) : n;
+        }
+        sum += amp * v;
         norm += amp;
         amp *= 0.5f;
         x = v3_scale(x, 2.0f);
+        k *= 2.0f;
     }
     return sum / norm;
+}
+
+/* fBm of `octaves` octaves at x (lattice units of the first octave), in [0, 1). */
+ATMO_FN float noise_fbm(vec3 x, int octaves, uint seed)
+{
+    return noise_fbm_lod(x, octaves, 0.0f, seed);
 }
 
 /* The domain-warp displacement at x (lattice units): 2 w - 1 per axis, in (-1, 1). */
