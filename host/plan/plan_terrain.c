@@ -10,14 +10,14 @@
  *     b_i 2^i f |grad n|_max relief / sum b = f (15/8) (2 sqrt 2) relief / sum b
  * (quintic fade: q' <= 15/8; a cell's corner differences: |k1 + k3 q| <= 2 per axis), the
  * erosion denominator >= 1 only lowering it; with H the maximum height,
- *     L = H f N (15/8) 2 sqrt 2 relief / sum b   (relief 0.8, noise.h),
- * about 2.29 for the thesis' terrain (H 4 km, f 3e-5 /m, 9 octaves). The erosion's second
+ *     L = H f N (15/8) 2 sqrt 2 relief / sum b   (relief TERRAIN_RELIEF, noise.h),
+ * about 11.5 for the thesis' terrain (H 4 km, f 1e-4 /m, 9 octaves, relief 1.2). The erosion's second
  * term and the coverage's slope are left out, which is what terrain.optimism and the tracer's
  * back-stepping answer for; tests/test_terrain_trace.c measures the misses.
  *
  * The detail below a DEM's cells (kernels/terrain/terrain_detail.h) adds
  *     L_d = K A_i0 2^i0 f (15/8) 2 sqrt 2
- * (K octaves, A_i 2^i constant), about 1.0 for the default terrain whatever the cell size
+ * (K octaves, A_i 2^i constant), about 5.1 for the default terrain whatever the cell size
  * (A_i0 2^i0 = H relief / sum b).
  *
  * A digital elevation model (terrain.heightmap_file, atmo/dem.h) becomes the heightmap's base
@@ -62,7 +62,7 @@ double atmo_terrain_slope_bound(const atmo_gpu_terrain_field *f)
     double norm = 2.0 * (1.0 - pow(0.5, f->octaves)), per_octave = (15.0 / 8.0) * 2.0 * sqrt(2.0);
     double detail = f->detail_octaves * (double)f->detail_amplitude_m *
                     ldexp((double)f->frequency_per_m, f->detail_octave0) * per_octave;
-    return (double)f->max_height_m * (double)f->frequency_per_m * f->octaves * per_octave * 0.8 /
+    return (double)f->max_height_m * (double)f->frequency_per_m * f->octaves * per_octave * (double)TERRAIN_RELIEF /
                norm + detail;
 }
 
@@ -239,7 +239,7 @@ int atmo_plan_terrain_detail(atmo_plan *p, double cell_m, atmo_err *e)
     double norm = 2.0 * (1.0 - pow(0.5, f->octaves));
     f->detail_octave0 = i0;
     f->detail_octaves = TERRAIN_DETAIL_OCTAVES;
-    f->detail_amplitude_m = (float)ldexp((double)f->max_height_m * 0.8 / norm, -i0);
+    f->detail_amplitude_m = (float)ldexp((double)f->max_height_m * (double)TERRAIN_RELIEF / norm, -i0);
     p->gpu.terrain.slope_bound = (float)atmo_terrain_slope_bound(f);
     p->gpu.terrain.steps *= TERRAIN_DETAIL_STEPS_FACTOR;
     return ATMO_OK;
