@@ -11,13 +11,14 @@
  * (quintic fade: q' <= 15/8; a cell's corner differences: |k1 + k3 q| <= 2 per axis), the
  * erosion denominator >= 1 only lowering it; with H the maximum height,
  *     L = H f N (15/8) 2 sqrt 2 relief / sum b   (relief TERRAIN_RELIEF, noise.h),
- * about 11.5 for the thesis' terrain (H 4 km, f 1e-4 /m, 9 octaves, relief 1.2). The erosion's second
+ * about 3.4 for the default terrain (H 4 km, f 3e-5 /m, 9 octaves, relief 1.2) and 11.5 for
+ * the thesis presets' (f 1e-4 /m). The erosion's second
  * term and the coverage's slope are left out, which is what terrain.optimism and the tracer's
  * back-stepping answer for; tests/test_terrain_trace.c measures the misses.
  *
  * The detail below a DEM's cells (kernels/terrain/terrain_detail.h) adds
  *     L_d = K A_i0 2^i0 f (15/8) 2 sqrt 2
- * (K octaves, A_i 2^i constant), about 5.1 for the default terrain whatever the cell size
+ * (K octaves, A_i 2^i constant), about 1.5 for the default terrain whatever the cell size
  * (A_i0 2^i0 = H relief / sum b).
  *
  * A digital elevation model (terrain.heightmap_file, atmo/dem.h) becomes the heightmap's base

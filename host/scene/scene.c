@@ -251,9 +251,9 @@ const atmo_param atmo_params[] = {
               "terrain heights lie between 0 and this above sea level"),
     ROW_FLOAT("terrain.sea_level_m", terrain.sea_level_m, "m", 0, 2e4, 0,
               "water covers the terrain up to this altitude"),
-    ROW_FLOAT("terrain.frequency_per_m", terrain.frequency_per_m, "1/m", 1e-7, 1e-2, 1e-4,
-              "first octave of the height fBm (10 km period: the thesis' steep mountains; its heightmap "
-              "tiled every 33 km, 3e-5, which as a first octave gives slopes of a few degrees)"),
+    ROW_FLOAT("terrain.frequency_per_m", terrain.frequency_per_m, "1/m", 1e-7, 1e-2, 3e-5,
+              "first octave of the height fBm (thesis: 3e-5, its heightmap's 33 km period: gentle "
+              "hills; the thesis presets set 1e-4, steep mountains)"),
     ROW_FLOAT("terrain.coverage_frequency_per_m", terrain.coverage_frequency_per_m, "1/m", 1e-9,
               1e-3, 2e-7, "first octave of the land/sea field (thesis: 2e-7)"),
     ROW_FLOAT("terrain.land_fraction", terrain.land_fraction, "", 0, 1, 0.6,
@@ -271,7 +271,7 @@ const atmo_param atmo_params[] = {
              "height (2 bytes, rounded to 2^-11 of it)"),
     ROW_FLOAT("terrain.heightmap_extent_m", terrain.heightmap_extent_m, "m", 1, 1e7, 65536,
               "side of the square the heightmap covers, centred on the origin"),
-    ROW_INT("terrain.steps", terrain.steps, "", 1, 4096, 300,
+    ROW_INT("terrain.steps", terrain.steps, "", 1, 4096, 600,
             "sphere-tracing steps per ray (then a bounded fallback march)"),
     ROW_FLOAT("terrain.optimism", terrain.optimism, "", 0.1, 10, 3,
               "sphere-tracing step relaxation (1: within the slope bound; more: faster, "

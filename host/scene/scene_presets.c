@@ -55,6 +55,9 @@ const char *const atmo_default_preset = "sky-sunset";
 #define THESIS_OBJECTS " [objects over the sea-level ground, path traced]"
 #define THESIS_CLOUDS " [clouds]"
 #define THESIS_CLOUDS_TERRAIN " [clouds and terrain]"
+/* the thesis views' terrain: a 10 km first octave (steep mountains, docs/guide/terrain.md)
+ * and seed 7 */
+#define THESIS_MOUNTAINS "terrain.seed=7", "terrain.frequency_per_m=1e-4"
 /* presets.md's objects (albedo in linear RGB; the small spheres' (38, 25, 17)/255 written out) */
 /* view 2's sphere resting on the terrain (centre 1 m above it) and its box standing on it */
 #define THESIS_VIEW2_OBJECTS                                                                       \
@@ -116,20 +119,20 @@ const atmo_preset atmo_presets[] = {
            "camera.kind=perspective", "camera.position_m=23796,2266,16636",
            "camera.pitch_deg=-4.962", "camera.yaw_deg=-550", "camera.fov_deg=45",
            "sun.zenith_deg=87.476967", "sun.azimuth_deg=-150.985019",
-           "terrain.enabled=true", "terrain.seed=7"),
+           "terrain.enabled=true", THESIS_MOUNTAINS),
     PRESET("thesis-2",
            "thesis view 2: looking down at a small sphere and box, shadows" THESIS_TERRAIN_OBJECTS,
            "camera.kind=perspective", "camera.position_m=22831,7,13332",
            "camera.on_terrain=at", "camera.terrain_at_m=22832,13326", "camera.pitch_deg=-51.5", "camera.yaw_deg=-518", "camera.fov_deg=45",
            "sun.zenith_deg=83.222271", "sun.azimuth_deg=171.887327", THESIS_VIEW2_OBJECTS,
-           "terrain.enabled=true", "terrain.seed=7"),
+           "terrain.enabled=true", THESIS_MOUNTAINS),
     PRESET("thesis-3",
            "thesis view 3: low sun near the open-box site, sun in frame" THESIS_TERRAIN_OBJECTS,
            "camera.kind=perspective", "camera.position_m=26632,1.25,10748", "camera.on_terrain=at",
            "camera.terrain_at_m=26631.5,10749.5", "camera.pitch_deg=-5",
            "camera.yaw_deg=-575", "camera.fov_deg=45", "sun.zenith_deg=86.098524",
            "sun.azimuth_deg=-134.254613", THESIS_OPEN_BOX_ON_TERRAIN,
-           "terrain.enabled=true", "terrain.seed=7"),
+           "terrain.enabled=true", THESIS_MOUNTAINS),
     PRESET("thesis-4",
            "thesis view 4: the planet from 2000 km, terminator, cloud field, blue "
            "limb" THESIS_CLOUDS,
@@ -165,13 +168,13 @@ const atmo_preset atmo_presets[] = {
            "camera.yaw_deg=-535", "camera.fov_deg=45", "sun.zenith_deg=81.435892",
            "sun.azimuth_deg=-170.007181",
            "clouds.enabled=true", "clouds.seed=11", "clouds.max_distance_m=1e5",
-           "atmosphere.method=march", "terrain.enabled=true", "terrain.seed=7"),
+           "atmosphere.method=march", "terrain.enabled=true", THESIS_MOUNTAINS),
     PRESET("thesis-9", "thesis view 9: high-altitude sunset over clouds" THESIS_CLOUDS_TERRAIN,
            "camera.kind=perspective", "camera.position_m=18181,37415,3431", "camera.pitch_deg=-16",
            "camera.yaw_deg=-556", "camera.fov_deg=45", "sun.zenith_deg=87.476967",
            "sun.azimuth_deg=-150.985019",
            "clouds.enabled=true", "clouds.seed=5", "clouds.max_distance_m=4e5",
-           "atmosphere.method=march", "terrain.enabled=true", "terrain.seed=7"),
+           "atmosphere.method=march", "terrain.enabled=true", THESIS_MOUNTAINS),
     PRESET("glory",
            "above a cloud deck of thesis-disperse drops, looking down at the antisolar point: "
            "the fog bow and the glory's bright centre (its one ring lies within 1 deg, smoothed "
