@@ -44,7 +44,7 @@ cmake --build build -j"$jobs"
 
 case "$mode" in
 render)
-    build/atmo render --output atmo.png --report atmo-run.json
+    build/atmo render --force --output atmo.png --report atmo-run.json
     echo "setup: wrote atmo.png (and the run report atmo-run.json)" ;;
 test)
     ctest --test-dir build --output-on-failure -j"$jobs" ;;

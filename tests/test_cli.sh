@@ -40,6 +40,58 @@ refused "bad budget" "launch-budget" render "${small[@]}" --launch-budget-ms 0 -
 refused "bad device" "device" render "${small[@]}" --device 99 --output out/a.png
 refused "devices option" "unknown option" devices --frobnicate
 
+# did you mean: a near miss of a command, flag, preset, choice, method or key gets the nearest
+# name; a far one gets none (no guess is better than a wrong one)
+refused "misspelt command" "unknown command 'rendr' \(did you mean 'render'\?\)" rendr
+refused "misspelt flag" "unknown option '--widht' \(did you mean '--width'\? atmo render --help\)" render --widht 8
+refused "misspelt flag with =" "unknown option '--outptu' \(did you mean '--output'\?" render --outptu=out/a.png
+refused "misspelt preset" "unknown preset 'thesis1' \(did you mean 'thesis-1'\? atmo presets lists them\)" render "${small[@]}" --preset thesis1 --output out/a.png
+refused "misspelt presets NAME" "did you mean 'sky-noon'" presets sky-nono
+refused "misspelt choice" "--camera: 'panoramma' is not one of .*did you mean 'panorama'" render "${small[@]}" --camera panoramma --output out/a.png
+refused "misspelt method" "did you mean 'reference'\? use one of" render "${small[@]}" --set atmosphere.method=refrence --output out/a.png
+refused "swapped letters in a choice" "did you mean 'piz'" render "${small[@]}" --exr-compression pzi --output out/a.exr
+refused "far preset: no guess" "^atmo render: unknown preset 'xyzzy'; use one of" render "${small[@]}" --preset xyzzy --output out/a.png
+refused "far flag: no guess" "^atmo render: unknown option '--frobnicate' \(atmo render --help\)$" render --frobnicate
+refused "far key: no guess" "unknown parameter 'qqq.zzz' \(from --set\); atmo params" render "${small[@]}" --set qqq.zzz=1 --output out/a.png
+refused "not an integer" "--width: 'abc' is not an integer \(image.width: use a whole number in \[1, [0-9]+\], e.g. --width [0-9]+\)" render --width abc --output out/a.png
+refused "bool with a value" "--quiet takes no value" render --quiet=yes --output out/a.png
+
+# --help states every default: the help of every flag that takes a value, but the repeatable
+# ones, has "(default ...)"
+"$atmo" render --help >help.txt
+if python3 - help.txt <<'PY'
+import re, sys
+blocks, cur = {}, None
+for line in open(sys.argv[1]):
+    m = re.match(r"  (--[a-z-]+)", line)
+    if m:
+        cur = m.group(1)
+        blocks[cur] = line
+    elif cur and line.startswith("    "):
+        blocks[cur] += line
+    else:
+        cur = None
+valued = [f for f, b in blocks.items() if re.match(r"  --[a-z-]+(, -[a-z])? \S", b)]
+lacking = [f for f in valued if "(default" not in blocks[f] and f not in ("--set", "--animate", "--scene")]
+assert len(valued) >= 20 and not lacking, (len(valued), lacking)
+assert "(default: the scene's; 16 in" in blocks["--samples"], blocks["--samples"]
+PY
+then ok; else bad "--help does not state every default"; fi
+
+# outputs are not overwritten without --force: one line naming the file and --force, the file
+# untouched; with --force it is replaced
+echo "an earlier image" >keep.png
+cp keep.png keep.orig
+refused "existing output" "--output 'keep.png' exists; add --force to overwrite it" render "${small[@]}" --output keep.png
+if cmp -s keep.png keep.orig; then ok; else bad "a refused render changed keep.png"; fi
+echo "{}" >keep.json
+refused "existing report" "--report 'keep.json' exists; add --force" render "${small[@]}" --output out/a.png --report keep.json
+if "$atmo" render "${small[@]}" --force --output keep.png 2>stderr.txt && ! cmp -s keep.png keep.orig; then ok; else bad "--force did not replace keep.png"; cat stderr.txt >&2; fi
+
+# plurals: one sample per pixel is "1 sample/pixel", one image "1 image"
+if "$atmo" render --width 16 --height 8 --samples 1 --output one.pfm 2>one.txt &&
+    grep -q "wrote 1 image (16x8, 1 sample/pixel" one.txt; then ok; else bad "plural: $(cat one.txt)"; fi
+
 # a good render writes every format, completely, and a report
 if "$atmo" render "${small[@]}" --camera panorama --output a.pfm --output a.png --output a.exr \
     --output a.hdr --report run.json --save-scene scene.json 2>stderr.txt; then ok; else bad "render failed"; cat stderr.txt >&2; fi

@@ -36,8 +36,8 @@ refused "scene file" "objects\[0\]\.radius_m.*bad.json" render --width 8 --heigh
 # --save-scene writes the list; the saved scene renders the same bytes, in both modes
 for mode in preview path; do
     args=(--preset thesis-2 --width 12 --height 8 --samples 2 --quiet --set render.mode=$mode)
-    if "$atmo" render "${args[@]}" --save-scene scene.json --output a.pfm 2>err.txt &&
-        "$atmo" render --scene scene.json --output b.pfm 2>>err.txt; then
+    if "$atmo" render "${args[@]}" --force --save-scene scene.json --output a.pfm 2>err.txt &&
+        "$atmo" render --scene scene.json --force --output b.pfm 2>>err.txt; then
         if python3 -c 'import json,sys; d=json.load(open("scene.json")); sys.exit(0 if len(d["objects"]) == 2 and d["objects"][1]["type"] == "box" and d["objects"][1]["albedo"] == [0, 0, 1] else 1)'; then ok; else bad "$mode: saved scene lacks the objects"; fi
         if cmp -s a.pfm b.pfm; then ok; else bad "$mode: the saved scene renders another image"; fi
     else
@@ -49,7 +49,7 @@ done
 for n in 1 2 3 4 5 6 7 8 9; do
     for mode in preview path; do
         if "$atmo" render --preset thesis-$n --width 8 --height 6 --samples 2 --quiet \
-            --set render.mode=$mode --output t.pfm --report r.json 2>err.txt; then
+            --set render.mode=$mode --force --output t.pfm --report r.json 2>err.txt; then
             dropped=$(python3 -c 'import json; print(json.load(open("r.json"))["render"]["nonfinite_samples_dropped"])')
             if [ "$dropped" = 0 ]; then ok; else bad "thesis-$n $mode: $dropped non-finite samples"; fi
         else

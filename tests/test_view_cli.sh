@@ -55,12 +55,16 @@ refused "unknown option" "unknown option '--frobnicate'" --frobnicate
 refused "missing value" "--script needs a value" --script
 refused "screenshot without output" "--screenshot-after N and --output FILE go together" --screenshot-after 4
 refused "output without screenshot" "go together" --output a.png
-refused "bad sample count" "--screenshot-after needs samples per pixel" --screenshot-after 0 --output a.png
+refused "bad sample count" "--screenshot-after: 0 is out of range \(use a whole number in \[1, 1000000\]" --screenshot-after 0 --output a.png
 refused "unknown output format" "unknown image format" --screenshot-after 1 --output a.tif
 refused "capture not png" "--window-capture 'a.pfm' must be a .png" --screenshot-after 1 --output a.png --window-capture a.pfm
 refused "save without extension" "--save 'shots': unknown image format" --save shots
 refused "missing directory" "directory 'nodir' does not exist" --screenshot-after 1 --output nodir/a.png
 refused "bad window size" "--window needs WIDTHxHEIGHT" --window 640
+refused "bad width" "--width: 'abc' is not an integer \(image.width: use a whole number in" --width abc
+refused "width out of range" "--height: 0 is out of range" --height 0
+refused "misspelt flag" "unknown option '--widht' \(did you mean '--width'\?" --widht 64
+refused "misspelt camera" "did you mean 'panorama'" --camera panoramma
 refused "bad key" "unknown key 'sun.zenith'|sun.zenith" --set sun.zenith=3
 refused "spectral mode" "render.spectral_bands" --set render.spectral_bands=15
 refused "preset and scene" "exclude each other" --preset sky-noon --scene x.json

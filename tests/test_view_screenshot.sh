@@ -21,6 +21,8 @@
 #     one step, in a fraction of about 2 * 127 * (relative error) of the values (5e-4 here, 1.3%
 #     for a driver whose pow is good to 1e-4). The test allows one step in at most 2% of the
 #     values; a formula that differs moves most values, or by more than a step.
+#  1b. The same with render's scene shorthands given to the viewer (--width, --height, --seed,
+#     --camera): the image has the size asked for and is bitwise atmo render's.
 #  4. The same for the OpenGL 2.1 / GLSL 1.20 path, forced by telling Mesa to offer no more
 #     than OpenGL 2.1 (MESA_GL_VERSION_OVERRIDE), with the default post settings.
 set -u
@@ -41,6 +43,17 @@ if "$atmo" render "${scene[@]}" --samples 4 --output r.pfm --quiet &&
     if cmp -s r.pfm v.pfm; then ok; else bad "the viewer's PFM differs from atmo render's"; fi
 else
     bad "render or view of the base scene failed"
+fi
+
+# render's scene shorthands in the viewer: --width, --height, --seed and --camera are the keys
+# they stand for, so the screenshot is again bitwise atmo render's with the same flags
+short=(--preset sky-sunset --width 40 --height 20 --seed 3 --camera panorama --set atmosphere.method=single)
+if "$atmo" render "${short[@]}" --samples 4 --output rs.pfm --quiet &&
+    "$atmo" view "${short[@]}" --screenshot-after 4 --output vs.pfm --window 40x20 --quiet &&
+    [ "$(head -c 12 vs.pfm | tr '\n' ' ')" = "PF 40 20 -1." ]; then
+    if cmp -s rs.pfm vs.pfm; then ok; else bad "view with the shorthands differs from atmo render's"; fi
+else
+    bad "render or view with --width/--height/--seed/--camera failed, or the size is not 40x20"
 fi
 
 # tone mapper, transfer, white balance, exposure

@@ -28,12 +28,12 @@ scene=(--width "$size" --height "$size" --samples "$samples" --quiet "$@")
 bands=$((size / 8))
 cpu() { /usr/bin/time -f "%U %S" -o t.txt "$@" && awk '{print $1 + $2}' t.txt; }
 render_s() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['seconds']['render'])" "$1"; }
-"$atmo" render "${scene[@]}" --output warm.pfm
-base=$(cpu "$atmo" render "${scene[@]}" --width 16 --height 16 --samples 1 --output base.pfm)
+"$atmo" render --force "${scene[@]}" --output warm.pfm
+base=$(cpu "$atmo" render --force "${scene[@]}" --width 16 --height 16 --samples 1 --output base.pfm)
 echo "per-process CPU seconds without work: $base"
 echo "band cpu_s render_s"
 for ((b = 1; b <= bands; b++)); do
-    c=$(cpu "$atmo" render "${scene[@]}" --part $b/$bands --output band$b.exr --report band$b.json)
+    c=$(cpu "$atmo" render --force "${scene[@]}" --part $b/$bands --output band$b.exr --report band$b.json)
     echo "$b $(echo "$c - $base" | bc -l) $(render_s band$b.json)"
 done | tee bands.txt
 python3 - "$bands" <<'PY'
@@ -49,15 +49,15 @@ report("contiguous", [list(range(k * bands // 4, (k + 1) * bands // 4)) for k in
 PY
 echo "sample-range split (4 x $((samples / 4)) samples, whole image):"
 for s in 1 2 3 4; do
-    c=$(cpu "$atmo" render "${scene[@]}" --samples $((samples / 4)) --seed $s --output range$s.pfm)
+    c=$(cpu "$atmo" render --force "${scene[@]}" --samples $((samples / 4)) --seed $s --output range$s.pfm)
     echo "range $s cpu_s $(echo "$c - $base" | bc -l)"
 done
 TIMEFORMAT="%R wall seconds, %U + %S CPU seconds"
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "one process:"
-time "$atmo" render "${scene[@]}" --output single.pfm
+time "$atmo" render --force "${scene[@]}" --output single.pfm
 echo "4 parts at once (xargs -P 4), then the merge:"
-time { printf '%s\n' 1 2 3 4 | xargs -P 4 -I{} "$atmo" render "${scene[@]}" --part {}/4 --output p{}.exr
+time { printf '%s\n' 1 2 3 4 | xargs -P 4 -I{} "$atmo" render --force "${scene[@]}" --part {}/4 --output p{}.exr
        "$atmo" merge --quiet p1.exr p2.exr p3.exr p4.exr --output merged.pfm; }
 echo "the merge alone:"
 time "$atmo" merge --quiet p1.exr p2.exr p3.exr p4.exr --output merged2.pfm

@@ -20,7 +20,7 @@ for n in 1 2 3 4 5 6 7 8 9; do
     [ "$n" = 7 ] && samples=64
     file="$out/thesis-$n.png"
     cmd="atmo render --preset thesis-$n --width $width --height $height --samples $samples --output $file"
-    "$atmo" render --preset "thesis-$n" --width "$width" --height "$height" --samples "$samples" \
+    "$atmo" render --force --preset "thesis-$n" --width "$width" --height "$height" --samples "$samples" \
         --output "$file" --quiet
     summary=$("$atmo" presets | awk -v p="thesis-$n" '$1 == p { $1 = ""; sub(/^ +/, ""); print }')
     echo "| \`thesis-$n\` | ![thesis-$n]($file) | $summary | \`$cmd\` |"

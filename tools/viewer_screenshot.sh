@@ -16,7 +16,7 @@ trap 'rm -rf "$tmp"' EXIT
 printf 'press H\n' >"$tmp/keys.txt"
 run=("$atmo" view --preset sky-sunset --set image.width=960 --set image.height=540
      --script "$tmp/keys.txt" --screenshot-after 8 --output "$tmp/image.exr"
-     --window-capture "$out" --window 960x540 --quiet)
+     --window-capture "$out" --window 960x540 --force --quiet)
 if [ -n "${DISPLAY:-}" ]; then
     "${run[@]}"
 else

@@ -31,9 +31,11 @@ int cmd_presets(int argc, char **argv)
     }
     if (name) {
         const atmo_preset *p = atmo_preset_find(name);
+        const char *near = p ? NULL : atmo_preset_closest(name);
         if (!p) {
-            fprintf(stderr, "atmo presets: unknown preset '%s'; run 'atmo presets' for the list\n",
-                    name);
+            fprintf(stderr, "atmo presets: unknown preset '%s'%s%s%s; run 'atmo presets' for the "
+                            "list\n",
+                    name, near ? " (did you mean '" : "", near ? near : "", near ? "'?)" : "");
             return ATMO_ERR_USAGE;
         }
         printf("# %s: %s\n", p->name, p->summary);

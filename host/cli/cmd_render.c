@@ -3,8 +3,9 @@
  * Scene assembly, in this order: the defaults; --preset NAME (default: atmo_default_preset) or
  * --scene FILE; then --set KEY=VALUE and the shorthands (--width, --height, --samples, --seed,
  * --time, --camera) in command-line order. Every output's format and path is checked before
- * anything runs (output_paths.h: directory, name, limits, no two outputs in one file), so a bad
- * argument never costs a render.
+ * anything runs (output_paths.h: directory, name, limits, no two outputs in one file; an
+ * existing file only with --force, overwrite.h), so a bad argument never costs a render. The
+ * flags are one table (cli_flags.h), from which --help is generated with every default.
  *
  * Interrupts: the first SIGINT or SIGTERM sets the render's cancel token; the precompute or the
  * render stops after the launch in flight. Samples already rendered are written, marked
@@ -15,6 +16,7 @@
  * that signal at once. Exit statuses: 0 done, 1 runtime error, 2 usage, 3 interrupted with a
  * partial image written, 4 interrupted with nothing written. */
 #include <cjson/cJSON.h>
+#include <stddef.h>
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -31,75 +33,120 @@
 #include "atmo/render.h"
 #include "atmo/scene.h"
 #include "atmo/spectral_render.h"
+#include "cli_flags.h"
 #include "commands.h"
 #include "frames.h"
 #include "output_paths.h"
 #include "render_passes.h"
+#include "overwrite.h"
 #include "scene_options.h"
 #include "atmo/outputs.h"
 
 #define RENDER_MAX_OUTPUTS 8
 
-static const char render_usage[] =
-    "usage: atmo render [--preset NAME | --scene FILE] [--set KEY=VALUE ...] [options]\n"
-    "\n"
-    "Renders a scene and writes one image per --output (format from the extension):\n"
-    "  .png  8-bit sRGB after white balance, exposure and tone mapping (post.*)\n"
-    "  .hdr  Radiance RGBE, linear     .exr  OpenEXR 32-bit float, linear\n"
-    "  .pfm  portable float map, linear\n"
-    "Linear outputs hold spectral radiance (W m^-2 sr^-1 nm^-1) at render.wavelengths_nm, or\n"
-    "luminance (cd/m^2) with --set render.quantity=luminance. With --set render.spectral_bands=N\n"
-    "(N >= 15) the scene is rendered at N wavelengths over 360-830 nm, three at a time, and\n"
-    "combined through the CIE 1931 colour matching functions into linear sRGB (cd/m^2).\n"
-    "\n"
-    "scene:\n"
-    "  --preset NAME          a built-in scene (atmo presets; default %s)\n"
-    "  --scene FILE           a JSON scene file (atmo params lists every key)\n"
-    "  --set KEY=VALUE        override one parameter, e.g. --set sun.zenith_deg=60 (repeatable)\n"
-    "  --width N, --height N, --samples N, --seed N, --camera perspective|panorama\n"
-    "                         shorthands for image.width, image.height, image.samples,\n"
-    "                         image.seed and camera.kind\n"
-    "  --time SECONDS         shorthand for clouds.time_s: the clouds move with the wind\n"
-    "                         (frames of an animation: --time 0, 1, 2, ... -o NAME.0001.png ...)\n"
-    "  --save-scene FILE      write the fully resolved scene as JSON (rendering it reproduces\n"
-    "                         the image bit for bit); without --output nothing is rendered\n"
-    "output:\n"
-    "  --output FILE          image to write (repeatable; default atmo.png)\n"
-    "  --report FILE          JSON run report: settings, device, samples, stage timings\n"
-    "  --exr-compression C    EXR codec, all lossless: piz (default: smallest), none (fastest,\n"
-    "                         2x the size), zip, zips, rle\n"
-    "progressive (path mode, render.mode=path, and every other render):\n"
-    "  --noise P              stop each tile once its relative standard error is at most P\n"
-    "                         (e.g. 1%% or 0.01; checked at 16, 32, 64, ... samples); the\n"
-    "                         image.samples are the most any tile gets\n"
-    "  --time-limit S         no new launch after S seconds; the image has what was rendered\n"
-    "device:\n"
-    "  --device N|NAME        OpenCL device by index or name part (or ATMO_DEVICE; atmo devices)\n"
-    "  --tile-size N          tile edge in pixels (default 64)\n"
-    "  --launch-budget-ms MS  time per kernel launch to aim for (default 100)\n"
-    "  --dump-kernels DIR     write the assembled OpenCL source to DIR\n"
-    "  --no-kernel-cache      always compile the kernels (cache: ATMO_CACHE_DIR or ~/.cache/atmo)\n"
-    "  --no-lut-cache         always precompute LUTs and Mie tables, and store none (LUTs that\n"
-    "                         take over 20 ms and Mie tables are cached)\n"
-    "  --quiet                no progress output\n"
-    "split and animate (README: Rendering on a cluster):\n"
-    "  --part I/N             render part I of N of the image (its rows in bands of 8, band b\n"
-    "                         in part b mod N + 1) into one --output FILE.exr of raw sums;\n"
-    "                         atmo merge joins the N parts into the image of a single render\n"
-    "  --frames A..B          render frames A to B; each output NAME.EXT becomes NAME.0001.EXT\n"
-    "                         ...; with --part I/N, part I renders frames A+I-1, A+I-1+N, ...\n"
-    "  --animate KEY=V0..V1   move a float key linearly from V0 (frame A) to V1 (frame B)\n"
-    "  --scene-end FILE       move every float and vector key in which the end scene differs\n"
-    "                         from the start: the --preset (none with --scene), FILE, then\n"
-    "                         the same --set options\n"
-    "\n"
-    "Ctrl-C (SIGINT) or SIGTERM stops the precompute or the render after the launch in flight:\n"
-    "the samples finished so far are written, marked partial, with exit status 3; stopped\n"
-    "before any sample, nothing is written and the exit status is 4. A second signal stops at\n"
-    "once and removes the file being written. Exit statuses: 0 done, 1 runtime error, 2 usage\n"
-    "or input error (nothing is rendered), 3 interrupted with a partial image, 4 interrupted\n"
-    "with nothing written.\n";
+/* The flags' destinations (render_flags), holding the defaults before parsing. */
+typedef struct render_args {
+    scene_options so;
+    atmo_render_settings rs;
+    const char *outputs[RENDER_MAX_OUTPUTS];
+    int n_out;
+    const char *report, *save_scene, *part_text, *frames_text, *scene_end;
+    const char *animate[FRAMES_MAX_KEYS];
+    int n_animate;
+    int quiet, force, no_kernel_cache, no_lut_cache, exr_codec;
+    int first, step; /* the frames this process renders: first, first + step, ... */
+} render_args;
 
+static const char *const render_exr_codecs[] = {"piz", "none", "zip", "zips", "rle", NULL};
+
+static int take_noise(void *args, const cli_flag *f, const char *v, atmo_err *e);
+
+#define RENDER_FLAG(member) offsetof(render_args, member)
+
+static const cli_flag render_flags[] = {
+    {.type = CLI_SECTION, .help = "scene:"},
+    {.type = CLI_INCLUDE, .include = scene_option_flags, .offset = RENDER_FLAG(so)},
+    {.type = CLI_PATH, .name = "--save-scene", .offset = RENDER_FLAG(save_scene), .def = "none",
+     .help = "write the fully resolved scene as JSON (rendering it reproduces\n"
+             "the image bit for bit); without --output nothing is rendered"},
+    {.type = CLI_SECTION, .help = "output:"},
+    {.type = CLI_PATH, .name = "--output", .alias = "-o", .offset = RENDER_FLAG(outputs),
+     .repeat = RENDER_MAX_OUTPUTS, .count_offset = RENDER_FLAG(n_out), .def = "atmo.png",
+     .help = "image to write, format from the extension (repeatable)"},
+    {.type = CLI_BOOL, .name = "--force", .offset = RENDER_FLAG(force),
+     .help = "overwrite outputs that exist (without it an existing file is an\nerror)"},
+    {.type = CLI_PATH, .name = "--report", .offset = RENDER_FLAG(report), .def = "none",
+     .help = "JSON run report: settings, device, samples, stage timings"},
+    {.type = CLI_ENUM, .name = "--exr-compression", .offset = RENDER_FLAG(exr_codec),
+     .choices = render_exr_codecs,
+     .help = "EXR codec, all lossless: piz is the smallest, none the fastest\n(2x the size)"},
+    {.type = CLI_SECTION, .help = "progressive (every render, path mode included):"},
+    {.type = CLI_STRING, .name = "--noise", .metavar = "P", .take = take_noise, .def = "off",
+     .help = "stop each tile once its relative standard error is at most P\n"
+             "(e.g. 1% or 0.01; checked at 16, 32, 64, ... samples); the\n"
+             "image.samples are the most any tile gets"},
+    {.type = CLI_FLOAT, .name = "--time-limit", .metavar = "S", .min = 0.0, .max = 1e7,
+     .open_min = 1, .offset = RENDER_FLAG(rs.time_limit_s), .def = "none",
+     .help = "no new launch after S seconds; the image has what was rendered"},
+    {.type = CLI_SECTION, .help = "device:"},
+    {.type = CLI_STRING, .name = "--device", .metavar = "N|NAME", .offset = RENDER_FLAG(rs.device),
+     .def = "$ATMO_DEVICE, else the first GPU, else the first device",
+     .help = "OpenCL device by index or name part (atmo devices)"},
+    {.type = CLI_INT, .name = "--tile-size", .min = 8, .max = 4096,
+     .offset = RENDER_FLAG(rs.tile_size), .help = "tile edge in pixels"},
+    {.type = CLI_FLOAT, .name = "--launch-budget-ms", .metavar = "MS", .min = 1.0, .max = 1e5,
+     .offset = RENDER_FLAG(rs.launch_budget_ms), .help = "time per kernel launch to aim for"},
+    {.type = CLI_PATH, .name = "--dump-kernels", .metavar = "DIR", .offset = RENDER_FLAG(rs.dump_dir),
+     .def = "none", .help = "write the assembled OpenCL source to DIR"},
+    {.type = CLI_BOOL, .name = "--no-kernel-cache", .offset = RENDER_FLAG(no_kernel_cache),
+     .help = "always compile the kernels (cache: ATMO_CACHE_DIR or ~/.cache/atmo)"},
+    {.type = CLI_BOOL, .name = "--no-lut-cache", .offset = RENDER_FLAG(no_lut_cache),
+     .help = "always precompute LUTs and Mie tables, and store none (LUTs that\n"
+             "take over 20 ms and Mie tables are cached)"},
+    {.type = CLI_BOOL, .name = "--quiet", .alias = "-q", .offset = RENDER_FLAG(quiet),
+     .help = "no progress output"},
+    {.type = CLI_SECTION, .help = "split and animate (docs: rendering on a cluster):"},
+    {.type = CLI_STRING, .name = "--part", .metavar = "I/N", .offset = RENDER_FLAG(part_text),
+     .def = "the whole image",
+     .help = "render part I of N of the image (its rows in bands of 8, band b\n"
+             "in part b mod N + 1) into one --output FILE.exr of raw sums;\n"
+             "atmo merge joins the N parts into the image of a single render"},
+    {.type = CLI_STRING, .name = "--frames", .metavar = "A..B", .offset = RENDER_FLAG(frames_text),
+     .def = "one image, not numbered",
+     .help = "render frames A to B; each output NAME.EXT becomes NAME.0001.EXT\n"
+             "...; with --part I/N, part I renders frames A+I-1, A+I-1+N, ..."},
+    {.type = CLI_STRING, .name = "--animate", .metavar = "KEY=V0..V1", .offset = RENDER_FLAG(animate),
+     .repeat = FRAMES_MAX_KEYS, .count_offset = RENDER_FLAG(n_animate),
+     .help = "move a float key linearly from V0 (frame A) to V1 (frame B)"},
+    {.type = CLI_PATH, .name = "--scene-end", .offset = RENDER_FLAG(scene_end), .def = "none",
+     .help = "move every float and vector key in which the end scene differs\n"
+             "from the start: the --preset (none with --scene), FILE, then\n"
+             "the same --set options"},
+    {.type = CLI_END},
+};
+
+static const cli_command render_cli = {
+    .name = "render",
+    .synopsis = "[--preset NAME | --scene FILE] [--set KEY=VALUE ...] [options]",
+    .about =
+        "Renders a scene and writes one image per --output (format from the extension):\n"
+        "  .png  8-bit sRGB after white balance, exposure and tone mapping (post.*)\n"
+        "  .hdr  Radiance RGBE, linear     .exr  OpenEXR 32-bit float, linear\n"
+        "  .pfm  portable float map, linear\n"
+        "Linear outputs hold spectral radiance (W m^-2 sr^-1 nm^-1) at render.wavelengths_nm, or\n"
+        "luminance (cd/m^2) with --set render.quantity=luminance. With --set render.spectral_bands=N\n"
+        "(N >= 15) the scene is rendered at N wavelengths over 360-830 nm, three at a time, and\n"
+        "combined through the CIE 1931 colour matching functions into linear sRGB (cd/m^2).\n"
+        "An output that exists is not replaced unless --force is given.\n",
+    .flags = render_flags,
+    .epilogue =
+        "Ctrl-C (SIGINT) or SIGTERM stops the precompute or the render after the launch in flight:\n"
+        "the samples finished so far are written, marked partial, with exit status 3; stopped\n"
+        "before any sample, nothing is written and the exit status is 4. A second signal stops at\n"
+        "once and removes the file being written. Exit statuses: 0 done, 1 runtime error, 2 usage\n"
+        "or input error (nothing is rendered), 3 interrupted with a partial image, 4 interrupted\n"
+        "with nothing written.\n",
+};
 /* What the signal handler uses: a handler takes no user data, so this file holds the one token
  * that the render it starts is given (atmo_render_settings.cancel), and the temporary names of
  * the outputs (atmo_tmp_path), computed before the handler is installed. */
@@ -215,16 +262,6 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     return rc;
 }
 
-static int parse_int_arg(const char *opt, const char *v, int lo, int hi, int *out, atmo_err *e)
-{
-    double x = 0.0;
-    if (!v || !atmo_parse_decimal(v, &x) || x != floor(x) || x < lo || x > hi)
-        return atmo_fail(e, ATMO_ERR_USAGE, "%s needs a whole number in [%d, %d] written as "
-                         "decimal digits, got '%s'", opt, lo, hi, v ? v : "");
-    *out = (int)x;
-    return ATMO_OK;
-}
-
 /* --noise: "1%" or a fraction "0.01", in (0, 1]. */
 static int parse_noise(const char *v, double *out, atmo_err *e)
 {
@@ -243,25 +280,109 @@ static int parse_noise(const char *v, double *out, atmo_err *e)
     return ATMO_OK;
 }
 
+/* Render one scene (a frame) to res (or part): plan it, then install the signal handler (*old
+ * gets the handlers it replaced, *installed 1), then render. The handler stays until the files
+ * are written: a signal then lets the writing finish. Returns the status; an error leaves its
+ * message in e. */
+static int render_run(const render_args *a, const atmo_scene *scene, atmo_render_settings *rs,
+                      int part_file, atmo_render_result *res, atmo_part *part,
+                      struct sigaction old[2], int *installed, atmo_err *e)
+{
+    int rc, lut_cache = !a->no_lut_cache;
+    /* spectral mode plans each triplet of bands itself */
+    int spectral = scene->render.spectral_bands > 0;
+    atmo_plan plan;
+    if (!spectral && (rc = atmo_plan_make_cached(scene, lut_cache, lut_cache, &plan, e)))
+        return rc;
+    handle_signals(1, old);
+    *installed = 1;
+    char *scene_json = part_file ? atmo_scene_to_json(scene) : NULL;
+    if (part_file && !scene_json)
+        rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the scene's text");
+    else if (part_file && !(rc = atmo_part_alloc(part, plan.width, plan.height, rs->part,
+                                                 rs->parts, scene_json, e)))
+        rc = atmo_render_part(&plan, rs, res, part, e);
+    else if (!part_file)
+        rc = spectral ? atmo_spectral_render(scene, lut_cache, rs, res, e)
+                      : atmo_render(&plan, rs, res, e);
+    free(scene_json);
+    if (!spectral)
+        atmo_plan_free(&plan);
+    if (rc == ATMO_OK && res->interrupted && res->samples_max == 0)
+        rc = atmo_fail(e, ATMO_INTERRUPTED_EMPTY, "interrupted before the first sample");
+    return rc;
+}
+
+/* post: the lens flare, on the linear image every output gets */
+static void render_flare(const atmo_scene *scene, atmo_render_result *res, atmo_flare_info *flare)
+{
+    atmo_flare_camera fc = {.width = res->width, .height = res->height,
+                            .tan_half_fov = tan(0.5 * scene->camera.fov_deg * M_PI / 180.0),
+                            .sun_radius_rad = scene->sun.angular_radius_deg * M_PI / 180.0};
+    atmo_camera_basis(scene->camera.pitch_deg, scene->camera.yaw_deg, fc.forward, fc.right,
+                      fc.up);
+    atmo_sun_direction(scene->sun.zenith_deg, scene->sun.azimuth_deg, fc.sun);
+    atmo_flare_apply(res->rgb, &fc, scene->post.flare_strength, flare);
+}
+
+/* outputs: the images with the render passes as EXR layers, or the part's raw sums; then the
+ * report. *seconds_write gets the images' time. */
+static int render_write(const render_args *a, const atmo_scene *scene,
+                        const atmo_render_settings *rs, const atmo_render_result *res,
+                        const atmo_part *part, const atmo_flare_info *flare,
+                        const char *const *outputs, int n_out, const char *report,
+                        double *seconds_write, atmo_err *e)
+{
+    int rc, part_file = part->width > 0;
+    double tw = atmo_now_seconds();
+    atmo_image img = {.width = res->width, .height = res->height, .rgb = res->rgb};
+    atmo_image_layer layers[RENDER_PASS_LAYERS];
+    float *layer_data = NULL;
+    img.layer_count = part_file ? 0 : render_pass_layers(res, layers, &layer_data);
+    img.layers = layers;
+    int exr = atmo_exr_compression_from_name(render_exr_codecs[a->exr_codec]);
+    if (img.layer_count < 0)
+        rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the render passes");
+    else
+        rc = part_file ? atmo_part_write(outputs[0], part, e)
+                       : atmo_outputs_write(scene, &img, res->samples_min, res->interrupted, exr,
+                                            outputs, n_out, e);
+    *seconds_write = atmo_now_seconds() - tw;
+    if (!rc && report)
+        rc = write_report(report, scene, res, rs, outputs, n_out, *seconds_write, img.layers,
+                          img.layer_count > 0 ? img.layer_count : 0, flare, e);
+    free(layer_data);
+    return rc;
+}
+
+/* "wrote 1 image (16x8, 1 sample/pixel) in 0.42s: ..." */
+static void render_summary(const atmo_render_result *res, int n_out, int spectral,
+                           double seconds_write)
+{
+    fprintf(stderr, "atmo render: wrote %d image%s (%dx%d, %d sample%s/pixel%s) in %.2fs: "
+                    "%.2fs device, %.2fs build%s, %.2fs precompute%s, %.2fs render, %.2fs "
+                    "read-back, %.2fs write on %s\n",
+            n_out, n_out == 1 ? "" : "s", res->width, res->height, res->samples_min,
+            res->samples_min == 1 ? "" : "s", spectral ? ", spectral mode" : "",
+            res->seconds_device + res->seconds_build + res->seconds_precompute +
+                res->seconds_render + res->seconds_read + seconds_write,
+            res->seconds_device, res->seconds_build, res->kernel_cache_hit ? " (cached)" : "",
+            res->seconds_precompute, res->lut_cache_hit ? " (cached)" : "", res->seconds_render,
+            res->seconds_read, seconds_write, res->device_name);
+}
+
 /* Render one scene (a frame) and write its files: the images, or with part_file the part's raw
  * sums (outputs[0]); then the report. Returns the exit status; errors are printed. */
-static int render_frame(const atmo_scene *scene_in, atmo_render_settings *rs_in, int lut_cache,
-                        int quiet, int part_file, int exr_compression,
+static int render_frame(const render_args *a, const atmo_scene *scene, int part_file,
                         const char *const *outputs, int n_out, const char *report)
 {
     atmo_err e = {{0}};
-    atmo_scene scene = *scene_in;
-    atmo_render_settings rs = *rs_in;
+    atmo_render_settings rs = a->rs;
     atmo_render_result res = {0};
     atmo_part part = {0};
-    int rc = ATMO_OK;
-    /* spectral mode plans each triplet of bands itself */
-    int spectral = scene.render.spectral_bands > 0;
-    atmo_plan plan;
-    if (!spectral && (rc = atmo_plan_make_cached(&scene, lut_cache, lut_cache, &plan, &e)))
-        goto runtime_error;
+    atmo_flare_info flare = {0};
+    double seconds_write = 0.0;
 
-    /* the handler stays until the files are written: a signal then lets the writing finish */
     atmo_cancel_clear(&render_cancel);
     signals_seen = 0;
     pending_count = 0;
@@ -271,98 +392,36 @@ static int render_frame(const atmo_scene *scene_in, atmo_render_settings *rs_in,
         atmo_tmp_path(report, pending_tmp[pending_count++]);
     rs.cancel = &render_cancel;
     struct sigaction old[2];
-    handle_signals(1, old);
-    char *scene_json = part_file ? atmo_scene_to_json(&scene) : NULL;
-    if (part_file && !scene_json)
-        rc = atmo_fail(&e, ATMO_ERR_RUNTIME, "out of memory for the scene's text");
-    else if (part_file && !(rc = atmo_part_alloc(&part, plan.width, plan.height, rs.part,
-                                                 rs.parts, scene_json, &e)))
-        rc = atmo_render_part(&plan, &rs, &res, &part, &e);
-    else if (!part_file)
-        rc = spectral ? atmo_spectral_render(&scene, lut_cache, &rs, &res, &e)
-                      : atmo_render(&plan, &rs, &res, &e);
-    free(scene_json);
-    if (!spectral)
-        atmo_plan_free(&plan);
-    if (rc == ATMO_ERR_RUNTIME || rc == ATMO_ERR_USAGE) {
-        handle_signals(0, old);
-        goto runtime_error;
-    }
-    if (rc == ATMO_OK && res.interrupted && res.samples_max == 0) {
-        atmo_fail(&e, ATMO_INTERRUPTED_EMPTY, "interrupted before the first sample");
-        rc = ATMO_INTERRUPTED_EMPTY;
-    }
-    if (rc) { /* interrupted before any result */
+    int installed = 0;
+    int rc = render_run(a, scene, &rs, part_file, &res, &part, old, &installed, &e);
+    if (rc == ATMO_INTERRUPTED_EMPTY) /* interrupted before any result */
         fprintf(stderr, "atmo render: %s; no image written (exit status %d)\n", e.msg, rc);
-        handle_signals(0, old);
-        atmo_render_result_free(&res);
-        atmo_part_free(&part);
-        return rc;
-    }
-    if (res.interrupted)
+    if (!rc && res.interrupted)
         fprintf(stderr, "atmo render: interrupted; writing %d to %d of %d samples per pixel "
                         "(exit status %d)\n",
                 res.samples_min, res.samples_max, res.samples_requested,
                 ATMO_INTERRUPTED_PARTIAL);
-    if (res.nonfinite)
-        fprintf(stderr, "atmo render: warning: %u non-finite samples were dropped (a bug; please "
-                        "report it with the scene)\n", res.nonfinite);
-
-    /* post: the lens flare, on the linear image every output gets */
-    atmo_flare_info flare = {0};
-    if (!part_file && scene.post.flare && scene.camera.kind == ATMO_CAMERA_PERSPECTIVE) {
-        atmo_flare_camera fc = {.width = res.width, .height = res.height,
-                                .tan_half_fov = tan(0.5 * scene.camera.fov_deg * M_PI / 180.0),
-                                .sun_radius_rad = scene.sun.angular_radius_deg * M_PI / 180.0};
-        atmo_camera_basis(scene.camera.pitch_deg, scene.camera.yaw_deg, fc.forward, fc.right,
-                          fc.up);
-        atmo_sun_direction(scene.sun.zenith_deg, scene.sun.azimuth_deg, fc.sun);
-        atmo_flare_apply(res.rgb, &fc, scene.post.flare_strength, &flare);
-    }
-
-    /* outputs: the images with the render passes as EXR layers, or the part's raw sums */
-    double tw = atmo_now_seconds();
-    atmo_image img = {.width = res.width, .height = res.height, .rgb = res.rgb};
-    atmo_image_layer layers[RENDER_PASS_LAYERS];
-    float *layer_data = NULL;
-    img.layer_count = part_file ? 0 : render_pass_layers(&res, layers, &layer_data);
-    img.layers = layers;
-    if (img.layer_count < 0)
-        rc = atmo_fail(&e, ATMO_ERR_RUNTIME, "out of memory for the render passes");
-    else
-        rc = part_file ? atmo_part_write(outputs[0], &part, &e)
-                       : atmo_outputs_write(&scene, &img, res.samples_min, res.interrupted,
-                                            exr_compression, outputs, n_out, &e);
-    double seconds_write = atmo_now_seconds() - tw;
-    if (!rc && report)
-        rc = write_report(report, &scene, &res, &rs, outputs, n_out, seconds_write, img.layers,
-                          img.layer_count > 0 ? img.layer_count : 0, &flare, &e);
-    free(layer_data);
-    handle_signals(0, old);
-    if (rc)
-        goto runtime_error;
-    if (!quiet)
-        fprintf(stderr, "atmo render: wrote %d image%s (%dx%d, %d samples/pixel%s) in %.2fs: "
-                        "%.2fs device, %.2fs build%s, %.2fs precompute%s, %.2fs render, %.2fs "
-                        "read-back, %.2fs write on %s\n",
-                n_out, n_out > 1 ? "s" : "", res.width, res.height, res.samples_min,
-                spectral ? ", spectral mode" : "",
-                res.seconds_device + res.seconds_build + res.seconds_precompute +
-                    res.seconds_render + res.seconds_read + seconds_write,
-                res.seconds_device, res.seconds_build, res.kernel_cache_hit ? " (cached)" : "",
-                res.seconds_precompute, res.lut_cache_hit ? " (cached)" : "", res.seconds_render,
-                res.seconds_read, seconds_write, res.device_name);
-    rc = res.interrupted ? ATMO_INTERRUPTED_PARTIAL : ATMO_OK;
+    if (!rc && res.nonfinite)
+        fprintf(stderr, "atmo render: warning: %u non-finite sample%s dropped (a bug; "
+                        "please report it with the scene)\n",
+                res.nonfinite, res.nonfinite == 1 ? " was" : "s were");
+    if (!rc && !part_file && scene->post.flare && scene->camera.kind == ATMO_CAMERA_PERSPECTIVE)
+        render_flare(scene, &res, &flare);
+    if (!rc)
+        rc = render_write(a, scene, &rs, &res, &part, &flare, outputs, n_out, report,
+                          &seconds_write, &e);
+    if (installed)
+        handle_signals(0, old);
+    if (rc && rc != ATMO_INTERRUPTED_EMPTY)
+        fprintf(stderr, "atmo render: %s\n", e.msg);
+    if (!rc && !a->quiet)
+        render_summary(&res, n_out, scene->render.spectral_bands > 0, seconds_write);
+    if (!rc && res.interrupted)
+        rc = ATMO_INTERRUPTED_PARTIAL;
     atmo_render_result_free(&res);
     atmo_part_free(&part);
-    return rc;
-runtime_error:
-    atmo_render_result_free(&res);
-    atmo_part_free(&part);
-    fprintf(stderr, "atmo render: %s\n", e.msg);
     return rc;
 }
-
 
 /* "I/N" with 1 <= I <= N <= 4096. */
 static int parse_part(const char *text, int *part, int *parts, atmo_err *e)
@@ -427,223 +486,163 @@ static int check_frame_paths(const char *const *outputs, int n_out, const char *
     return rc;
 }
 
+/* --noise: "1%" or a fraction "0.01", in (0, 1]. */
+static int take_noise(void *args, const cli_flag *f, const char *v, atmo_err *e)
+{
+    (void)f;
+    return parse_noise(v, &((render_args *)args)->rs.noise_target, e);
+}
+
+/* animation: the frames' scenes, each checked before any work */
+static int render_animation(const render_args *a, const atmo_scene *scene, frames_animation *anim,
+                            atmo_err *e)
+{
+    int rc = ATMO_OK;
+    if (a->frames_text && (rc = frames_parse_range(a->frames_text, &anim->first, &anim->last, e)))
+        return rc;
+    if (!a->frames_text && (a->n_animate || a->scene_end))
+        return atmo_fail(e, ATMO_ERR_USAGE, "--animate and --scene-end need --frames A..B");
+    for (int i = 0; i < a->n_animate && !rc; i++)
+        rc = frames_add_animate(anim, a->animate[i], e);
+    if (!rc && a->scene_end) {
+        atmo_scene end; /* the start's base (defaults or the preset), then FILE, then the --set */
+        if (!(rc = scene_options_scene(&a->so, a->scene_end, &end, e)))
+            rc = frames_add_scene_end(anim, scene, &end, a->scene_end, e);
+    }
+    for (int f = anim->first; a->frames_text && f <= anim->last && !rc; f++) {
+        atmo_scene frame;
+        rc = frames_scene(anim, scene, f, &frame, e);
+    }
+    return rc;
+}
+
+/* Every file this render writes may be written: no existing file without --force (each frame's
+ * numbered names with --frames). */
+static int render_check_overwrite(const render_args *a, const frames_animation *anim,
+                                  atmo_err *e)
+{
+    int rc = ATMO_OK;
+    for (int f = a->first; f <= anim->last && !rc; f += a->step)
+        for (int i = 0; i <= a->n_out + 1 && !rc; i++) {
+            const char *path = i < a->n_out ? a->outputs[i] : i == a->n_out ? a->report
+                                                                             : a->save_scene;
+            const char *option = i < a->n_out ? "--output" : i == a->n_out ? "--report"
+                                                                           : "--save-scene";
+            char name[ATMO_TMP_PATH_MAX];
+            if (!path)
+                continue;
+            if (a->frames_text && path != a->save_scene &&
+                frames_path(path, f, name, sizeof name))
+                path = name;
+            rc = overwrite_check(option, path, a->force, e);
+        }
+    return rc;
+}
+
+/* outputs: formats and paths, before any work; the same file twice is one output */
+static int render_outputs(render_args *a, const frames_animation *anim, output_paths *files,
+                          atmo_err *e)
+{
+    int rc;
+    if (a->n_out == 0 && !a->save_scene)
+        a->outputs[a->n_out++] = "atmo.png";
+    for (int i = 0; i < a->n_out; i++) {
+        if (atmo_image_format_from_path(a->outputs[i]) < 0)
+            return atmo_fail(e, ATMO_ERR_USAGE,
+                             "--output '%s': unknown image format (use .png, .hdr, .exr or .pfm)",
+                             a->outputs[i]);
+        if ((rc = output_paths_add(files, "--output", a->outputs[i], e)))
+            return rc;
+    }
+    a->n_out = files->count;
+    for (int i = 0; i < a->n_out; i++)
+        a->outputs[i] = files->path[i];
+    if ((a->report && (rc = output_paths_add(files, "--report", a->report, e))) ||
+        (a->save_scene && (rc = output_paths_add(files, "--save-scene", a->save_scene, e))))
+        return rc;
+    /* numbered names: the longest (the last frame's) is checked like the others */
+    if (a->frames_text && (rc = check_frame_paths(a->outputs, a->n_out, a->report, anim->last, e)))
+        return rc;
+    return render_check_overwrite(a, anim, e);
+}
+
+/* Render frames first, first + step, ... to the last (one image without --frames). */
+static int render_frames(const render_args *a, const atmo_scene *scene,
+                         const frames_animation *anim)
+{
+    int rc = ATMO_OK, part_file = a->part_text && !a->frames_text;
+    for (int f = a->first; f <= anim->last && !rc; f += a->step) {
+        char names[RENDER_MAX_OUTPUTS][ATMO_TMP_PATH_MAX], report_name[ATMO_TMP_PATH_MAX];
+        const char *frame_outputs[RENDER_MAX_OUTPUTS];
+        atmo_scene frame = *scene;
+        atmo_err e = {{0}};
+        for (int i = 0; i < a->n_out; i++) {
+            frame_outputs[i] = a->outputs[i];
+            if (a->frames_text) {
+                frames_path(a->outputs[i], f, names[i], sizeof names[i]);
+                frame_outputs[i] = names[i];
+            }
+        }
+        if (a->frames_text && a->report)
+            frames_path(a->report, f, report_name, sizeof report_name);
+        if (a->frames_text && (rc = frames_scene(anim, scene, f, &frame, &e)))
+            return cli_fail(&render_cli, rc, &e);
+        rc = render_frame(a, &frame, part_file, frame_outputs, a->n_out,
+                          a->frames_text ? (a->report ? report_name : NULL) : a->report);
+    }
+    return rc;
+}
+
+/* The scene, the animation, the parts and the outputs, all checked before any work. */
+static int render_prepare(render_args *a, atmo_scene *scene, frames_animation *anim,
+                          output_paths *files, atmo_err *e)
+{
+    int rc;
+    if ((rc = scene_options_scene(&a->so, NULL, scene, e)) ||
+        (rc = render_animation(a, scene, anim, e)))
+        return rc;
+    /* parts: one EXR of raw sums per part of one image, or whole frames per part */
+    if (a->part_text &&
+        ((rc = parse_part(a->part_text, &a->rs.part, &a->rs.parts, e)) ||
+         (rc = check_part(scene, a->rs.parts, a->frames_text != NULL, a->outputs, a->n_out, e))))
+        return rc;
+    a->first = anim->first;
+    a->step = 1;
+    if (a->frames_text && a->part_text) { /* part I of N: frames A + I - 1, A + I - 1 + N, ... */
+        a->first += a->rs.part - 1;
+        a->step = a->rs.parts;
+        a->rs.part = a->rs.parts = 0;
+    }
+    return render_outputs(a, anim, files, e);
+}
+
 int cmd_render(int argc, char **argv)
 {
     atmo_err e = {{0}};
     atmo_scene scene;
-    atmo_render_settings rs;
-    const char *report = NULL, *save_scene = NULL;
-    const char *part_text = NULL, *frames_text = NULL, *scene_end = NULL;
-    const char *animate[FRAMES_MAX_KEYS];
-    int n_animate = 0;
-    const char *outputs[RENDER_MAX_OUTPUTS];
-    scene_options so;
-    int n_out = 0, quiet = 0, lut_cache = 1, rc = ATMO_OK;
-    int exr_compression = ATMO_EXR_DEFAULT;
-    output_paths files = {0};
-    atmo_render_settings_default(&rs);
-    scene_options_init(&so, "render", 1);
-
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            printf(render_usage, atmo_default_preset);
-            return ATMO_OK;
-        }
-        int taken = scene_options_take(&so, argc, argv, &i);
-        if (taken < 0)
-            return ATMO_ERR_USAGE;
-        if (taken)
-            continue;
-        if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
-            quiet = 1;
-            continue;
-        }
-        if (strcmp(a, "--no-kernel-cache") == 0) {
-            rs.use_kernel_cache = 0;
-            continue;
-        }
-        if (strcmp(a, "--no-lut-cache") == 0) {
-            lut_cache = 0;
-            continue;
-        }
-        static const char *const with_value[] = {
-            "--output", "-o", "--report", "--save-scene",
-            "--noise", "--time-limit", "--device", "--dump-kernels", "--tile-size", "--launch-budget-ms",
-            "--part", "--frames", "--animate", "--scene-end",
-            "--exr-compression", NULL};
-        int known = 0;
-        for (int k = 0; with_value[k]; k++)
-            known |= strcmp(a, with_value[k]) == 0;
-        if (!known) {
-            fprintf(stderr, "atmo render: %s '%s' (atmo render --help)\n",
-                    a[0] == '-' ? "unknown option" : "unexpected argument", a);
-            return ATMO_ERR_USAGE;
-        }
-        if (!v) {
-            fprintf(stderr, "atmo render: %s needs a value (atmo render --help)\n", a);
-            return ATMO_ERR_USAGE;
-        }
-        i++;
-        if (strcmp(a, "--output") == 0 || strcmp(a, "-o") == 0) {
-            if (n_out == RENDER_MAX_OUTPUTS) {
-                fprintf(stderr, "atmo render: more than %d --output options\n", RENDER_MAX_OUTPUTS);
-                return ATMO_ERR_USAGE;
-            }
-            outputs[n_out++] = v;
-        } else if (strcmp(a, "--report") == 0)
-            report = v;
-        else if (strcmp(a, "--save-scene") == 0)
-            save_scene = v;
-        else if (strcmp(a, "--device") == 0)
-            rs.device = v;
-        else if (strcmp(a, "--dump-kernels") == 0)
-            rs.dump_dir = v;
-        else if (strcmp(a, "--exr-compression") == 0) {
-            if ((exr_compression = atmo_exr_compression_from_name(v)) < 0) {
-                rc = atmo_fail(&e, ATMO_ERR_USAGE, "--exr-compression '%s': use piz, none, zip, "
-                               "zips or rle", v);
-                goto usage_error;
-            }
-        }
-        else if (strcmp(a, "--tile-size") == 0) {
-            if ((rc = parse_int_arg(a, v, 8, 4096, &rs.tile_size, &e)))
-                goto usage_error;
-        } else if (strcmp(a, "--launch-budget-ms") == 0) {
-            char *end;
-            rs.launch_budget_ms = strtod(v, &end);
-            if (*v == 0 || *end != 0 || !(rs.launch_budget_ms >= 1.0 && rs.launch_budget_ms <= 1e5)) {
-                rc = atmo_fail(&e, ATMO_ERR_USAGE,
-                               "--launch-budget-ms needs milliseconds in [1, 100000], got '%s'", v);
-                goto usage_error;
-            }
-        } else if (strcmp(a, "--noise") == 0) {
-            if ((rc = parse_noise(v, &rs.noise_target, &e)))
-                goto usage_error;
-        } else if (strcmp(a, "--time-limit") == 0) {
-            char *end;
-            rs.time_limit_s = strtod(v, &end);
-            if (*v == 0 || *end != 0 || !(rs.time_limit_s > 0.0 && rs.time_limit_s <= 1e7)) {
-                rc = atmo_fail(&e, ATMO_ERR_USAGE,
-                               "--time-limit needs seconds in (0, 1e7], got '%s'", v);
-                goto usage_error;
-            }
-        } else if (strcmp(a, "--part") == 0)
-            part_text = v;
-        else if (strcmp(a, "--frames") == 0)
-            frames_text = v;
-        else if (strcmp(a, "--scene-end") == 0)
-            scene_end = v;
-        else if (strcmp(a, "--animate") == 0) {
-            if (n_animate == FRAMES_MAX_KEYS) {
-                fprintf(stderr, "atmo render: more than %d --animate options\n", FRAMES_MAX_KEYS);
-                return ATMO_ERR_USAGE;
-            }
-            animate[n_animate++] = v;
-        }
-    }
-
-    /* scene */
-    if ((rc = scene_options_scene(&so, NULL, &scene, &e)))
-        goto usage_error;
-
-    /* animation: the frames' scenes, each checked before any work */
+    render_args a = {0};
     frames_animation anim = {0};
-    if (frames_text && (rc = frames_parse_range(frames_text, &anim.first, &anim.last, &e)))
-        goto usage_error;
-    if (!frames_text && (n_animate || scene_end)) {
-        rc = atmo_fail(&e, ATMO_ERR_USAGE, "--animate and --scene-end need --frames A..B");
-        goto usage_error;
-    }
-    for (int i = 0; i < n_animate && !rc; i++)
-        rc = frames_add_animate(&anim, animate[i], &e);
-    if (!rc && scene_end) {
-        atmo_scene end; /* the start's base (defaults or the preset), then FILE, then the --set */
-        if (!(rc = scene_options_scene(&so, scene_end, &end, &e)))
-            rc = frames_add_scene_end(&anim, &scene, &end, scene_end, &e);
-    }
-    for (int f = anim.first; frames_text && f <= anim.last && !rc; f++) {
-        atmo_scene frame;
-        rc = frames_scene(&anim, &scene, f, &frame, &e);
-    }
-    if (rc)
-        goto usage_error;
-
-    /* parts: one EXR of raw sums per part of one image, or whole frames per part */
-    if (part_text && ((rc = parse_part(part_text, &rs.part, &rs.parts, &e)) ||
-                      (rc = check_part(&scene, rs.parts, frames_text != NULL, outputs, n_out, &e))))
-        goto usage_error;
-    int part_file = part_text && !frames_text;
-    int frame_first = frames_text ? anim.first : 0, frame_last = frames_text ? anim.last : 0;
-    int frame_step = 1;
-    if (frames_text && part_text) { /* part I of N: frames A + I - 1, A + I - 1 + N, ... */
-        frame_first += rs.part - 1;
-        frame_step = rs.parts;
-        rs.part = rs.parts = 0;
-    }
-
-    /* outputs: formats and paths, before any work; the same file twice is one output */
-    if (n_out == 0 && !save_scene)
-        outputs[n_out++] = "atmo.png";
-    for (int i = 0; i < n_out; i++) {
-        if (atmo_image_format_from_path(outputs[i]) < 0) {
-            rc = atmo_fail(&e, ATMO_ERR_USAGE,
-                           "--output '%s': unknown image format (use .png, .hdr, .exr or .pfm)",
-                           outputs[i]);
-            goto usage_error;
-        }
-        if ((rc = output_paths_add(&files, "--output", outputs[i], &e)))
-            goto usage_error;
-    }
-    n_out = files.count;
-    for (int i = 0; i < n_out; i++)
-        outputs[i] = files.path[i];
-    if ((report && (rc = output_paths_add(&files, "--report", report, &e))) ||
-        (save_scene && (rc = output_paths_add(&files, "--save-scene", save_scene, &e))))
-        goto usage_error;
-    /* numbered names: the longest (the last frame's) is checked like the others */
-    if (frames_text && (rc = check_frame_paths(outputs, n_out, report, anim.last, &e)))
-        goto usage_error;
-    if (save_scene && (rc = atmo_scene_save_json(&scene, save_scene, &e)))
-        goto runtime_error;
-    if (n_out > 0 && frame_first > frame_last && !quiet)
-        fprintf(stderr, "atmo render: part %d/%d of frames %d..%d has no frame to render\n",
-                frame_first - anim.first + 1, frame_step, anim.first, anim.last);
-    if (n_out == 0 || frame_first > frame_last) {
+    output_paths files = {0};
+    int rc;
+    atmo_render_settings_default(&a.rs);
+    scene_options_init(&a.so);
+    if (!cli_parse(&render_cli, &a, argc, argv, NULL, NULL, &rc))
+        return rc;
+    a.rs.use_kernel_cache = !a.no_kernel_cache;
+    if ((rc = render_prepare(&a, &scene, &anim, &files, &e))) {
         output_paths_free(&files);
-        return ATMO_OK;
+        return cli_fail(&render_cli, rc, &e);
     }
-
-    rs.progress = quiet ? 0 : (isatty(STDERR_FILENO) ? 2 : 1);
-    for (int f = frame_first; f <= frame_last && !rc; f += frame_step) {
-        char names[RENDER_MAX_OUTPUTS][ATMO_TMP_PATH_MAX], report_name[ATMO_TMP_PATH_MAX];
-        const char *frame_outputs[RENDER_MAX_OUTPUTS];
-        atmo_scene frame = scene;
-        for (int i = 0; i < n_out; i++) {
-            frame_outputs[i] = outputs[i];
-            if (frames_text) {
-                frames_path(outputs[i], f, names[i], sizeof names[i]);
-                frame_outputs[i] = names[i];
-            }
-        }
-        if (frames_text && report)
-            frames_path(report, f, report_name, sizeof report_name);
-        if (frames_text && (rc = frames_scene(&anim, &scene, f, &frame, &e)))
-            goto runtime_error;
-        rc = render_frame(&frame, &rs, lut_cache, quiet, part_file, exr_compression,
-                          frame_outputs, n_out,
-                          frames_text ? (report ? report_name : NULL) : report);
+    if (a.save_scene && (rc = atmo_scene_save_json(&scene, a.save_scene, &e))) {
+        output_paths_free(&files);
+        return cli_fail(&render_cli, rc, &e);
     }
+    if (a.n_out > 0 && a.first > anim.last && !a.quiet)
+        fprintf(stderr, "atmo render: part %d/%d of frames %d..%d has no frame to render\n",
+                a.first - anim.first + 1, a.step, anim.first, anim.last);
+    a.rs.progress = a.quiet ? 0 : (isatty(STDERR_FILENO) ? 2 : 1);
+    if (a.n_out > 0)
+        rc = render_frames(&a, &scene, &anim);
     output_paths_free(&files);
-    return rc;
-
-usage_error:
-    output_paths_free(&files);
-    fprintf(stderr, "atmo render: %s\n", e.msg);
-    return rc;
-runtime_error:
-    output_paths_free(&files);
-    fprintf(stderr, "atmo render: %s\n", e.msg);
     return rc;
 }

@@ -3,6 +3,7 @@
 #include <string.h>
 #include "atmo/status.h"
 #include "atmo/cl_runtime.h"
+#include "atmo/suggest.h"
 #include "commands.h"
 
 static const atmo_command commands[] = {
@@ -48,6 +49,12 @@ int main(int argc, char **argv)
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
         if (strcmp(argv[1], commands[i].name) == 0)
             return commands[i].run(argc - 1, argv + 1);
-    fprintf(stderr, "atmo: unknown command '%s'; run 'atmo --help' for the list\n", argv[1]);
+    atmo_suggest near;
+    atmo_suggest_begin(&near, argv[1]);
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        atmo_suggest_offer(&near, commands[i].name);
+    const char *hint = atmo_suggest_result(&near);
+    fprintf(stderr, "atmo: unknown command '%s'%s%s%s; run 'atmo --help' for the list\n", argv[1],
+            hint ? " (did you mean '" : "", hint ? hint : "", hint ? "'?)" : "");
     return ATMO_ERR_USAGE;
 }

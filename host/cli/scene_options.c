@@ -3,68 +3,65 @@
  * about it.
  *
  * The options: --preset NAME or --scene FILE (they exclude each other), --set KEY=VALUE
- * (repeatable, applied in command-line order), and for render the shorthands --width,
- * --height, --samples, --seed, --time and --camera, each kept as the assignment it stands for
- * (image.width=N, ..., clouds.time_s=S, camera.kind=K) in its place among the --set options.
- * A shorthand's value is at most SHORTHAND_MAX_CHARS characters (the longest any key takes);
- * a longer one is refused as a bad value. The scene is then the defaults, the preset or the
- * file, the assignments, validated (atmo/scene.h), before any work. */
+ * (repeatable, applied in command-line order), and the shorthands --width, --height,
+ * --samples, --seed, --time and --camera, each checked against its key's type and range in
+ * the scene's registry (cli_flags.c) and kept as the assignment it stands for (image.width=N,
+ * ..., clouds.time_s=S, camera.kind=K) in its place among the --set options. A shorthand's
+ * value is at most SHORTHAND_MAX_CHARS characters (the longest any key takes); a longer one
+ * is refused as a bad value. The scene is then the defaults, the preset or the file, the
+ * assignments, validated (atmo/scene.h), before any work. */
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 #include "scene_options.h"
 
 #define SHORTHAND_MAX_CHARS 40
 
-static const struct {
-    const char *option, *key;
-} shorthand_keys[] = {
-    {"--width", "image.width"},     {"--height", "image.height"}, {"--samples", "image.samples"},
-    {"--seed", "image.seed"},       {"--time", "clouds.time_s"}, {"--camera", "camera.kind"},
+static int take_set(void *args, const cli_flag *f, const char *v, atmo_err *e)
+{
+    scene_options *o = args;
+    if (o->set_count == SCENE_OPTIONS_MAX_SETS)
+        return atmo_fail(e, ATMO_ERR_USAGE, "more than %d --set options", SCENE_OPTIONS_MAX_SETS);
+    (void)f;
+    o->sets[o->set_count++] = v;
+    return ATMO_OK;
+}
+
+static int take_shorthand(void *args, const cli_flag *f, const char *v, atmo_err *e)
+{
+    scene_options *o = args;
+    if (o->set_count == SCENE_OPTIONS_MAX_SETS || strlen(v) > SHORTHAND_MAX_CHARS)
+        return atmo_fail(e, ATMO_ERR_USAGE, "bad value '%s' for %s", v, f->name);
+    char *text = o->shorthand_sets[o->set_count];
+    snprintf(text, sizeof o->shorthand_sets[0], "%s=%s", f->key, v);
+    o->sets[o->set_count++] = text;
+    return ATMO_OK;
+}
+
+#define SHORTHAND(flag, t, k, text)                                                            \
+    {.type = t, .name = flag, .key = k, .take = take_shorthand, .help = text}
+
+const cli_flag scene_option_flags[] = {
+    {.type = CLI_STRING, .name = "--preset", .metavar = "NAME",
+     .offset = offsetof(scene_options, preset), .def_var = &atmo_default_preset,
+     .help = "a built-in scene (atmo presets lists them)"},
+    {.type = CLI_PATH, .name = "--scene", .offset = offsetof(scene_options, scene_file),
+     .help = "a JSON scene file instead of a preset (atmo params lists every key)"},
+    {.type = CLI_STRING, .name = "--set", .metavar = "KEY=VALUE", .take = take_set,
+     .help = "override one parameter, e.g. --set sun.zenith_deg=60 (repeatable;\n"
+             "applied in order with the shorthands below)"},
+    SHORTHAND("--width", CLI_INT, "image.width", "image width in pixels (image.width)"),
+    SHORTHAND("--height", CLI_INT, "image.height", "image height in pixels (image.height)"),
+    SHORTHAND("--samples", CLI_INT, "image.samples",
+              "samples per pixel; the most any tile gets (image.samples)"),
+    SHORTHAND("--seed", CLI_INT, "image.seed", "random seed (image.seed)"),
+    SHORTHAND("--time", CLI_FLOAT, "clouds.time_s",
+              "seconds of cloud motion with the wind (clouds.time_s)"),
+    SHORTHAND("--camera", CLI_ENUM, "camera.kind", "projection (camera.kind)"),
+    {.type = CLI_END},
 };
 
-void scene_options_init(scene_options *o, const char *command, int shorthands)
-{
-    memset(o, 0, sizeof *o);
-    o->command = command;
-    o->shorthands = shorthands;
-}
-
-int scene_options_take(scene_options *o, int argc, char **argv, int *i)
-{
-    const char *a = argv[*i], *key = NULL;
-    int n_short = (int)(sizeof shorthand_keys / sizeof shorthand_keys[0]);
-    for (int k = 0; o->shorthands && k < n_short; k++)
-        if (strcmp(a, shorthand_keys[k].option) == 0)
-            key = shorthand_keys[k].key;
-    if (!key && strcmp(a, "--preset") != 0 && strcmp(a, "--scene") != 0 && strcmp(a, "--set") != 0)
-        return 0;
-    if (*i + 1 >= argc) {
-        fprintf(stderr, "atmo %s: %s needs a value (atmo %s --help)\n", o->command, a, o->command);
-        return -1;
-    }
-    const char *v = argv[++*i];
-    if (key) {
-        if (o->set_count == SCENE_OPTIONS_MAX_SETS || strlen(v) > SHORTHAND_MAX_CHARS) {
-            fprintf(stderr, "atmo %s: bad value '%s' for %s\n", o->command, v, a);
-            return -1;
-        }
-        char *text = o->shorthand_sets[o->set_count];
-        snprintf(text, sizeof o->shorthand_sets[0], "%s=%s", key, v);
-        o->sets[o->set_count++] = text;
-    } else if (strcmp(a, "--set") == 0) {
-        if (o->set_count == SCENE_OPTIONS_MAX_SETS) {
-            fprintf(stderr, "atmo %s: more than %d --set options\n", o->command,
-                    SCENE_OPTIONS_MAX_SETS);
-            return -1;
-        }
-        o->sets[o->set_count++] = v;
-    } else if (strcmp(a, "--preset") == 0) {
-        o->preset = v;
-    } else {
-        o->scene_file = v;
-    }
-    return 1;
-}
+void scene_options_init(scene_options *o) { memset(o, 0, sizeof *o); }
 
 int scene_options_scene(const scene_options *o, const char *file, atmo_scene *s, atmo_err *e)
 {

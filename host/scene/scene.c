@@ -21,6 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/scene.h"
+#include "atmo/suggest.h"
 
 /* offsetof(atmo_scene, f), failing to compile when the field's size is not that of the row's
  * type (a row declared INT on a double field would otherwise write 4 bytes into 8). */
@@ -490,63 +491,34 @@ void atmo_scene_defaults(atmo_scene *s)
     }
 }
 
-/* Levenshtein distance, for suggesting the closest key; keys are short (< 64 characters). */
-static size_t edit_distance(const char *a, const char *b)
+const char *atmo_preset_closest(const char *name)
 {
-    size_t la = strlen(a), lb = strlen(b);
-    if (la > 63)
-        la = 63;
-    if (lb > 63)
-        lb = 63;
-    size_t row[64];
-    for (size_t j = 0; j <= lb; j++)
-        row[j] = j;
-    for (size_t i = 1; i <= la; i++) {
-        size_t diag = row[0];
-        row[0] = i;
-        for (size_t j = 1; j <= lb; j++) {
-            size_t up = row[j];
-            size_t best =
-                diag + (tolower((unsigned char)a[i - 1]) != tolower((unsigned char)b[j - 1]));
-            if (up + 1 < best)
-                best = up + 1;
-            if (row[j - 1] + 1 < best)
-                best = row[j - 1] + 1;
-            row[j] = best;
-            diag = up;
-        }
-    }
-    return row[lb];
+    atmo_suggest near;
+    atmo_suggest_begin(&near, name);
+    for (const atmo_preset *p = atmo_presets; p->name; p++)
+        atmo_suggest_offer(&near, p->name);
+    return atmo_suggest_result(&near);
 }
 
 const char *atmo_param_closest(const char *key)
 {
-    const char *best = NULL;
-    size_t best_d = (size_t)-1;
-    for (const atmo_param *p = atmo_params; p->key; p++) {
-        size_t d = edit_distance(key, p->key);
-        /* "zenith_deg" alone should find "sun.zenith_deg": also compare with the part after the
-         * dot, counting one edit for the missing group */
-        const char *leaf = strchr(p->key, '.');
-        if (leaf) {
-            size_t dl = edit_distance(key, leaf + 1) + 1;
-            if (dl < d)
-                d = dl;
-        }
-        if (d < best_d) {
-            best_d = d;
-            best = p->key;
-        }
-    }
-    return best;
+    atmo_suggest near;
+    atmo_suggest_begin(&near, key);
+    for (const atmo_param *p = atmo_params; p->key; p++)
+        atmo_suggest_offer(&near, p->key);
+    return atmo_suggest_result(&near);
 }
 
 static int unknown_key(const char *key, const char *where, atmo_err *e)
 {
+    const char *near = atmo_param_closest(key);
+    if (!near)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "unknown parameter '%s' (from %s); atmo params lists them all", key, where);
     return atmo_fail(
         e, ATMO_ERR_USAGE,
         "unknown parameter '%s' (from %s); did you mean '%s'? (atmo params lists them all)", key,
-        where, atmo_param_closest(key));
+        where, near);
 }
 
 /* "0 .. 180 deg" */
@@ -580,10 +552,12 @@ int atmo_param_store(atmo_scene *s, const atmo_param *p, const double v[3], cons
         if (p->type == ATMO_PARAM_ENUM) {
             char names[256];
             names_text(p, names, sizeof names);
+            const char *near = atmo_suggest_among(shown, p->names);
             if (v[i] != floor(v[i]) || v[i] < p->min || v[i] > p->max)
                 return atmo_fail(e, ATMO_ERR_USAGE,
-                                 "%s = %s (from %s) is not a valid name; use one of: %s", p->key,
-                                 shown, where, names);
+                                 "%s = %s (from %s) is not a valid name; %s%s%suse one of: %s",
+                                 p->key, shown, where, near ? "did you mean '" : "",
+                                 near ? near : "", near ? "'? " : "", names);
             continue;
         }
         if (v[i] < p->min || v[i] > p->max) {
@@ -771,6 +745,11 @@ int atmo_scene_assign(atmo_scene *s, const char *assignment, const char *where, 
 int atmo_scene_apply_preset(atmo_scene *s, const char *name, atmo_err *e)
 {
     const atmo_preset *pr = atmo_preset_find(name);
+    const char *near = pr ? NULL : atmo_preset_closest(name);
+    if (near)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "unknown preset '%s' (did you mean '%s'? atmo presets lists them)", name,
+                         near);
     if (!pr) {
         char names[512];
         size_t used = 0;

@@ -196,10 +196,11 @@ static int load_object(atmo_scene *s, const cJSON *obj, const char *prefix, cons
             if (rc)
                 return rc;
         } else {
+            const char *near = atmo_param_closest(key);
             return atmo_fail(e, ATMO_ERR_USAGE,
-                             "unknown parameter '%s' (from %s); did you mean '%s'? (atmo params "
-                             "lists them all)",
-                             key, path, atmo_param_closest(key));
+                             "unknown parameter '%s' (from %s); %s%s%s(atmo params lists them all)",
+                             key, path, near ? "did you mean '" : "", near ? near : "",
+                             near ? "'? " : "");
         }
     }
     return ATMO_OK;

@@ -226,8 +226,10 @@ extern const char *const atmo_default_preset;
 
 const atmo_param *atmo_param_find(const char *key);
 const atmo_preset *atmo_preset_find(const char *name);
-/* The registry key closest to `key` by edit distance (for "did you mean" hints). */
+/* The registry key, or the preset name, near enough to `key` (`name`) to be what a typo meant
+ * (atmo/suggest.h), or NULL: for "did you mean" hints. */
 const char *atmo_param_closest(const char *key);
+const char *atmo_preset_closest(const char *name);
 /* A parameter's value as doubles (scalars in v[0]; enum: index; bool: 0/1; vec2: v[0], v[1];
  * string: zeros, see atmo_param_text). */
 void atmo_param_get(const atmo_scene *s, const atmo_param *p, double v[3]);
