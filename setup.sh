@@ -21,7 +21,8 @@ as_root=()
 
 packages=(cmake make gcc pkg-config
           pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers
-          libstb-dev libcjson-dev libopenexr-dev openexr libglfw3-dev libgdal-dev gnuplot-nox)
+          libstb-dev libcjson-dev libopenexr-dev openexr libglfw3-dev libgdal-dev gnuplot-nox
+          python3-pip)
 # the viewer's tests (tests/test_view_*.sh): an X server and Mesa's software OpenGL
 [ "$mode" = test ] && packages+=(xvfb xauth libgl1-mesa-dri)
 # the tests also start a one-node Slurm cluster (tests/test_slurm.sh)
@@ -34,6 +35,25 @@ if [ ${#missing[@]} -gt 0 ]; then
     echo "setup: installing ${missing[*]}"
     "${as_root[@]}" apt-get update -qq
     DEBIAN_FRONTEND=noninteractive "${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# Intel Open Image Denoise 2.x (denoising; Debian has no package): the PyPI wheel pyoidn ships
+# the library with its TBB. It goes under build/oidn (no system Python change), and its path into
+# build/oidn-path, which CMake compiles in. The build works without it; in test mode it is
+# required, so the denoiser's tests run.
+oidn_dir=$PWD/build/oidn
+oidn_lib=$oidn_dir/pyoidn/oidn/lib/libOpenImageDenoise.so.2
+if [ ! -f "$oidn_lib" ]; then
+    echo "setup: installing Open Image Denoise (PyPI wheel pyoidn) into $oidn_dir"
+    mkdir -p build
+    python3 -m pip install --quiet --disable-pip-version-check --no-deps --target "$oidn_dir" \
+        pyoidn || [ "$mode" != test ] || { echo "setup: pip install pyoidn failed" >&2; exit 1; }
+fi
+if [ -f "$oidn_lib" ]; then
+    echo "$oidn_lib" > build/oidn-path
+else
+    rm -f build/oidn-path
+    echo "setup: Open Image Denoise not installed; atmo builds and renders without denoising" >&2
 fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
@@ -53,5 +73,10 @@ install)
     sudo_install=()
     [ -w "$prefix" ] || [ ! -e "$prefix" -a -w "$(dirname "$prefix")" ] || sudo_install=("${as_root[@]}")
     "${sudo_install[@]}" cmake --install build --prefix "$prefix"
-    echo "setup: installed $prefix/bin/atmo; try: atmo presets" ;;
+    echo "setup: installed $prefix/bin/atmo; try: atmo presets"
+    case ":$PATH:" in
+    *":$prefix/bin:"*) ;;
+    *) echo "setup: $prefix/bin is not on your PATH; add it (e.g. to ~/.profile):"
+       echo "    export PATH=\"$prefix/bin:\$PATH\"" ;;
+    esac ;;
 esac

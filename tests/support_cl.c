@@ -24,7 +24,7 @@ cl_program test_cl_build_defines(atmo_cl *cl, const char *const *fragments, int 
 {
     atmo_err e;
     cl_program p;
-    atmo_cl_build_options o = {fragments, count, defines, NULL, 1, extra, NULL};
+    atmo_cl_build_options o = {fragments, count, defines, NULL, 1, extra, NULL, NULL};
     atmo_cl_build_info info;
     if (atmo_cl_build(cl, &o, &p, &info, &e)) {
         fprintf(stderr, "kernel build failed: %s\n", e.msg);

@@ -79,8 +79,10 @@ cl_program test_plan_program(atmo_cl *cl, const atmo_plan *p, const char *extra)
 {
     atmo_err e;
     cl_program prog;
+    const char *texts[ATMO_PLAN_MAX_FRAGMENTS];
+    atmo_plan_fragment_texts(p, texts);
     atmo_cl_build_options o = {p->fragments, p->fragment_count, p->defines, NULL, 1, extra,
-                               p->prelude};
+                               p->prelude, texts};
     atmo_cl_build_info info;
     if (atmo_cl_build(cl, &o, &prog, &info, &e)) {
         fprintf(stderr, "kernel build failed: %s\n", e.msg);

@@ -127,7 +127,7 @@ static const char probe_source[] =
 /* Build the probe program (through the cache or not) and run it; info as atmo_cl_build's. */
 static void probe_run(atmo_cl *cl, int use_cache, float out[64], atmo_cl_build_info *info)
 {
-    atmo_cl_build_options o = {NULL, 0, NULL, NULL, use_cache, probe_source, NULL};
+    atmo_cl_build_options o = {NULL, 0, NULL, NULL, use_cache, probe_source, NULL, NULL};
     cl_program prog;
     atmo_err e;
     if (atmo_cl_build(cl, &o, &prog, info, &e)) {

@@ -50,6 +50,8 @@ refused "misspelt presets NAME" "did you mean 'sky-noon'" presets sky-nono
 refused "misspelt choice" "--camera: 'panoramma' is not one of .*did you mean 'panorama'" render "${small[@]}" --camera panoramma --output out/a.png
 refused "misspelt method" "did you mean 'reference'\? use one of" render "${small[@]}" --set atmosphere.method=refrence --output out/a.png
 refused "swapped letters in a choice" "did you mean 'piz'" render "${small[@]}" --exr-compression pzi --output out/a.exr
+refused "misspelt bench suite" "unknown suite 'mei' \(did you mean 'mie'\?" bench mei
+refused "misspelt cache action" "did you mean 'verify'\?" cache verfy
 refused "far preset: no guess" "^atmo render: unknown preset 'xyzzy'; use one of" render "${small[@]}" --preset xyzzy --output out/a.png
 refused "far flag: no guess" "^atmo render: unknown option '--frobnicate' \(atmo render --help\)$" render --frobnicate
 refused "far key: no guess" "unknown parameter 'qqq.zzz' \(from --set\); atmo params" render "${small[@]}" --set qqq.zzz=1 --output out/a.png
@@ -86,11 +88,16 @@ refused "existing output" "--output 'keep.png' exists; add --force to overwrite 
 if cmp -s keep.png keep.orig; then ok; else bad "a refused render changed keep.png"; fi
 echo "{}" >keep.json
 refused "existing report" "--report 'keep.json' exists; add --force" render "${small[@]}" --output out/a.png --report keep.json
+echo "theta_deg" >keep.csv
+refused "existing mie table" "--table 'keep.csv' exists; add --force" mie --radius-um 1 --wavelength-nm 550 --table keep.csv
 if "$atmo" render "${small[@]}" --force --output keep.png 2>stderr.txt && ! cmp -s keep.png keep.orig; then ok; else bad "--force did not replace keep.png"; cat stderr.txt >&2; fi
 
-# plurals: one sample per pixel is "1 sample/pixel", one image "1 image"
-if "$atmo" render --width 16 --height 8 --samples 1 --output one.pfm 2>one.txt &&
-    grep -q "wrote 1 image (16x8, 1 sample/pixel" one.txt; then ok; else bad "plural: $(cat one.txt)"; fi
+# plurals: one sample per pixel is "1 sample/pixel", one image "1 image"; the cost line before
+# the render states the size, the samples (16 x 8 x 1 = 128) and the method
+if "$atmo" render --width 16 --height 8 --samples 1 --set atmosphere.method=single \
+    --output one.pfm 2>one.txt && grep -q "wrote 1 image (16x8, 1 sample/pixel" one.txt &&
+    grep -q "^atmo render: 16x8 at 1 sample/pixel (0.000128 M samples), method single; 1 frame$" one.txt
+then ok; else bad "plural or cost line: $(cat one.txt)"; fi
 
 # a good render writes every format, completely, and a report
 if "$atmo" render "${small[@]}" --camera panorama --output a.pfm --output a.png --output a.exr \

@@ -1,6 +1,7 @@
 /* test_cloud_shell — the cloud shell and observer (kernels/media/cloud_shell.h, observer.h) in
  * the medium integrator (kernels/media/medium.h).
  * labels: kernel render
+ * composes: atmosphere cloud visibility cloud_march medium
  *
  * Oracles:
  *  1. (host, the same header compiled as C, one octave = single scattering, atmosphere off)
@@ -24,8 +25,7 @@
 #include <stdlib.h>
 #include <string.h>
 #define ATMO_CLOUD_OCTAVES 1
-#define ATMO_CLOUD
-#include "media/medium.h"
+#include "kernels_composed.h"
 #include "testlib.h"
 #include "testscene.h"
 
@@ -88,8 +88,10 @@ static void slab_tests(void)
  * code exists only under -DATMO_CLOUD). */
 static cl_program build_plan(atmo_cl *cl, const atmo_plan *plan)
 {
+    const char *texts[ATMO_PLAN_MAX_FRAGMENTS];
+    atmo_plan_fragment_texts(plan, texts);
     atmo_cl_build_options bo = {plan->fragments, plan->fragment_count, plan->defines, NULL, 1, NULL,
-                                plan->prelude};
+                                plan->prelude, texts};
     atmo_cl_build_info bi;
     atmo_err e;
     cl_program prog = NULL;

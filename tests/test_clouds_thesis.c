@@ -1,6 +1,7 @@
 /* test_clouds_thesis — the thesis look's soft clamp of the clouds' light (kernels/media/
  * cloud_march.h, host build of the shared headers).
  * labels: unit
+ * composes: atmosphere clouds clouds_medium visibility clouds_march medium
  *
  * Oracle: the clamp's closed form, in double precision,
  *     f(L) = L_clamp (1 - e^{-L / L_clamp}),  L_clamp = 3 E_sun / (4 pi)  (per channel),
@@ -21,8 +22,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#define ATMO_CLOUDS
-#include "media/cloud_march.h"
+#include "kernels_composed.h"
 #include "testclouds.h"
 #include "testlib.h"
 

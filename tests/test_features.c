@@ -8,10 +8,15 @@
  *  2. each method's plan has exactly its named buffers, in registry order, its -D flags, and
  *     none of the fragments of features it does not contain; the generated parameter and
  *     argument lists name the buffers in that order;
- *  3. a cloud shell adds its fragment after kernels/media/ray.h, whose rays it takes, and before
- *     media.h, which composes it into the media, and the method, its flag, and its phase table as
- *     a buffer of its own with host data; a sky-only scene's assembled source holds no cloud code
- *     (sizes printed: what the shell costs to compile). */
+ *  3. a cloud shell adds its medium after the media's contract (media.h) and before the plan's
+ *     composition of the media, its stepping after the visibility and before the composition of
+ *     the intervals, which precedes the integrator; the composition numbers its component after
+ *     the air's and calls its functions (a sky-only composition names no cloud and has no
+ *     intervals); it adds its flag and its phase table as a buffer of its own with host data; a
+ *     sky-only scene's assembled source holds no cloud code (sizes printed: what the shell
+ *     costs to compile);
+ *  4. the composition refuses two features in a slot that takes one (a registry bug) and a
+ *     buffer too small for the text. */
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/cl_runtime.h"
@@ -32,7 +37,10 @@ static void test_registry_files(void)
 {
     for (int i = 0; i < atmo_feature_count; i++) {
         const atmo_feature *f = &atmo_features[i];
-        for (const char *const *s = f->fragments; *s; s++)
+        /* a row is files, slots or a generated composition; a composition has no files */
+        CHECK(f->fragments || f->slots || f->compose != ATMO_COMPOSE_NONE);
+        CHECK(!(f->fragments && f->compose != ATMO_COMPOSE_NONE));
+        for (const char *const *s = f->fragments; s && *s; s++)
             CHECK(atmo_embedded_find(atmo_kernel_sources, *s) != NULL);
         for (const char *const *s = f->sources; s && *s; s++)
             CHECK(atmo_embedded_find(atmo_kernel_sources, *s) != NULL);
@@ -71,14 +79,14 @@ static void test_methods(void)
 {
     static const method_case cases[] = {
         {"single", {"transmittance_lut", NULL}, "", "kernels/atmosphere/method_single.h"},
-        {"march", {"transmittance_lut", "ms_lut", NULL}, "-DATMO_MS_LUT",
+        {"march", {"transmittance_lut", "ms_lut", NULL}, "",
          "kernels/atmosphere/method_march.h"},
-        {"fast", {"transmittance_lut", "ms_lut", "sky_view_lut", NULL}, "-DATMO_MS_LUT",
+        {"fast", {"transmittance_lut", "ms_lut", "sky_view_lut", NULL}, "",
          "kernels/atmosphere/method_fast.h"},
         {"lut",
          {"transmittance_lut", "scattering_rayleigh", "scattering_mie", "scattering_scratch",
           NULL},
-         "-DATMO_LUT_J", "kernels/atmosphere/method_lut.h"},
+         "", "kernels/atmosphere/method_lut.h"},
         {"reference", {"transmittance_lut", NULL}, "", "kernels/atmosphere/method_reference.h"},
     };
     static const char *const entries[] = {
@@ -113,7 +121,9 @@ static void test_methods(void)
 static size_t source_size(const atmo_plan *p, const char *needle, int *has)
 {
     atmo_err e;
-    char *src = atmo_cl_assemble(p->prelude, p->fragments, p->fragment_count, NULL, &e);
+    const char *texts[ATMO_PLAN_MAX_FRAGMENTS];
+    atmo_plan_fragment_texts(p, texts);
+    char *src = atmo_cl_assemble(p->prelude, p->fragments, texts, p->fragment_count, NULL, &e);
     CHECK(src != NULL);
     size_t n = src ? strlen(src) : 0;
     *has = src && strstr(src, needle) != NULL;
@@ -133,12 +143,33 @@ static void test_cloud(void)
     static const char *const with_table[] = {"transmittance_lut", "cloud_phase_table",
                                              "cloud_phase_cdf", "ms_lut", NULL};
     check_buffers(&cloud, with_table);
-    CHECK(strcmp(cloud.defines, "-DATMO_CLOUD -DATMO_MS_LUT") == 0);
+    CHECK(strcmp(cloud.defines, "-DATMO_CLOUD") == 0);
     int shell = fragment_at(&cloud, "kernels/media/cloud_shell.h");
-    /* a medium module: after the ray it takes, before the composition of the media */
-    CHECK(shell > fragment_at(&cloud, "kernels/media/ray.h"));
-    CHECK(shell < fragment_at(&cloud, "kernels/media/media.h"));
+    int media = fragment_at(&cloud, "plan/media");
+    int intervals = fragment_at(&cloud, "plan/intervals");
+    /* a medium: after the media's contract, before the composition of the media, which comes
+     * before the visibility; its stepping after the visibility, before the composition of the
+     * intervals, which comes before the integrator */
+    CHECK(shell > fragment_at(&cloud, "kernels/media/media.h"));
+    CHECK(shell < media && media < fragment_at(&cloud, "kernels/media/visibility.h"));
+    CHECK(fragment_at(&cloud, "kernels/media/visibility.h") <
+          fragment_at(&cloud, "kernels/media/cloud_shell_march.h"));
+    CHECK(fragment_at(&cloud, "kernels/media/cloud_shell_march.h") < intervals);
+    CHECK(intervals < fragment_at(&cloud, "kernels/media/medium.h"));
     CHECK(shell < fragment_at(&cloud, "kernels/atmosphere/method_march.h"));
+    /* the composition: the shell's component numbered after the air's, its functions called
+     * (and Psi_ms as march's source); the sky alone has the air and no intervals */
+    CHECK(strstr(cloud.prelude, "#define MEDIA_CLOUD 2\n#define MEDIA_COMPONENTS 3\n") != NULL);
+    CHECK(strstr(sky.prelude, "#define MEDIA_COMPONENTS 2\n") != NULL);
+    CHECK(strstr(sky.prelude, "MEDIA_CLOUD") == NULL);
+    const char *texts[ATMO_PLAN_MAX_FRAGMENTS];
+    atmo_plan_fragment_texts(&cloud, texts);
+    CHECK(strstr(texts[media], "cloud_shell_media_add(s, ATMO_LUT_ARGS, q, &m);") != NULL);
+    CHECK(strstr(texts[media], "return ms_lut_ms_source(") != NULL);
+    CHECK(strstr(texts[intervals], "return cloud_shell_intervals(") != NULL);
+    atmo_plan_fragment_texts(&sky, texts);
+    CHECK(strstr(texts[fragment_at(&sky, "plan/media")], "cloud") == NULL);
+    CHECK(strstr(texts[fragment_at(&sky, "plan/intervals")], "return 0;") != NULL);
     const atmo_plan_buffer *table = atmo_plan_buffer_find(&cloud, "cloud_phase_table");
     CHECK(table->host_data != NULL && cloud.gpu.cloud.table_size > 1 &&
           table->bytes == sizeof(float4) * (size_t)cloud.gpu.cloud.table_size);
@@ -156,14 +187,32 @@ static void test_cloud(void)
     int sky_has, cloud_has;
     size_t n_sky = source_size(&sky, "ATMO_FN void cloud_shell_interval(", &sky_has);
     size_t n_cloud = source_size(&cloud, "ATMO_FN void cloud_shell_interval(", &cloud_has);
+    CHECK(cloud_has && source_size(&cloud, "#line 1 \"plan/media\"", &cloud_has) && cloud_has);
     CHECK(!sky_has && cloud_has && n_cloud > n_sky);
     printf("march: assembled source %zu bytes sky-only, %zu with the cloud shell (+%zu)\n", n_sky,
            n_cloud, n_cloud - n_sky);
 }
 
+/* The generator refuses a slot that takes one feature when two fill it (two media with their
+ * own stepping, two methods' sources), and composes each alone. */
+static void test_compose_single_slots(void)
+{
+    static char text[8192];
+    const atmo_feature *both_media[] = {atmo_feature_find("cloud"),
+                                        atmo_feature_find("clouds_medium")};
+    const atmo_feature *both_sources[] = {atmo_feature_find("ms_lut"), atmo_feature_find("lut")};
+    CHECK(atmo_compose(both_media, 2, ATMO_COMPOSE_INTERVALS, text, sizeof text) == -1);
+    CHECK(atmo_compose(both_sources, 2, ATMO_COMPOSE_MEDIA, text, sizeof text) == -1);
+    CHECK(atmo_compose(both_media, 1, ATMO_COMPOSE_INTERVALS, text, sizeof text) == 0);
+    CHECK(atmo_compose(both_sources + 1, 1, ATMO_COMPOSE_MEDIA, text, sizeof text) == 0 &&
+          strstr(text, "return lut_ms_source(") != NULL);
+    CHECK(atmo_compose(both_media, 2, ATMO_COMPOSE_MEDIA, text, 64) == -1); /* does not fit */
+}
+
 int main(void)
 {
     test_registry_files();
+    test_compose_single_slots();
     test_methods();
     test_cloud();
     return test_finish();

@@ -13,7 +13,9 @@
  *   - EXR: OpenEXR's own C Core API decoder must return the float values bit-exactly (PIZ is
  *     lossless) and the string attributes as written; `exrheader`, when installed, must accept
  *     the file. Extra layers ("Depth.Z", "Normal.X/Y/Z") come back bit-exactly through
- *     atmo_exr_read, whose R, G, B must equal the independent decoder's; +Inf survives in a
+ *     atmo_exr_read, whose R, G, B must equal the independent decoder's; RGB colour carries the
+ *     standard chromaticities (ITU-R BT.709, D65) and no wavelengths, spectral samples the
+ *     reverse; +Inf survives in a
  *     layer that keeps it, NaN is counted and written as 0; a non-EXR file is a usage error.
  *   - PNG: stb_image's stbi_load must return exactly floor(255 d + 1/2) of atmo_post_pixel's
  *     display value d for every channel; the tEXt chunks must carry valid CRCs (the test's CRC is
@@ -267,6 +269,47 @@ static void test_exr(void)
     }
 }
 
+/* What R, G, B are: RGB colour (meta.rec709) gets OpenEXR's standard chromaticities attribute
+ * with ITU-R BT.709's primaries and D65 white (x, y; the file stores them as float, so they are
+ * compared with the floats of the published decimals) and no wavelengths; spectral samples get
+ * wavelengths and no chromaticities. Read with OpenEXR's own C API. */
+static void test_exr_chromaticities(void)
+{
+    static const float bt709[8] = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
+    float rgb[W * H * 3];
+    fill(rgb);
+    atmo_image img = {.width = W, .height = H, .rgb = rgb};
+    atmo_image_meta colour = meta;
+    colour.quantity = "luminance";
+    colour.unit = "cd m^-2";
+    colour.rec709 = 1;
+    atmo_err e = {""};
+    CHECK(atmo_image_write(in_dir("rgb.exr"), &img, NULL, &colour, &e) == ATMO_OK);
+    char paths[2][512]; /* in_dir's buffer is static */
+    snprintf(paths[0], sizeof paths[0], "%s", in_dir("a.exr"));
+    snprintf(paths[1], sizeof paths[1], "%s", in_dir("rgb.exr"));
+    for (int k = 0; k < 2; k++) {
+        exr_context_t c = NULL;
+        exr_attr_chromaticities_t ch;
+        const char *s;
+        int32_t len;
+        CHECK(exr_start_read(&c, paths[k], NULL) == EXR_ERR_SUCCESS);
+        int has_chroma = exr_attr_get_chromaticities(c, 0, "chromaticities", &ch) ==
+                         EXR_ERR_SUCCESS;
+        int has_wl = exr_attr_get_string(c, 0, "wavelengths", &len, &s) == EXR_ERR_SUCCESS;
+        int has_id = exr_attr_get_string(c, 0, "colorInteropID", &len, &s) == EXR_ERR_SUCCESS &&
+                     len == 16 && strncmp(s, "lin_rec709_scene", 16) == 0;
+        CHECK(has_chroma == k && has_id == k && has_wl == !k);
+        if (has_chroma) {
+            const float got[8] = {ch.red_x,  ch.red_y,  ch.green_x, ch.green_y,
+                                  ch.blue_x, ch.blue_y, ch.white_x, ch.white_y};
+            CHECK(memcmp(got, bt709, sizeof got) == 0);
+        }
+        if (c)
+            exr_finish(&c);
+    }
+}
+
 static void test_exr_layers(void)
 {
     float rgb[W * H * 3], depth[W * H], normal[W * H * 3], back[W * H * 3];
@@ -490,6 +533,7 @@ int main(void)
     test_pfm();
     test_hdr();
     test_exr();
+    test_exr_chromaticities();
     test_exr_layers();
     test_png();
     test_unwritable();

@@ -3,6 +3,7 @@
  * sky-view LUT's angles) and medium_segment_weight / medium_segment_step3
  * (kernels/media/medium.h, every medium step's exact-exponential weight).
  * labels: unit
+ * composes: atmosphere ms_lut visibility medium ms_lut_passes fast
  *
  * Oracles (closed forms in double):
  *  1. fast_acos(x) against acos(x) at 2e6 + 1 float x evenly over [-1, 1] and at the ends:
@@ -24,7 +25,7 @@
 #include <stdlib.h>
 #include "testlib.h"
 #include "testprobe.h"
-#include "atmosphere/method_fast.h"
+#include "kernels_composed.h"
 
 int main(void)
 {

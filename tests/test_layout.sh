@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # test_layout — the source tree keeps its architecture: the host modules (the folders of host/)
-# include each other without circles, the kernel headers likewise, and no identifier in host/,
-# include/ or kernels/ is one that C11 and OpenCL C reserve.
+# include each other without circles, the kernel headers likewise, no kernel file declares a
+# function that another kernel file defines, the generic integrator names no feature and tests
+# no feature's flag, and no identifier in host/, include/ or kernels/ is one that C11 and OpenCL
+# C reserve.
 # labels: unit
 #
 # Oracle: the rules of docs/architecture.md and C11 7.1.3 (identifiers that begin with two
@@ -150,6 +152,107 @@ if [ -n "$reserved" ]; then
 else
     ok
 fi
+
+# ---- Symbols of the kernels -------------------------------------------------------------------
+# The program is assembled from the kernel files in registry order, so a file may call only what
+# files before it define: a prototype of a function that another kernel file defines ("defined
+# after this file") is a circle in the call graph that the include graph cannot see. The plan's
+# generated composition (host/plan/compose.c) is what joins the features to the generic
+# integrator, so the generic files name no feature and test no feature's flag.
+generic_files="kernels/media/media.h kernels/media/medium.h kernels/media/visibility.h
+    kernels/media/ray.h
+    kernels/media/tracking.h"
+# the registry's feature flags (its -D strings) and the features' identifier prefixes
+flags=$(grep -oE '"-D[A-Z_ =0-9-]*"' host/plan/features.c | tr -d '"' | tr ' ' '\n' |
+    sed -n 's/^-D\([A-Z_0-9]*\).*/\1/p' | sort -u | paste -sd'|')
+feature_names='cloud|clouds|terrain|observer|ms_lut|lut|objects?|path'
+
+# strip_comments FILE: the file without its /* */ and // comments (lines kept, for numbers).
+strip_comments() {
+    awk '{ line = $0; out = ""
+           while (length(line)) {
+               if (c) { i = index(line, "*/"); if (i) { line = substr(line, i + 2); c = 0 } else line = "" }
+               else { i = index(line, "/*"); j = index(line, "//")
+                      if (j && (!i || j < i)) { out = out substr(line, 1, j - 1); line = "" }
+                      else if (i) { out = out substr(line, 1, i - 1); line = substr(line, i + 2); c = 1 }
+                      else { out = out line; line = "" } } }
+           print out }' "$1"
+}
+
+# forward_prototypes FILE...: "FILE:LINE NAME" of each prototype (ATMO_FN ... name(...); with no
+# body) whose function another of the files defines.
+forward_prototypes() {
+    local f
+    for f in "$@"; do
+        strip_comments "$f" | awk -v f="$f" '
+            /^ATMO_FN/ { decl = ""; start = NR; open = 1 }
+            open { decl = decl " " $0
+                   if ($0 ~ /\{/) { open = 0; if (match(decl, /[A-Za-z_][A-Za-z0-9_]*[ ]*\(/)) {
+                       n = substr(decl, RSTART, RLENGTH); sub(/[ ]*\($/, "", n); print "def", f, start, n } }
+                   else if ($0 ~ /\)[ ]*;[ ]*$/) { open = 0; if (match(decl, /[A-Za-z_][A-Za-z0-9_]*[ ]*\(/)) {
+                       n = substr(decl, RSTART, RLENGTH); sub(/[ ]*\($/, "", n); print "proto", f, start, n } } }'
+    done | awk '$1 == "def" { where[$4] = $2 } $1 == "proto" { p[++k] = $0 }
+        END { for (i = 1; i <= k; i++) { split(p[i], a, " ")
+                  if ((a[4] in where) && where[a[4]] != a[2]) print a[2] ":" a[3], a[4] } }'
+}
+
+# feature_identifiers FILE...: "FILE:LINE NAME" of each identifier in the code that belongs to a
+# feature (a prefix of feature_names, or a feature flag), the generated buffer lists aside.
+feature_identifiers() {
+    local f
+    for f in "$@"; do
+        strip_comments "$f" | grep -noE '[A-Za-z_][A-Za-z0-9_]*' |
+            grep -vE ':(ATMO_LUT_PARAMS|ATMO_LUT_OUT_PARAMS|ATMO_LUT_ARGS)$' |
+            grep -iE ":(atmo_)?($feature_names)(_[A-Za-z0-9_]*)?$|:($flags)$" | sed "s|^|$f:|"
+    done
+}
+
+# feature_ifs FILE...: "FILE:LINE" of each #if / #ifdef / #elif that tests a feature flag.
+feature_ifs() {
+    local f
+    for f in "$@"; do
+        grep -nE "^[[:space:]]*#[[:space:]]*(if|ifdef|ifndef|elif)\b.*\b($flags)\b" "$f" |
+            sed "s|^|$f:|"
+    done
+}
+
+# The detectors on synthetic files: a prototype of a function defined in another file (and
+# one defined in the same file, which is not forward), a feature's identifier and a feature's
+# flag in code (and both in comments, which do not count).
+syn=$(mktemp -d "${TMPDIR:-/tmp}/test_layout.XXXXXX")
+printf '%s\n' '/* medium_x() uses cloud_y, ATMO_CLOUD */' 'ATMO_FN vec3 cloud_sun(int a,' \
+    '                      int b);' 'ATMO_FN int own(int a);' 'ATMO_FN int own(int a) { return a; }' \
+    'ATMO_FN float medium_x(void)' '{' '    return cloud_sun(1, 2).x;' '}' \
+    '#ifdef ATMO_CLOUD' '#endif' >"$syn/generic.h"
+printf '%s\n' 'ATMO_FN vec3 cloud_sun(int a, int b)' '{' '    return v3(a, b, 0);' '}' >"$syn/feature.h"
+found=$(forward_prototypes "$syn/generic.h" "$syn/feature.h")
+if [ "$found" = "$syn/generic.h:2 cloud_sun" ]; then ok; else
+    bad "the forward-prototype detector on a synthetic pair found '$found'"; fi
+found=$(feature_identifiers "$syn/generic.h" | sed "s|$syn/||" | paste -sd' ')
+if [ "$found" = "generic.h:2:cloud_sun generic.h:8:cloud_sun generic.h:10:ATMO_CLOUD" ]; then ok; else
+    bad "the feature-name detector on a synthetic file found '$found'"; fi
+found=$(feature_ifs "$syn/generic.h" | sed "s|$syn/||")
+if [ "$found" = "generic.h:10:#ifdef ATMO_CLOUD" ]; then ok; else
+    bad "the feature-#if detector on a synthetic file found '$found'"; fi
+rm -rf "$syn"
+
+kernel_files=$(find kernels -name '*.h' -o -name '*.cl' | sort)
+found=$(forward_prototypes $kernel_files)
+if [ -n "$found" ]; then
+    bad "prototypes of functions another kernel file defines (a circle between files: move the" \
+        "function before its caller, or make it a slot of the plan's composition):"
+    echo "$found" | sed 's/^/    /' >&2
+else ok; fi
+found=$(feature_identifiers $generic_files)
+if [ -n "$found" ]; then
+    bad "feature names in the generic integrator (give the feature a slot in atmo_slots instead):"
+    echo "$found" | sed 's/^/    /' >&2
+else ok; fi
+found=$(feature_ifs $generic_files)
+if [ -n "$found" ]; then
+    bad "feature #if in the generic integrator (compose the feature instead):"
+    echo "$found" | sed 's/^/    /' >&2
+else ok; fi
 
 echo "test_layout: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -63,6 +63,7 @@ refused "parts of another split" "'p2_2.exr' is part 2/2" merge p3_1.exr p2_2.ex
 refused "not a part" "'single.exr' is not a part" merge single.exr --output out/m.pfm
 refused "not an EXR" "single.pfm" merge single.pfm --output out/m.pfm
 refused "output is a part" "is the part" merge p3_1.exr p3_2.exr p3_3.exr --output p3_1.exr
+refused "existing output" "--output 'single.pfm' exists; add --force" merge p3_1.exr p3_2.exr p3_3.exr --output single.pfm
 refused "no output" "no --output" merge p3_1.exr
 # an interrupted part (Ctrl-C: exit 3, the samples so far written) is refused as incomplete:
 # part 1/1 of a scene of 10^6 samples per pixel; the signal must land in the render, after the
@@ -78,7 +79,7 @@ for wait_s in 2 4 8; do
     [ $rc -ne 4 ] && break
 done
 [ $rc -eq 3 ] && ok || bad "interrupted part: exit $rc, want 3"
-refused "incomplete part" "'cut.exr' \\(part 1/1\\) is incomplete: [0-9]+ to [0-9]+ of 1000000 samples" \
+refused "incomplete part" "'cut.exr' \\(part 1/1\\) is incomplete: [0-9]+ (to [0-9]+ )?samples( per pixel| in every pixel), its scene 1000000" \
     merge cut.exr --output out/m.pfm
 refused "--part to a PNG" "one --output FILE.exr" render "${scene[@]}" --part 1/2 --output out/p.png
 refused "--part with two outputs" "one --output FILE.exr" render "${scene[@]}" --part 1/2 --output out/p.exr --output out/q.exr

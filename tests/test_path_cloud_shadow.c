@@ -1,6 +1,7 @@
 /* test_path_cloud_shadow — cloud shadows in the path tracer: the direct sunlight a ground point
  * receives (kernels/render/path.h's path_sunlight: visibility_sun_surface, the layer's
- * visibility_clouds_transmittance) is cut by the cloud layer's transmittance toward the sun.
+ * clouds_media_sun, cloud_layer_medium.h) is cut by the cloud layer's transmittance toward the
+ * sun.
  * labels: render kernel slow
  *
  * Scene: the fBm cloud layer made thin and scattered (1-3 km, fades of 500 m, coverage 0.1,

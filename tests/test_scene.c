@@ -49,7 +49,7 @@ static const char *const spec_defaults[] = {"image.width=640",
                                             "atmosphere.mie_albedo=0.9",
                                             "atmosphere.mie_scale_height_m=1200",
                                             "atmosphere.mie_g=0.8",
-                                            "atmosphere.method=fast",
+                                            "atmosphere.method=auto",
                                             "cloud.enabled=false",
                                             "cloud.bottom_m=1000",
                                             "cloud.top_m=2000",
@@ -143,6 +143,7 @@ static const char *const spec_defaults[] = {"image.width=640",
                                             "post.white_point=4",
                                             "post.white_balance=true",
                                             "post.transfer=srgb",
+                                            "output.denoise=auto",
                                             "terrain.heightmap_file=",
                                             "terrain.heightmap_file_extent_m=0",
                                             "terrain.heightmap_center_m=0,0",
@@ -169,6 +170,7 @@ static const char *const spec_defaults[] = {"image.width=640",
                                             "path.passes=false",
                                             "path.clouds=march",
                                             "path.volume_bounces=256",
+                                            "output.blender=false",
                                             NULL};
 
 /* Ranges of the specification: key, min, max (enums and bools are checked by name). */
@@ -610,7 +612,7 @@ static void test_json(void)
                         "did you mean 'sun.zenith_deg'?");
     check_json_rejected("{\"sunn\": {\"zenith_deg\": 60}}", "'sunn.zenith_deg'",
                         "'sun.zenith_deg'");
-    check_json_rejected("{\"sun\": 60}", "'sun'", "did you mean");
+    check_json_rejected("{\"sun\": 60}", "'sun'", "is a group of parameters and needs an object");
     check_json_rejected("{\"sun\": {\"zenith_deg\": \"60\"}}", "sun.zenith_deg", "a number");
     check_json_rejected("{\"sun\": {\"zenith_deg\": null}}", "sun.zenith_deg", "a number");
     check_json_rejected("{\"sun\": {\"zenith_deg\": 1e999}}", "sun.zenith_deg", "finite");

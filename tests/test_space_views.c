@@ -2,6 +2,7 @@
  * enters the atmosphere, for every method: views from space and from inside the atmosphere
  * agree where they overlap.
  * labels: kernel slow
+ * composes: atmosphere ms_lut visibility medium ms_lut_passes fast
  *
  * Rays. Cameras at the altitude of the `space` preset (2000 km) and at 1e8 m (100 000 km). Each
  * ray is designed at its entry point (r = top): its closest distance b to the planet centre
@@ -71,7 +72,7 @@
 #include <string.h>
 #include "testlib.h"
 #include "testprobe.h"
-#include "atmosphere/method_fast.h"
+#include "kernels_composed.h"
 
 #define DEG (M_PI / 180.0)
 #define U_FLOAT 5.9604644775390625e-8 /* 2^-24 */
@@ -113,7 +114,7 @@ static double azimuth_cosine(double mu, double mu_s, double nu)
 
 /* The camera at radius rc on the ray through the entry point (top, mu_e) with sun cosine mu_s_e
  * and nu there: C = E - t0 v with |C| = rc. */
-static ray_d camera_ray(double top, double rc, double mu_e, double mu_s_e, double nu)
+static ray_d orbit_ray(double top, double rc, double mu_e, double mu_s_e, double nu)
 {
     double t0 = top * mu_e + sqrt(rc * rc - top * top * (1.0 - mu_e * mu_e));
     ray_d c = {rc, (top * mu_e - t0) / rc, (top * mu_s_e - t0 * nu) / rc, nu};
@@ -160,7 +161,7 @@ static void space_rays(const atmo_atmosphere *a, const double cam_r[2], const do
                     double b = fmax(a->bottom_radius_m + perigee_m[ip], 0.0);
                     double mu_e = -sqrt((top - b) * (top + b)) / top;
                     double nu = view_sun_cosine(mu_e, mu_s_e[is], cos(azimuth_deg[ia] * DEG));
-                    rays[(*n)++] = to_float(camera_ray(top, cam_r[ic], mu_e, mu_s_e[is], nu));
+                    rays[(*n)++] = to_float(orbit_ray(top, cam_r[ic], mu_e, mu_s_e[is], nu));
                 }
 }
 

@@ -4,6 +4,7 @@
  * 14695981039346656037, over the key bytes then the payload bytes. Each step is a bijection of h
  * for a fixed byte, so two inputs of equal length that differ in one byte always differ in h;
  * the stored lengths catch truncation and extension. */
+#include <errno.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -61,10 +62,12 @@ static int load(const char *path, header *h, unsigned char **key, unsigned char 
                 const char **why)
 {
     *key = *payload = NULL;
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return 1;
     struct stat st;
+    if (stat(path, &st) != 0)
+        return 1;
+    FILE *f = atmo_open_regular(path, why); /* a FIFO would block the reader for ever */
+    if (!f)
+        return -1;
     int rc = -1;
     if (fstat(fileno(f), &st) != 0)
         *why = "cannot stat it";
@@ -97,8 +100,13 @@ static int load(const char *path, header *h, unsigned char **key, unsigned char 
 
 void atmo_cache_file_reject(const char *path, const char *why)
 {
-    fprintf(stderr, "atmo: cache file %s is damaged (%s); removed, recomputing it\n", path, why);
-    remove(path);
+    if (remove(path) == 0)
+        fprintf(stderr, "atmo: cache file %s is damaged (%s); removed, recomputing it\n", path,
+                why);
+    else
+        fprintf(stderr, "atmo: cache file %s is damaged (%s) and cannot be removed (%s); "
+                        "recomputing without it (delete it, or run atmo cache verify)\n",
+                path, why, strerror(errno));
 }
 
 int atmo_cache_file_read(const char *path, const char *kind, const void *key, size_t key_bytes,

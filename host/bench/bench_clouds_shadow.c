@@ -17,12 +17,10 @@
 #include <math.h>
 #include <stdlib.h>
 #include "atmo/bench.h"
-#define ATMO_CLOUDS /* the host build of the marcher's header, for its step constants */
 #include "common/compat.h"
 #include "common/geometry.h"
 #include "media/ray.h"
 #include "media/cloud_layer.h"
-#include "media/cloud_march.h"
 #include "media/cloud_shadow_map.h"
 
 #define BENCH_SHADOW_FINE_STEPS 2048

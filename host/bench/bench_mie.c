@@ -165,44 +165,27 @@ static const char bench_mie_plot[] =
     "offset 0,0.8 font ',7' noenhanced\n"
     "unset multiplot\n";
 
-int bench_mie(const char *dir, int quick, atmo_err *e)
+/* two-term HG: w g1 + (1 - w) g2 = g fixes w; (g1, g2) minimise the log RMS */
+static void bench_mie_fit_two_term(const mie_table *ref, double g, bench_mie_option *o)
 {
-    mie_dsd d;
-    mie_table ref = {0}, coarse = {0};
-    mie_table builds[6] = {{0}};
-    bench_mie_option opt[8];
-    int nopt = 0, rc;
-    double n, k;
-    memset(opt, 0, sizeof opt);
-    mie_dsd_preset("cumulus", &d);
-    if ((rc = mie_water_index(550.0, &n, &k, e)))
-        return rc;
-    fprintf(stderr, "bench mie: reference table (cumulus, 550 nm; cached after the first run)\n");
-    if ((rc = mie_table_get(&d, 550.0, n, k, NULL, 1, &ref, NULL, e)))
-        goto done;
-    double g = mie_table_asymmetry(&ref);
-
-    bench_mie_option *o = &opt[nopt++];
-    snprintf(o->method, sizeof o->method, "hg");
-    snprintf(o->settings, sizeof o->settings, "g=%.4f", g);
-    o->kind = 0, o->a = (float)g;
-
-    /* two-term HG: w g1 + (1 - w) g2 = g fixes w; (g1, g2) minimise the log RMS */
-    o = &opt[nopt++];
     o->kind = 1;
     double best = HUGE_VAL, b1 = 0.0, b2 = 0.0;
     for (int i = 0; i < 100; i++)
         for (int j = 0; j < 40; j++) {
             double g1 = fmax(g + 0.001, 0.5 + 0.005 * i), g2 = -0.8 + 0.04 * j;
             o->a = (float)g1, o->b = (float)g2, o->c = (float)((g - g2) / (g1 - g2));
-            double s = bench_mie_log_rms(&ref, o);
+            double s = bench_mie_log_rms(ref, o);
             if (s < best)
                 best = s, b1 = g1, b2 = g2;
         }
     o->a = (float)b1, o->b = (float)b2, o->c = (float)((g - b2) / (b1 - b2));
     snprintf(o->method, sizeof o->method, "two-term-hg");
     snprintf(o->settings, sizeof o->settings, "g1=%.3f g2=%.2f w=%.3f", b1, b2, (double)o->c);
+}
 
+/* Cornette-Shanks: the g whose mean cosine 3g(4+g^2)/(5(2+g^2)) is the table's, by bisection */
+static void bench_mie_fit_cornette_shanks(double g, bench_mie_option *o)
+{
     double lo = 0.0, hi = 0.9999;
     for (int i = 0; i < 60; i++) {
         double c = 0.5 * (lo + hi);
@@ -211,90 +194,121 @@ int bench_mie(const char *dir, int quick, atmo_err *e)
         else
             hi = c;
     }
-    o = &opt[nopt++];
     snprintf(o->method, sizeof o->method, "cornette-shanks");
     snprintf(o->settings, sizeof o->settings, "g=%.4f", lo);
     o->kind = 2, o->a = (float)lo;
+}
 
-    o = &opt[nopt++];
+/* Draine: (g, alpha) minimising the log RMS on a grid */
+static void bench_mie_fit_draine(const mie_table *ref, bench_mie_option *o)
+{
     o->kind = 3;
-    double bg = 0.0, ba = 0.0;
-    best = HUGE_VAL;
+    double bg = 0.0, ba = 0.0, best = HUGE_VAL;
     for (int i = 0; i <= 99; i++)
         for (int j = 0; j <= 40; j++) {
             o->a = 0.5f + 0.005f * (float)i, o->b = 0.5f * (float)j;
-            double s = bench_mie_log_rms(&ref, o);
+            double s = bench_mie_log_rms(ref, o);
             if (s < best)
                 best = s, bg = o->a, ba = o->b;
         }
     o->a = (float)bg, o->b = (float)ba;
     snprintf(o->method, sizeof o->method, "draine");
     snprintf(o->settings, sizeof o->settings, "g=%.3f alpha=%.1f", bg, ba);
+}
 
-    o = &opt[nopt++];
-    o->kind = 4, o->jd = phase_jendersie_deon_params((float)(2.0 * d.r_eff_um));
+/* The options, each fitted to (or taken from) the reference table; *coarse gets the 1-degree
+ * table. Returns the count in *nopt. */
+static int bench_mie_options(const mie_dsd *d, double n, double k, const mie_table *ref,
+                             mie_table *coarse, bench_mie_option *opt, int *nopt, atmo_err *e)
+{
+    int rc;
+    double g = mie_table_asymmetry(ref);
+    bench_mie_option *o = &opt[(*nopt)++];
+    snprintf(o->method, sizeof o->method, "hg");
+    snprintf(o->settings, sizeof o->settings, "g=%.4f", g);
+    o->kind = 0, o->a = (float)g;
+    bench_mie_fit_two_term(ref, g, &opt[(*nopt)++]);
+    bench_mie_fit_cornette_shanks(g, &opt[(*nopt)++]);
+    bench_mie_fit_draine(ref, &opt[(*nopt)++]);
+    o = &opt[(*nopt)++];
+    o->kind = 4, o->jd = phase_jendersie_deon_params((float)(2.0 * d->r_eff_um));
     snprintf(o->method, sizeof o->method, "jendersie-deon");
-    snprintf(o->settings, sizeof o->settings, "d=%.0fum", 2.0 * d.r_eff_um);
-
-    o = &opt[nopt++];
+    snprintf(o->settings, sizeof o->settings, "d=%.0fum", 2.0 * d->r_eff_um);
+    o = &opt[(*nopt)++];
     o->kind = 5;
     snprintf(o->method, sizeof o->method, "mie-table");
-    snprintf(o->settings, sizeof o->settings, "%d angles", ref.n);
-    if ((rc = bench_mie_to_float(&ref, o, e)))
-        goto done;
+    snprintf(o->settings, sizeof o->settings, "%d angles", ref->n);
+    if ((rc = bench_mie_to_float(ref, o, e)))
+        return rc;
     mie_table_options uni = {.uniform = 1, .coarse_step_deg = 1.0};
-    if ((rc = mie_table_get(&d, 550.0, n, k, &uni, 1, &coarse, NULL, e)))
-        goto done;
-    o = &opt[nopt++];
+    if ((rc = mie_table_get(d, 550.0, n, k, &uni, 1, coarse, NULL, e)))
+        return rc;
+    o = &opt[(*nopt)++];
     o->kind = 5;
     snprintf(o->method, sizeof o->method, "mie-table-1deg");
-    snprintf(o->settings, sizeof o->settings, "%d angles", coarse.n);
-    if ((rc = bench_mie_to_float(&coarse, o, e)))
-        goto done;
+    snprintf(o->settings, sizeof o->settings, "%d angles", coarse->n);
+    return bench_mie_to_float(coarse, o, e);
+}
 
+/* Each option's error per range and its cost. */
+static void bench_mie_measure(const mie_table *ref, bench_mie_option *opt, int nopt, int quick)
+{
     for (int i = 0; i < nopt; i++) {
         for (int r = 0; r < BENCH_MIE_NRANGES; r++)
-            opt[i].err[r] = bench_mie_error(&ref, &opt[i], NULL, bench_mie_range[r][0],
+            opt[i].err[r] = bench_mie_error(ref, &opt[i], NULL, bench_mie_range[r][0],
                                               bench_mie_range[r][1], NULL);
         bench_mie_cost(&opt[i], quick ? BENCH_MIE_CALLS / 20 : BENCH_MIE_CALLS);
         fprintf(stderr, "bench mie: %-16s %-30s errors %.2e %.2e %.2e %.2e all %.2e  eval %.1f ns  "
                 "sample %.1f ns\n", opt[i].method, opt[i].settings, opt[i].err[0], opt[i].err[1],
                 opt[i].err[2], opt[i].err[3], opt[i].err[4], opt[i].eval_ns, opt[i].sample_ns);
     }
+}
 
-    /* table builds: the last setting is the reference for the others */
+/* The table builds, timed; the last setting is the reference for the others. */
+typedef struct bench_mie_builds {
+    const mie_table_options *set;
+    int nset;
+    mie_table t[6];
+    double secs[6], cpus[6], errs[6], maxs[6];
+} bench_mie_builds;
+
+static int bench_mie_build_tables(const mie_dsd *d, double n, double k, int quick,
+                                  bench_mie_builds *b, atmo_err *e)
+{
     static const mie_table_options full[] = {
         {.max_dx = 0.5}, {.max_dx = 0.1}, {.max_dx = 0.03}, {.tolerance = 0.0},
         {.tolerance = 3e-4}, {.max_dx = 0.005}};
     static const mie_table_options fast[] = {
         {.uniform = 1, .coarse_step_deg = 2.0, .max_dx = 0.5},
         {.uniform = 1, .coarse_step_deg = 2.0, .max_dx = 0.05}};
-    const mie_table_options *set = quick ? fast : full;
-    int nset = quick ? 2 : 6;
-    double secs[6], cpus[6], errs[6], maxs[6];
-    for (int i = 0; i < nset; i++) {
+    int rc;
+    b->set = quick ? fast : full;
+    b->nset = quick ? 2 : 6;
+    for (int i = 0; i < b->nset; i++) {
+        const mie_table_options *s = &b->set[i];
         double t0 = bench_now(), c0 = bench_clock(CLOCK_PROCESS_CPUTIME_ID);
-        if ((rc = mie_table_build(&d, 550.0, n, k, &set[i], &builds[i], e)))
-            goto done;
-        secs[i] = bench_now() - t0;
-        cpus[i] = bench_clock(CLOCK_PROCESS_CPUTIME_ID) - c0;
+        if ((rc = mie_table_build(d, 550.0, n, k, s, &b->t[i], e)))
+            return rc;
+        b->secs[i] = bench_now() - t0;
+        b->cpus[i] = bench_clock(CLOCK_PROCESS_CPUTIME_ID) - c0;
         fprintf(stderr, "bench mie: table %s %g: %d angles, %d radii (dx %.4f), %.3f s, %.3f s CPU\n",
-                set[i].max_dx > 0.0 ? "fixed step" : "tolerance",
-                set[i].max_dx > 0.0 ? set[i].max_dx : (set[i].tolerance > 0.0 ? set[i].tolerance : MIE_DSD_TOLERANCE),
-                builds[i].n, builds[i].bulk.n_radii, builds[i].bulk.dx, secs[i], cpus[i]);
+                s->max_dx > 0.0 ? "fixed step" : "tolerance",
+                s->max_dx > 0.0 ? s->max_dx : (s->tolerance > 0.0 ? s->tolerance : MIE_DSD_TOLERANCE),
+                b->t[i].n, b->t[i].bulk.n_radii, b->t[i].bulk.dx, b->secs[i], b->cpus[i]);
     }
-    for (int i = 0; i < nset; i++)
-        errs[i] = bench_mie_error(&builds[nset - 1], NULL, &builds[i], 0.0, 180.0, &maxs[i]);
+    for (int i = 0; i < b->nset; i++)
+        b->errs[i] = bench_mie_error(&b->t[b->nset - 1], NULL, &b->t[i], 0.0, 180.0, &b->maxs[i]);
+    return ATMO_OK;
+}
 
-    char csv[4200], csv2[4200], svg[4200], tmp[ATMO_TMP_PATH_MAX];
-    snprintf(csv, sizeof csv, "%s/mie.csv", dir);
-    snprintf(csv2, sizeof csv2, "%s/mie_table.csv", dir);
-    snprintf(svg, sizeof svg, "%s/mie.svg", dir);
+/* DIR/mie.csv: method, settings, errors per range, costs */
+static int bench_mie_write_options(const char *csv, const bench_mie_option *opt, int nopt,
+                                   atmo_err *e)
+{
+    char tmp[ATMO_TMP_PATH_MAX];
     FILE *f = atmo_atomic_open(csv, tmp, e);
-    if (!f) {
-        rc = ATMO_ERR_RUNTIME;
-        goto done;
-    }
+    if (!f)
+        return ATMO_ERR_RUNTIME;
     fprintf(f, "method,settings");
     for (int r = 0; r < BENCH_MIE_NRANGES; r++)
         fprintf(f, ",%s", bench_mie_range_name[r]);
@@ -305,53 +319,86 @@ int bench_mie(const char *dir, int quick, atmo_err *e)
             fprintf(f, ",%.4e", opt[i].err[r]);
         fprintf(f, ",%.2f,%.2f,host\n", opt[i].eval_ns, opt[i].sample_ns);
     }
-    if ((rc = atmo_atomic_commit(f, tmp, csv, e)))
-        goto done;
-    if (!(f = atmo_atomic_open(csv2, tmp, e))) {
-        rc = ATMO_ERR_RUNTIME;
-        goto done;
-    }
-    fprintf(f, "settings,n_angles,n_radii,dx,seconds,cpu_seconds,error,error_max\n");
-    for (int i = 0; i < nset; i++) {
-        char label[64];
-        if (set[i].max_dx > 0.0)
-            snprintf(label, sizeof label, "%sdx=%g", i == nset - 1 ? "reference " : "", set[i].max_dx);
-        else
-            snprintf(label, sizeof label, "tol=%g", set[i].tolerance > 0.0 ? set[i].tolerance
-                                                                           : MIE_DSD_TOLERANCE);
-        fprintf(f, "%s%s,%d,%d,%.5f,%.4f,%.4f,%.4e,%.4e\n", label, set[i].uniform ? " uniform-grid" : "",
-                builds[i].n, builds[i].bulk.n_radii, builds[i].bulk.dx, secs[i], cpus[i],
-                i == nset - 1 ? 0.0 : errs[i], i == nset - 1 ? 0.0 : maxs[i]);
-    }
-    if ((rc = atmo_atomic_commit(f, tmp, csv2, e)))
-        goto done;
+    return atmo_atomic_commit(f, tmp, csv, e);
+}
 
-    { /* the chart */
-        char panels[4096];
-        size_t len = 0;
-        for (int r = 0; r < 4; r++)
-            len += (size_t)snprintf(panels + len, sizeof panels - len,
-                "set title 'error %g-%g deg'\nset xlabel 'ns per evaluation (host)'\n"
-                "set ylabel 'RMS of P/P_{mie} - 1'\n"
-                "plot '%s' using 8:%d every ::1 with points pt 7, '' using 8:%d:1 every ::1 "
-                "with labels offset 0,0.8 font ',7' noenhanced\n",
-                bench_mie_range[r][0], bench_mie_range[r][1], csv, r + 3, r + 3);
-        len += (size_t)snprintf(panels + len, sizeof panels - len,
-            "set title 'error 0-180 deg vs sampling cost'\nset xlabel 'ns per sample (host)'\n"
-            "plot '%s' using 9:7 every ::1 with points pt 7, '' using 9:7:1 every ::1 with labels "
-            "offset 0,0.8 font ',7' noenhanced\n", csv);
-        char *script = malloc(sizeof panels + 8192);
-        if (!script) {
-            rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the chart script");
-            goto done;
-        }
-        snprintf(script, sizeof panels + 8192, bench_mie_plot,
-                 "phase options vs tabulated Mie (cumulus, 550 nm)", panels, csv2);
-        rc = bench_plot(svg, 1500, 900, script, e);
-        free(script);
-        if (rc)
-            goto done;
+/* DIR/mie_table.csv: the builds' settings, sizes, times and errors */
+static int bench_mie_write_builds(const char *csv2, const bench_mie_builds *b, atmo_err *e)
+{
+    char tmp[ATMO_TMP_PATH_MAX];
+    FILE *f = atmo_atomic_open(csv2, tmp, e);
+    if (!f)
+        return ATMO_ERR_RUNTIME;
+    fprintf(f, "settings,n_angles,n_radii,dx,seconds,cpu_seconds,error,error_max\n");
+    for (int i = 0; i < b->nset; i++) {
+        const mie_table_options *s = &b->set[i];
+        int last = i == b->nset - 1;
+        char label[64];
+        if (s->max_dx > 0.0)
+            snprintf(label, sizeof label, "%sdx=%g", last ? "reference " : "", s->max_dx);
+        else
+            snprintf(label, sizeof label, "tol=%g", s->tolerance > 0.0 ? s->tolerance
+                                                                       : MIE_DSD_TOLERANCE);
+        fprintf(f, "%s%s,%d,%d,%.5f,%.4f,%.4f,%.4e,%.4e\n", label, s->uniform ? " uniform-grid" : "",
+                b->t[i].n, b->t[i].bulk.n_radii, b->t[i].bulk.dx, b->secs[i], b->cpus[i],
+                last ? 0.0 : b->errs[i], last ? 0.0 : b->maxs[i]);
     }
+    return atmo_atomic_commit(f, tmp, csv2, e);
+}
+
+/* DIR/mie.svg: error in each range against eval cost, and table error against build time */
+static int bench_mie_chart(const char *svg, const char *csv, const char *csv2, atmo_err *e)
+{
+    char panels[4096];
+    size_t len = 0;
+    for (int r = 0; r < 4; r++)
+        len += (size_t)snprintf(panels + len, sizeof panels - len,
+            "set title 'error %g-%g deg'\nset xlabel 'ns per evaluation (host)'\n"
+            "set ylabel 'RMS of P/P_{mie} - 1'\n"
+            "plot '%s' using 8:%d every ::1 with points pt 7, '' using 8:%d:1 every ::1 "
+            "with labels offset 0,0.8 font ',7' noenhanced\n",
+            bench_mie_range[r][0], bench_mie_range[r][1], csv, r + 3, r + 3);
+    len += (size_t)snprintf(panels + len, sizeof panels - len,
+        "set title 'error 0-180 deg vs sampling cost'\nset xlabel 'ns per sample (host)'\n"
+        "plot '%s' using 9:7 every ::1 with points pt 7, '' using 9:7:1 every ::1 with labels "
+        "offset 0,0.8 font ',7' noenhanced\n", csv);
+    char *script = malloc(sizeof panels + 8192);
+    if (!script)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the chart script");
+    snprintf(script, sizeof panels + 8192, bench_mie_plot,
+             "phase options vs tabulated Mie (cumulus, 550 nm)", panels, csv2);
+    int rc = bench_plot(svg, 1500, 900, script, e);
+    free(script);
+    return rc;
+}
+
+int bench_mie(const char *dir, int quick, atmo_err *e)
+{
+    mie_dsd d;
+    mie_table ref = {0}, coarse = {0};
+    bench_mie_builds builds = {0};
+    bench_mie_option opt[8];
+    int nopt = 0, rc;
+    double n, k;
+    char csv[4200], csv2[4200], svg[4200];
+    memset(opt, 0, sizeof opt);
+    mie_dsd_preset("cumulus", &d);
+    if ((rc = mie_water_index(550.0, &n, &k, e)))
+        return rc;
+    fprintf(stderr, "bench mie: reference table (cumulus, 550 nm; cached after the first run)\n");
+    if ((rc = mie_table_get(&d, 550.0, n, k, NULL, 1, &ref, NULL, e)) ||
+        (rc = bench_mie_options(&d, n, k, &ref, &coarse, opt, &nopt, e)))
+        goto done;
+    bench_mie_measure(&ref, opt, nopt, quick);
+    if ((rc = bench_mie_build_tables(&d, n, k, quick, &builds, e)))
+        goto done;
+    snprintf(csv, sizeof csv, "%s/mie.csv", dir);
+    snprintf(csv2, sizeof csv2, "%s/mie_table.csv", dir);
+    snprintf(svg, sizeof svg, "%s/mie.svg", dir);
+    if ((rc = bench_mie_write_options(csv, opt, nopt, e)) ||
+        (rc = bench_mie_write_builds(csv2, &builds, e)) ||
+        (rc = bench_mie_chart(svg, csv, csv2, e)))
+        goto done;
     printf("wrote %s, %s and %s\n", csv, csv2, svg);
 done:
     for (int i = 0; i < nopt; i++) {
@@ -360,7 +407,7 @@ done:
         free(opt[i].cdf);
     }
     for (int i = 0; i < 6; i++)
-        mie_table_free(&builds[i]);
+        mie_table_free(&builds.t[i]);
     mie_table_free(&coarse);
     mie_table_free(&ref);
     return rc;

@@ -19,18 +19,31 @@
 
 #define ATMO_CL_STD "-cl-std=CL1.2"
 
-char *atmo_cl_assemble(const char *prelude, const char *const *fragments, int count,
-                       const char *extra, atmo_err *e)
+/* Fragment i's text and size: generated, or the embedded file. */
+static const char *fragment_text(const char *const *fragments, const char *const *texts, int i,
+                                 size_t *size)
+{
+    if (texts && texts[i]) {
+        *size = strlen(texts[i]);
+        return texts[i];
+    }
+    const struct atmo_embedded_file *f = atmo_embedded_find(atmo_kernel_sources, fragments[i]);
+    *size = f ? f->size : 0;
+    return f ? f->text : NULL;
+}
+
+char *atmo_cl_assemble(const char *prelude, const char *const *fragments,
+                       const char *const *texts, int count, const char *extra, atmo_err *e)
 {
     size_t total = 1 + (extra ? strlen(extra) + 32 : 0) + (prelude ? strlen(prelude) + 32 : 0);
     for (int i = 0; i < count; i++) {
-        const struct atmo_embedded_file *f = atmo_embedded_find(atmo_kernel_sources, fragments[i]);
-        if (!f) {
+        size_t size;
+        if (!fragment_text(fragments, texts, i, &size)) {
             atmo_fail(e, ATMO_ERR_RUNTIME, "kernel fragment '%s' is not embedded (a build bug)",
                       fragments[i]);
             return NULL;
         }
-        total += f->size + strlen(f->name) + 32;
+        total += size + strlen(fragments[i]) + 32;
     }
     char *src = malloc(total), *p = src;
     if (!src) {
@@ -40,11 +53,12 @@ char *atmo_cl_assemble(const char *prelude, const char *const *fragments, int co
     if (prelude)
         p += sprintf(p, "#line 1 \"plan\"\n%s", prelude);
     for (int i = 0; i < count; i++) {
-        const struct atmo_embedded_file *f = atmo_embedded_find(atmo_kernel_sources, fragments[i]);
-        p += sprintf(p, "#line 1 \"%s\"\n", f->name);
-        memcpy(p, f->text, f->size);
-        p += f->size;
-        if (f->size && f->text[f->size - 1] != '\n')
+        size_t size;
+        const char *text = fragment_text(fragments, texts, i, &size);
+        p += sprintf(p, "#line 1 \"%s\"\n", fragments[i]);
+        memcpy(p, text, size);
+        p += size;
+        if (size && text[size - 1] != '\n')
             *p++ = '\n';
     }
     if (extra)
@@ -77,7 +91,7 @@ static int mkdir_p(const char *dir)
     return mkdir(tmp, 0755) != 0 && errno != EEXIST ? -1 : 0;
 }
 
-int atmo_cache_dir(char *dir, size_t size)
+int atmo_cache_dir_find(char *dir, size_t size, char *why, size_t why_size)
 {
     const char *env = getenv("ATMO_CACHE_DIR");
     const char *xdg = getenv("XDG_CACHE_HOME");
@@ -88,9 +102,29 @@ int atmo_cache_dir(char *dir, size_t size)
         snprintf(dir, size, "%s/atmo", xdg);
     else if (home && *home)
         snprintf(dir, size, "%s/.cache/atmo", home);
-    else
+    else {
+        snprintf(dir, size, "(none)");
+        snprintf(why, why_size, "none of ATMO_CACHE_DIR, XDG_CACHE_HOME and HOME is set");
         return -1;
-    return mkdir_p(dir);
+    }
+    if (mkdir_p(dir) != 0) {
+        snprintf(why, why_size, "cannot create it: %s", strerror(errno));
+        return -1;
+    }
+    return atmo_cache_dir_usable(dir, why, why_size) ? 0 : -1;
+}
+
+int atmo_cache_dir(char *dir, size_t size)
+{
+    static int warned;
+    char why[256];
+    if (atmo_cache_dir_find(dir, size, why, sizeof why) == 0)
+        return 0;
+    if (!warned++)
+        fprintf(stderr, "atmo: warning: cache directory '%s' is unusable (%s); running without "
+                        "the disk cache (set ATMO_CACHE_DIR to a writable directory, or pass "
+                        "--no-kernel-cache and --no-lut-cache)\n", dir, why);
+    return -1;
 }
 
 static int dump_source(const char *dir, unsigned long long key, const char *src, atmo_err *e)
@@ -155,7 +189,8 @@ int atmo_cl_build(atmo_cl *cl, const atmo_cl_build_options *o, cl_program *progr
     int rc = ATMO_OK;
     char options[2048];
     snprintf(options, sizeof options, "%s %s", ATMO_CL_STD, o->defines ? o->defines : "");
-    char *src = atmo_cl_assemble(o->prelude, o->fragments, o->fragment_count, o->extra_source, e);
+    char *src = atmo_cl_assemble(o->prelude, o->fragments, o->texts, o->fragment_count,
+                                 o->extra_source, e);
     if (!src)
         return ATMO_ERR_RUNTIME;
 

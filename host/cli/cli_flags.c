@@ -130,7 +130,7 @@ static void valid_text(const cli_flag *f, const cli_limits *l, const void *args,
     default_text(f, args, def, sizeof def);
     double x = strtod(def, &end);
     if (!def[0] || *end || x < l->min || x > l->max || (l->open_min && x == l->min))
-        snprintf(def, sizeof def, "%.15g", l->open_min ? l->max : l->min);
+        snprintf(def, sizeof def, "%.15g", l->open_min ? fmin(l->max, l->min + 1.0) : l->min);
     snprintf(buf, n, "%s%suse %s %c%.15g, %.15g], e.g. %s %s", f->key ? f->key : "",
              f->key ? ": " : "", f->type == CLI_INT ? "a whole number in" : "a number in",
              l->open_min ? '(' : '[', l->min, l->max, f->name, def);
@@ -145,9 +145,9 @@ static int check_value(const cli_flag *f, const void *args, const char *v, doubl
     char valid[256];
     if (f->type == CLI_INT || f->type == CLI_FLOAT) {
         char *end;
-        double x = strtod(v, &end);
+        double x = 0.0;
         int parsed = f->type == CLI_INT ? atmo_parse_decimal(v, &x) && x == floor(x)
-                                        : *v && !*end && isfinite(x);
+                                        : (x = strtod(v, &end), *v && !*end && isfinite(x));
         valid_text(f, &l, args, valid, sizeof valid);
         if (!parsed)
             return atmo_fail(e, ATMO_ERR_USAGE, "%s: '%s' is not %s (%s)", f->name, v,

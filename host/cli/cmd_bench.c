@@ -5,92 +5,114 @@
  * DIR/SUITE.svg of error against time drawn by gnuplot (the CSV alone, with a note, when gnuplot
  * is missing). */
 #include <errno.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
 #include "atmo/bench.h"
+#include "atmo/suggest.h"
+#include "cli_flags.h"
 #include "commands.h"
 
-static const char bench_usage[] =
-    "usage: atmo bench SUITE [--output DIR] [--device N|NAME] [--quick] [--fit]\n"
-    "\n"
-    "Measures error against a high-quality reference and time for each setting of a method,\n"
-    "and writes DIR/SUITE.csv and the chart DIR/SUITE.svg (gnuplot). DIR defaults to bench/.\n"
-    "--quick runs fewer settings (for tests).\n"
-    "\n"
-    "suites:\n"
-    "  sky         single-scattering sky: view-ray steps and transmittance LUT size\n"
-    "  atmosphere  every atmosphere method and its knobs against the Monte Carlo reference table\n"
-    "              (tests/data/reference_sky.csv; --reference FILE to use another)\n"
-    "  mie         cloud phase options against the tabulated Mie phase; phase table build time\n"
-    "  colour      colour difference (CIE76) of the 3-wavelength mode from the spectral mode\n"
-    "              with 15, 30 and 48 bands, by sun zenith; and their time\n"
-    "  panorama    whole-process stages of a fast sky panorama to EXR, warm, new atmosphere\n"
-    "              and cold, 512x256 to 4096x2048 (wall seconds, not error)\n"
-    "  render      the path tracer: time to 1% noise of thesis views 1, 6 and 7 at 1280x720\n"
-    "              (extrapolated from a central crop), its split between the atmosphere and\n"
-    "              the bounces, and the cost of an unused objects feature\n"
-    "  terrain     heightmap sizes and formats against direct evaluation, sphere-tracing\n"
-    "              optimism and steps, exact against estimated shadows, light-shaft shortcuts,\n"
-    "              thesis-1's time per sample\n"
-    "  clouds      the fBm clouds' marcher (steps, light steps, octaves) against the Monte\n"
-    "              Carlo reference on four cloud views; --fit fits the multiple-scattering\n"
-    "              octaves (clouds.ms_a, ms_b, ms_c, ms_octaves) to the reference instead\n";
+static const char *const bench_suites[] = {"sky",    "atmosphere", "mie",     "colour",
+                                           "panorama", "render",   "terrain", "clouds",
+                                           "denoise", NULL};
+
+/* The flags' destinations (bench_flags), holding the defaults before parsing. */
+typedef struct bench_args {
+    const char *dir, *device, *reference;
+    int quick, fit;
+} bench_args;
+
+#define BENCH_FLAG(member) offsetof(bench_args, member)
+
+static const cli_flag bench_flags[] = {
+    {.type = CLI_PATH, .name = "--output", .metavar = "DIR", .offset = BENCH_FLAG(dir),
+     .help = "where SUITE.csv and SUITE.svg go (created if missing)"},
+    {.type = CLI_STRING, .name = "--device", .metavar = "N|NAME", .offset = BENCH_FLAG(device),
+     .def = "$ATMO_DEVICE, else the first GPU, else the first device",
+     .help = "OpenCL device by index or name part (atmo devices)"},
+    {.type = CLI_BOOL, .name = "--quick", .offset = BENCH_FLAG(quick),
+     .help = "fewer settings (for tests)"},
+    {.type = CLI_BOOL, .name = "--fit", .offset = BENCH_FLAG(fit),
+     .help = "clouds: fit the multiple-scattering octaves instead"},
+    {.type = CLI_PATH, .name = "--reference", .offset = BENCH_FLAG(reference),
+     .help = "atmosphere: the Monte Carlo reference table"},
+    {.type = CLI_END},
+};
+
+static const cli_command bench_cli = {
+    .name = "bench",
+    .synopsis = "SUITE [--output DIR] [--device N|NAME] [--quick] [--fit]",
+    .about =
+        "Measures error against a high-quality reference and time for each setting of a method,\n"
+        "and writes DIR/SUITE.csv and the chart DIR/SUITE.svg (gnuplot).\n",
+    .flags = bench_flags,
+    .epilogue =
+        "suites:\n"
+        "  sky         single-scattering sky: view-ray steps and transmittance LUT size\n"
+        "  atmosphere  every atmosphere method and its knobs against the Monte Carlo reference table\n"
+        "              (tests/data/reference_sky.csv; --reference FILE to use another)\n"
+        "  mie         cloud phase options against the tabulated Mie phase; phase table build time\n"
+        "  colour      colour difference (CIE76) of the 3-wavelength mode from the spectral mode\n"
+        "              with 15, 30 and 48 bands, by sun zenith; and their time\n"
+        "  panorama    whole-process stages of a fast sky panorama to EXR, warm, new atmosphere\n"
+        "              and cold, 512x256 to 4096x2048 (wall seconds, not error)\n"
+        "  render      the path tracer: time to 1% noise of thesis views 1, 6 and 7 at 1280x720\n"
+        "              (extrapolated from a central crop), its split between the atmosphere and\n"
+        "              the bounces, and the cost of an unused objects feature\n"
+        "  terrain     heightmap sizes and formats against direct evaluation, sphere-tracing\n"
+        "              optimism and steps, exact against estimated shadows, light-shaft shortcuts,\n"
+        "              thesis-1's time per sample\n"
+        "  clouds      the fBm clouds' marcher (steps, light steps, octaves) against the Monte\n"
+        "              Carlo reference on four cloud views; --fit fits the multiple-scattering\n"
+        "              octaves (clouds.ms_a, ms_b, ms_c, ms_octaves) to the reference instead\n"
+        "  denoise     thesis-7 path traced at 1 to 64 spp, raw and denoised by Open Image\n"
+        "              Denoise (fast, balanced, high): error against time, where denoising pays\n",
+    .max_positional = 1,
+};
+
+/* The suite named, or a usage error naming the nearest one. */
+static int bench_check_suite(const char *suite, atmo_err *e)
+{
+    if (!suite)
+        return atmo_fail(e, ATMO_ERR_USAGE, "name a suite (sky, atmosphere, mie, colour, "
+                         "panorama, render, terrain, clouds, denoise); atmo bench --help");
+    for (const char *const *s = bench_suites; *s; s++)
+        if (strcmp(suite, *s) == 0)
+            return ATMO_OK;
+    const char *near = atmo_suggest_among(suite, bench_suites);
+    return atmo_fail(e, ATMO_ERR_USAGE, "unknown suite '%s' (%s%s%ssuites: sky, atmosphere, mie, "
+                     "colour, panorama, render, terrain, clouds, denoise)", suite,
+                     near ? "did you mean '" : "", near ? near : "", near ? "'? " : "");
+}
 
 int cmd_bench(int argc, char **argv)
 {
-    const char *suite = NULL, *dir = "bench", *device = NULL;
-    const char *reference = "tests/data/reference_sky.csv";
-    int quick = 0, fit = 0;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            printf("%s", bench_usage);
-            return ATMO_OK;
-        } else if (strcmp(argv[i], "--quick") == 0)
-            quick = 1;
-        else if (strcmp(argv[i], "--fit") == 0)
-            fit = 1;
-        else if (strcmp(argv[i], "--output") == 0 && i + 1 < argc)
-            dir = argv[++i];
-        else if (strcmp(argv[i], "--device") == 0 && i + 1 < argc)
-            device = argv[++i];
-        else if (strcmp(argv[i], "--reference") == 0 && i + 1 < argc)
-            reference = argv[++i];
-        else if (argv[i][0] != '-' && !suite)
-            suite = argv[i];
-        else {
-            fprintf(stderr, "atmo bench: unexpected argument '%s' (atmo bench --help)\n", argv[i]);
-            return ATMO_ERR_USAGE;
-        }
-    }
-    if (!suite) {
-        fprintf(stderr, "atmo bench: name a suite (sky, atmosphere, mie, colour, panorama, "
-                        "render, terrain, clouds); atmo bench --help\n");
-        return ATMO_ERR_USAGE;
-    }
-    if (strcmp(suite, "sky") != 0 && strcmp(suite, "mie") != 0 &&
-        strcmp(suite, "atmosphere") != 0 && strcmp(suite, "colour") != 0 &&
-        strcmp(suite, "panorama") != 0 && strcmp(suite, "render") != 0 &&
-        strcmp(suite, "terrain") != 0 && strcmp(suite, "clouds") != 0) {
-        fprintf(stderr, "atmo bench: unknown suite '%s' (suites: sky, atmosphere, mie, colour, "
-                        "panorama, render, terrain, clouds)\n",
-                suite);
-        return ATMO_ERR_USAGE;
-    }
-    if (mkdir(dir, 0755) != 0 && errno != EEXIST) {
-        fprintf(stderr, "atmo bench: cannot create output directory '%s': %s\n", dir,
+    bench_args a = {.dir = "bench", .reference = "tests/data/reference_sky.csv"};
+    const char *suite = NULL;
+    atmo_err e = {{0}};
+    int rc, n = 0;
+    if (!cli_parse(&bench_cli, &a, argc, argv, &suite, &n, &rc))
+        return rc;
+    if ((rc = bench_check_suite(suite, &e)))
+        return cli_fail(&bench_cli, rc, &e);
+    if (mkdir(a.dir, 0755) != 0 && errno != EEXIST) {
+        fprintf(stderr, "atmo bench: cannot create output directory '%s': %s\n", a.dir,
                 strerror(errno));
         return ATMO_ERR_USAGE;
     }
-    atmo_err e;
-    int rc = strcmp(suite, "mie") == 0   ? bench_mie(dir, quick, &e)
+    const char *dir = a.dir, *device = a.device;
+    int quick = a.quick;
+    rc = strcmp(suite, "mie") == 0   ? bench_mie(dir, quick, &e)
              : strcmp(suite, "sky") == 0 ? bench_sky(dir, device, quick, &e)
              : strcmp(suite, "colour") == 0 ? bench_colour(dir, device, quick, &e)
              : strcmp(suite, "panorama") == 0 ? bench_panorama(dir, device, quick, &e)
              : strcmp(suite, "render") == 0 ? bench_path(dir, device, quick, &e)
              : strcmp(suite, "terrain") == 0 ? bench_terrain(dir, device, quick, &e)
-             : strcmp(suite, "clouds") == 0 ? bench_clouds(dir, device, quick, fit, &e)
-                                         : bench_atmosphere(dir, device, reference, quick, &e);
+             : strcmp(suite, "clouds") == 0 ? bench_clouds(dir, device, quick, a.fit, &e)
+             : strcmp(suite, "denoise") == 0 ? bench_denoise(dir, device, quick, &e)
+                                         : bench_atmosphere(dir, device, a.reference, quick, &e);
     if (rc)
         fprintf(stderr, "atmo bench: %s\n", e.msg);
     return rc;

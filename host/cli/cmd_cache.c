@@ -6,14 +6,19 @@
  * "<product>.tmp.<pid>"; other files in the directory are never touched.
  *   list    each product's kind, size, age and name, then the count and total size
  *   verify  checks every product (header, kind against its name, lengths, checksum), deletes
- *           those that fail and temporary files whose writer is gone; says how many went
+ *           those that fail and temporary files whose writer is gone, and checks PoCL's
+ *           programs in the folder "pocl" (atmo_cl_driver_cache_repair), deleting those with
+ *           a file cut short; says how many went
  *   clear   deletes every atmo file in the directory (but the temporary files of running
- *           writers, which those writers rename or remove) and says so; PoCL's own cache
- *           (atmo_cl_driver_cache_dir, by default the folder "pocl" in it) is kept and named
- * Each exits 0 (1 when the directory cannot be read or a file cannot be removed). */
+ *           writers, which those writers rename or remove) and the folder "pocl", and says
+ *           so; a PoCL cache the user chose (POCL_CACHE_DIR) is not atmo's: it is kept and
+ *           named
+ * Each exits 0 (1 when the directory cannot be read or a file cannot be removed); an unusable
+ * cache directory is named with what is wrong with it. */
 #include <ctype.h>
 #include <dirent.h>
 #include <errno.h>
+#include <ftw.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,6 +27,7 @@
 #include <time.h>
 #include "atmo/cache_file.h"
 #include "atmo/cl_runtime.h"
+#include "atmo/suggest.h"
 #include "commands.h"
 
 #define KEY_HEX_DIGITS 16
@@ -39,10 +45,11 @@ static void print_usage(FILE *f)
                "The disk cache of compiled kernels, precomputed LUTs and Mie phase tables, in\n"
                "ATMO_CACHE_DIR, else $XDG_CACHE_HOME/atmo, else ~/.cache/atmo.\n\n"
                "  list     each cached file's kind, size and age, and the total (the default)\n"
-               "  verify   check every file and delete the damaged ones (renders also do this\n"
-               "           for the files they read)\n"
-               "  clear    delete every atmo file in the cache directory (other files stay,\n"
-               "           among them PoCL's own cache, the folder pocl, which it names)\n"
+               "  verify   check every file, and PoCL's compiled programs in the folder pocl,\n"
+               "           and delete the damaged ones (renders also do this for the files\n"
+               "           they read)\n"
+               "  clear    delete every atmo file in the cache directory and the folder pocl\n"
+               "           (other files stay, and so does a PoCL cache set by POCL_CACHE_DIR)\n"
                "  --help   this text\n");
 }
 
@@ -201,9 +208,19 @@ static int verify_files(const char *dir, const entry *list, int n)
         printf("removed %s (%s)\n", list[i].name, why);
         removed++;
     }
+    char driver[4200];
+    if (atmo_cl_driver_cache_is_own() && snprintf(driver, sizeof driver, "%s/pocl", dir) > 0)
+        removed += atmo_cl_driver_cache_repair(driver, stdout);
     printf("verified %d cached file%s in %s: %d removed\n", products, products == 1 ? "" : "s",
            dir, removed);
     return rc;
+}
+
+static int remove_tree_entry(const char *path, const struct stat *st, int flag,
+                             struct FTW *ftw)
+{
+    (void)st, (void)flag, (void)ftw;
+    return remove(path);
 }
 
 static int clear_files(const char *dir, const entry *list, int n)
@@ -220,10 +237,20 @@ static int clear_files(const char *dir, const entry *list, int n)
             removed++;
     }
     printf("removed %d file%s from %s\n", removed, removed == 1 ? "" : "s", dir);
-    char driver[1100];
-    if (atmo_cl_driver_cache_dir(driver, sizeof driver) == 0)
-        printf("kept PoCL's own cache in %s (its compiled kernels; delete that folder to "
-               "compile from scratch)\n", driver);
+    char driver[4200];
+    struct stat st;
+    if (!atmo_cl_driver_cache_is_own()) {
+        if (atmo_cl_driver_cache_dir(driver, sizeof driver) == 0)
+            printf("kept PoCL's cache in %s (POCL_CACHE_DIR, not atmo's; delete that folder to "
+                   "compile from scratch)\n", driver);
+    } else if (snprintf(driver, sizeof driver, "%s/pocl", dir) > 0 && lstat(driver, &st) == 0) {
+        if (nftw(driver, remove_tree_entry, 16, FTW_DEPTH | FTW_PHYS) != 0) {
+            fprintf(stderr, "atmo cache: cannot remove '%s': %s\n", driver, strerror(errno));
+            rc = ATMO_ERR_RUNTIME;
+        } else {
+            printf("removed PoCL's compiled programs in %s\n", driver);
+        }
+    }
     return rc;
 }
 
@@ -237,16 +264,20 @@ int cmd_cache(int argc, char **argv)
         }
         if (action || (strcmp(argv[i], "list") && strcmp(argv[i], "verify") &&
                        strcmp(argv[i], "clear"))) {
-            fprintf(stderr, "atmo cache: unexpected argument '%s' (actions: list, verify, clear; "
-                            "run 'atmo cache --help')\n", argv[i]);
+            static const char *const actions[] = {"list", "verify", "clear", NULL};
+            const char *near = action ? NULL : atmo_suggest_among(argv[i], actions);
+            fprintf(stderr, "atmo cache: unexpected argument '%s' (%s%s%sactions: list, verify, "
+                            "clear; run 'atmo cache --help')\n", argv[i],
+                    near ? "did you mean '" : "", near ? near : "", near ? "'? " : "");
             return ATMO_ERR_USAGE;
         }
         action = argv[i];
     }
-    char dir[4000];
-    if (atmo_cache_dir(dir, sizeof dir) != 0) {
-        fprintf(stderr, "atmo cache: no cache directory (set ATMO_CACHE_DIR or HOME, and check "
-                        "it can be created)\n");
+    char dir[4000], why[256];
+    if (atmo_cache_dir_find(dir, sizeof dir, why, sizeof why) != 0 &&
+        (!action || strcmp(action, "list") != 0 || strcmp(dir, "(none)") == 0)) {
+        fprintf(stderr, "atmo cache: cache directory '%s' is unusable: %s (set ATMO_CACHE_DIR "
+                        "to a writable directory)\n", dir, why);
         return ATMO_ERR_RUNTIME;
     }
     entry *list = NULL;

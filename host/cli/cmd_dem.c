@@ -5,26 +5,44 @@
  * terrain.heightmap_* keys, given with --set as for `atmo render`. --json prints one object
  * (for tools and tests). Errors are the loader's one line, exit 2. */
 #include <cjson/cJSON.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 #include "atmo/dem.h"
 #include "atmo/scene.h"
+#include "cli_flags.h"
 #include "commands.h"
 
-static void print_usage(FILE *f)
+typedef struct dem_args {
+    atmo_scene scene; /* the terrain.heightmap_* keys of --set */
+    int json;
+} dem_args;
+
+static int take_set(void *args, const cli_flag *f, const char *v, atmo_err *e)
 {
-    fprintf(f,
-            "usage: atmo dem info FILE [--set terrain.heightmap_KEY=VALUE]... [--json]\n\n"
-            "Read a digital elevation model as `atmo render --set terrain.heightmap_file=FILE`\n"
-            "would, and print its format, size, extent in metres, height range and projection.\n"
-            "Formats: GeoTIFF (%s), 16-bit greyscale PNG, one-channel EXR.\n\n"
-            "  --set KEY=VALUE  PNG/EXR: terrain.heightmap_file_extent_m (east-west size, m);\n"
-            "                   PNG: terrain.heightmap_scale_m, terrain.heightmap_offset_m;\n"
-            "                   terrain.heightmap_nodata (neighbours or sea-level)\n"
-            "  --json           print one JSON object\n"
-            "  --help           this text\n",
-            atmo_dem_have_gdal() ? "through GDAL" : "not in this build: needs libgdal-dev");
+    (void)f;
+    return atmo_scene_assign(&((dem_args *)args)->scene, v, "--set", e);
 }
+
+static const cli_flag dem_flags[] = {
+    {.type = CLI_STRING, .name = "--set", .metavar = "KEY=VALUE", .take = take_set,
+     .help = "PNG/EXR: terrain.heightmap_file_extent_m (east-west size, m);\n"
+             "PNG: terrain.heightmap_scale_m, terrain.heightmap_offset_m;\n"
+             "terrain.heightmap_nodata (neighbours or sea-level) (repeatable)"},
+    {.type = CLI_BOOL, .name = "--json", .offset = offsetof(dem_args, json),
+     .help = "print one JSON object"},
+    {.type = CLI_END},
+};
+
+static const cli_command dem_cli = {
+    .name = "dem",
+    .synopsis = "info FILE [--set terrain.heightmap_KEY=VALUE]... [--json]",
+    .about = "Read a digital elevation model as `atmo render --set terrain.heightmap_file=FILE`\n"
+             "would, and print its format, size, extent in metres, height range and projection.\n"
+             "Formats: GeoTIFF (through GDAL), 16-bit greyscale PNG, one-channel EXR.\n",
+    .flags = dem_flags,
+    .max_positional = 2,
+};
 
 static const char *fill_name(const atmo_dem_options *o)
 {
@@ -81,54 +99,35 @@ static void print_text(const char *path, const atmo_dem *d, const atmo_dem_optio
 
 int cmd_dem(int argc, char **argv)
 {
-    const char *path = NULL;
-    int json = 0, rc;
-    atmo_scene s;
+    const char *words[2] = {NULL, NULL};
+    static dem_args a;
+    int n = 0, rc;
     atmo_err e;
-    atmo_scene_defaults(&s);
-    if (argc >= 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
-        print_usage(stdout);
-        return ATMO_OK;
+    memset(&a, 0, sizeof a);
+    atmo_scene_defaults(&a.scene);
+    if (!cli_parse(&dem_cli, &a, argc, argv, words, &n, &rc)) {
+        if (rc == ATMO_OK)
+            printf("\nGeoTIFF in this build: %s\n",
+                   atmo_dem_have_gdal() ? "yes, through GDAL" : "no: needs libgdal-dev");
+        return rc;
     }
-    if (argc < 2 || strcmp(argv[1], "info") != 0) {
+    if (n < 1 || strcmp(words[0], "info") != 0) {
         fprintf(stderr, "atmo dem: expected 'info FILE'; run 'atmo dem --help'\n");
         return ATMO_ERR_USAGE;
     }
-    for (int i = 2; i < argc; i++) {
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            print_usage(stdout);
-            return ATMO_OK;
-        } else if (strcmp(argv[i], "--json") == 0) {
-            json = 1;
-        } else if (strcmp(argv[i], "--set") == 0) {
-            if (i + 1 >= argc) {
-                fprintf(stderr, "atmo dem: --set needs KEY=VALUE\n");
-                return ATMO_ERR_USAGE;
-            }
-            if ((rc = atmo_scene_assign(&s, argv[++i], "--set", &e))) {
-                fprintf(stderr, "atmo dem: %s\n", e.msg);
-                return rc;
-            }
-        } else if (argv[i][0] == '-' || path) {
-            fprintf(stderr, "atmo dem: unexpected argument '%s'; run 'atmo dem --help'\n",
-                    argv[i]);
-            return ATMO_ERR_USAGE;
-        } else {
-            path = argv[i];
-        }
-    }
-    if (!path) {
+    if (n < 2) {
         fprintf(stderr, "atmo dem info: name the file: atmo dem info FILE\n");
         return ATMO_ERR_USAGE;
     }
+    const char *path = words[1];
     atmo_dem_options o;
     atmo_dem d;
-    atmo_dem_options_from_scene(&s, &o);
+    atmo_dem_options_from_scene(&a.scene, &o);
     if ((rc = atmo_dem_load(path, &o, &d, &e))) {
         fprintf(stderr, "atmo dem: %s\n", e.msg);
         return rc;
     }
-    if (json)
+    if (a.json)
         rc = print_json(path, &d, &o);
     else
         print_text(path, &d, &o);

@@ -2,22 +2,31 @@
  * meaning, as a table (default) or as JSON (--json, for tools). Both are printed from the
  * registry in scene.c, so they cannot drift from what --set and scene files accept. */
 #include <cjson/cJSON.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 #include "atmo/scene.h"
+#include "cli_flags.h"
 #include "commands.h"
 
-static void print_usage(FILE *f)
-{
-    fprintf(
-        f,
-        "usage: atmo params [--json]\n\n"
-        "List every scene parameter: key, unit, default, valid range and meaning.\n"
-        "Set them with --set key=value, in a JSON scene file ({\"sun\": {\"zenith_deg\": 60}}),\n"
-        "or through a preset (atmo presets).\n\n"
-        "  --json   print the list as JSON\n"
-        "  --help   this text\n");
-}
+typedef struct params_args {
+    int json;
+} params_args;
+
+static const cli_flag params_flags[] = {
+    {.type = CLI_BOOL, .name = "--json", .offset = offsetof(params_args, json),
+     .help = "print the list as JSON"},
+    {.type = CLI_END},
+};
+
+static const cli_command params_cli = {
+    .name = "params",
+    .synopsis = "[--json]",
+    .about = "List every scene parameter: key, unit, default, valid range and meaning.\n"
+             "Set them with --set key=value, in a JSON scene file ({\"sun\": {\"zenith_deg\": 60}}),\n"
+             "or through a preset (atmo presets).\n",
+    .flags = params_flags,
+};
 
 /* The default as it would be written after --set. */
 static void default_text(const atmo_param *p, char *buf, size_t n)
@@ -118,20 +127,11 @@ cleanup:
 
 int cmd_params(int argc, char **argv)
 {
-    int json = 0;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            print_usage(stdout);
-            return ATMO_OK;
-        } else if (strcmp(argv[i], "--json") == 0) {
-            json = 1;
-        } else {
-            fprintf(stderr, "atmo params: unknown option '%s'; run 'atmo params --help'\n",
-                    argv[i]);
-            return ATMO_ERR_USAGE;
-        }
-    }
-    if (json)
+    params_args a = {0};
+    int rc;
+    if (!cli_parse(&params_cli, &a, argc, argv, NULL, NULL, &rc))
+        return rc;
+    if (a.json)
         return print_json();
     printf("%-36s %-9s %-16s %-44s %s\n", "key", "unit", "default", "valid range", "meaning");
     for (const atmo_param *p = atmo_params; p->key; p++) {

@@ -4,31 +4,27 @@
 #include <stdio.h>
 #include <string.h>
 #include "atmo/scene.h"
+#include "cli_flags.h"
 #include "commands.h"
 
-static void print_usage(FILE *f)
-{
-    fprintf(f, "usage: atmo presets [NAME]\n\n"
-               "List the built-in scenes and what each shows; with NAME, print the settings that\n"
-               "preset applies over the defaults (atmo params lists the defaults).\n"
-               "Render one with: atmo render --preset NAME\n\n"
-               "  --help   this text\n");
-}
+static const cli_flag presets_flags[] = {{.type = CLI_END}};
+
+static const cli_command presets_cli = {
+    .name = "presets",
+    .synopsis = "[NAME]",
+    .about = "List the built-in scenes and what each shows; with NAME, print the settings that\n"
+             "preset applies over the defaults (atmo params lists the defaults).\n"
+             "Render one with: atmo render --preset NAME\n",
+    .flags = presets_flags,
+    .max_positional = 1,
+};
 
 int cmd_presets(int argc, char **argv)
 {
     const char *name = NULL;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            print_usage(stdout);
-            return ATMO_OK;
-        } else if (argv[i][0] == '-' || name) {
-            fprintf(stderr, "atmo presets: unexpected argument '%s'; run 'atmo presets --help'\n",
-                    argv[i]);
-            return ATMO_ERR_USAGE;
-        }
-        name = argv[i];
-    }
+    int n = 0, rc;
+    if (!cli_parse(&presets_cli, NULL, argc, argv, &name, &n, &rc))
+        return rc;
     if (name) {
         const atmo_preset *p = atmo_preset_find(name);
         const char *near = p ? NULL : atmo_preset_closest(name);

@@ -5,16 +5,20 @@
  * --time, --camera) in command-line order. Every output's format and path is checked before
  * anything runs (output_paths.h: directory, name, limits, no two outputs in one file; an
  * existing file only with --force, overwrite.h), so a bad argument never costs a render. The
- * flags are one table (cli_flags.h), from which --help is generated with every default.
+ * flags are one table (cli_flags.h), from which --help is generated with every default. With
+ * atmosphere.method = auto (the default) the plan picks the method (atmo_plan_auto_method);
+ * unless --quiet, the cost line before the work names it and says why, and the run report
+ * records it (render.method, render.method_auto).
  *
- * Interrupts: the first SIGINT or SIGTERM sets the render's cancel token; the precompute or the
- * render stops after the launch in flight. Samples already rendered are written, marked
+ * Interrupts: the first SIGINT, SIGTERM or SIGHUP (the terminal closed) sets the render's cancel
+ * token; the precompute or the render stops after the launch in flight. Samples already rendered are written, marked
  * partial (report "interrupted", file metadata), and the exit status is 3; stopped before any
  * sample (in the precompute, or in a spectral render's triplets), nothing is written and the
  * exit status is 4. A signal while the files are written lets the writing finish (the image is
  * whole). A second signal removes the temporary file being written and ends the process by
- * that signal at once. Exit statuses: 0 done, 1 runtime error, 2 usage, 3 interrupted with a
- * partial image written, 4 interrupted with nothing written. */
+ * that signal at once (exit status 128 + its number: 130 SIGINT, 143 SIGTERM, 129 SIGHUP).
+ * Exit statuses: 0 done, 1 runtime error, 2 usage, 3 interrupted with a partial image written,
+ * 4 interrupted with nothing written. */
 #include <cjson/cJSON.h>
 #include <stddef.h>
 #include <math.h>
@@ -23,6 +27,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include "atmo/cl_runtime.h"
 #include "atmo/clock.h"
 #include "atmo/colour.h"
 #include "atmo/fileio.h"
@@ -59,7 +64,29 @@ typedef struct render_args {
 
 static const char *const render_exr_codecs[] = {"piz", "none", "zip", "zips", "rle", NULL};
 
-static int take_noise(void *args, const cli_flag *f, const char *v, atmo_err *e);
+/* --noise: "1%" or a fraction "0.01", in (0, 1]. */
+static int parse_noise(const char *v, double *out, atmo_err *e)
+{
+    char *end;
+    double x = strtod(v, &end);
+    if (end != v && *end == '%' && end[1] == 0)
+        x /= 100.0;
+    else if (end == v || *end != 0)
+        x = -1.0;
+    if (!(x > 0.0 && x <= 1.0))
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "--noise needs a relative standard error such as 1%% or 0.01 (above 0, "
+                         "at most 100%%), got '%s'",
+                         v);
+    *out = x;
+    return ATMO_OK;
+}
+
+static int take_noise(void *args, const cli_flag *f, const char *v, atmo_err *e)
+{
+    (void)f;
+    return parse_noise(v, &((render_args *)args)->rs.noise_target, e);
+}
 
 #define RENDER_FLAG(member) offsetof(render_args, member)
 
@@ -137,19 +164,25 @@ static const cli_command render_cli = {
         "luminance (cd/m^2) with --set render.quantity=luminance. With --set render.spectral_bands=N\n"
         "(N >= 15) the scene is rendered at N wavelengths over 360-830 nm, three at a time, and\n"
         "combined through the CIE 1931 colour matching functions into linear sRGB (cd/m^2).\n"
+        "For Blender (a World environment texture) use --blender: linear Rec.709 RGB (cd/m^2)\n"
+        "with the EXR chromaticities, panoramas in Blender's world orientation, and the World\n"
+        "strength that matches the PNG's exposure, printed and stored in the EXR\n"
+        "(docs/guide/blender.md).\n"
         "An output that exists is not replaced unless --force is given.\n",
     .flags = render_flags,
     .epilogue =
-        "Ctrl-C (SIGINT) or SIGTERM stops the precompute or the render after the launch in flight:\n"
-        "the samples finished so far are written, marked partial, with exit status 3; stopped\n"
-        "before any sample, nothing is written and the exit status is 4. A second signal stops at\n"
-        "once and removes the file being written. Exit statuses: 0 done, 1 runtime error, 2 usage\n"
-        "or input error (nothing is rendered), 3 interrupted with a partial image, 4 interrupted\n"
-        "with nothing written.\n",
+        "Ctrl-C (SIGINT), SIGTERM or SIGHUP stops the precompute or the render after the launch in\n"
+        "flight: the samples finished so far are written, marked partial, with exit status 3;\n"
+        "stopped before any sample, nothing is written and the exit status is 4. A second signal\n"
+        "stops at once and removes the file being written; the process ends by that signal (the\n"
+        "shell shows 128 + its number: 130 for SIGINT, 143 SIGTERM, 129 SIGHUP).\n"
+        "Exit statuses: 0 done, 1 runtime error, 2 usage or input error (nothing is rendered),\n"
+        "3 interrupted with a partial image, 4 interrupted with nothing written.\n",
 };
 /* What the signal handler uses: a handler takes no user data, so this file holds the one token
  * that the render it starts is given (atmo_render_settings.cancel), and the temporary names of
  * the outputs (atmo_tmp_path), computed before the handler is installed. */
+#define HANDLED_SIGNALS 3
 static atmo_cancel render_cancel;
 static volatile sig_atomic_t signals_seen;
 static char pending_tmp[OUTPUT_PATHS_MAX][ATMO_TMP_PATH_MAX];
@@ -168,21 +201,59 @@ static void on_signal(int sig)
     raise(sig);
 }
 
-/* SIGINT and SIGTERM to on_signal (install) or back to what they were. */
-static void handle_signals(int install, struct sigaction old[2])
+/* SIGINT, SIGTERM and SIGHUP to on_signal (install) or back to what they were. */
+static void handle_signals(int install, struct sigaction old[HANDLED_SIGNALS])
 {
-    static const int sigs[2] = {SIGINT, SIGTERM};
+    static const int sigs[HANDLED_SIGNALS] = {SIGINT, SIGTERM, SIGHUP};
     struct sigaction sa = {0};
     sa.sa_handler = on_signal;
     sigemptyset(&sa.sa_mask);
-    for (int i = 0; i < 2; i++)
+    for (int i = 0; i < HANDLED_SIGNALS; i++)
         sigaction(sigs[i], install ? &sa : &old[i], install ? &old[i] : NULL);
+}
+
+/* The report's render passes (the EXR layers' channels) and what the lens flare measured and
+ * added. */
+static void report_passes_and_flare(cJSON *ren, const atmo_scene *s,
+                                    const atmo_image_layer *layers, int n_layers,
+                                    const atmo_flare_info *flare)
+{
+    cJSON *passes = cJSON_AddArrayToObject(ren, "passes");
+    for (int i = 0; i < n_layers; i++)
+        for (int c = 0; c < layers[i].channels; c++) {
+            char name[64];
+            snprintf(name, sizeof name, "%s.%s", layers[i].name, layers[i].channel_names[c]);
+            cJSON_AddItemToArray(passes, cJSON_CreateString(name));
+        }
+    if (!s->post.flare)
+        return;
+    cJSON *fl = cJSON_AddObjectToObject(ren, "flare");
+    cJSON_AddNumberToObject(fl, "sun_x_px", flare->sun_x);
+    cJSON_AddNumberToObject(fl, "sun_y_px", flare->sun_y);
+    cJSON *irr = cJSON_AddArrayToObject(fl, "sun_irradiance");
+    cJSON *add = cJSON_AddArrayToObject(fl, "added_irradiance");
+    for (int c = 0; c < 3; c++) {
+        cJSON_AddItemToArray(irr, cJSON_CreateNumber(flare->irradiance[c]));
+        cJSON_AddItemToArray(add, cJSON_CreateNumber(flare->added[c]));
+    }
+}
+
+/* The name of the method the scene renders with; *why (NULL unless atmosphere.method = auto)
+ * the plan's reason for its choice. */
+static const char *method_name(const atmo_scene *s, const char **why)
+{
+    int m = s->atmosphere.method;
+    *why = NULL;
+    if (m == ATMO_METHOD_AUTO)
+        m = atmo_plan_auto_method(s, why);
+    return atmo_param_find("atmosphere.method")->names[m];
 }
 
 static int write_report(const char *path, const atmo_scene *s, const atmo_render_result *r,
                           const atmo_render_settings *rs, const char *const *outputs, int n_out,
                           double seconds_write, const atmo_image_layer *layers, int n_layers,
-                          const atmo_flare_info *flare, atmo_err *e)
+                          const atmo_flare_info *flare, const atmo_outputs_denoise *denoised,
+                          atmo_err *e)
 {
     cJSON *root = cJSON_CreateObject();
     char *scene_text = atmo_scene_to_json(s);
@@ -197,6 +268,10 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON *ren = cJSON_AddObjectToObject(root, "render");
     cJSON_AddNumberToObject(ren, "width", r->width);
     cJSON_AddNumberToObject(ren, "height", r->height);
+    const char *why;
+    cJSON_AddStringToObject(ren, "method", method_name(s, &why));
+    if (why)
+        cJSON_AddStringToObject(ren, "method_auto", why);
     cJSON_AddNumberToObject(ren, "samples_requested", r->samples_requested);
     cJSON_AddNumberToObject(ren, "samples_min", r->samples_min);
     cJSON_AddNumberToObject(ren, "samples_max", r->samples_max);
@@ -204,6 +279,17 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON_AddNumberToObject(ren, "nonfinite_samples_dropped", r->nonfinite);
     cJSON_AddNumberToObject(ren, "launches", r->launches);
     cJSON_AddNumberToObject(ren, "noise_target", rs->noise_target);
+    if (r->noise_tiles > 0) { /* the relative standard error each tile reached */
+        cJSON *tiles = cJSON_AddArrayToObject(ren, "tiles_noise");
+        for (int i = 0; i < r->noise_tiles; i++) {
+            cJSON *t = cJSON_CreateObject();
+            static const char *const keys[5] = {"x", "y", "w", "h", "samples"};
+            for (int k = 0; k < 5; k++)
+                cJSON_AddNumberToObject(t, keys[k], r->tile_rect[5 * i + k]);
+            cJSON_AddNumberToObject(t, "noise", r->tile_noise[i]);
+            cJSON_AddItemToArray(tiles, t);
+        }
+    }
     cJSON_AddNumberToObject(ren, "time_limit_s", rs->time_limit_s);
     cJSON_AddNumberToObject(ren, "tile_size", rs->tile_size);
     cJSON_AddNumberToObject(ren, "launch_budget_ms", rs->launch_budget_ms);
@@ -224,24 +310,10 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON_AddNumberToObject(t, "render", r->seconds_render);
     cJSON_AddNumberToObject(t, "read_back", r->seconds_read);
     cJSON_AddNumberToObject(t, "write", seconds_write);
-    cJSON *passes = cJSON_AddArrayToObject(ren, "passes"); /* the EXR layers' channels */
-    for (int i = 0; i < n_layers; i++)
-        for (int c = 0; c < layers[i].channels; c++) {
-            char name[64];
-            snprintf(name, sizeof name, "%s.%s", layers[i].name, layers[i].channel_names[c]);
-            cJSON_AddItemToArray(passes, cJSON_CreateString(name));
-        }
-    if (s->post.flare) { /* what the lens flare measured and added */
-        cJSON *fl = cJSON_AddObjectToObject(ren, "flare");
-        cJSON_AddNumberToObject(fl, "sun_x_px", flare->sun_x);
-        cJSON_AddNumberToObject(fl, "sun_y_px", flare->sun_y);
-        cJSON *irr = cJSON_AddArrayToObject(fl, "sun_irradiance");
-        cJSON *add = cJSON_AddArrayToObject(fl, "added_irradiance");
-        for (int c = 0; c < 3; c++) {
-            cJSON_AddItemToArray(irr, cJSON_CreateNumber(flare->irradiance[c]));
-            cJSON_AddItemToArray(add, cJSON_CreateNumber(flare->added[c]));
-        }
-    }
+    report_passes_and_flare(ren, s, layers, n_layers, flare);
+    cJSON *dn = atmo_outputs_denoise_json(s, denoised);
+    if (dn)
+        cJSON_AddItemToObject(ren, "denoise", dn);
     cJSON *outs = cJSON_AddArrayToObject(root, "outputs");
     for (int i = 0; i < n_out; i++)
         cJSON_AddItemToArray(outs, cJSON_CreateString(outputs[i]));
@@ -262,23 +334,6 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     return rc;
 }
 
-/* --noise: "1%" or a fraction "0.01", in (0, 1]. */
-static int parse_noise(const char *v, double *out, atmo_err *e)
-{
-    char *end;
-    double x = strtod(v, &end);
-    if (end != v && *end == '%' && end[1] == 0)
-        x /= 100.0;
-    else if (end == v || *end != 0)
-        x = -1.0;
-    if (!(x > 0.0 && x <= 1.0))
-        return atmo_fail(e, ATMO_ERR_USAGE,
-                         "--noise needs a relative standard error such as 1%% or 0.01 (above 0, "
-                         "at most 100%%), got '%s'",
-                         v);
-    *out = x;
-    return ATMO_OK;
-}
 
 /* Render one scene (a frame) to res (or part): plan it, then install the signal handler (*old
  * gets the handlers it replaced, *installed 1), then render. The handler stays until the files
@@ -286,7 +341,7 @@ static int parse_noise(const char *v, double *out, atmo_err *e)
  * message in e. */
 static int render_run(const render_args *a, const atmo_scene *scene, atmo_render_settings *rs,
                       int part_file, atmo_render_result *res, atmo_part *part,
-                      struct sigaction old[2], int *installed, atmo_err *e)
+                      struct sigaction old[HANDLED_SIGNALS], int *installed, atmo_err *e)
 {
     int rc, lut_cache = !a->no_lut_cache;
     /* spectral mode plans each triplet of bands itself */
@@ -337,20 +392,24 @@ static int render_write(const render_args *a, const atmo_scene *scene,
     double tw = atmo_now_seconds();
     atmo_image img = {.width = res->width, .height = res->height, .rgb = res->rgb};
     atmo_image_layer layers[RENDER_PASS_LAYERS];
-    float *layer_data = NULL;
+    float *layer_data = NULL, *guide_data = NULL;
+    atmo_outputs_guides guides;
+    atmo_outputs_denoise denoised = {0};
     img.layer_count = part_file ? 0 : render_pass_layers(res, layers, &layer_data);
     img.layers = layers;
     int exr = atmo_exr_compression_from_name(render_exr_codecs[a->exr_codec]);
-    if (img.layer_count < 0)
+    if (img.layer_count < 0 || atmo_outputs_guides_from_passes(res, &guides, &guide_data) < 0)
         rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the render passes");
     else
         rc = part_file ? atmo_part_write(outputs[0], part, e)
-                       : atmo_outputs_write(scene, &img, res->samples_min, res->interrupted, exr,
-                                            outputs, n_out, e);
+                       : atmo_outputs_write_denoised(scene, &img, &guides, res->samples_min,
+                                                     res->interrupted, exr, outputs, n_out,
+                                                     &denoised, e);
     *seconds_write = atmo_now_seconds() - tw;
     if (!rc && report)
         rc = write_report(report, scene, res, rs, outputs, n_out, *seconds_write, img.layers,
-                          img.layer_count > 0 ? img.layer_count : 0, flare, e);
+                          img.layer_count > 0 ? img.layer_count : 0, flare, &denoised, e);
+    free(guide_data);
     free(layer_data);
     return rc;
 }
@@ -391,7 +450,7 @@ static int render_frame(const render_args *a, const atmo_scene *scene, int part_
     if (report)
         atmo_tmp_path(report, pending_tmp[pending_count++]);
     rs.cancel = &render_cancel;
-    struct sigaction old[2];
+    struct sigaction old[HANDLED_SIGNALS];
     int installed = 0;
     int rc = render_run(a, scene, &rs, part_file, &res, &part, old, &installed, &e);
     if (rc == ATMO_INTERRUPTED_EMPTY) /* interrupted before any result */
@@ -414,6 +473,13 @@ static int render_frame(const render_args *a, const atmo_scene *scene, int part_
         handle_signals(0, old);
     if (rc && rc != ATMO_INTERRUPTED_EMPTY)
         fprintf(stderr, "atmo render: %s\n", e.msg);
+    double strength, colour[3];
+    if (!rc && !a->quiet && !part_file &&
+        atmo_outputs_blender_world(scene, &strength, colour))
+        fprintf(stderr, "atmo render: in Blender, World > Background Strength %.6g with the "
+                        "texture multiplied by (%.4f, %.4f, %.4f) shows these files as the PNG "
+                        "before its tone map (docs/guide/blender.md)\n",
+                strength, colour[0], colour[1], colour[2]);
     if (!rc && !a->quiet)
         render_summary(&res, n_out, scene->render.spectral_bands > 0, seconds_write);
     if (!rc && res.interrupted)
@@ -486,12 +552,6 @@ static int check_frame_paths(const char *const *outputs, int n_out, const char *
     return rc;
 }
 
-/* --noise: "1%" or a fraction "0.01", in (0, 1]. */
-static int take_noise(void *args, const cli_flag *f, const char *v, atmo_err *e)
-{
-    (void)f;
-    return parse_noise(v, &((render_args *)args)->rs.noise_target, e);
-}
 
 /* animation: the frames' scenes, each checked before any work */
 static int render_animation(const render_args *a, const atmo_scene *scene, frames_animation *anim,
@@ -540,8 +600,8 @@ static int render_check_overwrite(const render_args *a, const frames_animation *
 }
 
 /* outputs: formats and paths, before any work; the same file twice is one output */
-static int render_outputs(render_args *a, const frames_animation *anim, output_paths *files,
-                          atmo_err *e)
+static int render_outputs(render_args *a, const atmo_scene *scene, const frames_animation *anim,
+                          output_paths *files, atmo_err *e)
 {
     int rc;
     if (a->n_out == 0 && !a->save_scene)
@@ -558,7 +618,10 @@ static int render_outputs(render_args *a, const frames_animation *anim, output_p
     for (int i = 0; i < a->n_out; i++)
         a->outputs[i] = files->path[i];
     if ((a->report && (rc = output_paths_add(files, "--report", a->report, e))) ||
-        (a->save_scene && (rc = output_paths_add(files, "--save-scene", a->save_scene, e))))
+        (a->save_scene && (rc = output_paths_add(files, "--save-scene", a->save_scene, e))) ||
+        (rc = output_paths_check_input(files, "--scene", a->so.scene_file, e)) ||
+        (rc = output_paths_check_input(files, "--scene-end", a->scene_end, e)) ||
+        (rc = output_paths_check_input(files, "terrain.heightmap_file", scene->dem.file, e)))
         return rc;
     /* numbered names: the longest (the last frame's) is checked like the others */
     if (a->frames_text && (rc = check_frame_paths(a->outputs, a->n_out, a->report, anim->last, e)))
@@ -593,6 +656,29 @@ static int render_frames(const render_args *a, const atmo_scene *scene,
     return rc;
 }
 
+/* "atmo render: 640x360 at 16 samples/pixel (3.7 M samples), method fast, 1 image": what the
+ * render will cost in samples, before any work (the time follows from the first launch, in
+ * the progress line's ETA). */
+static void render_cost_line(const render_args *a, const atmo_scene *s, const frames_animation *anim)
+{
+    const char *why;
+    const char *method = method_name(s, &why);
+    int frames = a->frames_text ? (anim->last - a->first) / a->step + 1 : 1;
+    int triplets = s->render.spectral_bands > 0 ? (s->render.spectral_bands + 2) / 3 : 1;
+    double samples = (double)s->image.width * s->image.height * s->image.samples * triplets;
+    if (a->part_text && !a->frames_text)
+        samples /= a->rs.parts;
+    fprintf(stderr, "atmo render: %dx%d at %s%d sample%s/pixel%s (%.3g M samples%s), method %s%s%s%s%s; "
+                    "%d frame%s\n",
+            s->image.width, s->image.height, a->rs.noise_target > 0.0 ? "at most " : "",
+            s->image.samples, s->image.samples == 1 ? "" : "s",
+            triplets > 1 ? " per triplet of bands" : "", 1e-6 * samples * frames,
+            a->part_text && !a->frames_text ? " in this part" : "",
+            method, why ? " (auto: " : "", why ? why : "", why ? ")" : "",
+            s->path.mode == ATMO_RENDER_PATH ? ", path traced" : "", frames,
+            frames == 1 ? "" : "s");
+}
+
 /* The scene, the animation, the parts and the outputs, all checked before any work. */
 static int render_prepare(render_args *a, atmo_scene *scene, frames_animation *anim,
                           output_paths *files, atmo_err *e)
@@ -606,6 +692,12 @@ static int render_prepare(render_args *a, atmo_scene *scene, frames_animation *a
         ((rc = parse_part(a->part_text, &a->rs.part, &a->rs.parts, e)) ||
          (rc = check_part(scene, a->rs.parts, a->frames_text != NULL, a->outputs, a->n_out, e))))
         return rc;
+    if (a->part_text && !a->frames_text && (a->rs.noise_target > 0.0 || a->rs.time_limit_s > 0.0))
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "--part renders every pixel to image.samples (atmo merge needs the same "
+                         "count in all parts), so %s cannot stop it early; leave it out, or "
+                         "render the image whole",
+                         a->rs.noise_target > 0.0 ? "--noise" : "--time-limit");
     a->first = anim->first;
     a->step = 1;
     if (a->frames_text && a->part_text) { /* part I of N: frames A + I - 1, A + I - 1 + N, ... */
@@ -613,7 +705,9 @@ static int render_prepare(render_args *a, atmo_scene *scene, frames_animation *a
         a->step = a->rs.parts;
         a->rs.part = a->rs.parts = 0;
     }
-    return render_outputs(a, anim, files, e);
+    if ((rc = render_outputs(a, scene, anim, files, e)))
+        return rc;
+    return a->n_out > 0 ? atmo_cl_check_selector(a->rs.device, e) : ATMO_OK;
 }
 
 int cmd_render(int argc, char **argv)
@@ -637,10 +731,22 @@ int cmd_render(int argc, char **argv)
         output_paths_free(&files);
         return cli_fail(&render_cli, rc, &e);
     }
+    /* denoising: a missing library is a usage error when asked for, a warning for auto */
+    char denoise_warning[1200] = "";
+    if (a.n_out > 0 && !(a.part_text && !a.frames_text) &&
+        (rc = atmo_outputs_denoise_prepare(&scene, a.outputs, a.n_out, denoise_warning,
+                                           sizeof denoise_warning, &e))) {
+        output_paths_free(&files);
+        return cli_fail(&render_cli, rc, &e);
+    }
+    if (denoise_warning[0])
+        fprintf(stderr, "atmo render: %s\n", denoise_warning);
     if (a.n_out > 0 && a.first > anim.last && !a.quiet)
         fprintf(stderr, "atmo render: part %d/%d of frames %d..%d has no frame to render\n",
                 a.first - anim.first + 1, a.step, anim.first, anim.last);
     a.rs.progress = a.quiet ? 0 : (isatty(STDERR_FILENO) ? 2 : 1);
+    if (a.n_out > 0 && a.first <= anim.last && !a.quiet)
+        render_cost_line(&a, &scene, &anim);
     if (a.n_out > 0)
         rc = render_frames(&a, &scene, &anim);
     output_paths_free(&files);

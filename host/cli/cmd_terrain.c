@@ -2,7 +2,8 @@
  * placing cameras and objects and for the tests.
  *
  * Scene: the defaults, then --preset NAME or --scene FILE (default: the default preset), then
- * --set KEY=VALUE in order; terrain.enabled is implied. (X, Z) are the planar coordinates of
+ * --set KEY=VALUE in order, as atmo render reads them (scene_options.h); terrain.enabled is
+ * implied. (X, Z) are the planar coordinates of
  * the point's foot on the ground sphere (kernels/terrain/terrain.h: world x and z there, which
  * near the origin are the world coordinates of the point). For each --at it prints the height
  * of the height field above sea level (h, metres), the surface's altitude max(h, sea level),
@@ -22,6 +23,7 @@
  * its cells (terrain_ref_detail), and the coverage is 1 on the file's land, 0 on its water. */
 #include <cjson/cJSON.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,19 +32,11 @@
 #include "atmo/scene.h"
 #include "atmo/terrain_ref.h"
 #include "terrain/terrain_material.h"
+#include "cli_flags.h"
 #include "commands.h"
+#include "scene_options.h"
 
 #define TERRAIN_MAX_POINTS 256
-
-static const char terrain_usage[] =
-    "usage: atmo terrain --at X,Z [--at X,Z ...] [--preset NAME | --scene FILE] [--set K=V ...]\n"
-    "                    [--json]\n"
-    "\n"
-    "Prints the terrain at planar coordinates (X, Z) in metres (the world x and z of\n"
-    "the point's foot on the ground sphere): height above sea level, surface altitude (water\n"
-    "at sea level), world position, unit normal, land/sea coverage and material weights.\n"
-    "terrain.enabled is implied; terrain.* keys (atmo params) change the terrain, and with\n"
-    "terrain.heightmap_file it is the file's heights as a render draws them.\n";
 
 static const char *const material_names[TERRAIN_MATERIALS] = {"grass", "dirt", "rock", "snow",
                                                               "water"};
@@ -59,6 +53,43 @@ static int parse_at(const char *v, double at[2], atmo_err *e)
         return atmo_fail(e, ATMO_ERR_USAGE, "--at needs X,Z in metres, got '%s'", v);
     return ATMO_OK;
 }
+
+/* The flags' destinations (terrain_flags), holding the defaults before parsing. */
+typedef struct terrain_args {
+    scene_options so;
+    double at[TERRAIN_MAX_POINTS][2];
+    int n_at, json;
+} terrain_args;
+
+static int take_at(void *args, const cli_flag *f, const char *v, atmo_err *e)
+{
+    terrain_args *a = args;
+    (void)f;
+    if (a->n_at == TERRAIN_MAX_POINTS)
+        return atmo_fail(e, ATMO_ERR_USAGE, "at most %d --at points", TERRAIN_MAX_POINTS);
+    return parse_at(v, a->at[a->n_at++], e);
+}
+
+static const cli_flag terrain_flags[] = {
+    {.type = CLI_STRING, .name = "--at", .metavar = "X,Z", .take = take_at,
+     .help = "a point: planar coordinates in metres (repeatable, at least one)"},
+    {.type = CLI_INCLUDE, .include = scene_source_flags, .offset = offsetof(terrain_args, so)},
+    {.type = CLI_BOOL, .name = "--json", .offset = offsetof(terrain_args, json),
+     .help = "one JSON object per point, one per line"},
+    {.type = CLI_END},
+};
+
+static const cli_command terrain_cli = {
+    .name = "terrain",
+    .synopsis = "--at X,Z [--at X,Z ...] [--preset NAME | --scene FILE] [--set K=V ...]\n"
+                "                    [--json]",
+    .about = "Prints the terrain at planar coordinates (X, Z) in metres (the world x and z of\n"
+             "the point's foot on the ground sphere): height above sea level, surface altitude (water\n"
+             "at sea level), world position, unit normal, land/sea coverage and material weights.\n"
+             "terrain.enabled is implied; terrain.* keys (atmo params) change the terrain, and with\n"
+             "terrain.heightmap_file it is the file's heights as a render draws them.\n",
+    .flags = terrain_flags,
+};
 
 /* One point: the report as a cJSON object, or NULL with *e filled. */
 static cJSON *probe(const atmo_plan *p, const atmo_scene *s, const double at[2], atmo_err *e)
@@ -145,73 +176,44 @@ static void print_text(const cJSON *o)
     printf("\n");
 }
 
+/* The scene with terrain, planned for the host probe: no device or method needed. */
+static int terrain_plan(const terrain_args *a, atmo_scene *scene, atmo_plan *plan, atmo_err *e)
+{
+    int rc = scene_options_scene(&a->so, NULL, scene, e);
+    if (rc == ATMO_OK && a->n_at == 0)
+        rc = atmo_fail(e, ATMO_ERR_USAGE, "atmo terrain needs --at X,Z (atmo terrain --help)");
+    if (rc)
+        return rc;
+    scene->terrain.enabled = 1;
+    /* the probe needs no device or method: plan with a method terrain works with */
+    if (scene->atmosphere.method == ATMO_METHOD_REFERENCE)
+        scene->atmosphere.method = ATMO_METHOD_SINGLE;
+    if (!scene->dem.file[0]) /* the fBm directly; a file needs its heightmap */
+        scene->terrain.heightmap_size = 0;
+    scene->terrain.heightmap_format = ATMO_TERRAIN_FORMAT_FLOAT;
+    return atmo_plan_make(scene, plan, e);
+}
+
 int cmd_terrain(int argc, char **argv)
 {
     atmo_scene scene;
     atmo_err e = {{0}};
     atmo_plan plan;
-    double at[TERRAIN_MAX_POINTS][2];
-    int n_at = 0, json = 0, rc = ATMO_OK, planned = 0;
-    const char *scene_file = NULL, *preset = NULL;
-
-    for (int i = 1; i + 1 < argc; i++) {
-        if (strcmp(argv[i], "--scene") == 0)
-            scene_file = argv[i + 1];
-        if (strcmp(argv[i], "--preset") == 0)
-            preset = argv[i + 1];
-    }
-    atmo_scene_defaults(&scene);
-    rc = scene_file ? atmo_scene_load_json(&scene, scene_file, &e)
-                    : atmo_scene_apply_preset(&scene, preset ? preset : atmo_default_preset, &e);
-    for (int i = 1; i < argc && rc == ATMO_OK; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            fputs(terrain_usage, stdout);
-            return ATMO_OK;
-        }
-        if (strcmp(a, "--json") == 0) {
-            json = 1;
-            continue;
-        }
-        if (strcmp(a, "--at") && strcmp(a, "--set") && strcmp(a, "--scene") && strcmp(a, "--preset")) {
-            rc = atmo_fail(&e, ATMO_ERR_USAGE, "%s '%s' (atmo terrain --help)",
-                           a[0] == '-' ? "unknown option" : "unexpected argument", a);
-            break;
-        }
-        if (!v) {
-            rc = atmo_fail(&e, ATMO_ERR_USAGE, "%s needs a value (atmo terrain --help)", a);
-            break;
-        }
-        i++;
-        if (strcmp(a, "--at") == 0) {
-            if (n_at == TERRAIN_MAX_POINTS)
-                rc = atmo_fail(&e, ATMO_ERR_USAGE, "at most %d --at points", TERRAIN_MAX_POINTS);
-            else
-                rc = parse_at(v, at[n_at++], &e);
-        } else if (strcmp(a, "--set") == 0) {
-            rc = atmo_scene_assign(&scene, v, "--set", &e);
-        }
-    }
-    if (rc == ATMO_OK && n_at == 0)
-        rc = atmo_fail(&e, ATMO_ERR_USAGE, "atmo terrain needs --at X,Z (atmo terrain --help)");
-    if (rc == ATMO_OK) {
-        scene.terrain.enabled = 1;
-        /* the probe needs no device or method: plan with a method terrain works with */
-        if (scene.atmosphere.method == ATMO_METHOD_REFERENCE)
-            scene.atmosphere.method = ATMO_METHOD_SINGLE;
-        if (!scene.dem.file[0]) /* the fBm directly; a file needs its heightmap */
-            scene.terrain.heightmap_size = 0;
-        scene.terrain.heightmap_format = ATMO_TERRAIN_FORMAT_FLOAT;
-        rc = atmo_plan_make(&scene, &plan, &e);
-        planned = rc == ATMO_OK;
-    }
-    for (int i = 0; i < n_at && rc == ATMO_OK; i++) {
-        cJSON *o = probe(&plan, &scene, at[i], &e);
+    static terrain_args a;
+    int rc;
+    memset(&a, 0, sizeof a);
+    scene_options_init(&a.so);
+    if (!cli_parse(&terrain_cli, &a, argc, argv, NULL, NULL, &rc))
+        return rc;
+    if ((rc = terrain_plan(&a, &scene, &plan, &e)))
+        return cli_fail(&terrain_cli, rc, &e);
+    for (int i = 0; i < a.n_at && rc == ATMO_OK; i++) {
+        cJSON *o = probe(&plan, &scene, a.at[i], &e);
         if (!o) {
             rc = ATMO_ERR_USAGE;
             break;
         }
-        if (json) {
+        if (a.json) {
             char *text = cJSON_PrintUnformatted(o);
             if (text)
                 printf("%s\n", text);
@@ -221,9 +223,6 @@ int cmd_terrain(int argc, char **argv)
         }
         cJSON_Delete(o);
     }
-    if (planned)
-        atmo_plan_free(&plan);
-    if (rc != ATMO_OK)
-        fprintf(stderr, "atmo terrain: %s\n", e.msg);
-    return rc;
+    atmo_plan_free(&plan);
+    return rc ? cli_fail(&terrain_cli, rc, &e) : ATMO_OK;
 }

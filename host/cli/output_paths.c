@@ -8,8 +8,16 @@
  * (NAME_MAX), the resolved directory plus the name against pathconf(dir, _PC_PATH_MAX)
  * (PATH_MAX), and the path as given against ATMO_TMP_PATH_MAX. Two paths are the same file
  * when the realpath(3) of their directories and their names agree: what rename(2) replaces is
- * the directory entry, so this is the identity that matters (a symlink is replaced, not
- * followed). */
+ * the directory entry, so this is the identity that matters.
+ *
+ * What the path names decides how it is written (atmo/fileio.h, atmo_output_target): a
+ * symbolic link to a regular file is followed, and the checks above apply to the file it
+ * leads to, whose identity it takes; "-", a FIFO or a character device is written through
+ * (its identity is "-" or its realpath, and it needs no directory); anything else is refused.
+ *
+ * An output is also never one of the command's inputs (output_paths_check_input): the input's
+ * device and inode against those of each output that exists already, which sees through
+ * symbolic links, hard links and any spelling of the path. */
 #include <errno.h>
 #include <limits.h>
 #include <stdio.h>
@@ -41,11 +49,25 @@ static int check_path(const char *option, const char *path, char **file, atmo_er
     size_t len = strlen(path), suffix = tmp_suffix_length();
     const char *slash = strrchr(path, '/');
     const char *name = slash ? slash + 1 : path;
-    char dir[ATMO_TMP_PATH_MAX], real[PATH_MAX];
+    char dir[ATMO_TMP_PATH_MAX], real[PATH_MAX], target[ATMO_TMP_PATH_MAX];
     struct stat st;
+    int stream = 0, rc;
     *file = NULL;
     if (len == 0)
         return atmo_fail(e, ATMO_ERR_USAGE, "%s needs a file name, got ''", option);
+    if ((rc = atmo_output_target(option, path, target, &stream, e)))
+        return rc;
+    if (stream) {
+        *file = strdup(strcmp(target, "-") == 0 || !realpath(target, real) ? target : real);
+        return *file ? ATMO_OK : atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory checking '%s'",
+                                           path);
+    }
+    if (strcmp(target, path) != 0) { /* a symbolic link: the checks are the target's */
+        path = target;
+        len = strlen(path);
+        slash = strrchr(path, '/');
+        name = slash ? slash + 1 : path;
+    }
     if (len + suffix >= ATMO_TMP_PATH_MAX)
         return atmo_fail(e, ATMO_ERR_USAGE,
                          "%s '%.64s...': the path is too long (%zu bytes; at most %zu)", option,
@@ -117,6 +139,22 @@ int output_paths_add(output_paths *o, const char *option, const char *path, atmo
     o->path[o->count] = path;
     o->option[o->count] = option;
     o->file[o->count++] = file;
+    return ATMO_OK;
+}
+
+int output_paths_check_input(const output_paths *o, const char *what, const char *input,
+                             atmo_err *e)
+{
+    struct stat in, out;
+    if (!input || !*input || strcmp(input, "-") == 0 || stat(input, &in) != 0)
+        return ATMO_OK;
+    for (int i = 0; i < o->count; i++)
+        if (strcmp(o->path[i], "-") != 0 && stat(o->path[i], &out) == 0 &&
+            out.st_dev == in.st_dev && out.st_ino == in.st_ino)
+            return atmo_fail(e, ATMO_ERR_USAGE,
+                             "%s '%s' is the input %s '%s'; atmo never overwrites its inputs, "
+                             "give the output another name",
+                             o->option[i], o->path[i], what, input);
     return ATMO_OK;
 }
 

@@ -16,6 +16,11 @@ typedef struct output_paths {
  * it. A path naming the same file as one added before under the same option is one output and
  * is not added again (returns ATMO_OK); under another option it is an error. */
 int output_paths_add(output_paths *o, const char *option, const char *path, atmo_err *e);
+/* ATMO_ERR_USAGE naming both when an output added so far is the existing file `input` (the
+ * same device and inode: any spelling, symbolic or hard link); `what` says which input it is,
+ * e.g. "--scene". A NULL or absent input is no conflict. */
+int output_paths_check_input(const output_paths *o, const char *what, const char *input,
+                             atmo_err *e);
 void output_paths_free(output_paths *o);
 
 #endif

@@ -4,12 +4,15 @@
  *
  * The options: --preset NAME or --scene FILE (they exclude each other), --set KEY=VALUE
  * (repeatable, applied in command-line order), and the shorthands --width, --height,
- * --samples, --seed, --time and --camera, each checked against its key's type and range in
+ * --samples, --seed, --time, --camera and --denoise, each checked against its key's type and range in
  * the scene's registry (cli_flags.c) and kept as the assignment it stands for (image.width=N,
- * ..., clouds.time_s=S, camera.kind=K) in its place among the --set options. A shorthand's
+ * ..., clouds.time_s=S, camera.kind=K,
+ * output.denoise=Q) in its place among the --set options. A shorthand's
  * value is at most SHORTHAND_MAX_CHARS characters (the longest any key takes); a longer one
- * is refused as a bad value. The scene is then the defaults, the preset or the file, the
- * assignments, validated (atmo/scene.h), before any work. */
+ * is refused as a bad value. --blender stands for output.blender=true, set after the
+ * assignments; atmo_scene_for_blender then rewrites the scene for it, saying on stderr what it
+ * changed. The scene is then the defaults, the preset or the file, the assignments, validated
+ * (atmo/scene.h), before any work. */
 #include <stddef.h>
 #include <stdio.h>
 #include <string.h>
@@ -41,7 +44,7 @@ static int take_shorthand(void *args, const cli_flag *f, const char *v, atmo_err
 #define SHORTHAND(flag, t, k, text)                                                            \
     {.type = t, .name = flag, .key = k, .take = take_shorthand, .help = text}
 
-const cli_flag scene_option_flags[] = {
+const cli_flag scene_source_flags[] = {
     {.type = CLI_STRING, .name = "--preset", .metavar = "NAME",
      .offset = offsetof(scene_options, preset), .def_var = &atmo_default_preset,
      .help = "a built-in scene (atmo presets lists them)"},
@@ -49,7 +52,12 @@ const cli_flag scene_option_flags[] = {
      .help = "a JSON scene file instead of a preset (atmo params lists every key)"},
     {.type = CLI_STRING, .name = "--set", .metavar = "KEY=VALUE", .take = take_set,
      .help = "override one parameter, e.g. --set sun.zenith_deg=60 (repeatable;\n"
-             "applied in order with the shorthands below)"},
+             "applied in command-line order)"},
+    {.type = CLI_END},
+};
+
+const cli_flag scene_option_flags[] = {
+    {.type = CLI_INCLUDE, .include = scene_source_flags},
     SHORTHAND("--width", CLI_INT, "image.width", "image width in pixels (image.width)"),
     SHORTHAND("--height", CLI_INT, "image.height", "image height in pixels (image.height)"),
     SHORTHAND("--samples", CLI_INT, "image.samples",
@@ -58,6 +66,15 @@ const cli_flag scene_option_flags[] = {
     SHORTHAND("--time", CLI_FLOAT, "clouds.time_s",
               "seconds of cloud motion with the wind (clouds.time_s)"),
     SHORTHAND("--camera", CLI_ENUM, "camera.kind", "projection (camera.kind)"),
+    SHORTHAND("--denoise", CLI_ENUM, "output.denoise",
+              "Intel Open Image Denoise before tone mapping: auto (path mode's PNG\n"
+              "outputs, high, where installed), off, fast, balanced, high (every output)\n"
+              "(output.denoise)"),
+    {.type = CLI_BOOL, .name = "--blender", .offset = offsetof(scene_options, blender),
+     .help = "outputs for Blender (output.blender=true): linear Rec.709\n"
+             "RGB in cd/m^2 (render.quantity=luminance, post.exposure\n"
+             "x 1e-5), panoramas in Blender's world orientation\n"
+             "(camera.yaw_deg=-90); docs/guide/blender.md"},
     {.type = CLI_END},
 };
 
@@ -67,7 +84,7 @@ int scene_options_scene(const scene_options *o, const char *file, atmo_scene *s,
 {
     if (o->preset && o->scene_file)
         return atmo_fail(e, ATMO_ERR_USAGE, "--preset and --scene exclude each other; pick one");
-    int rc = ATMO_OK;
+    int rc = ATMO_OK, end_scene = file != NULL;
     atmo_scene_defaults(s);
     if (!o->scene_file)
         rc = atmo_scene_apply_preset(s, o->preset ? o->preset : atmo_default_preset, e);
@@ -77,5 +94,10 @@ int scene_options_scene(const scene_options *o, const char *file, atmo_scene *s,
         rc = atmo_scene_load_json(s, file, e);
     for (int i = 0; i < o->set_count && !rc; i++)
         rc = atmo_scene_assign(s, o->sets[i], "--set", e);
+    if (o->blender)
+        s->output.blender = 1;
+    char changes[256];
+    if (!rc && atmo_scene_for_blender(s, changes, sizeof changes) > 0 && !end_scene)
+        fprintf(stderr, "atmo: for Blender: %s\n", changes);
     return rc ? rc : atmo_scene_validate(s, e);
 }

@@ -29,9 +29,14 @@ int atmo_image_format_from_path(const char *path)
 void atmo_image_describe(const atmo_image_meta *meta, char *buf, int size)
 {
     const double *w = meta->wavelengths_nm;
-    snprintf(buf, (size_t)size, "%s [%s]; R %g nm, G %g nm, B %g nm; %d samples per pixel%s",
+    char channels[96];
+    if (meta->rec709)
+        snprintf(channels, sizeof channels, "linear Rec.709 RGB (sRGB primaries, D65 white)");
+    else
+        snprintf(channels, sizeof channels, "R %g nm, G %g nm, B %g nm", w[0], w[1], w[2]);
+    snprintf(buf, (size_t)size, "%s [%s]; %s; %d samples per pixel%s",
              meta->quantity ? meta->quantity : "linear value", meta->unit ? meta->unit : "1",
-             w[0], w[1], w[2], meta->samples_per_pixel,
+             channels, meta->samples_per_pixel,
              meta->partial ? "; partial render (interrupted before all samples)" : "");
 }
 

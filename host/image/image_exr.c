@@ -4,10 +4,14 @@
  * Written with OpenEXR's C Core API (OpenEXR 3.1): one scanline part, data and display windows
  * (0, 0)-(width-1, height-1), increasing y (row 0 at the top, as atmo_image). Each layer's
  * channels are "<layer>.<channel>" (atmo_image_layer), after R, G, B. The description goes into
- * string attributes: "quantity", "unit", "wavelengths", "samplesPerPixel", "software",
- * "renderStatus" ("complete" or "partial"), the standard "comments" with the whole one-line
- * description, and the meta's own attributes. No "chromaticities": in radiance mode the
- * channels are spectral samples, not primaries.
+ * string attributes: "quantity", "unit", "samplesPerPixel", "software", "renderStatus"
+ * ("complete" or "partial"), the standard "comments" with the whole one-line description, and
+ * the meta's own attributes. What R, G, B are: in radiance mode spectral samples, not primaries,
+ * so "wavelengths" names them and there is no "chromaticities"; RGB colour (meta->rec709) gets
+ * the standard "chromaticities" attribute with the Rec.709 primaries and D65 white point
+ * (ITU-R BT.709-6, Table 1, items 1.3 and 1.4: the values OpenEXR's own default stands for),
+ * and "colorInteropID" = "lin_rec709_scene" (the Color Interop Forum's ID, which Blender reads
+ * to pick an EXR's colour space), instead of "wavelengths".
  *
  * Compression (meta->exr_compression): the codecs that are lossless for 32-bit floats, none,
  * rle, zips (1 row per chunk), zip (16 rows) and piz (32 rows; wavelet + Huffman). On a
@@ -88,12 +92,19 @@ static exr_result_t exr_attributes(exr_context_t ctxt, const atmo_image_meta *me
     if (!meta)
         return r;
     const double *w = meta->wavelengths_nm;
+    /* ITU-R BT.709: red, green, blue primaries and the D65 white point (CIE 1931 xy) */
+    static const exr_attr_chromaticities_t rec709 = {0.64f, 0.33f, 0.30f, 0.60f,
+                                                     0.15f, 0.06f, 0.3127f, 0.3290f};
     if (meta->quantity && r == EXR_ERR_SUCCESS)
         r = exr_attr_set_string(ctxt, 0, "quantity", meta->quantity);
     if (meta->unit && r == EXR_ERR_SUCCESS)
         r = exr_attr_set_string(ctxt, 0, "unit", meta->unit);
     snprintf(text, sizeof text, "R %g nm, G %g nm, B %g nm", w[0], w[1], w[2]);
-    if (r == EXR_ERR_SUCCESS)
+    if (r == EXR_ERR_SUCCESS && meta->rec709)
+        r = exr_attr_set_chromaticities(ctxt, 0, "chromaticities", &rec709);
+    if (r == EXR_ERR_SUCCESS && meta->rec709)
+        r = exr_attr_set_string(ctxt, 0, "colorInteropID", "lin_rec709_scene");
+    if (r == EXR_ERR_SUCCESS && !meta->rec709)
         r = exr_attr_set_string(ctxt, 0, "wavelengths", text);
     snprintf(text, sizeof text, "%d", meta->samples_per_pixel);
     if (r == EXR_ERR_SUCCESS)

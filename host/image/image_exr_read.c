@@ -164,8 +164,9 @@ int atmo_exr_read(const char *path, atmo_exr_file *f, atmo_err *e)
     f->height = (int)h;
     rc = alloc_channels(c, f, path, e);
     if (!rc && decode_pixels(c, f, dw.min.y) != EXR_ERR_SUCCESS)
-        rc = atmo_fail(e, ATMO_ERR_RUNTIME, "cannot decode '%s': OpenEXR: %s", path,
-                       log.msg[0] ? log.msg : "damaged pixel data");
+        rc = atmo_fail(e, ATMO_ERR_USAGE,
+                       "'%s' is damaged or cut short: OpenEXR cannot decode its pixels (%s)",
+                       path, log.msg[0] ? log.msg : "damaged pixel data");
     if (!rc)
         rc = read_attributes(c, f, path, e);
 cleanup:

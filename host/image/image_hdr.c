@@ -9,7 +9,8 @@
  * Negative values (which RGBE cannot hold) are stored as 0.
  *
  * File: "#?RADIANCE", comment lines describing the data (quantity, unit, wavelengths, samples,
- * partial render), "FORMAT=32-bit_rle_rgbe", a blank line, "-Y <height> +X <width>" (rows top to
+ * partial render; for RGB colour, meta->rec709, the header's PRIMARIES= line with Rec.709's
+ * primaries and D65 white instead of the wavelengths), "FORMAT=32-bit_rle_rgbe", a blank line, "-Y <height> +X <width>" (rows top to
  * bottom), then flat (uncompressed) scanlines. Flat scanlines cannot be mistaken for run-length
  * ones: those begin with bytes 2, 2 and a third byte below 128, while a stored pixel has its
  * largest channel at 128 or above (or is all zero). */
@@ -64,7 +65,10 @@ int atmo_image_write_hdr(const char *path, const atmo_image *img, const atmo_ima
         fprintf(f, "# software: %s\n", meta->software ? meta->software : "atmo");
         fprintf(f, "# quantity: %s\n", meta->quantity ? meta->quantity : "linear value");
         fprintf(f, "# unit: %s\n", meta->unit ? meta->unit : "1");
-        fprintf(f, "# wavelengths: R %g nm, G %g nm, B %g nm\n", w[0], w[1], w[2]);
+        if (meta->rec709) /* Radiance's PRIMARIES= line: x y of R, G, B and white */
+            fputs("PRIMARIES=0.640 0.330 0.300 0.600 0.150 0.060 0.3127 0.3290\n", f);
+        else
+            fprintf(f, "# wavelengths: R %g nm, G %g nm, B %g nm\n", w[0], w[1], w[2]);
         fprintf(f, "# samples per pixel: %d\n", meta->samples_per_pixel);
         if (meta->partial)
             fputs("# partial render: interrupted before all samples were taken\n", f);

@@ -33,8 +33,10 @@ static int cloud_shadow_map(const atmo_scene *s)
 }
 static int has_objects(const atmo_scene *s) { return s->objects.count > 0; }
 static int path_mode(const atmo_scene *s) { return s->path.mode == ATMO_RENDER_PATH; }
+static int objects_preview(const atmo_scene *s) { return has_objects(s) && !path_mode(s); }
 /* a heightmap file is drawn as terrain, so it implies terrain.enabled */
 static int has_terrain(const atmo_scene *s) { return s->terrain.enabled || s->dem.file[0]; }
+static int terrain_surface(const atmo_scene *s) { return has_terrain(s) && !path_mode(s); }
 static int path_water(const atmo_scene *s) { return path_mode(s) && has_terrain(s); }
 static int terrain_stage(const atmo_scene *s)
 {
@@ -69,7 +71,9 @@ static int plan_atmosphere(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 
 /* The headers every kernel is compiled with: the shared GPU structs (each feature's in its own
  * header, before the scene struct that holds them), math, the atmosphere, the camera, the
- * camera-relative ray that the media and the integrator take. */
+ * camera-relative ray that the media and the integrator take, the media's contract and the
+ * air, the planet as the first occluder of the sun, and the free-flight and ratio-tracking
+ * steps of the Monte Carlo walks. */
 static const char *const atmosphere_fragments[] = {
     "kernels/common/compat.h",        "include/atmo/gpu_enums.h",
     "include/atmo/gpu_atmosphere.h",  "include/atmo/gpu_ms_lut.h",
@@ -82,7 +86,10 @@ static const char *const atmosphere_fragments[] = {
     "kernels/common/phase.h",         "kernels/atmosphere/atmosphere.h",
     "kernels/common/camera.h",
     "kernels/atmosphere/sky_method.h", "kernels/media/ray.h",
+    "kernels/media/media.h",          "kernels/media/planet.h", "kernels/media/tracking.h",
     "kernels/atmosphere/transmittance.cl", NULL};
+static const atmo_slots atmosphere_slots = {.sun_occluder = "planet_sun_visibility",
+                                            .surface_occluder = 1};
 static const atmo_gpu_field atmosphere_params[] = {ATMO_GPU_FIELD(atmosphere),
                                                    ATMO_GPU_FIELD(transmittance_width),
                                                    ATMO_GPU_FIELD(transmittance_height),
@@ -93,17 +100,22 @@ static const char *const atmosphere_sources[] = {
     "kernels/common/geometry.h",     "kernels/atmosphere/atmosphere.h",
     "kernels/atmosphere/transmittance.cl", NULL};
 
-/* The media, the visibility sources and the one medium integrator over them (media.h composes
- * the media modules planned before it, e.g. the cloud shell), and the Monte Carlo walk. */
-static const char *const medium_fragments[] = {"kernels/media/media.h", "kernels/media/visibility.h",
-                                               "kernels/media/medium.h",
-                                               "kernels/media/tracking.h", NULL};
+/* The sun's visibility over the composed occluders and media; the one medium integrator over
+ * the composed media, visibility and intervals. */
+static const char *const visibility_fragments[] = {"kernels/media/visibility.h",
+                                                   "kernels/media/medium_air.h", NULL};
+static const char *const medium_fragments[] = {"kernels/media/medium.h", NULL};
 #define MEDIUM_SOURCES                                                                             \
     "kernels/media/ray.h", "kernels/media/media.h", "kernels/media/visibility.h",                  \
         "kernels/media/observer.h", "kernels/media/medium.h"
 
-static const char *const ms_lut_fragments[] = {"kernels/atmosphere/ms_lut.h",
-                                               "kernels/atmosphere/ms_lut.cl", NULL};
+/* Psi_ms: its lookups (the source of march and fast) before the media's composition, its
+ * passes (which march with the integrator) after the integrator. */
+static const char *const ms_lut_fragments[] = {"kernels/atmosphere/ms_lut_source.h", NULL};
+static const char *const ms_lut_pass_fragments[] = {"kernels/atmosphere/ms_lut.h",
+                                                    "kernels/atmosphere/ms_lut.cl", NULL};
+static const atmo_slots ms_lut_slots = {.ms_source = "ms_lut_ms_source",
+                                        .ms_ground_irradiance = "ms_lut_ms_ground_irradiance"};
 static const atmo_gpu_field ms_lut_params[] = {ATMO_GPU_FIELD(atmosphere), ATMO_GPU_FIELD(ms),
                                                {0, 0}};
 static const char *const ms_lut_sources[] = {
@@ -112,12 +124,17 @@ static const char *const ms_lut_sources[] = {
     "include/atmo/gpu_types.h",       "kernels/common/geometry.h",
     "kernels/common/phase.h",         "kernels/atmosphere/atmosphere.h",
     "kernels/atmosphere/sky_method.h", MEDIUM_SOURCES,
-    "kernels/atmosphere/ms_lut.h",    "kernels/atmosphere/ms_lut.cl",
-    NULL};
+    "kernels/atmosphere/ms_lut_source.h", "kernels/atmosphere/ms_lut.h",
+    "kernels/atmosphere/ms_lut.cl",   NULL};
 
+/* method lut: its tables' lookups (and the integrator's source) before the media's composition,
+ * the method and its passes after the integrator */
 static const char *const lut_fragments[] = {"kernels/atmosphere/lut_scattering.h",
-                                            "kernels/atmosphere/method_lut.h",
-                                            "kernels/atmosphere/lut_precompute.cl", NULL};
+                                            "kernels/atmosphere/lut_source.h", NULL};
+static const char *const lut_pass_fragments[] = {"kernels/atmosphere/method_lut.h",
+                                                 "kernels/atmosphere/lut_precompute.cl", NULL};
+static const atmo_slots lut_slots = {.ms_source = "lut_ms_source",
+                                     .ms_ground_irradiance = "lut_ms_ground_irradiance"};
 static const atmo_gpu_field lut_params[] = {ATMO_GPU_FIELD(atmosphere), ATMO_GPU_FIELD(lut),
                                             {0, 0}};
 static const char *const lut_sources[] = {
@@ -127,13 +144,27 @@ static const char *const lut_sources[] = {
     "kernels/common/geometry.h",         "kernels/common/phase.h",
     "kernels/atmosphere/atmosphere.h",   "kernels/atmosphere/sky_method.h",
     MEDIUM_SOURCES,                       "kernels/atmosphere/lut_scattering.h",
+    "kernels/atmosphere/lut_source.h",
     "kernels/atmosphere/method_lut.h",   "kernels/atmosphere/lut_precompute.cl",
     NULL};
 
 static const char *const needs_transmittance[] = {"atmosphere", NULL};
 static const char *const cloud_fragments[] = {"kernels/media/observer.h",
                                               "kernels/media/phase_table.h",
-                                              "kernels/media/cloud_shell.h", NULL};
+                                              "kernels/media/cloud_shell.h",
+                                              "kernels/media/observer_surface.h", NULL};
+static const atmo_slots cloud_slots = {.component = "CLOUD",
+                                       .media_add = "cloud_shell_media_add",
+                                       .media_phase = "cloud_shell_media_phase",
+                                       .media_sun = "cloud_shell_media_sun",
+                                       .media_intervals = "cloud_shell_intervals",
+                                       .media_interval = "cloud_shell_interval",
+                                       .sun_occluder = "observer_sun_visibility",
+                                       .surface_occluder = 1,
+                                       .surface_hit = "observer_surface_hit",
+                                       .surface_radiance = "observer_surface_radiance"};
+/* the shell's own stepping, after the visibility it asks */
+static const char *const cloud_march_fragments[] = {"kernels/media/cloud_shell_march.h", NULL};
 static const char *const clouds_fragments[] = {"kernels/media/cloud_noise.h",
                                                "kernels/media/phase_table.h",
                                                "kernels/media/cloud_layer.h", NULL};
@@ -142,6 +173,18 @@ static const char *const clouds_majorant_fragments[] = {"kernels/media/cloud_maj
 static const char *const clouds_shadow_map_fragments[] = {
     "kernels/media/cloud_majorant.h", "kernels/media/cloud_shadow_map.h",
     "kernels/media/cloud_shadow_map.cl", NULL};
+/* the layer as a medium of the methods, over its shadow map when there is one */
+static const char *const clouds_medium_fragments[] = {"kernels/media/cloud_layer_medium.h", NULL};
+static const atmo_slots clouds_slots = {.component = "CLOUDS",
+                                        .media_add = "clouds_media_add",
+                                        .media_phase = "clouds_media_phase",
+                                        .media_sun = "clouds_media_sun",
+                                        .media_intervals = "clouds_media_intervals",
+                                        .media_interval = "clouds_media_interval"};
+/* the volume stage's walk through the layer, over its majorant grid: the shadows it casts on
+ * the air's samples of every method */
+static const char *const clouds_walk_fragments[] = {"kernels/media/cloud_walk.h", NULL};
+static const atmo_slots clouds_walk_slots = {.volume_sun = "clouds_volume_sun"};
 static const char *const clouds_march_fragments[] = {"kernels/media/cloud_march.h", NULL};
 /* The terrain: the height field, the tracer and shadows, the surface's light, and the
  * heightmap pass, which reads only the field (the camera's placement stays out of the key). */
@@ -152,8 +195,16 @@ static const char *const terrain_fragments[] = {"kernels/terrain/noise.h",
                                                 "kernels/terrain/terrain_shafts.h",
                                                 "kernels/terrain/water.h",
                                                 "kernels/terrain/terrain_material.h",
-                                                "kernels/terrain/terrain_shade.h",
                                                 "kernels/terrain/heightmap.cl", NULL};
+/* the terrain's light, which takes the method's sky irradiance from the media's composition;
+ * its shadows, after the objects' (their order is that of the samples its shortcuts remember),
+ * and its surface, which the path tracer traces itself */
+static const char *const terrain_light_fragments[] = {"kernels/terrain/terrain_shade.h", NULL};
+static const atmo_slots terrain_light_slots = {.ray_occluder = "terrain_shafts_sun_visibility",
+                                               .ray_state = "terrain_shafts",
+                                               .ray_begin = "terrain_shafts_begin"};
+static const atmo_slots terrain_surface_slots = {.surface_hit = "terrain_surface_hit",
+                                                 .surface_radiance = "terrain_radiance"};
 static const atmo_gpu_field terrain_params[] = {ATMO_GPU_FIELD(terrain.field), {0, 0}};
 static const char *const terrain_sources[] = {
     "kernels/common/compat.h",   "include/atmo/gpu_enums.h",   "include/atmo/gpu_terrain.h",
@@ -170,69 +221,102 @@ static const char *const reference_fragments[] = {"kernels/atmosphere/method_ref
 static const char *const render_fragments[] = {"kernels/atmosphere/sky_cosines.h",
                                                "kernels/render/sky.cl", NULL};
 static const char *const objects_fragments[] = {"kernels/render/objects.h", NULL};
+/* the preview's objects: sun occluders and surfaces lit by the sun and the sky */
+static const char *const objects_preview_fragments[] = {"kernels/render/objects_light.h", NULL};
+static const atmo_slots objects_preview_slots = {.sun_occluder = "objects_sun_visibility",
+                                                 .surface_hit = "objects_surface_hit",
+                                                 .surface_radiance = "objects_light_radiance"};
 static const char *const path_water_fragments[] = {"kernels/render/bsdf_water.h", NULL};
 static const char *const path_fragments[] = {
     "kernels/render/path_camera.h", "kernels/render/surfaces.h", "kernels/render/bsdf.h",
-    "kernels/render/light_sun.h",   "kernels/render/light_sky.h", "kernels/media/cloud_walk.h",
+    "kernels/render/light_sun.h",   "kernels/render/light_sky.h",
     "kernels/render/volume_stage.h", "kernels/render/path.h",     "kernels/render/path.cl",
     NULL};
 
 const atmo_feature atmo_features[] = {
     {"atmosphere", -1, always, atmosphere_fragments, "", atmosphere_params, atmosphere_sources,
-     NULL, plan_atmosphere, 0},
-    /* a medium and a visibility source: before the composition of the media */
+     NULL, plan_atmosphere, 0, &atmosphere_slots, 0},
+    /* a medium (with its own stepping) and a visibility source, before the media's composition */
     {"cloud", -1, cloud_shell, cloud_fragments, "-DATMO_CLOUD", NULL, NULL, NULL,
-     atmo_plan_cloud, 0},
-    /* the fBm cloud layer: a medium and a visibility source (its light march) */
+     atmo_plan_cloud, 0, &cloud_slots, 0},
+    /* the fBm cloud layer: its density, optics and light march */
     {"clouds", -1, cloud_layer, clouds_fragments, "-DATMO_CLOUDS", NULL, NULL, NULL,
-     atmo_plan_clouds, 0},
+     atmo_plan_clouds, 0, NULL, 0},
     /* the same layer for the path tracer's volume stage alone (render/volume_stage.h): no
      * method, integrator or visibility source sees it */
     {"clouds_volume", -1, cloud_volume, clouds_fragments, "-DATMO_CLOUDS_VOLUME", NULL, NULL,
-     NULL, atmo_plan_clouds, 0},
+     NULL, atmo_plan_clouds, 0, NULL, 0},
     /* the layer's majorant grid for the reference's walk and the volume stage's; it follows the
      * view (never cached) */
     {"clouds_majorant", -1, cloud_grid, clouds_majorant_fragments, "", NULL, NULL, NULL,
-     atmo_plan_clouds_majorant, 0},
+     atmo_plan_clouds_majorant, 0, NULL, 0},
+    {"clouds_walk", -1, cloud_volume, clouds_walk_fragments, "", NULL, NULL, NULL, NULL, 0,
+     &clouds_walk_slots, 0},
     /* the layer's sun shadow map for the visibility source and the marcher (over the majorant
      * grid's frame); it follows the view (never cached) */
     {"clouds_shadow_map", -1, cloud_shadow_map, clouds_shadow_map_fragments,
-     "-DATMO_CLOUDS_SHADOW_MAP", NULL, NULL, NULL, atmo_plan_clouds_shadow_map, 0},
-    /* an opaque surface and a visibility source: before the composition of the media */
+     "-DATMO_CLOUDS_SHADOW_MAP", NULL, NULL, NULL, atmo_plan_clouds_shadow_map, 0, NULL, 0},
+    /* the layer as a medium of the methods (with its own stepping, clouds_march) */
+    {"clouds_medium", -1, cloud_layer, clouds_medium_fragments, "", NULL, NULL, NULL, NULL, 0,
+     &clouds_slots, 0},
+    /* an opaque surface and a visibility source */
     {"terrain", -1, has_terrain, terrain_fragments, "-DATMO_TERRAIN", terrain_params,
-     terrain_sources, NULL, atmo_plan_terrain, 0},
+     terrain_sources, NULL, atmo_plan_terrain, 0, NULL, 0},
     /* the scene's spheres and boxes: sun occluders and the preview's surfaces (visibility.h),
      * the path tracer's surfaces; after the terrain, whose height field places the objects
      * with on_terrain */
     {"objects", -1, has_objects, objects_fragments, "-DATMO_OBJECTS", NULL, NULL, NULL,
-     atmo_plan_objects, 0},
+     atmo_plan_objects, 0, NULL, 0},
+    /* Psi_ms, shared by march and fast: the multiple-scattering source of the integrator */
+    {"ms_lut", -1, ms_methods, ms_lut_fragments, "", ms_lut_params, ms_lut_sources,
+     needs_transmittance, atmo_plan_ms_lut, 0, &ms_lut_slots, 0},
+    /* the density of orders >= 2: the integrator's source for aerial perspective */
+    {"lut", ATMO_METHOD_LUT, is_lut, lut_fragments, "", lut_params, lut_sources,
+     needs_transmittance, atmo_plan_lut, 0, &lut_slots, 0},
+    /* the generated composition: media, then the sun's occluders (the objects' and the
+     * terrain's are asked in the order of their rows below, after the observer's) */
+    {"compose_media", -1, always, NULL, "", NULL, NULL, NULL, NULL, 0, NULL, ATMO_COMPOSE_MEDIA},
+    {"compose_sun", -1, always, NULL, "", NULL, NULL, NULL, NULL, 0, NULL, ATMO_COMPOSE_SUN},
+    {"visibility", -1, always, visibility_fragments, "", NULL, NULL, NULL, NULL, 0, NULL, 0},
+    {"objects_preview", -1, objects_preview, objects_preview_fragments, "-DATMO_OBJECTS_PREVIEW",
+     NULL, NULL, NULL, NULL, 0, &objects_preview_slots, 0},
+    {"terrain_light", -1, has_terrain, terrain_light_fragments, "", NULL, NULL, NULL, NULL, 0,
+     &terrain_light_slots, 0},
+    {"terrain_surface", -1, terrain_surface, NULL, "", NULL, NULL, NULL, NULL, 0,
+     &terrain_surface_slots, 0},
+    {"compose_surfaces", -1, always, NULL, "", NULL, NULL, NULL, NULL, 0, NULL,
+     ATMO_COMPOSE_SURFACES},
+    {"cloud_march", -1, cloud_shell, cloud_march_fragments, "", NULL, NULL, NULL, NULL, 0, NULL,
+     0},
+    {"clouds_march", -1, cloud_layer, clouds_march_fragments, "", NULL, NULL, NULL, NULL, 0,
+     NULL, 0},
+    {"compose_intervals", -1, always, NULL, "", NULL, NULL, NULL, NULL, 0, NULL,
+     ATMO_COMPOSE_INTERVALS},
     /* the medium integrator of single, march, fast and lut; the media of the reference */
-    {"medium", -1, always, medium_fragments, "", NULL, NULL, NULL, NULL, 0},
-    /* the layer's marcher, over the integrator's pieces (media.h declares it) */
-    {"clouds_march", -1, cloud_layer, clouds_march_fragments, "", NULL, NULL, NULL, NULL, 0},
-    /* Psi_ms, shared by march and fast; the flag compiles the integrator's Psi_ms source in */
-    {"ms_lut", -1, ms_methods, ms_lut_fragments, "-DATMO_MS_LUT", ms_lut_params, ms_lut_sources,
-     needs_transmittance, atmo_plan_ms_lut, 0},
-    /* the flag gives the integrator the density of orders >= 2 for aerial perspective */
-    {"lut", ATMO_METHOD_LUT, is_lut, lut_fragments, "-DATMO_LUT_J", lut_params, lut_sources,
-     needs_transmittance, atmo_plan_lut, 0},
-    {"single", ATMO_METHOD_SINGLE, is_single, single_fragments, "", NULL, NULL, NULL, NULL, 0},
-    {"march", ATMO_METHOD_MARCH, is_march, march_fragments, "", NULL, NULL, NULL, NULL, 0},
+    {"medium", -1, always, medium_fragments, "", NULL, NULL, NULL, NULL, 0, NULL, 0},
+    {"ms_lut_passes", -1, ms_methods, ms_lut_pass_fragments, "", NULL, NULL, NULL, NULL, 0, NULL,
+     0},
+    {"lut_passes", -1, is_lut, lut_pass_fragments, "", NULL, NULL, NULL, NULL, 0, NULL, 0},
+    {"single", ATMO_METHOD_SINGLE, is_single, single_fragments, "", NULL, NULL, NULL, NULL, 0,
+     NULL, 0},
+    {"march", ATMO_METHOD_MARCH, is_march, march_fragments, "", NULL, NULL, NULL, NULL, 0, NULL,
+     0},
     /* the sky-view LUT follows the view: never cached, so no key */
-    {"fast", ATMO_METHOD_FAST, is_fast, fast_fragments, "", NULL, NULL, NULL, atmo_plan_fast,
-     1},
+    {"fast", ATMO_METHOD_FAST, is_fast, fast_fragments, "", NULL, NULL, NULL, atmo_plan_fast, 1,
+     NULL, 0},
     {"reference", ATMO_METHOD_REFERENCE, is_reference, reference_fragments, "", NULL, NULL, NULL,
-     atmo_plan_reference, 0},
+     atmo_plan_reference, 0, NULL, 0},
     {"terrain_stage", -1, terrain_stage, terrain_stage_fragments,
-     "-DATMO_TERRAIN_STAGE -DATMO_TERRAIN_STAGE_TABLES", NULL, NULL, NULL, NULL, 0},
+     "-DATMO_TERRAIN_STAGE -DATMO_TERRAIN_STAGE_TABLES", NULL, NULL, NULL, NULL, 0, NULL, 0},
     {"terrain_water_stage", -1, terrain_water_stage, terrain_stage_fragments,
-     "-DATMO_TERRAIN_STAGE", NULL, NULL, NULL, NULL, 0},
+     "-DATMO_TERRAIN_STAGE", NULL, NULL, NULL, NULL, 0, NULL, 0},
     /* the kernels that render with whichever method was assembled */
-    {"render", -1, always, render_fragments, "", NULL, NULL, NULL, NULL, 0},
+    {"render", -1, always, render_fragments, "", NULL, NULL, NULL, NULL, 0, NULL, 0},
     /* the sea's BSDF in the path tracer (over terrain/water.h) */
-    {"path_water", -1, path_water, path_water_fragments, "", NULL, NULL, NULL, NULL, 0},
+    {"path_water", -1, path_water, path_water_fragments, "", NULL, NULL, NULL, NULL, 0, NULL, 0},
     /* the path tracer's stages and its kernel path_render, over whichever method was assembled */
-    {"path", -1, path_mode, path_fragments, "-DATMO_PATH", NULL, NULL, NULL, atmo_plan_path, 0},
+    {"path", -1, path_mode, path_fragments, "-DATMO_PATH", NULL, NULL, NULL, atmo_plan_path, 0,
+     NULL, 0},
 };
 const int atmo_feature_count = (int)(sizeof atmo_features / sizeof atmo_features[0]);
 

@@ -9,6 +9,7 @@
 #include "atmo/colour.h"
 #include "atmo/features.h"
 #include "atmo/plan.h"
+#include "atmo/plan_clouds.h"
 #include "atmo/plan_terrain.h"
 
 /* The layout the kernels see: OpenCL C aligns float4 to 16 bytes, as compat.h does on the host. */
@@ -185,7 +186,13 @@ static int add_feature(const atmo_scene *s, const atmo_feature *f, atmo_plan *p,
     if (p->feature_count == ATMO_PLAN_MAX_FEATURES)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "too many features (a build bug)");
     p->features[p->feature_count++] = f;
-    for (const char *const *frag = f->fragments; *frag; frag++) {
+    if (f->compose) { /* generated once every feature is planned (make_prelude) */
+        if (p->fragment_count == ATMO_PLAN_MAX_FRAGMENTS)
+            return atmo_fail(e, ATMO_ERR_RUNTIME, "too many kernel fragments (a build bug)");
+        p->fragment_group[p->fragment_count] = (unsigned char)f->compose;
+        p->fragments[p->fragment_count++] = atmo_compose_name(f->compose);
+    }
+    for (const char *const *frag = f->fragments; frag && *frag; frag++) {
         if (p->fragment_count == ATMO_PLAN_MAX_FRAGMENTS)
             return atmo_fail(e, ATMO_ERR_RUNTIME, "too many kernel fragments (a build bug)");
         p->fragments[p->fragment_count++] = *frag;
@@ -196,9 +203,21 @@ static int add_feature(const atmo_scene *s, const atmo_feature *f, atmo_plan *p,
     return f->plan ? f->plan(s, p, e) : ATMO_OK;
 }
 
-/* The buffer parameter and argument lists (plan.h), in buffer order. */
+void atmo_plan_fragment_texts(const atmo_plan *p, const char *texts[ATMO_PLAN_MAX_FRAGMENTS])
+{
+    for (int i = 0; i < p->fragment_count; i++)
+        texts[i] = p->fragment_group[i] ? p->composed[p->fragment_group[i]] : NULL;
+}
+
+/* The buffer parameter and argument lists (plan.h), in buffer order, the media's components,
+ * and the composition of the slots the features fill. */
 static int make_prelude(atmo_plan *p, atmo_err *e)
 {
+    _Static_assert(ATMO_PLAN_COMPOSE_GROUPS == ATMO_COMPOSE_GROUPS, "one text per group");
+    for (int g = ATMO_COMPOSE_NONE + 1; g < ATMO_COMPOSE_GROUPS; g++)
+        if (atmo_compose(p->features, p->feature_count, g, p->composed[g], sizeof p->composed[g]))
+            return atmo_fail(e, ATMO_ERR_RUNTIME, "cannot compose the kernels' %s (a build bug)",
+                             atmo_compose_name(g));
     static const char *const heads[3] = {"ATMO_LUT_PARAMS", "ATMO_LUT_OUT_PARAMS",
                                          "ATMO_LUT_ARGS"};
     int rc = ATMO_OK;
@@ -217,6 +236,10 @@ static int make_prelude(atmo_plan *p, atmo_err *e)
         if (!rc)
             rc = append(p->prelude, sizeof p->prelude, "%s%s", "\n", "", e);
     }
+    size_t used = strlen(p->prelude);
+    if (!rc && atmo_compose_components(p->features, p->feature_count, p->prelude + used,
+                                       sizeof p->prelude - used))
+        rc = atmo_fail(e, ATMO_ERR_RUNTIME, "plan text overflows (a build bug)");
     return rc;
 }
 
@@ -309,9 +332,36 @@ int atmo_plan_place_camera(const atmo_scene *s, atmo_scene *out, atmo_err *e)
 }
 
 /* atmo_plan_make's work: the shared structs, then each wanted feature in registry order. */
+int atmo_plan_auto_method(const atmo_scene *s, const char **why)
+{
+    const char *reason = "a clear sky";
+    int method = ATMO_METHOD_MARCH;
+    if (s->clouds.enabled && !atmo_plan_clouds_volume(s))
+        reason = "the fBm cloud layer";
+    else if (s->cloud.enabled)
+        reason = "the cloud shell";
+    else if (s->observer.enabled)
+        reason = "the observer";
+    else
+        method = ATMO_METHOD_FAST;
+    if (why)
+        *why = reason;
+    return method;
+}
+
 static int plan_features(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 {
     int rc;
+    if (s->atmosphere.method == ATMO_METHOD_AUTO) { /* planned as the method it stands for */
+        atmo_scene *chosen = malloc(sizeof *chosen);
+        if (!chosen)
+            return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the scene");
+        *chosen = *s;
+        chosen->atmosphere.method = atmo_plan_auto_method(s, NULL);
+        rc = plan_features(chosen, p, e);
+        free(chosen);
+        return rc;
+    }
     if ((rc = atmo_scene_validate(s, e)) || (rc = atmo_atmosphere_from_scene(s, &p->atmosphere, e)))
         return rc;
     if (s->dem.file[0]) { /* a bad heightmap fails here, before any device work */

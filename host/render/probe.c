@@ -154,6 +154,66 @@ int atmo_probe_segments(atmo_probe *p, const float4 *rays, const float *distance
     return run_fast_probe(p, rays, distances, n, samples, mean, se, t_mean, t_se, e);
 }
 
+int atmo_probe_sun(atmo_probe *p, const float4 *rays, int n, double (*visibility)[3],
+                   atmo_err *e)
+{
+    atmo_cl *cl = atmo_session_cl(p->session);
+    int rc = ATMO_OK;
+    float4 *out = malloc(sizeof(float4) * (size_t)n);
+    cl_mem b_rays = NULL, b_out = NULL;
+    cl_kernel k = NULL;
+    cl_int err;
+    if (!out) {
+        rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for %d rays", n);
+        goto cleanup;
+    }
+    b_rays = clCreateBuffer(cl->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                            sizeof(float4) * (size_t)n, (void *)rays, &err);
+    if (err != CL_SUCCESS) {
+        rc = atmo_cl_fail(e, "clCreateBuffer(rays)", err);
+        goto cleanup;
+    }
+    b_out = clCreateBuffer(cl->context, CL_MEM_WRITE_ONLY, sizeof(float4) * (size_t)n, NULL, &err);
+    if (err != CL_SUCCESS) {
+        rc = atmo_cl_fail(e, "clCreateBuffer(visibility)", err);
+        goto cleanup;
+    }
+    k = clCreateKernel(atmo_session_program(p->session), "sky_probe_sun", &err);
+    if (err != CL_SUCCESS) {
+        rc = atmo_cl_fail(e, "clCreateKernel(sky_probe_sun)", err);
+        goto cleanup;
+    }
+    cl_uint count = (cl_uint)n, arg = 0;
+    if ((rc = atmo_session_bind(p->session, k, &arg, e)))
+        goto cleanup;
+    err = clSetKernelArg(k, arg++, sizeof b_rays, &b_rays);
+    if (err == CL_SUCCESS)
+        err = clSetKernelArg(k, arg++, sizeof b_out, &b_out);
+    if (err == CL_SUCCESS)
+        err = clSetKernelArg(k, arg++, sizeof count, &count);
+    size_t local = 64, global = ((size_t)n + local - 1) / local * local;
+    if (err == CL_SUCCESS)
+        err = clEnqueueNDRangeKernel(cl->queue, k, 1, NULL, &global, &local, 0, NULL, NULL);
+    if (err == CL_SUCCESS)
+        err = clEnqueueReadBuffer(cl->queue, b_out, CL_TRUE, 0, sizeof(float4) * (size_t)n, out,
+                                  0, NULL, NULL);
+    if (err != CL_SUCCESS) {
+        rc = atmo_cl_fail(e, "sky_probe_sun", err);
+        goto cleanup;
+    }
+    for (int i = 0; i < n; i++)
+        visibility[i][0] = out[i].x, visibility[i][1] = out[i].y, visibility[i][2] = out[i].z;
+cleanup:
+    if (k)
+        clReleaseKernel(k);
+    if (b_out)
+        clReleaseMemObject(b_out);
+    if (b_rays)
+        clReleaseMemObject(b_rays);
+    free(out);
+    return rc;
+}
+
 void atmo_probe_close(atmo_probe *p)
 {
     atmo_session_close(p->session);

@@ -1,15 +1,21 @@
 /* render.c — a whole render in one call over a session (atmo/render.h): its mean image, or the
  * raw sums of one part of a split render (atmo/part.h). */
 #include <stdio.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/render.h"
+#include "atmo/tiles.h"
 
 void atmo_render_result_free(atmo_render_result *r)
 {
     free(r->rgb);
     free(r->passes);
     free(r->se);
+    free(r->tile_rect);
+    free(r->tile_noise);
+    r->tile_rect = NULL;
+    r->tile_noise = NULL;
     free(r->samples);
     r->rgb = r->passes = r->se = NULL;
     r->samples = NULL;
@@ -38,6 +44,44 @@ void atmo_render_result_from_session(const atmo_session *s, atmo_render_result *
     memcpy(r->driver_version, in->driver_version, sizeof r->driver_version);
 }
 
+/* The relative standard error each tile reached, from the image's means and standard errors:
+ * e = sqrt(mean over its pixels and channels of se^2) / mean over them of the mean, the
+ * measure the session stops a tile by (atmo/session.h). */
+static int tile_noise(const atmo_render_settings *settings, atmo_render_result *res, atmo_err *e)
+{
+    atmo_tiles t;
+    int rc = atmo_tiles_init_part(&t, res->width, res->height, settings->tile_size, 0, 0, e);
+    if (rc)
+        return rc;
+    res->tile_rect = malloc(sizeof(int) * 5 * (size_t)t.count);
+    res->tile_noise = malloc(sizeof(double) * (size_t)t.count);
+    if (!res->tile_rect || !res->tile_noise) {
+        atmo_tiles_free(&t);
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for %d tiles", t.count);
+    }
+    res->noise_tiles = t.count;
+    for (int i = 0; i < t.count; i++) {
+        atmo_tile one;
+        double var = 0.0, mean = 0.0;
+        atmo_tiles_get(&t, i, &one);
+        for (int y = one.y; y < one.y + one.h; y++)
+            for (int x = one.x; x < one.x + one.w; x++)
+                for (int c = 0; c < 3; c++) {
+                    size_t k = 3 * ((size_t)y * (size_t)res->width + (size_t)x) + (size_t)c;
+                    double se = res->se[k];
+                    var += se * se;
+                    mean += (double)res->rgb[k];
+                }
+        double n = 3.0 * one.w * one.h;
+        int *r = res->tile_rect + 5 * i;
+        r[0] = one.x, r[1] = one.y, r[2] = one.w, r[3] = one.h;
+        r[4] = res->samples[(size_t)one.y * (size_t)res->width + (size_t)one.x];
+        res->tile_noise[i] = mean > 0.0 ? sqrt(var / n) / (mean / n) : 0.0;
+    }
+    atmo_tiles_free(&t);
+    return ATMO_OK;
+}
+
 int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
                 atmo_render_result *res, atmo_err *e)
 {
@@ -57,12 +101,17 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
         size_t pixels = (size_t)plan->width * plan->height;
         res->pass_planes = plan->pass_planes;
         res->passes = malloc(sizeof(float) * 4 * pixels * (size_t)plan->pass_planes);
-        res->se = malloc(sizeof(float) * 3 * pixels);
-        res->samples = malloc(sizeof(int) * pixels);
-        if (!res->passes || !res->se || !res->samples)
+        if (!res->passes)
             rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the render passes");
         if (!rc)
             rc = atmo_session_read_passes(s, res->passes, e);
+    }
+    if (!rc && (plan->pass_planes > 0 || settings->noise_target > 0.0)) { /* errors per pixel */
+        size_t pixels = (size_t)plan->width * plan->height;
+        res->se = malloc(sizeof(float) * 3 * pixels);
+        res->samples = malloc(sizeof(int) * pixels);
+        if (!res->se || !res->samples)
+            rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the standard errors");
     }
     if (!rc)
         rc = atmo_session_read(s, res->rgb, res->se, res->samples, e);
@@ -72,8 +121,10 @@ int atmo_render(const atmo_plan *plan, const atmo_render_settings *settings,
          * only the cancel token makes the result partial */
         if (settings->noise_target > 0.0 || settings->time_limit_s > 0.0)
             res->interrupted = st.cancelled;
+        if (settings->noise_target > 0.0)
+            rc = tile_noise(settings, res, e);
     }
-    else
+    if (rc)
         atmo_render_result_free(res);
     atmo_session_close(s);
     return rc;
@@ -98,6 +149,8 @@ int atmo_render_part(const atmo_plan *plan, const atmo_render_settings *settings
         rc = atmo_session_read_sums(s, s1, s2, samples, e);
     if (!rc) {
         atmo_part_pack(part, s1, s2, samples);
+        part->input_hash =
+            atmo_part_input_hash(plan->dem.width, plan->dem.height, plan->dem.heights_m);
         atmo_render_result_from_session(s, res);
         snprintf(part->device, sizeof part->device, "%s / %s / %s", res->platform_name,
                  res->device_name, res->driver_version);

@@ -274,8 +274,10 @@ int atmo_session_open(atmo_session **out, const atmo_plan *plan, const atmo_rend
     if ((rc = check_device_memory(s, e)))
         goto cleanup;
 
+    const char *texts[ATMO_PLAN_MAX_FRAGMENTS];
+    atmo_plan_fragment_texts(plan, texts);
     atmo_cl_build_options bo = {plan->fragments, plan->fragment_count, plan->defines,
-                                rs->dump_dir, rs->use_kernel_cache, NULL, plan->prelude};
+                                rs->dump_dir, rs->use_kernel_cache, NULL, plan->prelude, texts};
     atmo_cl_build_info bi;
     if ((rc = atmo_cl_build(&s->cl, &bo, &s->program, &bi, e)))
         goto cleanup;

@@ -50,12 +50,15 @@
 static const char *const camera_kinds[] = {"perspective", "panorama", "fisheye", NULL};
 static const char *const camera_terrain_modes[] = {"off", "below", "at", NULL};
 static const char *const phase_names[] = {"cornette-shanks", "henyey-greenstein", NULL};
-static const char *const method_names[] = {"single", "march", "fast", "lut", "reference", NULL};
+static const char *const method_names[] = {"single", "march", "fast", "lut", "reference", "auto",
+                                           NULL};
 static const char *const quantity_names[] = {"radiance", "luminance", NULL};
 static const char *const tonemap_names[] = {"none",           "exposure", "reinhard",
                                             "reinhard-white", "aces",     "unreal3",
                                             "uchimura",       "lottes",   NULL};
 static const char *const transfer_names[] = {"srgb", "gamma22", NULL};
+static const char *const denoise_names[] = {"auto", "off", "fast", "balanced", "high", NULL};
+_Static_assert(ATMO_OUTPUT_DENOISE_HIGH == 4, "enum name tables follow the order of the constants");
 /* the size-distribution presets of mie_dsd_preset (host/mie_dsd.c), in its order */
 static const char *const cloud_dsd_names[] = {"cumulus", "stratus", "fog", "corona",
                                               "thesis-disperse", "thesis-uniform", NULL};
@@ -129,8 +132,9 @@ const atmo_param atmo_params[] = {
               "aerosol phase asymmetry parameter g (0 = isotropic, > 0 forward)"),
     ROW_ENUM("atmosphere.mie_phase", atmosphere.mie_phase, phase_names, ATMO_PHASE_CORNETTE_SHANKS,
              "aerosol phase function"),
-    ROW_ENUM("atmosphere.method", atmosphere.method, method_names, ATMO_METHOD_FAST,
-             "how light transport in the atmosphere is computed (see README: Methods)"),
+    ROW_ENUM("atmosphere.method", atmosphere.method, method_names, ATMO_METHOD_AUTO,
+             "how light transport in the atmosphere is computed (see README: Methods); auto: "
+             "march where the scene has clouds or the observer, else fast"),
     ROW_BOOL("cloud.enabled", cloud.enabled, 0,
              "a homogeneous cloud/fog shell (methods single, march and reference; "
              "kernels/media/cloud_shell.h)"),
@@ -342,6 +346,11 @@ const atmo_param atmo_params[] = {
              "divide by the sun's colour so sunlight is white"),
     ROW_ENUM("post.transfer", post.transfer, transfer_names, ATMO_TRANSFER_SRGB,
              "PNG encoding curve: sRGB or a pure 2.2 gamma"),
+    ROW_ENUM("output.denoise", output.denoise, denoise_names, ATMO_OUTPUT_DENOISE_AUTO,
+             "Intel Open Image Denoise on the final linear image, before tone mapping: auto "
+             "(PNG outputs of render.mode=path, quality high, where the library is installed), "
+             "off, fast, balanced or high (every output; EXR keeps the noisy image and the "
+             "guides as layers)"),
     /* a digital elevation model as the terrain (atmo/dem.h; `atmo dem info FILE`) */
     ROW_STRING("terrain.heightmap_file", dem.file,
                "DEM file: GeoTIFF (with GDAL), 16-bit PNG or one-channel EXR; \"\" = none"),
@@ -405,6 +414,10 @@ const atmo_param atmo_params[] = {
     ROW_INT("path.volume_bounces", path.volume_bounces, "", 1, 4096, 256,
             "path mode, path.clouds = volume: most scattering events in the clouds per path "
             "(Russian roulette ends most paths long before)"),
+    ROW_BOOL("output.blender", output.blender, 0,
+             "outputs for Blender (--blender): luminance-based linear Rec.709 RGB in cd/m^2 "
+             "with the EXR chromaticities, the exposure scaled to luminance, panoramas in "
+             "Blender's world orientation (docs/guide/blender.md)"),
     {NULL, ATMO_PARAM_INT, 0, NULL, 0, 0, {0, 0, 0}, NULL, NULL},
 };
 
@@ -820,6 +833,10 @@ int atmo_scene_validate(const atmo_scene *s, atmo_err *e)
                          "atmosphere.ozone_peak_m (%.9g m) <= atmosphere.ozone_top_m (%.9g m) with "
                          "bottom < top is required; reorder the three altitudes",
                          oz_bottom, oz_peak, oz_top);
+    if (s->dem.detail && !s->dem.file[0])
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "terrain.heightmap_detail=true adds detail below a heightmap file's "
+                         "cells; set terrain.heightmap_file or the detail to false");
     const double *c = s->camera.position_m;
     if (s->camera.on_terrain != ATMO_CAMERA_TERRAIN_OFF) {
         if (!s->terrain.enabled && !s->dem.file[0])

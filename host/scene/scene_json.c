@@ -12,10 +12,12 @@
  * digits (15 to 17) that read back exactly, so save -> load restores the scene bit for bit (a
  * render of the saved scene reproduces the image) and a second save gives the same text. */
 #include <cjson/cJSON.h>
+#include <ctype.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include "atmo/fileio.h"
 #include "atmo/scene.h"
 
@@ -160,6 +162,87 @@ static int store_json(atmo_scene *s, const atmo_param *p, const cJSON *item, con
     return atmo_param_store(s, p, v, shown, path, e);
 }
 
+/* Duplicate keys: cJSON keeps both members of {"a": 1, "a": 2} and a lookup sees the first, so
+ * every object of the tree is searched for a key given twice among its members; path grows with
+ * the keys and [indices] on the way down ("objects[1].type"). */
+static int find_duplicate(const cJSON *node, char *path, size_t size, size_t len)
+{
+    int index = 0;
+    for (const cJSON *item = node->child; item; item = item->next, index++) {
+        if (cJSON_IsObject(node))
+            for (const cJSON *before = node->child; before != item; before = before->next)
+                if (strcmp(before->string, item->string) == 0) {
+                    snprintf(path + len, size - len, "%s%s", len ? "." : "", item->string);
+                    return 1;
+                }
+        int n = cJSON_IsObject(node)
+                    ? snprintf(path + len, size - len, "%s%s", len ? "." : "", item->string)
+                    : snprintf(path + len, size - len, "[%d]", index);
+        size_t next = n > 0 && (size_t)n < size - len ? len + (size_t)n : size - 1;
+        if ((cJSON_IsObject(item) || cJSON_IsArray(item)) && find_duplicate(item, path, size, next))
+            return 1;
+        path[len] = 0;
+    }
+    return 0;
+}
+
+int atmo_json_check_duplicates(const cJSON *root, const char *prefix, const char *where,
+                               atmo_err *e)
+{
+    char path[512];
+    int n = snprintf(path, sizeof path, "%s", prefix);
+    if (!find_duplicate(root, path, sizeof path, n > 0 && (size_t)n < sizeof path ? (size_t)n : 0))
+        return ATMO_OK;
+    return atmo_fail(e, ATMO_ERR_USAGE, "%s: the key '%s' is given twice; keep one of the two",
+                     where, path);
+}
+
+/* Why cJSON stopped at `at`: a NaN or Infinity literal, nesting beyond cJSON's limit, or a
+ * plain syntax error. */
+static void syntax_error(const char *text, const char *at, const char *path, atmo_err *e)
+{
+    int line = 1, depth = 0, in_string = 0;
+    for (const char *c = text; at && c < at && *c; c++) {
+        line += *c == '\n';
+        if (in_string)
+            in_string = !(*c == '"' && c[-1] != '\\');
+        else if (*c == '"')
+            in_string = 1;
+        else
+            depth += (*c == '{' || *c == '[') - (*c == '}' || *c == ']');
+    }
+    const char *word = at;
+    while (word && (*word == ' ' || *word == '\t' || *word == '\n' || *word == '\r' ||
+                    *word == ':' || *word == ',' || *word == '-' || *word == '['))
+        word++;
+    int word_len = 0;
+    while (word && word_len < 16 && isalpha((unsigned char)word[word_len]))
+        word_len++;
+    if (word && (strncasecmp(word, "nan", 3) == 0 || strncasecmp(word, "inf", 3) == 0))
+        atmo_fail(e, ATMO_ERR_USAGE,
+                  "%s: near line %d, '%.*s' is not a JSON number (JSON has no NaN or Infinity); "
+                  "give a finite number",
+                  path, line, word_len, word);
+    else if (depth >= CJSON_NESTING_LIMIT)
+        atmo_fail(e, ATMO_ERR_USAGE,
+                  "%s: near line %d the JSON is nested more than %d levels deep; a scene needs "
+                  "three", path, line, CJSON_NESTING_LIMIT);
+    else
+        atmo_fail(e, ATMO_ERR_USAGE,
+                  "%s: JSON syntax error near line %d; check for a missing comma, quote or brace "
+                  "there", path, line);
+}
+
+/* 1 when key names a group of parameters ("sun" of "sun.zenith_deg"). */
+static int param_group(const char *key)
+{
+    size_t n = strlen(key);
+    for (const atmo_param *p = atmo_params; p->key; p++)
+        if (strncmp(p->key, key, n) == 0 && p->key[n] == '.')
+            return 1;
+    return 0;
+}
+
 /* The members of object `obj`, whose keys are prefixed by `prefix` ("" at the top). */
 static int load_object(atmo_scene *s, const cJSON *obj, const char *prefix, const char *path,
                          unsigned char *seen, atmo_err *e)
@@ -195,6 +278,14 @@ static int load_object(atmo_scene *s, const cJSON *obj, const char *prefix, cons
             int rc = load_object(s, item, sub, path, seen, e);
             if (rc)
                 return rc;
+        } else if (param_group(key)) {
+            char *text = cJSON_PrintUnformatted(item);
+            int rc = atmo_fail(e, ATMO_ERR_USAGE,
+                               "'%s' in %s is a group of parameters and needs an object such as "
+                               "{\"%s\": {...}}, got %.40s (atmo params lists its keys)",
+                               key, path, item->string, text ? text : "another value");
+            cJSON_free(text);
+            return rc;
         } else {
             const char *near = atmo_param_closest(key);
             return atmo_fail(e, ATMO_ERR_USAGE,
@@ -230,18 +321,13 @@ int atmo_scene_load_json_text(atmo_scene *s, const char *text, size_t length, co
     }
     const char *end = NULL;
     root = cJSON_ParseWithOpts(text, &end, 1);
-    if (!root) {
-        /* cJSON stops where the text stops being JSON: count the lines up to there */
-        const char *at = end ? end : cJSON_GetErrorPtr();
-        int line = 1;
-        for (const char *c = text; at && c < at && *c; c++)
-            line += *c == '\n';
-        rc = atmo_fail(e, ATMO_ERR_USAGE,
-                       "%s: JSON syntax error near line %d; check for a missing comma, quote or "
-                       "brace there",
-                       path, line);
+    if (!root) { /* cJSON stops where the text stops being JSON */
+        syntax_error(text, end ? end : cJSON_GetErrorPtr(), path, e);
+        rc = ATMO_ERR_USAGE;
         goto cleanup;
     }
+    if ((rc = atmo_json_check_duplicates(root, "", path, e)))
+        goto cleanup;
     if (!cJSON_IsObject(root)) {
         rc = atmo_fail(
             e, ATMO_ERR_USAGE,

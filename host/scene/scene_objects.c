@@ -179,6 +179,8 @@ int atmo_scene_set_objects(atmo_scene *s, const char *json, const char *where, a
                        where);
         goto cleanup;
     }
+    if ((rc = atmo_json_check_duplicates(root, "objects", where, e)))
+        goto cleanup;
     int n = cJSON_GetArraySize(root);
     if (n > ATMO_MAX_OBJECTS) {
         rc = atmo_fail(e, ATMO_ERR_USAGE, "objects (from %s) has %d elements; at most %d", where,

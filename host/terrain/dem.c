@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/dem.h"
+#include "atmo/fileio.h"
 #include "dem_read.h"
 
 void atmo_dem_options_from_scene(const atmo_scene *s, atmo_dem_options *o)
@@ -180,11 +181,12 @@ static int read_by_signature(const char *path, const atmo_dem_options *o, atmo_d
                              atmo_err *e)
 {
     unsigned char magic[8] = {0};
-    FILE *f = fopen(path, "rb");
+    const char *why = NULL;
+    FILE *f = atmo_open_regular(path, &why); /* a FIFO would block for ever */
     if (!f)
         return atmo_fail(e, ATMO_ERR_USAGE,
-                         "cannot open heightmap '%s' (terrain.heightmap_file); check the path",
-                         path);
+                         "cannot open heightmap '%s' (terrain.heightmap_file): %s; check the "
+                         "path", path, why);
     size_t got = fread(magic, 1, sizeof magic, f);
     fclose(f);
     static const unsigned char png[8] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
@@ -213,10 +215,29 @@ static int read_by_signature(const char *path, const atmo_dem_options *o, atmo_d
 #endif
 }
 
+/* Every known (finite) sample within +-ATMO_DEM_MAX_HEIGHT_M. */
+static int check_heights(const char *path, const atmo_dem *dem, atmo_err *e)
+{
+    size_t n = (size_t)dem->width * (size_t)dem->height;
+    for (size_t i = 0; i < n; i++) {
+        double h = dem->heights_m[i];
+        if (isfinite(h) && fabs(h) > ATMO_DEM_MAX_HEIGHT_M)
+            return atmo_fail(e, ATMO_ERR_USAGE,
+                             "%s: the sample at column %zu, row %zu is %g m, beyond +-%g m; "
+                             "check terrain.heightmap_scale_m and terrain.heightmap_offset_m, or "
+                             "mark it as the file's no-data value",
+                             path, i % (size_t)dem->width, i / (size_t)dem->width, h,
+                             ATMO_DEM_MAX_HEIGHT_M);
+    }
+    return ATMO_OK;
+}
+
 int atmo_dem_load(const char *path, const atmo_dem_options *o, atmo_dem *dem, atmo_err *e)
 {
     memset(dem, 0, sizeof *dem);
     int rc = read_by_signature(path, o, dem, e);
+    if (rc == ATMO_OK)
+        rc = check_heights(path, dem, e);
     if (rc == ATMO_OK)
         rc = fill_missing(path, o, dem, e);
     if (rc != ATMO_OK) {

@@ -1,6 +1,9 @@
 /* dem_gdal.c — a GeoTIFF (or any raster GDAL reads: SRTM .hgt, ASCII grids, ...) as heights in
  * metres with its extent in metres, through GDAL's C API. Built only with GDAL (ATMO_HAVE_GDAL).
  *
+ * A file with more than one band is refused (which band holds heights is the user's to say),
+ * and so are terrain.heightmap_file_extent_m and terrain.heightmap_offset_m, which only PNG
+ * and EXR heightmaps use: the file's georeference and band scale would silently override them.
  * Heights: band 1 as float, h = v * scale + offset with the band's scale and offset (1 and 0
  * when it has none), times 0.3048 when the band's unit is the foot (1200/3937 for the US survey
  * foot); a unit other than metres or feet is refused. The band's nodata value marks missing
@@ -207,6 +210,20 @@ int dem_read_gdal(const char *path, const atmo_dem_options *o, atmo_dem *dem, at
     if (GDALGetRasterCount(ds) < 1) {
         rc = atmo_fail(e, ATMO_ERR_USAGE, "%s (%s) has no raster band; is it a DEM?", path,
                        driver);
+        goto cleanup;
+    }
+    if (GDALGetRasterCount(ds) > 1) {
+        rc = atmo_fail(e, ATMO_ERR_USAGE,
+                       "%s (%s) has %d bands; a heightmap is one band of heights (take the one "
+                       "you mean: gdal_translate -b N)",
+                       path, driver, GDALGetRasterCount(ds));
+        goto cleanup;
+    }
+    if (o->extent_m > 0.0 || o->offset_m != 0.0) {
+        rc = atmo_fail(e, ATMO_ERR_USAGE,
+                       "%s (%s) carries its own extent and heights; terrain.heightmap_file_%s "
+                       "is for PNG and EXR heightmaps, leave it out",
+                       path, driver, o->extent_m > 0.0 ? "extent_m" : "offset_m");
         goto cleanup;
     }
     rc = dem_check_size(path, driver, width, height, o, e);

@@ -77,4 +77,9 @@ int bench_terrain(const char *dir, const char *device, int quick, atmo_err *e);
  * (host/bench/bench_clouds.c). Writes DIR/clouds.csv and DIR/clouds.svg, or DIR/clouds_fit.csv. */
 int bench_clouds(const char *dir, const char *device, int quick, int fit, atmo_err *e);
 
+/* `atmo bench denoise`: the path tracer's error against time without and with Open Image
+ * Denoise (fast, balanced, high) by samples per pixel on thesis-7 (host/bench/bench_denoise.c).
+ * Writes DIR/denoise.csv and DIR/denoise.svg; without the library, its load error. */
+int bench_denoise(const char *dir, const char *device, int quick, atmo_err *e);
+
 #endif

@@ -23,7 +23,9 @@
  *     from the rim of each hole inward, each sample the mean of its known 8-neighbours, so a
  *     hole takes the heights around it;
  *   - with sea level, 0 m (for DEMs whose sea is nodata, e.g. coastal tiles).
- * A grid with no known sample is refused.
+ * A grid with no known sample is refused, and so is a known sample beyond +-ATMO_DEM_MAX_HEIGHT_M
+ * (100 km: ten times Everest's height or the Mariana Trench's depth), which is a wrong scale,
+ * offset or an undeclared no-data value rather than a height; the message names the sample.
  *
  * Limits: each side at most ATMO_DEM_MAX_SIDE and the grid at most ATMO_DEM_MAX_SAMPLES
  * samples (256 MiB of floats on the host); larger files are refused with one line naming the
@@ -39,6 +41,7 @@
 #include "atmo/status.h"
 
 #define ATMO_DEM_MAX_SIDE 32768
+#define ATMO_DEM_MAX_HEIGHT_M 1e5
 #define ATMO_DEM_MAX_SAMPLES ((size_t)1 << 26)
 
 typedef enum { ATMO_DEM_GEOTIFF = 0, ATMO_DEM_PNG = 1, ATMO_DEM_EXR = 2 } atmo_dem_format;

@@ -1,7 +1,8 @@
 /* features.h — the feature registry: what a scene can contain, one row per feature.
  *
  * A feature is an atmosphere method, a part that methods share (the view-ray integrator, the
- * Psi_ms LUT), the cloud shell, and later terrain, fBm clouds and objects. Its row declares
+ * Psi_ms LUT), a medium (the cloud shell, the fBm layer), an occluder or surface (terrain,
+ * objects, the observer). Its row declares
  *   - when a scene contains it (wanted),
  *   - its kernel fragments, appended to the program in registry order (so a shared part comes
  *     before the methods that call it and a medium before the methods that integrate it: no
@@ -11,7 +12,10 @@
  *   - the fragments its passes are compiled from and the features whose buffers they read
  *     (sources, needs: the cache key covers those too, atmo/render.h),
  *   - a plan function that fills its GPU struct from the scene, sizes its named buffers
- *     (atmo_plan_add_buffer) and lists its precompute passes (atmo_plan_add_pass).
+ *     (atmo_plan_add_buffer) and lists its precompute passes (atmo_plan_add_pass),
+ *   - the functions it gives the generic integrator (slots: a medium's coefficients, an
+ *     occluder, a surface, a method's multiple-scattering source), which the plan composes
+ *     into generated fragments at the rows marked `compose` (host/plan/compose.c).
  * atmo_plan_make walks the rows in order and plans the wanted ones; the kernels then see only
  * the fragments, flags and buffers of the features the scene contains. */
 #ifndef ATMO_FEATURES_H
@@ -26,6 +30,67 @@ typedef struct atmo_gpu_field {
 #define ATMO_GPU_FIELD(member)                                                                     \
     {offsetof(atmo_gpu_scene, member), sizeof(((atmo_gpu_scene *)0)->member)}
 
+/* The functions a feature gives the plan's composition (compose.c), by name, each with the
+ * signature of its slot (kernels/media/media.h describes the slots; NULL: not given):
+ *   component             its scattering component: MEDIA_<component> numbers it after the air's
+ *   media_add             void (s, ATMO_LUT_PARAMS, const medium_point *q, media_sample *m): adds
+ *                         its extinction and its component's scattering at q
+ *   media_phase           vec3 (s, ATMO_LUT_PARAMS, float nu): its component's phase function
+ *   media_sun             vec3 (s, ATMO_LUT_PARAMS, const medium_point *q): the sun's
+ *                         transmittance through it to q (a medium that shadows)
+ *   media_intervals       int (s, const medium_ray *m, float t_start, float t_end, float *lo,
+ *                         float *hi): the parts of the ray it steps itself (at most one medium)
+ *   media_interval        void (s, ATMO_LUT_PARAMS, const medium_ray *m, float t0, float t1,
+ *                         float jitter, int use_ms, int ground, float grid_d, int grid_n,
+ *                         vec3 *L, vec3 *T, vec3 *medium_t): that stepping (grid_d, grid_n:
+ *                         the integrator's air grid, break points grid_d (i / grid_n)^2)
+ *   ms_source             vec3 (s, ATMO_LUT_PARAMS, const medium_point *q, float nu,
+ *                         const media_sample *m, int ground): a method's multiple-scattering
+ *                         source (at most one method)
+ *   ms_ground_irradiance  vec3 (s, ATMO_LUT_PARAMS, float mu_s): its sky irradiance on the ground
+ *   volume_sun            vec3 (s, ATMO_LUT_PARAMS, const medium_point *q): the sun's
+ *                         transmittance to q through a medium that only the path tracer's
+ *                         volume stage holds (at most one)
+ *   sun_occluder          float (s, ATMO_LUT_PARAMS, const medium_point *q): 1 where it leaves
+ *                         the sun visible from q, 0 in its shadow
+ *   surface_occluder      1: that occluder also shadows the path tracer's surface points
+ *   ray_occluder          float (s, ATMO_LUT_PARAMS, const medium_point *q, float t, STATE *st):
+ *                         an occluder with a state along the integrator's ray (st 0: no ray);
+ *   ray_state, ray_begin  the state's type STATE and void (s, const medium_ray *m, float end,
+ *                         float surface_t, STATE *st), which starts it on a ray
+ *   surface_hit           float (s, ATMO_LUT_PARAMS, const medium_ray *m, float t_max): the
+ *                         distance to its surface before t_max, or -1
+ *   surface_radiance      vec3 (s, ATMO_LUT_PARAMS, const medium_ray *m, float t): the light
+ *                         of its surface at distance t toward the ray's origin, x < 0 where the
+ *                         surface there is not its own (the last surface asked may assume it is)
+ * The composition asks the features in registry order, so a row's place also orders its
+ * occluders and surfaces. */
+typedef struct atmo_slots {
+    const char *component;
+    const char *media_add, *media_phase, *media_sun;
+    const char *media_intervals, *media_interval;
+    const char *ms_source, *ms_ground_irradiance;
+    const char *volume_sun;
+    const char *sun_occluder;
+    int surface_occluder;
+    const char *ray_occluder, *ray_state, *ray_begin;
+    const char *surface_hit, *surface_radiance;
+} atmo_slots;
+
+/* The generated composition fragments (compose.c): a registry row with compose != 0 has no
+ * files; its place in the registry is where the plan puts the generated functions of its group,
+ * after the rows whose functions they call and before those that call them. */
+enum {
+    ATMO_COMPOSE_NONE,
+    ATMO_COMPOSE_MEDIA,     /* media_at, media_phase, media_sun_attenuate, medium_ms_source,
+                               medium_ms_ground_irradiance, visibility_air_volume */
+    ATMO_COMPOSE_SUN,       /* visibility_ray, visibility_ray_begin, visibility_sun_occluders,
+                               visibility_sun_occluders_on_ray, visibility_surface_occluders */
+    ATMO_COMPOSE_SURFACES,  /* visibility_surface_hit, visibility_surface_radiance */
+    ATMO_COMPOSE_INTERVALS, /* media_intervals, media_interval */
+    ATMO_COMPOSE_GROUPS
+};
+
 typedef struct atmo_feature {
     const char *name;
     int method;                      /* ATMO_METHOD_* for an atmosphere method, else -1 */
@@ -38,6 +103,8 @@ typedef struct atmo_feature {
     int (*plan)(const atmo_scene *s, atmo_plan *p, atmo_err *e); /* NULL: nothing to plan */
     int luts_follow_view; /* a method whose buffers hold one camera and sun (its probes of
                              other rays are only valid for that sun) */
+    const atmo_slots *slots; /* what it gives the composition; NULL: nothing */
+    int compose;             /* ATMO_COMPOSE_*: this row is that generated fragment */
 } atmo_feature;
 
 extern const atmo_feature atmo_features[];
@@ -49,5 +116,15 @@ const atmo_feature *atmo_feature_find(const char *name);
 const atmo_feature *atmo_feature_method(int method);
 /* "single, march, ..." for messages. */
 const char *atmo_plan_available_methods(void);
+
+/* The composition of the features f[0..n-1] (in registry order) for the group
+ * (ATMO_COMPOSE_*), as OpenCL C that also compiles as C, into out; returns 0, or -1 when it
+ * does not fit or two features fill a slot that takes one (a registry bug). */
+int atmo_compose(const atmo_feature *const *f, int n, int group, char *out, size_t size);
+/* "#define MEDIA_<component> k" for the media's components (k from 2, after the air's) and
+ * "#define MEDIA_COMPONENTS n", one a line, into out; 0 or -1 as atmo_compose. */
+int atmo_compose_components(const atmo_feature *const *f, int n, char *out, size_t size);
+/* The name of the fragment of a row with compose != 0, e.g. "plan/media". */
+const char *atmo_compose_name(int group);
 
 #endif

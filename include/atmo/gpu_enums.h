@@ -67,6 +67,8 @@ enum {
     ATMO_METHOD_FAST,       /* per-frame LUTs (Hillaire 2020 style) */
     ATMO_METHOD_LUT,        /* precomputed 4-D scattering LUTs (Bruneton 2017 style) */
     ATMO_METHOD_REFERENCE,  /* Monte Carlo volumetric path tracer, all orders: the oracle */
+    ATMO_METHOD_AUTO,       /* the scene's value only: the plan picks one of the above
+                               (atmo_plan_auto_method) */
 };
 
 /* render.mode: the preview (sky_render: primary rays, surfaces lit by the sun and the sky's

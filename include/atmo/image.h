@@ -9,7 +9,8 @@
  *         the pixel's largest channel); the description goes into header comment lines.
  *   .exr  OpenEXR, scanline, 32-bit float R, G, B: the linear values exactly, plus the image's
  *         extra layers (below), in a lossless compression (meta's exr_compression; chunks
- *         compressed on every processor); the description goes into string attributes.
+ *         compressed on every processor); the description goes into string attributes, and
+ *         RGB colour (meta->rec709) into the standard chromaticities attribute.
  *   .pfm  Portable float map, little-endian float32, bottom row first: exact, no metadata.
  * Files are written atomically (include/atmo/fileio.h): complete, or absent.
  *
@@ -55,7 +56,11 @@ typedef struct atmo_post {
 typedef struct atmo_image_meta {
     const char *quantity;     /* "spectral radiance" or "luminance" */
     const char *unit;         /* "W m^-2 sr^-1 nm^-1" or "cd m^-2" */
-    double wavelengths_nm[3]; /* what R, G, B hold */
+    double wavelengths_nm[3]; /* what R, G, B hold (rec709 = 0) */
+    int rec709;               /* 1: R, G, B are linear Rec.709 (sRGB primaries, D65 white), not
+                                 samples at wavelengths: EXR gets the standard "chromaticities"
+                                 attribute and "colorInteropID" lin_rec709_scene instead of
+                                 "wavelengths" */
     int samples_per_pixel;
     int partial;              /* 1 if the render was interrupted: the files say so */
     const char *software;     /* "atmo 0.1.0" */
@@ -142,7 +147,8 @@ int atmo_image_read_pfm(const char *path, atmo_image *img, atmo_err *e);
 void atmo_image_free(atmo_image *img);
 
 /* "R 680 nm, G 550 nm, B 440 nm; 64 samples per pixel" style description shared by the
- * writers: quantity, unit, wavelengths, samples, and "partial render" when meta->partial. */
+ * writers: quantity, unit, wavelengths (or "linear Rec.709 RGB" for meta->rec709), samples, and
+ * "partial render" when meta->partial. */
 void atmo_image_describe(const atmo_image_meta *meta, char *buf, int size);
 
 #endif

@@ -37,11 +37,15 @@ typedef struct atmo_part {
     int *samples;              /* width x rows */
     char *scene_json;          /* the resolved scene (malloc'ed) */
     unsigned long long scene_hash;
+    unsigned long long input_hash; /* FNV-1a 64 of the input data the render read beyond the
+                                      scene text: the heightmap's size and heights (0: none) */
     char device[656];          /* "platform / device / driver" */
 } atmo_part;
 
 /* FNV-1a 64 of the scene text. */
 unsigned long long atmo_part_scene_hash(const char *scene_json);
+/* FNV-1a 64 of a heightmap's size and heights as read (atmo_dem); 0 when it has none. */
+unsigned long long atmo_part_input_hash(int width, int height, const float *heights_m);
 /* The number of rows of part `part` of `parts` in an image `height` rows high. */
 int atmo_part_row_count(int height, int part, int parts);
 

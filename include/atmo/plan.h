@@ -11,7 +11,8 @@
  *   #define ATMO_LUT_PARAMS      ATMO_GLOBAL const T0 *name0, ATMO_GLOBAL const T1 *name1, ...
  *   #define ATMO_LUT_OUT_PARAMS  ATMO_GLOBAL T0 *name0, ATMO_GLOBAL T1 *name1, ...
  *   #define ATMO_LUT_ARGS        name0, name1, ...
- * for the buffers of the assembled features in plan order, so every sky kernel takes
+ * for the buffers of the assembled features in plan order (and the numbers of the media's
+ * scattering components, MEDIA_COMPONENTS and MEDIA_<name>, kernels/media/media.h), so every sky kernel takes
  * (scene, <the named buffers>, its own args), every precompute kernel (scene, <the named
  * buffers>, int arg), and a method's code refers to its buffers by name. The host binds them
  * from the plan's buffer list in the same order (atmo_bind_buffers, atmo/render.h). */
@@ -27,8 +28,9 @@
 #define ATMO_PLAN_MAX_FRAGMENTS 64
 #define ATMO_PLAN_MAX_PASSES 64
 #define ATMO_PLAN_MAX_BUFFERS 8
-#define ATMO_PLAN_MAX_FEATURES 12
+#define ATMO_PLAN_MAX_FEATURES 32
 #define ATMO_PLAN_MAX_OWNED 4
+#define ATMO_PLAN_COMPOSE_GROUPS 5 /* ATMO_COMPOSE_GROUPS of atmo/features.h */
 
 /* A named device buffer. bytes == 0: the feature declares it but this scene needs no data in it
  * (e.g. the sky-view LUT of a camera above the atmosphere); a 16-byte placeholder is bound,
@@ -65,9 +67,14 @@ typedef struct atmo_plan {
     const struct atmo_feature *features[ATMO_PLAN_MAX_FEATURES]; /* in registry order */
     int feature_count;
     const char *fragments[ATMO_PLAN_MAX_FRAGMENTS];
+    unsigned char fragment_group[ATMO_PLAN_MAX_FRAGMENTS]; /* a generated fragment's group
+                                      (its text composed[group]), 0 for an embedded file */
     int fragment_count;
     char defines[256];
-    char prelude[1024];            /* generated: the buffer parameter and argument lists */
+    char prelude[1024];            /* generated: the buffer parameter and argument lists, the
+                                      media's components */
+    char composed[ATMO_PLAN_COMPOSE_GROUPS][4096]; /* generated: the slots' composition
+                                      (atmo/features.h, atmo_compose), per group */
     atmo_plan_buffer buffers[ATMO_PLAN_MAX_BUFFERS];
     int buffer_count;
     atmo_plan_pass passes[ATMO_PLAN_MAX_PASSES];
@@ -87,6 +94,11 @@ typedef struct atmo_plan {
 /* Plan a validated scene. On failure nothing is left to release; on success the caller
  * releases the plan with atmo_plan_free once no session or probe opened with it is left. */
 int atmo_plan_make(const atmo_scene *s, atmo_plan *p, atmo_err *e);
+/* The method atmosphere.method = auto plans the scene with (atmo_plan_make resolves it): march
+ * where the scene has a medium that fast and lut do not integrate (the fBm cloud layer as a
+ * medium of the methods, the cloud shell, the observer; march is the cheapest method with
+ * multiple scattering that does), else fast. *why (unless NULL) says which, for the user. */
+int atmo_plan_auto_method(const atmo_scene *s, const char **why);
 /* The camera's world position in metres for scene s as plan p (made from s) places it:
  * camera.position_m, its y above the terrain's surface with camera.on_terrain. */
 void atmo_plan_camera_world(const atmo_plan *p, const atmo_scene *s, double out[3]);
@@ -111,6 +123,9 @@ int atmo_plan_add_pass(atmo_plan *p, const char *kernel, int width, int height, 
                        atmo_err *e);
 /* The buffer with this name, or NULL. */
 atmo_plan_buffer *atmo_plan_buffer_find(atmo_plan *p, const char *name);
+/* The fragments' texts for atmo_cl_build_options.texts: texts[i] = the generated text of
+ * fragment i (in p, so p must outlive them), NULL for an embedded file. */
+void atmo_plan_fragment_texts(const atmo_plan *p, const char *texts[ATMO_PLAN_MAX_FRAGMENTS]);
 /* Its index in p->buffers (the order of ATMO_LUT_PARAMS), or -1. */
 int atmo_plan_buffer_index(const atmo_plan *p, const char *name);
 

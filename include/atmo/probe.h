@@ -5,7 +5,8 @@
  * sky_radiance (the `sky_probe` kernel of kernels/render/sky.cl) for rays given as (r, mu, mu_s, nu),
  * as ATMO_PROBE_BATCHES independent batches (distinct RNG pixel indices) whose spread gives the
  * standard error. atmo_probe_segments() does the same for segments of the rays (aerial
- * perspective). Used by `atmo radiance` and `atmo bench atmosphere`. */
+ * perspective); atmo_probe_sun() gives the sun's visibility at their origins. Used by
+ * `atmo radiance` and `atmo bench atmosphere`. */
 #ifndef ATMO_PROBE_H
 #define ATMO_PROBE_H
 #include "atmo/cl_runtime.h"
@@ -31,6 +32,11 @@ int atmo_probe_rays(atmo_probe *p, const float4 *rays, int n, int samples, doubl
 int atmo_probe_segments(atmo_probe *p, const float4 *rays, const float *distances, int n,
                         int samples, double (*mean)[3], double (*se)[3], double (*t_mean)[3],
                         double (*t_se)[3], atmo_err *e);
+/* The sun's visibility at each ray's origin (kernel sky_probe_sun: visibility.h's
+ * visibility_sun, the occluders and the shadowing media toward the sun per wavelength, without
+ * the atmosphere's own transmittance). */
+int atmo_probe_sun(atmo_probe *p, const float4 *rays, int n, double (*visibility)[3],
+                   atmo_err *e);
 void atmo_probe_close(atmo_probe *p);
 
 #endif

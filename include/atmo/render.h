@@ -22,6 +22,11 @@ typedef struct atmo_render_result {
     float *passes;             /* pass_planes x width x height x 4 means (atmo_session_read_passes) */
     float *se;                 /* width x height x 3 standard errors of rgb */
     int *samples;              /* width x height samples per pixel */
+    int noise_tiles;           /* with a noise target: the tiles, and per tile (x, y, w, h,
+                                  samples) in tile_rect[5 i ...] and the relative standard
+                                  error it reached (atmo/session.h's e) in tile_noise[i] */
+    int *tile_rect;
+    double *tile_noise;
     int samples_requested;
     int samples_min, samples_max; /* per pixel, equal unless interrupted */
     int interrupted;

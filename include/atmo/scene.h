@@ -15,6 +15,15 @@
 #include "atmo/status.h"
 
 enum { ATMO_QUANTITY_RADIANCE = 0, ATMO_QUANTITY_LUMINANCE = 1 };
+/* output.denoise: auto denoises the PNG outputs of path-mode renders (quality high) where the
+ * library is installed; off, or the named quality for every output. */
+enum {
+    ATMO_OUTPUT_DENOISE_AUTO = 0,
+    ATMO_OUTPUT_DENOISE_OFF,
+    ATMO_OUTPUT_DENOISE_FAST,
+    ATMO_OUTPUT_DENOISE_BALANCED,
+    ATMO_OUTPUT_DENOISE_HIGH
+};
 /* camera.on_terrain: what camera.position_m's y is measured from */
 enum { ATMO_CAMERA_TERRAIN_OFF = 0, ATMO_CAMERA_TERRAIN_BELOW = 1, ATMO_CAMERA_TERRAIN_AT = 2 };
 
@@ -93,6 +102,10 @@ typedef struct atmo_scene {
         int flare;             /* 0/1: lens flare (perspective cameras; host/image/flare.c) */
         double flare_strength; /* its brightness relative to the default lens */
     } post;
+    struct {
+        int denoise;           /* ATMO_OUTPUT_DENOISE_*: Open Image Denoise (atmo/outputs.h) */
+        int blender;           /* 0/1: outputs for Blender (atmo_scene_for_blender) */
+    } output;
     struct {                   /* homogeneous cloud/fog shell (kernels/media/cloud_shell.h) */
         int enabled;
         double bottom_m, top_m; /* altitudes of the shell above sea level */
@@ -277,6 +290,12 @@ int atmo_scene_save_json(const atmo_scene *s, const char *path, atmo_err *e);
  * scene's; `where` names the source for one-line errors ("--set", the file). The key
  * "objects" of --set, presets and scene files comes here. */
 int atmo_scene_set_objects(atmo_scene *s, const char *json, const char *where, atmo_err *e);
+/* A parsed JSON tree (cJSON) with a key given twice in one object: ATMO_ERR_USAGE naming the
+ * key's path below `prefix` ("sun.zenith_deg", "objects[1].type") and `where`; else ATMO_OK. cJSON keeps
+ * both members and a lookup finds the first, so the second would be silently ignored. */
+struct cJSON;
+int atmo_json_check_duplicates(const struct cJSON *root, const char *prefix, const char *where,
+                               atmo_err *e);
 /* Every object's values in range (a scene filled in by code); one-line usage error naming
  * objects[i] otherwise. */
 int atmo_scene_check_objects(const atmo_scene *s, atmo_err *e);
@@ -285,5 +304,15 @@ char *atmo_scene_objects_json(const atmo_scene *s);
 
 /* Checks between parameters (e.g. top radius above bottom radius). */
 int atmo_scene_validate(const atmo_scene *s, atmo_err *e);
+
+/* output.blender (scene_blender.c): with it set, rewrite the scene into what Blender reads as it
+ * is: render.quantity radiance -> luminance (linear Rec.709 RGB in cd/m^2; the spectral mode is
+ * luminance already), post.exposure times ATMO_LUMINANCE_EXPOSURE_SCALE when the quantity
+ * changes (so a PNG of the same render keeps its brightness), and a panorama's camera.yaw_deg
+ * set to ATMO_BLENDER_PANORAMA_YAW_DEG (Blender's world orientation). Idempotent. Writes what
+ * it changed ("key old -> new, ...") into changes (may be NULL) and returns how many keys. */
+#define ATMO_LUMINANCE_EXPOSURE_SCALE 1e-5
+#define ATMO_BLENDER_PANORAMA_YAW_DEG (-90.0)
+int atmo_scene_for_blender(atmo_scene *s, char *changes, int size);
 
 #endif

@@ -111,25 +111,6 @@ ATMO_FN void lut_whole_ray(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
         *sun = v3_mul(atmosphere_sun_disc_radiance(a, s->sun_direction.w), *view_t);
 }
 
-/* The medium integrator's multiple-scattering source (medium.h, -DATMO_LUT_J): the density of
- * orders >= 2 and the sky's ground irradiance, read from scattering_mie (LUT_DENSITY_SUM and
- * LUT_TEXELS, lut_scattering.h). */
-ATMO_FN vec3 lut_ms_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *scattering_mie,
-                           float r, float mu, float mu_s, float nu, int ground)
-{
-    ATMO_GLOBAL const int *dims = s->lut.dims;
-    return lut_scattering_lookup(&s->atmosphere, scattering_mie + LUT_DENSITY_SUM(dims), dims, r,
-                                 atmo_clamp_cos(mu), mu_s, nu, ground);
-}
-
-ATMO_FN vec3 lut_ms_ground_irradiance(ATMO_GLOBAL const atmo_gpu_scene *s,
-                                      ATMO_GLOBAL const float4 *scattering_mie, float mu_s)
-{
-    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    ATMO_GLOBAL const int *dims = s->lut.dims;
-    return lut_irradiance_lookup(a, scattering_mie + LUT_TEXELS(dims), dims, a->bottom_radius, mu_s);
-}
-
 /* The method's ray (sky_method.h): the whole ray from the tables (lut_whole_ray). A segment
  * [0, d] that reaches the ground or the top is the whole ray too. A shorter one is marched: the
  * medium integrator (kernels/media/medium.h: single scattering with the transmittance LUT)

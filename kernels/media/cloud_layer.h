@@ -1,6 +1,7 @@
 /* cloud_layer.h — the fBm cloud layer: a planet-wide medium of coverage x shaped fBm between two
  * altitudes, compiled only under -DATMO_CLOUDS. Its density, its optics and the sun's light
- * through it; its own stepping along view rays is cloud_march.h (after the integrator).
+ * through it; the layer as a medium of the methods is cloud_layer_medium.h, its own stepping
+ * along view rays cloud_march.h.
  *
  * Density at a camera-relative point p of altitude h (x = p + origin, origin the camera's world
  * position minus the wind's displacement w t, so the field moves with the wind):
@@ -17,8 +18,8 @@
  * albedo sigma_t, the phase function the droplet distribution's Mie table (phase_table.h), its
  * Henyey-Greenstein with the table's g, or Jendersie & d'Eon 2023.
  *
- * The light march (the sun's visibility through the layer, a visibility source of
- * visibility.h): the part of the ray toward the sun inside the layer's shell, cut to
+ * The light march (the sun's transmittance through the layer, cloud_layer_medium.h's
+ * clouds_media_sun): the part of the ray toward the sun inside the layer's shell, cut to
  * light_distance_m from where it enters, in light_steps steps growing as (i/n)^2 (short near
  * the point, where the light changes fastest), each sampled at one point:
  *     D = sum_i d(x_i) dt_i,   T_sun = exp(-extinction D)
@@ -56,6 +57,9 @@
 #define CLOUDS_COVERAGE_CONTRAST 3.0f
 #define CLOUDS_WARP_FREQUENCY 0.25f /* of the warp noise, relative to the shape's */
 #define CLOUDS_TAU_OPAQUE 16.0f     /* the light march stops there: e^-16 = 1e-7 */
+/* the marcher's steps (cloud_march.h), which the shadow bench (host/bench) samples too */
+#define CLOUDS_CLEAR_STRIDE 4.0f
+#define CLOUDS_STEP_GROWTH 0.002f
 
 /* The bits of a float, as an unsigned integer. */
 ATMO_FN uint clouds_bits(float x)

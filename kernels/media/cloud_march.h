@@ -18,7 +18,7 @@
  *
  * Source S at a point with the sun's light E T_air V (the atmosphere's transmittance toward the
  * sun, the occluders: planet, observer) and the density integral D toward the sun of the light
- * march or the sun shadow map (visibility.h's visibility_clouds_density; tau_sun = extinction D):
+ * march or the sun shadow map (cloud_layer_medium.h's clouds_light_density; tau_sun = extinction D):
  *   air:    (sigma_R p_R + sigma_M p_M) E T_air V e^{-tau_sun}  (+ J_ms e^{-tau_sun}, use_ms)
  *   clouds: sigma_s E T_air V sum_{i<N} b^i p_i(nu) e^{-a^i tau_sun}
  * the octaves of Wrenninge, Kulla & Lundqvist 2013 ("Oz: the great and volumetric"): octave 0 is
@@ -60,14 +60,12 @@
 #include "media/ray.h"
 #include "media/media.h"
 #include "media/visibility.h"
-#include "media/medium.h"
+#include "media/cloud_layer_medium.h"
 #include "media/tracking.h"
 #include "media/cloud_layer.h"
 #include "atmo/gpu_types.h"
 #endif
 
-#define CLOUDS_CLEAR_STRIDE 4.0f
-#define CLOUDS_STEP_GROWTH 0.002f
 #define CLOUDS_T_MIN 1e-4f
 #define CLOUDS_THESIS_AMBIENT 0.1f
 #define CLOUDS_THESIS_CLAMP 3.0f
@@ -98,7 +96,7 @@ ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, c
     vec3 w = medium_segment_step3(ms.extinction, dt, &step_t);
     vec3 Tw = v3_mul(*T, w);
     float occluded = visibility_sun_occluders(s, ATMO_LUT_ARGS, &q);
-    float D = occluded > 0.0f ? visibility_clouds_density(s, ATMO_LUT_ARGS, &q) : 0.0f;
+    float D = occluded > 0.0f ? clouds_light_density(s, ATMO_LUT_ARGS, &q) : 0.0f;
     vec3 tau_sun = v3_scale(v3_from4(c->extinction), D), cloud_t = v3_exp(v3_scale(tau_sun, -1.0f));
     vec3 sun_e = v3(0.0f, 0.0f, 0.0f);
     if (occluded > 0.0f)
@@ -206,6 +204,16 @@ ATMO_FN void clouds_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
                               CLOUDS_THESIS_CLAMP / (4.0f * ATMO_PI));
         *L = v3_add(*L, clouds_thesis_clamp(cloud, level));
     }
+}
+
+/* The layer's media_interval in the plan's composition (media.h): clouds_interval, whose own
+ * steps follow the pixel's footprint, not the air grid (grid_d, grid_n unused). */
+ATMO_FN void clouds_media_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                   const medium_ray *m, float t0, float t1, float jitter,
+                                   int use_ms, int ground, float grid_d, int grid_n, vec3 *L,
+                                   vec3 *T, vec3 *medium_t)
+{
+    clouds_interval(s, ATMO_LUT_ARGS, m, t0, t1, jitter, use_ms, ground, L, T, medium_t);
 }
 
 #endif

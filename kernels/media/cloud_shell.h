@@ -12,17 +12,23 @@
  * two intervals inside it, cloud_shell_intervals), its own stepping inside them
  * (cloud_shell_interval), the light it takes from the sun on the way down to any point (the
  * chord through the shell, analytic: exp(-sigma l_sun), a visibility source in visibility.h),
- * and its coefficients at a point (media.h). Inside an interval it steps in equal optical depth
- * (channel y), `cloud.steps` steps up to CLOUD_TAU_CUT (beyond it the view transmittance is
- * below 1e-5), so a cloud of optical thickness 10-1000 is resolved where it is seen; the air's
- * extinction (at the interval's middle) is added to the cloud's. Within a step the sun's path
- * length in the shell is taken as linear in t, from l_0 to l_1, so with x(s) = a sigma l(s) +
- * sigma_v s the step integrates exactly
+ * and its coefficients at a point (media.h). An interval integrates everything in its part of
+ * the ray: the cloud and the air in it (the air's scattering of the sun and, with use_ms, the
+ * method's multiple-scattering source: medium_air_source). Its steps end at the cloud's break
+ * points, equal in optical depth (channel y), `cloud.steps` of them up to CLOUD_TAU_CUT (beyond
+ * it the view transmittance is below 1e-5), so a cloud of optical thickness 10-1000 is
+ * resolved where it is seen, and at the air grid's break points (medium_integrate's), so the
+ * air inside the shell is sampled at least as finely as outside it and a shell of negligible
+ * optical depth leaves the sky as the air alone makes it. Each step takes its coefficients, the
+ * atmosphere's transmittance toward the sun and the sun's occluders (the planet, the observer:
+ * visibility_sun_occluders) at the fraction `jitter` of it, sigma_v = the cloud's extinction
+ * plus the air's there. Within a step the sun's path length in the shell is taken as linear in
+ * t, from l_0 to l_1, so with x(s) = a sigma l(s) + sigma_v s the step integrates exactly
  *     int_0^dt S_0 e^{-x(s)} ds = S_0 dt (e^{-x(0)} - e^{-x(dt)}) / (x(dt) - x(0))
  * (exact for a plane-parallel slab, where the single-scattering radiance has the closed form
- * omega p(theta) E mu_s / (mu_s + mu_v) (1 - e^{-tau (1/mu_s + 1/mu_v)}) used by the tests).
- * The sun's other occluders (the planet, the observer: visibility_sun_occluders) are asked at
- * a jittered point of each step, the atmosphere's transmittance toward the sun at its start.
+ * omega p(theta) E mu_s / (mu_s + mu_v) (1 - e^{-tau (1/mu_s + 1/mu_v)}) used by the tests);
+ * the air's source takes octave 0's weight (a = 1: the sun's light reaches the air in the
+ * shell through the cloud's chord).
  *
  * Multiple scattering inside the cloud: the octaves of Wrenninge, Kulla & Lundqvist 2013
  * ("Oz: the great and volumetric", SIGGRAPH talk): octave i adds the single-scattering source
@@ -43,6 +49,8 @@
 #include "common/phase.h"
 #include "media/ray.h"
 #include "media/phase_table.h"
+#include "media/media.h"
+#include "atmosphere/sky_method.h"
 #include "atmo/gpu_types.h"
 #endif
 
@@ -53,10 +61,6 @@
 #define CLOUD_OCTAVE_B 0.7f  /* contribution, per octave */
 #define CLOUD_OCTAVE_C 0.5f  /* phase anisotropy, per octave */
 #define CLOUD_TAU_CUT 11.5f  /* view optical depth integrated per interval (e^-11.5 = 1e-5) */
-
-/* The planet's and the observer's shadow at a point (visibility.h, after this file). */
-ATMO_FN float visibility_sun_occluders(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                                       const medium_point *q);
 
 /* The shell's base and top altitudes (m). */
 ATMO_FN float cloud_shell_base(ATMO_GLOBAL const atmo_gpu_scene *s)
@@ -151,70 +155,26 @@ ATMO_FN int cloud_shell_intervals(ATMO_GLOBAL const atmo_gpu_scene *s, const med
     return n;
 }
 
-/* The sun's transmittance through the atmosphere to the point at distance t along the ray (no
- * shadows), and in *chord its path length through the shell. */
-ATMO_FN vec3 cloud_air_sun_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s,
-                                         ATMO_GLOBAL const float4 *transmittance_lut, const medium_ray *m,
-                                         float t, float *chord)
+/* The shell as a medium of the plan's composition (media.h): its coefficients added at a
+ * point, its phase function (component MEDIA_CLOUD) and the sun's transmittance through it. */
+ATMO_FN void cloud_shell_media_add(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                   const medium_point *q, media_sample *m)
 {
-    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    medium_point q = medium_ray_at(m, t, a->bottom_radius);
-    *chord = cloud_shell_chord(a->bottom_radius, cloud_shell_base(s), cloud_shell_top(s), q.h,
-                               q.r, q.mu_s);
-    return atmosphere_transmittance_to_top(a, transmittance_lut, s->transmittance_width,
-                                           s->transmittance_height, q.r, q.mu_s);
+    vec3 cloud = cloud_shell_extinction(s, q->h);
+    m->scattering[MEDIA_CLOUD] = v3_mul(cloud, v3_from4(s->cloud.albedo));
+    m->extinction = v3_add(m->extinction, cloud);
 }
 
-/* One interval [t0, t1] inside the shell: steps equal in optical depth (channel y), octaves of
- * multiple scattering, the air's extinction (at the interval's middle) on top. Adds the light
- * to *L with the running view transmittance *T, and multiplies *shell_t by the shell's own
- * transmittance over the interval. */
-ATMO_FN void cloud_shell_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                                  const medium_ray *m, float t0, float t1, float jitter, vec3 *L,
-                                  vec3 *T, vec3 *shell_t)
+ATMO_FN vec3 cloud_shell_media_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                     float nu)
 {
-    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    vec3 E = v3_from4(a->solar_irradiance);
-    vec3 sigma = v3_from4(s->cloud.extinction), albedo = v3_from4(s->cloud.albedo);
-    vec3 sigma_v = v3_add(sigma, atmosphere_extinction(
-                                     a, geometry_altitude_at(m->r, m->mu, 0.5f * (t0 + t1),
-                                                             a->bottom_radius)));
-    float len = fminf(t1 - t0, CLOUD_TAU_CUT / sigma.y);
-    int n = s->cloud.steps;
-    float dt = len / (float)n;
-    vec3 p0 = cloud_phase(s, cloud_phase_table, m->nu);
-    vec3 k_src = v3_mul(v3_mul(sigma, albedo), E);
-    float chord0, chord1;
-    vec3 sun0 = cloud_air_sun_transmittance(s, transmittance_lut, m, t0, &chord0);
-    for (int j = 0; j < n; j++) {
-        float ta = t0 + (float)j * dt;
-        vec3 sun1 = cloud_air_sun_transmittance(s, transmittance_lut, m, ta + dt, &chord1);
-        /* the occluders' shadows are sharp: asked at a jittered point of the step */
-        medium_point q = medium_ray_at(m, ta + jitter * dt, a->bottom_radius);
-        vec3 sun_t = v3_scale(sun0, visibility_sun_occluders(s, ATMO_LUT_ARGS, &q));
-        float sa = 1.0f, sb = 1.0f, sc = 1.0f;
-        for (int i = 0; i < ATMO_CLOUD_OCTAVES; i++) {
-            vec3 p = i == 0 ? p0
-                            : v3(phase_henyey_greenstein(m->nu, s->cloud.g.x * sc),
-                                 phase_henyey_greenstein(m->nu, s->cloud.g.y * sc),
-                                 phase_henyey_greenstein(m->nu, s->cloud.g.z * sc));
-            vec3 sig_sun = v3_scale(sigma, sa);
-            vec3 source = v3_scale(v3_mul(v3_mul(k_src, p), sun_t), sb);
-            vec3 x0 = v3_scale(sig_sun, chord0);
-            vec3 w = cloud_exp_mean3(x0, v3_add(v3_scale(sig_sun, chord1), v3_scale(sigma_v, dt)),
-                                     dt);
-            *L = v3_add(*L, v3_mul(v3_mul(*T, source), w));
-            sa *= CLOUD_OCTAVE_A;
-            sb *= CLOUD_OCTAVE_B;
-            sc *= CLOUD_OCTAVE_C;
-        }
-        *T = v3_mul(*T, v3_exp(v3_scale(sigma_v, -dt)));
-        chord0 = chord1;
-        sun0 = sun1;
-    }
-    /* what lies beyond the optical-depth cut */
-    *T = v3_mul(*T, v3_exp(v3_scale(sigma_v, -(t1 - t0 - len))));
-    *shell_t = v3_mul(*shell_t, v3_exp(v3_scale(sigma, -(t1 - t0))));
+    return cloud_phase(s, cloud_phase_table, nu);
+}
+
+ATMO_FN vec3 cloud_shell_media_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                   const medium_point *q)
+{
+    return cloud_shell_sun_transmittance(s, q, s->atmosphere.bottom_radius);
 }
 
 #endif

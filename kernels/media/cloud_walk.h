@@ -169,5 +169,31 @@ ATMO_FN vec3 clouds_sun_ratio(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL c
     return T;
 }
 
+/* Under path.clouds = volume the fBm layer is the path tracer's medium
+ * (render/volume_stage.h) and no medium of the methods; the air's samples (medium.h's
+ * pieces, the reference's sunlight) take its transmittance toward the sun apart through this
+ * function, the plan's visibility_air_volume (media.h; not the surfaces: the path tracer's
+ * shadow function tracks the layer for them itself). It is the ratio tracking above
+ * (clouds_sun_ratio, the surfaces' and cloud vertices' walk) on a stream of its own: rng.h's
+ * stream of the render seed at the "pixel" clouds_point_hash(p, seed) of the sample point's
+ * bits. Unbiased: for a fixed point q the walk's estimate R has
+ * E[R | q] = T_clouds(q) (ratio tracking, Novak et al. 2014; its roulette divides by the
+ * survival probability) for any stream of independent uniform numbers, and the stream is a
+ * full-avalanche hash of q's bits, as independent of the path's own numbers as rng.h's
+ * counters are of each other. The point q is a function of the path's numbers (the camera,
+ * the integrator's jitter, the bounces), so for the air's integrand f at q,
+ *     E[f(q) R] = E[f(q) E[R | q]] = E[f(q) T_clouds(q)].
+ * Two samples share numbers only where their points are the same floats, which jittered
+ * samples of different paths almost never are (correlated then, not biased); and the same
+ * point gives the same estimate in any tile and launch, so the image stays a function of the
+ * seed. The estimate multiplies the sunlight and, as the marched layer's light march does,
+ * the method's multiple-scattering source (medium.h). */
+ATMO_FN vec3 clouds_volume_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                               const medium_point *q)
+{
+    rng_stream g = rng_stream_stage(s->seed, clouds_point_hash(q->p, s->clouds.seed), 0u, 0u);
+    return clouds_sun_ratio(s, clouds_majorant, q, &g);
+}
+
 #endif
 #endif

@@ -10,10 +10,10 @@
  * (the radiative transfer equation's single-scattering form with a point sun of irradiance E;
  * Nishita et al. 1993, Hillaire 2020 eq. 1), d = min(t1, ground, top of the atmosphere, an
  * opaque surface), T_sun the atmosphere's transmittance toward the sun from the transmittance
- * LUT, V the visibility (visibility_sun: planet, observer, cloud shell), J_ms the method's
- * multiple-scattering source (medium_ms_source: method march's Psi_ms, method lut's stored
- * density J, none for method single), L_surface the lit ground (sun and, with J_ms, the sky) or
- * the observer; the sun disc (E / Omega_sun through the atmosphere, Omega_sun = 2 pi (1 - cos
+ * LUT, V the visibility (visibility_sun: the occluders and the shadowing media), J_ms the
+ * method's multiple-scattering source (medium_ms_source: whatever the method registers, e.g.
+ * method march's Psi_ms or method lut's stored density J; none for method single), L_surface
+ * the lit ground (sun and, with J_ms, the sky) or an opaque surface; the sun disc (E / Omega_sun through the atmosphere, Omega_sun = 2 pi (1 - cos
  * alpha)) comes apart where the ray sees it. A segment that ends at t1 before the ground or the
  * top ends at a black surface there: no surface term, no sun disc.
  *
@@ -39,7 +39,12 @@
  * functions factor out of single scattering, L = sum_k p_k(nu) single[k] + rest; the sky-view
  * LUT of method fast stores the parts. The multiple-scattering source is multiplied by the
  * shadowing media's transmittance toward the sun (not by the opaque occluders): an
- * approximation that darkens the haze under a thick cloud deck. */
+ * approximation that darkens the haze under a thick cloud deck.
+ *
+ * This file names no medium, occluder or method: media_at, media_phase, media_sun_attenuate,
+ * medium_ms_source, medium_ms_ground_irradiance, media_intervals and media_interval are the
+ * plan's generated composition of the scene's features (media.h, host/plan/compose.c), placed
+ * before this file in the assembled program. */
 #ifndef ATMO_MEDIA_MEDIUM_H
 #define ATMO_MEDIA_MEDIUM_H
 #ifndef __OPENCL_VERSION__
@@ -52,83 +57,6 @@
 #include "media/visibility.h"
 #include "atmo/gpu_types.h"
 #endif
-
-#ifdef ATMO_MS_LUT
-/* method march/fast: the multiple-scattering terms, in kernels/atmosphere/ms_lut.h (after this
- * file), from the Psi_ms LUT in buffer ms_lut (s->ms.width x s->ms.height) */
-ATMO_FN vec3 ms_lut_sky_irradiance(ATMO_GLOBAL const atmo_gpu_atmosphere *a,
-                                   ATMO_GLOBAL const float4 *lut, int width, int height,
-                                   float mu_s);
-ATMO_FN vec3 ms_lut_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float4 *lut,
-                           int width, int height, float r, float mu, float mu_s, float nu,
-                           vec3 sigma_r, vec3 sigma_m);
-#endif
-#ifdef ATMO_LUT_J
-/* method lut: the density J of orders >= 2 toward the ray (its tables in buffer scattering_mie, `ground` the
- * ray's side of the horizon) and the sky's irradiance on the ground, in
- * kernels/atmosphere/method_lut.h (after this file) */
-ATMO_FN vec3 lut_ms_source(ATMO_GLOBAL const atmo_gpu_scene *s,
-                           ATMO_GLOBAL const float4 *scattering_mie,
-                           float r, float mu, float mu_s, float nu, int ground);
-ATMO_FN vec3 lut_ms_ground_irradiance(ATMO_GLOBAL const atmo_gpu_scene *s,
-                                      ATMO_GLOBAL const float4 *scattering_mie, float mu_s);
-#endif
-
-/* A piece's weight w = (1 - e^{-x}) / sigma, x = sigma dt, from its transmittance e = e^{-x}:
- * directly where x > 0.1 (1 - e then loses at most ~6e-7 of its relative precision), by the
- * series x (1 - x/2 + x^2/6 - x^3/24 + x^4/120 - x^5/720) below (truncation < 3e-10 relative). One exp
- * per channel and no expm1: on PoCL (Sleef) expm1f costs ten times expf, and a float3 exp is
- * one vector call. */
-ATMO_FN float medium_segment_weight(float sigma, float dt, float e)
-{
-    float x = sigma * dt;
-    if (x > 0.1f)
-        return (1.0f - e) / sigma;
-    float p = 1.0f - x / 5.0f * (1.0f - x / 6.0f);
-    p = 1.0f - x / 4.0f * p;
-    p = 1.0f - x / 3.0f * p;
-    p = 1.0f - x / 2.0f * p;
-    return dt * p;
-}
-
-/* The weights of a piece with extinction sigma and length dt (medium_segment_weight per
- * channel), and its transmittance e^{-sigma dt} into *step. */
-ATMO_FN vec3 medium_segment_step3(vec3 sigma, float dt, vec3 *step)
-{
-    vec3 e = v3_exp(v3_scale(sigma, -dt));
-    *step = e;
-    return v3(medium_segment_weight(sigma.x, dt, e.x), medium_segment_weight(sigma.y, dt, e.y),
-              medium_segment_weight(sigma.z, dt, e.z));
-}
-
-/* The method's multiple-scattering source toward the viewer at a point of a ray with view-sun
- * cosine nu (`ground`: the ray's side of the horizon); zero for method single. */
-ATMO_FN vec3 medium_ms_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                              const medium_point *q, float nu, const media_sample *m, int ground)
-{
-#if defined(ATMO_MS_LUT)
-    return ms_lut_source(s, ms_lut, s->ms.width, s->ms.height, q->r, q->mu, q->mu_s, nu,
-                         m->scattering[MEDIA_RAYLEIGH], m->scattering[MEDIA_MIE]);
-#elif defined(ATMO_LUT_J)
-    return lut_ms_source(s, scattering_mie, q->r, q->mu, q->mu_s, nu, ground);
-#else
-    return v3(0.0f, 0.0f, 0.0f);
-#endif
-}
-
-/* The sky's irradiance on the ground where the sun cosine is mu_s, from the method's tables;
- * zero for method single. */
-ATMO_FN vec3 medium_ms_ground_irradiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                                         float mu_s)
-{
-#if defined(ATMO_MS_LUT)
-    return ms_lut_sky_irradiance(&s->atmosphere, ms_lut, s->ms.width, s->ms.height, mu_s);
-#elif defined(ATMO_LUT_J)
-    return lut_ms_ground_irradiance(s, scattering_mie, mu_s);
-#else
-    return v3(0.0f, 0.0f, 0.0f);
-#endif
-}
 
 typedef struct medium_result {
     vec3 single[MEDIA_COMPONENTS]; /* in-scattered sunlight of each component, without its phase */
@@ -181,12 +109,7 @@ ATMO_FN void medium_piece(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
         out->single[k] = v3_add(out->single[k], v3_mul(lit, ms.scattering[k]));
     if (use_ms) {
         vec3 j = medium_ms_source(s, ATMO_LUT_ARGS, &q, m->nu, &ms, ground);
-#ifdef ATMO_CLOUD
-        j = v3_mul(j, cloud_shell_sun_transmittance(s, &q, s->atmosphere.bottom_radius));
-#endif
-#ifdef ATMO_CLOUDS
-        j = v3_mul(j, visibility_clouds_transmittance(s, ATMO_LUT_ARGS, &q));
-#endif
+        j = media_sun_attenuate(s, ATMO_LUT_ARGS, &q, j);
         j = v3_mul(j, volume_t);
         out->rest = v3_add(out->rest, v3_mul(v3_mul(*T, w), j));
     }
@@ -256,8 +179,8 @@ ATMO_FN void medium_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
             if (lo[next] > pos)
                 medium_piece(s, ATMO_LUT_ARGS, &m, pos + jitter * (lo[next] - pos),
                              lo[next] - pos, use_ms, ground, &vr, out, &T);
-            media_interval(s, ATMO_LUT_ARGS, &m, lo[next], hi[next], jitter, use_ms, ground,
-                           &out->rest, &T, &medium_t);
+            media_interval(s, ATMO_LUT_ARGS, &m, lo[next], hi[next], jitter, use_ms, ground, d,
+                           n, &out->rest, &T, &medium_t);
             pos = fmaxf(pos, hi[next]);
             next++;
         }

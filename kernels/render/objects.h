@@ -13,11 +13,14 @@
  * is farthest from the centre relative to the half size.
  * objects_hit gives the nearest hit in (t_min, t_max) and the object's index; objects_occluded
  * whether any object lies in (t_min, t_max) (shadow rays). The preview's surfaces and sun
- * shadows (media/visibility.h) and the path tracer's (render/surfaces.h) call them. */
+ * shadows (objects_sun_visibility, objects_surface_hit and objects_light.h, in the plan's
+ * composition of visibility.h) and the path tracer's (render/surfaces.h) call them. */
 #ifndef ATMO_RENDER_OBJECTS_H
 #define ATMO_RENDER_OBJECTS_H
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
+#include "atmosphere/sky_method.h"
+#include "media/ray.h"
 #include "atmo/gpu_types.h"
 #endif
 
@@ -117,6 +120,26 @@ ATMO_FN int objects_occluded(ATMO_GLOBAL const atmo_gpu_object *list, int count,
         if (objects_t(&list[k], o, d, t_min, t_max) >= 0.0f)
             return 1;
     return 0;
+}
+
+/* The objects as an occluder of the sun at q (a point sun: binary shadows), 1 or 0. */
+ATMO_FN float objects_sun_visibility(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                     const medium_point *q)
+{
+    return objects_occluded(objects, s->path.object_count, q->p, v3_from4(s->sun_direction), 0.0f,
+                            INFINITY)
+               ? 0.0f
+               : 1.0f;
+}
+
+/* The distance along the ray to the nearest object before t_max, or -1. */
+ATMO_FN float objects_surface_hit(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                  const medium_ray *m, float t_max)
+{
+    float t;
+    return objects_hit(objects, s->path.object_count, m->origin, m->dir, 0.0f, t_max, &t) >= 0
+               ? t
+               : -1.0f;
 }
 
 #endif

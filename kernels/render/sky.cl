@@ -18,19 +18,22 @@
  * sky_probe: the mean of `samples` samples of sky_radiance (sky_cosines.h) for a list of rays
  * given as (r, mu, mu_s, nu), for `atmo radiance` and the tests; ray i uses pixel index i.
  * sky_probe_segment: the same for sky_segment, ray i ending at distance[i] (m): the mean
- * in-scattered radiance in inscatter[i] and the mean transmittance in transmittance[i]. */
+ * in-scattered radiance in inscatter[i] and the mean transmittance in transmittance[i].
+ * sky_probe_sun: the sun's visibility at each ray's origin, visibility_sun (visibility.h: the
+ * occluders and the shadowing media toward the sun, per wavelength; the atmosphere's own
+ * transmittance not included), the query every kernel's sunlight goes through. */
 
-/* The preview's objects (visibility.h): every method's pixel that sees one gets the air in
- * front from sky_trace, stopped this fraction of the distance short of the object so a method
- * that ends its own segments at surfaces (single, march) does not count it twice, plus the
- * object's light times the view transmittance. */
+/* The preview's objects (objects_light.h, -DATMO_OBJECTS_PREVIEW): every method's pixel that
+ * sees one gets the air in front from sky_trace, stopped this fraction of the distance short of
+ * the object so a method that ends its own segments at surfaces (single, march) does not count
+ * it twice, plus the object's light times the view transmittance. */
 #define SKY_OBJECT_SHORTEN 0.99999f
 
 /* The distance to the object a camera ray sees before the ground, or -1. */
 float sky_object_distance(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
                           const medium_ray *ray)
 {
-#ifdef VISIBILITY_OBJECTS
+#ifdef ATMO_OBJECTS_PREVIEW
     float t;
     if (objects_hit(objects, scene->path.object_count, ray->origin, ray->dir, 0.0f, INFINITY,
                     &t) < 0)
@@ -126,4 +129,16 @@ __kernel void sky_probe_segment(__global const atmo_gpu_scene *scene, ATMO_LUT_P
     }
     inscatter[i] = (float4)(sum_l / (float)samples, 0.0f);
     transmittance[i] = (float4)(sum_t / (float)samples, 0.0f);
+}
+
+__kernel void sky_probe_sun(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
+                            __global const float4 *rays, __global float4 *out, uint n)
+{
+    uint i = get_global_id(0);
+    if (i >= n)
+        return;
+    float4 q = rays[i];
+    medium_ray m = medium_ray_from_cosines(scene, q.x, q.y, q.z, q.w);
+    medium_point p = medium_ray_at(&m, 0.0f, scene->atmosphere.bottom_radius);
+    out[i] = (float4)(visibility_sun(scene, ATMO_LUT_ARGS, &p), 0.0f);
 }

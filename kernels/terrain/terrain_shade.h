@@ -5,7 +5,8 @@
  * Light (Lambertian, BRDF albedo / pi): with E the solar irradiance, T_sun the atmosphere's
  * transmittance toward the sun at the point, V the visible fraction of the sun disc (the
  * terrain's soft shadow, terrain.h, times the planet's), E_sky the method's sky irradiance on
- * level ground (medium_ms_ground_irradiance: zero for method single, as its ground has) scaled
+ * level ground (medium_ms_ground_irradiance, the plan's composition before this file: zero for
+ * method single, as its ground has) scaled
  * by the part of the sky a tilted surface sees, (1 + N . n) / 2,
  *     L = albedo / pi (E T_sun V max(N . s, 0) + E_sky (1 + N . n) / 2).
  * Water: the sky reflected with the Fresnel reflectance of the view angle, the sun glint
@@ -21,6 +22,7 @@
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
 #include "atmosphere/atmosphere.h"
+#include "atmosphere/sky_method.h"
 #include "media/ray.h"
 #include "terrain/noise.h"
 #include "terrain/terrain.h"
@@ -30,10 +32,6 @@
 #endif
 
 #define TERRAIN_SHADOW_OFFSET_M 0.1f
-
-/* The sky's irradiance on level ground (media/medium.h, after this file). */
-ATMO_FN vec3 medium_ms_ground_irradiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                                         float mu_s);
 
 /* The radiance the terrain sends back along the ray m from its point at distance t (without
  * the air in between; see the top of the file). */
@@ -72,6 +70,23 @@ ATMO_FN vec3 terrain_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
     vec3 e = v3_add(v3_scale(sun_e, cos_i),
                     v3_scale(sky_e, 0.5f * (1.0f + v3_dot(sp.normal, sp.vertical))));
     return v3_scale(v3_mul(sp.albedo, e), 1.0f / ATMO_PI);
+}
+
+/* The terrain as a surface of the plan's composition (visibility.h; not in path mode, whose
+ * surfaces.h traces it itself): the distance along the ray to its surface before t_max, or -1.
+ * It covers the ground sphere (its surface lies at or above sea level >= 0), so a hit is never
+ * beyond the ground's distance, computed as the integrator computes it. Its light is
+ * terrain_radiance. */
+ATMO_FN float terrain_surface_hit(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                  const medium_ray *m, float t_max)
+{
+    float t;
+    if (!terrain_trace(s, heightmap, m->origin, m->dir, 0.0f, t_max, s->terrain.steps, &t, 0))
+        return -1.0f;
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    if (geometry_ray_hits_ground(m->r, m->mu, a->bottom_radius))
+        t = fminf(t, geometry_distance_to_bottom(m->r, m->mu, a->bottom_radius));
+    return t;
 }
 
 #endif

@@ -36,6 +36,7 @@
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
 #include "common/geometry.h"
+#include "atmosphere/sky_method.h"
 #include "media/ray.h"
 #include "terrain/terrain.h"
 #include "atmo/gpu_types.h"
@@ -134,6 +135,14 @@ ATMO_FN float terrain_shafts_visibility(ATMO_GLOBAL const atmo_gpu_scene *s,
     if (st->aligned && v == 0.0f && t > 0.5f * st->end)
         st->rest_shadowed = 1;
     return v;
+}
+
+/* The terrain as an occluder of the sun along a ray (the plan's composition, visibility.h): its
+ * shadow at the sample q at distance t of the ray whose state is st (0: no ray). */
+ATMO_FN float terrain_shafts_sun_visibility(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                            const medium_point *q, float t, terrain_shafts *st)
+{
+    return terrain_shafts_visibility(s, heightmap, q, t, st);
 }
 
 #endif

@@ -1,0 +1,253 @@
+/* compose.c — the composition of the kernels' slots (atmo/features.h): the small generated code
+ * that joins the functions each planned feature gives (its atmo_slots) into the functions the
+ * generic integrator calls (kernels/media/media.h lists them), so the integrator names no
+ * feature and a new medium or method is a registry row, not an edit of the integrator.
+ *
+ * The plan places each group's text where its registry row stands (after the fragments that
+ * define the functions it calls, before those that call it); a host test gets the same text in
+ * the header tools/compose.c writes for its rows. Every function is generated for every scene,
+ * as a sum, a product or a dispatch over the features present (the empty sum is the air alone,
+ * the empty product 1, the absent source 0), and each feature's term is applied in registry
+ * order with the operations the integrator used before it was composed, so the result is the
+ * same float for float. */
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+#include "atmo/features.h"
+
+/* A growing text: appends stop at the first overflow, which finish reports. */
+typedef struct text {
+    char *out;
+    size_t size, used;
+    int overflow;
+} text;
+
+static void put(text *t, const char *fmt, ...)
+{
+    if (t->overflow)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(t->out + t->used, t->size - t->used, fmt, ap);
+    va_end(ap);
+    if (n < 0 || (size_t)n >= t->size - t->used)
+        t->overflow = 1;
+    else
+        t->used += (size_t)n;
+}
+
+#define SLOT(f, name) ((f)->slots ? (f)->slots->name : NULL)
+
+/* The one feature that fills a single slot (at offset `which` in atmo_slots), NULL for none;
+ * *twice when two do. */
+static const char *single(const atmo_feature *const *f, int n, size_t which, int *twice)
+{
+    const char *found = NULL;
+    for (int i = 0; i < n; i++) {
+        const char *name = f[i]->slots ? *(const char *const *)((const char *)f[i]->slots + which)
+                                       : NULL;
+        if (name && found)
+            *twice = 1;
+        if (name)
+            found = name;
+    }
+    return found;
+}
+
+#define HEAD "ATMO_FN %s %s(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, "
+
+static void compose_media_at(text *t, const atmo_feature *const *f, int n)
+{
+    put(t, "/* The media at a point (media.h): the air, then each medium's coefficients. */\n");
+    put(t, HEAD "const medium_point *q)\n{\n", "media_sample", "media_at");
+    put(t, "    media_sample m = media_air_at(s, q);\n");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], media_add))
+            put(t, "    %s(s, ATMO_LUT_ARGS, q, &m);\n", f[i]->slots->media_add);
+    put(t, "    return m;\n}\n\n");
+
+    put(t, "/* The phase function of component k (media.h). */\n");
+    put(t, HEAD "int k, float nu)\n{\n", "vec3", "media_phase");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], component) && SLOT(f[i], media_phase))
+            put(t, "    if (k == MEDIA_%s)\n        return %s(s, ATMO_LUT_ARGS, nu);\n",
+                f[i]->slots->component, f[i]->slots->media_phase);
+    put(t, "    return media_air_phase(s, k, nu);\n}\n\n");
+
+    put(t, "/* x times the sun's transmittance to q through each shadowing medium. */\n");
+    put(t, HEAD "const medium_point *q, vec3 x)\n{\n", "vec3", "media_sun_attenuate");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], media_sun))
+            put(t, "    x = v3_mul(x, %s(s, ATMO_LUT_ARGS, q));\n", f[i]->slots->media_sun);
+    put(t, "    return x;\n}\n\n");
+}
+
+static int compose_ms(text *t, const atmo_feature *const *f, int n)
+{
+    int twice = 0;
+    const char *src = single(f, n, offsetof(atmo_slots, ms_source), &twice);
+    const char *ground = single(f, n, offsetof(atmo_slots, ms_ground_irradiance), &twice);
+    put(t, "/* The method's multiple-scattering source toward the viewer at q (zero without "
+           "one). */\n");
+    put(t, HEAD "const medium_point *q, float nu, const media_sample *m, int ground)\n{\n", "vec3",
+        "medium_ms_source");
+    if (src)
+        put(t, "    return %s(s, ATMO_LUT_ARGS, q, nu, m, ground);\n}\n\n", src);
+    else
+        put(t, "    return v3(0.0f, 0.0f, 0.0f);\n}\n\n");
+    put(t, "/* The method's sky irradiance on the ground at sun cosine mu_s (zero without "
+           "one). */\n");
+    put(t, HEAD "float mu_s)\n{\n", "vec3", "medium_ms_ground_irradiance");
+    if (ground)
+        put(t, "    return %s(s, ATMO_LUT_ARGS, mu_s);\n}\n", ground);
+    else
+        put(t, "    return v3(0.0f, 0.0f, 0.0f);\n}\n\n");
+    const char *volume = single(f, n, offsetof(atmo_slots, volume_sun), &twice);
+    put(t, "/* The sun's transmittance to q through the volume stage's media (1 without). */\n");
+    put(t, HEAD "const medium_point *q)\n{\n", "vec3", "visibility_air_volume");
+    if (volume)
+        put(t, "    return %s(s, ATMO_LUT_ARGS, q);\n}\n", volume);
+    else
+        put(t, "    return v3(1.0f, 1.0f, 1.0f);\n}\n");
+    return twice ? -1 : 0;
+}
+
+static int compose_intervals(text *t, const atmo_feature *const *f, int n)
+{
+    int twice = 0;
+    const char *parts = single(f, n, offsetof(atmo_slots, media_intervals), &twice);
+    const char *step = single(f, n, offsetof(atmo_slots, media_interval), &twice);
+    if ((parts == NULL) != (step == NULL))
+        return -1;
+    put(t, "/* The parts of [t_start, t_end] that a medium steps itself (media.h). */\n");
+    put(t, "ATMO_FN int media_intervals(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m,\n"
+           "                            float t_start, float t_end, float *lo, float *hi)\n{\n");
+    if (parts)
+        put(t, "    return %s(s, m, t_start, t_end, lo, hi);\n}\n\n", parts);
+    else
+        put(t, "    return 0;\n}\n\n");
+    put(t, "/* Interval [t0, t1] of media_intervals integrated by its medium (media.h). */\n");
+    put(t, HEAD "const medium_ray *m, float t0, float t1,\n"
+           "                            float jitter, int use_ms, int ground, float grid_d,\n"
+           "                            int grid_n, vec3 *L, vec3 *T, vec3 *medium_t)\n{\n",
+        "void", "media_interval");
+    if (step)
+        put(t, "    %s(s, ATMO_LUT_ARGS, m, t0, t1, jitter, use_ms, ground, grid_d, grid_n, L, T,\n"
+               "       medium_t);\n",
+            step);
+    put(t, "}\n");
+    return twice ? -1 : 0;
+}
+
+/* The occluders' product (visibility.h): all of them, or (surfaces) those that also shadow the
+ * path tracer's surfaces; each asked only while the sun is still visible, as a ray's state
+ * must see the same samples however many occluders come before it. */
+static void compose_occluders(text *t, const atmo_feature *const *f, int n, int surfaces)
+{
+    put(t, "    float v = 1.0f;\n");
+    for (int i = 0; i < n; i++) {
+        const atmo_slots *sl = f[i]->slots;
+        if (sl && sl->sun_occluder && (!surfaces || sl->surface_occluder))
+            put(t, "    if (v > 0.0f)\n        v *= %s(s, ATMO_LUT_ARGS, q);\n", sl->sun_occluder);
+        if (sl && sl->ray_occluder && !surfaces)
+            put(t, "    if (v > 0.0f)\n        v *= %s(s, ATMO_LUT_ARGS, q, vr ? vr->t : 0.0f, "
+                   "vr ? &vr->%s : 0);\n",
+                sl->ray_occluder, f[i]->name);
+    }
+    put(t, "    return v;\n}\n\n");
+}
+
+static void compose_sun(text *t, const atmo_feature *const *f, int n)
+{
+    put(t, "/* The occluders' state along one ray (visibility.h). */\n");
+    put(t, "typedef struct visibility_ray {\n    float t; /* the sample's distance, m */\n");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], ray_occluder))
+            put(t, "    %s %s;\n", f[i]->slots->ray_state, f[i]->name);
+    put(t, "} visibility_ray;\n\n");
+    put(t, "ATMO_FN void visibility_ray_begin(ATMO_GLOBAL const atmo_gpu_scene *s, "
+           "const medium_ray *m,\n                                  float end, float surface_t, "
+           "visibility_ray *vr)\n{\n    vr->t = 0.0f;\n");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], ray_occluder))
+            put(t, "    %s(s, m, end, surface_t, &vr->%s);\n", f[i]->slots->ray_begin,
+                f[i]->name);
+    put(t, "}\n\n");
+    put(t, "/* The occluders' visibility of the sun at a sample of a ray with state vr (0: "
+           "none). */\n");
+    put(t, "ATMO_FN float visibility_sun_occluders_on_ray(ATMO_GLOBAL const atmo_gpu_scene *s,\n"
+           "                                              ATMO_LUT_PARAMS, const medium_point *q,\n"
+           "                                              visibility_ray *vr)\n{\n");
+    compose_occluders(t, f, n, 0);
+    put(t, HEAD "const medium_point *q)\n{\n", "float", "visibility_sun_occluders");
+    put(t, "    return visibility_sun_occluders_on_ray(s, ATMO_LUT_ARGS, q, 0);\n}\n\n");
+    put(t, "/* The occluders that also shadow the path tracer's surface points. */\n");
+    put(t, HEAD "const medium_point *q)\n{\n", "float", "visibility_surface_occluders");
+    compose_occluders(t, f, n, 1);
+}
+
+static void compose_surfaces(text *t, const atmo_feature *const *f, int n)
+{
+    put(t, "/* The nearest opaque surface other than the ground along the ray, or -1. */\n");
+    put(t, HEAD "const medium_ray *m)\n{\n", "float", "visibility_surface_hit");
+    put(t, "    float hit = -1.0f;\n");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], surface_hit))
+            put(t, "    float t_%d = %s(s, ATMO_LUT_ARGS, m, hit >= 0.0f ? hit : INFINITY);\n"
+                   "    if (t_%d >= 0.0f)\n        hit = t_%d;\n",
+                i, f[i]->slots->surface_hit, i, i);
+    put(t, "    return hit;\n}\n\n");
+    put(t, "/* The light of the surface at distance t toward the ray's origin. */\n");
+    put(t, HEAD "const medium_ray *m, float t)\n{\n", "vec3", "visibility_surface_radiance");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], surface_radiance))
+            put(t, "    vec3 L_%d = %s(s, ATMO_LUT_ARGS, m, t);\n"
+                   "    if (L_%d.x >= 0.0f)\n        return L_%d;\n",
+                i, f[i]->slots->surface_radiance, i, i);
+    put(t, "    return v3(0.0f, 0.0f, 0.0f);\n}\n");
+}
+
+int atmo_compose(const atmo_feature *const *f, int n, int group, char *out, size_t size)
+{
+    text t = {out, size, 0, 0};
+    int rc = 0;
+    if (size == 0)
+        return -1;
+    out[0] = 0;
+    put(&t, "/* %s: generated by the plan (host/plan/compose.c) from the features' slots. */\n",
+        atmo_compose_name(group));
+    if (group == ATMO_COMPOSE_MEDIA) {
+        compose_media_at(&t, f, n);
+        rc = compose_ms(&t, f, n);
+    } else if (group == ATMO_COMPOSE_SUN) {
+        compose_sun(&t, f, n);
+    } else if (group == ATMO_COMPOSE_SURFACES) {
+        compose_surfaces(&t, f, n);
+    } else if (group == ATMO_COMPOSE_INTERVALS) {
+        rc = compose_intervals(&t, f, n);
+    } else {
+        rc = -1;
+    }
+    return rc || t.overflow ? -1 : 0;
+}
+
+int atmo_compose_components(const atmo_feature *const *f, int n, char *out, size_t size)
+{
+    text t = {out, size, 0, 0};
+    int k = 2; /* after the air's MEDIA_RAYLEIGH and MEDIA_MIE */
+    if (size == 0)
+        return -1;
+    out[0] = 0;
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], component))
+            put(&t, "#define MEDIA_%s %d\n", f[i]->slots->component, k++);
+    put(&t, "#define MEDIA_COMPONENTS %d\n", k);
+    return t.overflow ? -1 : 0;
+}
+
+const char *atmo_compose_name(int group)
+{
+    static const char *const names[ATMO_COMPOSE_GROUPS] = {"", "plan/media", "plan/sun",
+                                                           "plan/surfaces", "plan/intervals"};
+    return group > 0 && group < ATMO_COMPOSE_GROUPS ? names[group] : "";
+}

@@ -1,0 +1,65 @@
+/* cloud_layer_medium.h — the fBm cloud layer (cloud_layer.h) as a medium of the methods, in the
+ * plan's composition (media.h): its coefficients added at a point (component MEDIA_CLOUDS),
+ * its phase function, the sun's transmittance through it, and its break points along a ray
+ * (the layer's shell; cloud_march.h steps inside them). Not compiled when the layer is the path
+ * tracer's volume alone (path.clouds = volume): no method sees it then.
+ *
+ * The sun's light through the layer to a point q is exp(-extinction D), D the density integral
+ * toward the sun: the sun shadow map's under -DATMO_CLOUDS_SHADOW_MAP (cloud_shadow_map.h; the
+ * light march where the map does not reach), else the light march (cloud_layer.h) with the
+ * point's own jitter (clouds_point_jitter). Units: metres, 1/m. */
+#ifndef ATMO_MEDIA_CLOUD_LAYER_MEDIUM_H
+#define ATMO_MEDIA_CLOUD_LAYER_MEDIUM_H
+#ifndef __OPENCL_VERSION__
+#include "common/compat.h"
+#include "atmosphere/sky_method.h"
+#include "media/ray.h"
+#include "media/media.h"
+#include "media/cloud_layer.h"
+#ifdef ATMO_CLOUDS_SHADOW_MAP
+#include "media/cloud_shadow_map.h"
+#endif
+#include "atmo/gpu_types.h"
+#endif
+
+ATMO_FN void clouds_media_add(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                              const medium_point *q, media_sample *m)
+{
+    vec3 layer = v3_scale(v3_from4(s->clouds.extinction), clouds_density(&s->clouds, q->p, q->h));
+    m->scattering[MEDIA_CLOUDS] = v3_mul(layer, v3_from4(s->clouds.albedo));
+    m->extinction = v3_add(m->extinction, layer);
+}
+
+ATMO_FN vec3 clouds_media_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, float nu)
+{
+    return clouds_phase(s, clouds_phase_table, nu);
+}
+
+/* The density integral D (m) toward the sun from q through the layer (see the top). */
+ATMO_FN float clouds_light_density(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                   const medium_point *q)
+{
+#ifdef ATMO_CLOUDS_SHADOW_MAP
+    return clouds_shadow_map_density(s, clouds_shadow_map, q);
+#else
+    return clouds_sun_density(s, q, clouds_point_jitter(q->p, s->clouds.seed));
+#endif
+}
+
+/* The sun's transmittance through the layer to q, exp(-extinction D). */
+ATMO_FN vec3 clouds_media_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                              const medium_point *q)
+{
+    float D = clouds_light_density(s, ATMO_LUT_ARGS, q);
+    return v3_exp(v3_scale(v3_from4(s->clouds.extinction), -D));
+}
+
+/* The parts of [t_start, t_end] of the ray inside the layer's shell, in order. */
+ATMO_FN int clouds_media_intervals(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m,
+                                   float t_start, float t_end, float *lo, float *hi)
+{
+    return clouds_shell_parts(s->atmosphere.bottom_radius, s->clouds.bottom_m, s->clouds.top_m,
+                              m->r, m->mu, t_start, t_end, lo, hi);
+}
+
+#endif

@@ -1,0 +1,312 @@
+/* test_denoise — Intel Open Image Denoise on path-traced images (host/image/denoise.c,
+ * host/render/outputs.c): the denoised 4-spp image is closer to the converged image than the
+ * raw 4-spp image and keeps the edges; the guides follow OIDN's conventions.
+ * labels: render slow
+ *
+ * Oracle 1, the converged image, estimated without bias. Each scene is rendered at REF_SPP
+ * samples per pixel (seed 1) and, independently, at 4 (seed 2). For an image X independent of
+ * the reference R, E sum (X - R)^2 = sum (X - T)^2 + sum Var(R) over pixels and channels, where
+ * T is the converged image and Var(R) the reference's squared standard error (from its sums of
+ * squares, atmo_render_result.se). So
+ *     e(X) = sqrt((sum (X - R)^2 - sum se_R^2) / sum R^2)
+ * is the relative RMS error of X against T, the reference's own noise removed. The checks:
+ *   - e(denoised, quality high, the filter atmo runs: the colour alone) <= e(raw) / FACTOR_MIN.
+ *     Measured at 48 x 32 (docs/denoise.md): 2.4x (sky), 2.1x (terrain), 2.1x (objects).
+ *     Most of the raw error sits on the silhouettes (the pixel filter's 4 samples give a noisy
+ *     edge coverage), where the sum is carried by about a hundred pixels: the estimate of each
+ *     factor then varies by about 6 % (sqrt(2 / 300) per sum), so FACTOR_MIN = 1.7 lies three
+ *     of those below the smallest factor measured. The issue's expectation of 3x is not met at
+ *     this size with the colour alone; it is with noise-free guides (3.4x on the sky scene with
+ *     the reference's own guides), which atmo does not render yet.
+ *   - Edges: on the band of pixels where a surface's silhouette against the sky lies (a pixel
+ *     and its 8 neighbours disagree on whether the reference's samples mostly hit a surface),
+ *     the error of the denoised image does not exceed the raw image's (the same estimate on the
+ *     band alone; measured 18.7 % raw, 5.5 % denoised on the sky scene's horizon).
+ * Oracle 2, closed forms, for the guides (atmo_outputs_guides_from_passes) of the objects scene
+ * at REF_SPP: a pixel whose samples all hit the sphere has the sphere's albedo (to 1e-5, the
+ * float rounding of a mean of 128 values; the box's albedo differs by 0.1 or more), a normal
+ * of unit length up to its averaging (the mean of unit normals over the pixel filter's reach
+ * of 1.5 px = 2.1 degrees of view, 0.22 m at 6 m, about 13 degrees of the unit sphere: |n| >=
+ * cos 13 deg = 0.97, and <= 1 to float rounding) whose direction matches the closed form
+ * n = (t d - c) / R at the pixel's centre within 2 degrees; a pixel of open sky has albedo 1 and normal 0
+ * (OIDN's convention); the ground far below the horizon has normal (0, 1, 0) (a sphere of
+ * 6360 km: within 1e-4). Oracle 3, exact: a denoised EXR holds what the filter gave as R, G, B
+ * and the noisy image and the guides as its Blender-named layers, value for value.
+ * Scenes (48 x 32 pixels, path mode): a clear sky over the planet's ground (the horizon is the
+ * silhouette), procedural terrain seen from 600 m at a grazing angle under a uniform sky, and a
+ * sphere and a box on the ground under a uniform sky. Without the library the test exits 77
+ * saying how to install it (setup.sh installs it, so CI runs it). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "atmo/denoise.h"
+#include "atmo/image.h"
+#include "atmo/outputs.h"
+#include "atmo/render.h"
+#include "testlib.h"
+#include "testscene.h"
+
+#define W 48
+#define H 32
+#define REF_SPP 128
+#define RAW_SPP 4
+#define FACTOR_MIN 1.7
+#define NO_HIT_DEPTH_M 1e10
+
+typedef struct sums {
+    double d2, var, ref2;
+} sums;
+
+static const char *const objects_keys[] = {
+    "sun.zenith_deg=50", "path.sky=uniform", "path.uniform_sky=0.1,0.2,0.3",
+    "camera.position_m=0,1.5,0", "camera.pitch_deg=-10",
+    "objects=[{\"type\": \"sphere\", \"center_m\": [0.8, 1, 6], \"radius_m\": 1, "
+    "\"albedo\": [0.7, 0.5, 0.3]}, {\"type\": \"box\", \"min_m\": [-3, 0, 7], "
+    "\"size_m\": [2, 2, 2], \"albedo\": [0.3, 0.6, 0.4]}]",
+    NULL};
+
+/* Render the scene of keys at spp samples with seed, with passes. Exits 1 on failure. */
+static void render_scene(const char *const *keys, int spp, int seed, atmo_render_result *r)
+{
+    atmo_scene s;
+    char buf[64];
+    test_scene_preset(&s, "sky-noon");
+    for (int i = 0; keys[i]; i++)
+        test_scene_set(&s, keys[i]);
+    test_scene_set(&s, "render.mode=path");
+    test_scene_set(&s, "path.passes=true");
+    snprintf(buf, sizeof buf, "image.width=%d", W);
+    test_scene_set(&s, buf);
+    snprintf(buf, sizeof buf, "image.height=%d", H);
+    test_scene_set(&s, buf);
+    snprintf(buf, sizeof buf, "image.samples=%d", spp);
+    test_scene_set(&s, buf);
+    snprintf(buf, sizeof buf, "image.seed=%d", seed);
+    test_scene_set(&s, buf);
+    atmo_plan p;
+    test_plan(&s, &p);
+    atmo_render_settings rs;
+    atmo_render_settings_default(&rs);
+    atmo_err e;
+    if (atmo_render(&p, &rs, r, &e)) {
+        fprintf(stderr, "render failed: %s\n", e.msg);
+        exit(1);
+    }
+    atmo_plan_free(&p);
+    CHECK(r->nonfinite == 0);
+}
+
+/* The silhouette band of the reference: pixels whose 3 x 3 neighbourhood holds both pixels
+ * that mostly hit a surface and pixels that mostly escape. */
+static void silhouette_band(const atmo_render_result *ref, unsigned char *band)
+{
+    size_t pixels = (size_t)W * H;
+    const float *np = ref->passes + 4 * pixels * ATMO_PATH_LIGHT_PASSES;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            int hit = 0, miss = 0;
+            for (int dy = -1; dy <= 1; dy++)
+                for (int dx = -1; dx <= 1; dx++) {
+                    int u = x + dx, v = y + dy;
+                    if (u < 0 || v < 0 || u >= W || v >= H)
+                        continue;
+                    if (np[4 * ((size_t)v * W + u) + 3] < 0.5 * NO_HIT_DEPTH_M)
+                        hit = 1;
+                    else
+                        miss = 1;
+                }
+            band[(size_t)y * W + x] = (unsigned char)(hit && miss);
+        }
+}
+
+/* Sums of the unbiased error estimate of x against ref over the pixels of mask (all: NULL). */
+static sums error_sums(const float *x, const atmo_render_result *ref, const unsigned char *mask)
+{
+    sums s = {0, 0, 0};
+    for (size_t i = 0; i < (size_t)W * H; i++) {
+        if (mask && !mask[i])
+            continue;
+        for (int c = 0; c < 3; c++) {
+            double d = (double)x[3 * i + c] - ref->rgb[3 * i + c], se = ref->se[3 * i + c];
+            s.d2 += d * d;
+            s.var += se * se;
+            s.ref2 += (double)ref->rgb[3 * i + c] * ref->rgb[3 * i + c];
+        }
+    }
+    return s;
+}
+
+static double rel_error(const float *x, const atmo_render_result *ref, const unsigned char *mask)
+{
+    sums s = error_sums(x, ref, mask);
+    return sqrt(fmax(s.d2 - s.var, 0.0) / s.ref2);
+}
+
+static void denoise(const atmo_render_result *raw, int quality, float *out)
+{
+    atmo_denoise_input in = {W, H, raw->rgb, NULL, NULL, 0, quality};
+    atmo_err e;
+    if (atmo_denoise_run(&in, out, &e)) {
+        fprintf(stderr, "denoise failed: %s\n", e.msg);
+        exit(1);
+    }
+}
+
+/* The error factors of one scene; the reference is left in *ref for the caller. */
+static void check_scene(const char *name, const char *const *keys, atmo_render_result *ref)
+{
+    atmo_render_result raw;
+    render_scene(keys, REF_SPP, 1, ref);
+    render_scene(keys, RAW_SPP, 2, &raw);
+    float *out = malloc(sizeof(float) * 3 * W * H);
+    unsigned char band[W * H];
+    if (!out)
+        exit(1);
+    silhouette_band(ref, band);
+    int band_pixels = 0;
+    for (int i = 0; i < W * H; i++)
+        band_pixels += band[i];
+    double e_raw = rel_error(raw.rgb, ref, NULL), b_raw = rel_error(raw.rgb, ref, band);
+    printf("%s: raw %d spp %.2f %% (silhouette band of %d pixels: %.2f %%)\n", name, RAW_SPP,
+           100.0 * e_raw, band_pixels, 100.0 * b_raw);
+    for (int q = ATMO_DENOISE_FAST; q <= ATMO_DENOISE_HIGH; q++) {
+        denoise(&raw, q, out);
+        double e_dn = rel_error(out, ref, NULL), b_dn = rel_error(out, ref, band);
+        printf("  denoised %-8s %.2f %% (%.2fx lower), band %.2f %%\n",
+               atmo_denoise_quality_name(q), 100.0 * e_dn, e_raw / e_dn, 100.0 * b_dn);
+        if (q == ATMO_DENOISE_HIGH)
+            CHECK(e_dn * FACTOR_MIN <= e_raw);
+        CHECK(band_pixels > 0 && b_dn <= b_raw);
+    }
+    free(out);
+    atmo_render_result_free(&raw);
+}
+
+/* Oracle 2 on the objects scene's reference (see the header). */
+static void check_guides(const atmo_render_result *ref)
+{
+    atmo_outputs_guides g;
+    float *data;
+    CHECK(atmo_outputs_guides_from_passes(ref, &g, &data) == 1);
+    if (!data)
+        return;
+    double forward[3], right[3], up[3], c[3] = {0.8, -0.5, 6.0};
+    atmo_camera_basis(-10.0, 0.0, forward, right, up);
+    double th = tan(22.5 * M_PI / 180.0), worst_angle = 0.0, worst_len = 1.0;
+    int sphere = 0, sky = 0, ground = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            size_t i = (size_t)y * W + x;
+            const float *a = g.albedo + 3 * i, *n = g.normal + 3 * i;
+            double len = sqrt((double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2]);
+            /* every sample on the sphere: its albedo, to the float rounding of the mean */
+            if (fabs(a[0] - 0.7) < 1e-5 && fabs(a[1] - 0.5) < 1e-5 && fabs(a[2] - 0.3) < 1e-5) {
+                double sx = (2.0 * (x + 0.5) / W - 1.0) * th * W / H;
+                double sy = (1.0 - 2.0 * (y + 0.5) / H) * th, d[3], dd = 0.0, b = 0.0, f2 = 0.0;
+                for (int k = 0; k < 3; k++)
+                    d[k] = forward[k] + sx * right[k] + sy * up[k], dd += d[k] * d[k];
+                for (int k = 0; k < 3; k++)
+                    d[k] /= sqrt(dd), b -= d[k] * c[k], f2 += c[k] * c[k];
+                double t = -b - sqrt(fmax(b * b - f2 + 1.0, 0.0)), dot = 0.0;
+                for (int k = 0; k < 3; k++)
+                    dot += (t * d[k] - c[k]) * n[k] / len;
+                worst_angle = fmax(worst_angle, acos(fmin(dot, 1.0)) * 180.0 / M_PI);
+                worst_len = fmin(worst_len, len);
+                CHECK(len >= 0.97 && len <= 1.0 + 1e-5);
+                sphere++;
+            }
+            if (g.depth[i] >= (float)NO_HIT_DEPTH_M) { /* every sample escapes */
+                CHECK(a[0] == 1.0f && a[1] == 1.0f && a[2] == 1.0f && len == 0.0);
+                sky++;
+            }
+            if (y == H - 1 && (x < 4 || x >= W - 4) && g.depth[i] < 10.0f) { /* near ground */
+                CHECK(fabs(n[0]) < 1e-4 && fabs(n[1] - 1.0) < 1e-4 && fabs(n[2]) < 1e-4);
+                ground++;
+            }
+        }
+    printf("guides: %d sphere pixels (|n| >= %.5f, worst angle to the closed form %.2f deg), "
+           "%d sky pixels, %d ground pixels\n", sphere, worst_len, worst_angle, sky, ground);
+    CHECK(worst_angle <= 2.0);
+    CHECK(sphere >= 20 && sky >= 20 && ground >= 4);
+    free(data);
+}
+
+/* The EXR of a denoised write (atmo_outputs_write_denoised, output.denoise = fast): R, G, B
+ * are the filter's output, exactly what atmo_denoise_run gives, and the layers hold the noisy
+ * image and the guides exactly (the EXR stores floats losslessly). */
+static void check_exr_layers(const atmo_render_result *r)
+{
+    const char *path = "test_denoise.exr";
+    atmo_scene s;
+    test_scene_preset(&s, "sky-noon");
+    test_scene_set(&s, "output.denoise=fast");
+    atmo_outputs_guides g;
+    float *data, *want = malloc(sizeof(float) * 3 * W * H);
+    CHECK(atmo_outputs_guides_from_passes(r, &g, &data) == 1 && want);
+    atmo_image img = {W, H, r->rgb, NULL, 0};
+    atmo_outputs_denoise info;
+    atmo_err e;
+    atmo_exr_file f = {0};
+    int rc = atmo_outputs_write_denoised(&s, &img, &g, 4, 0, ATMO_EXR_DEFAULT, &path, 1, &info, &e);
+    CHECK(rc == ATMO_OK && info.applied && !info.guided && info.quality == ATMO_DENOISE_FAST);
+    if (rc == ATMO_OK && atmo_exr_read(path, &f, &e) == ATMO_OK) {
+        denoise(r, ATMO_DENOISE_FAST, want);
+        static const char *const names[] = {"R", "G", "B", "Noisy Image.R", "Noisy Image.G",
+                                            "Noisy Image.B", "Denoising Albedo.R",
+                                            "Denoising Albedo.G", "Denoising Albedo.B",
+                                            "Denoising Normal.X", "Denoising Normal.Y",
+                                            "Denoising Normal.Z", "Denoising Depth.Z"};
+        int mismatched = 0, denoised_differs = 0;
+        for (int k = 0; k < 13; k++) {
+            const float *ch = atmo_exr_channel_data(&f, names[k]);
+            CHECK(ch != NULL);
+            for (int i = 0; ch && i < W * H; i++) {
+                int c = k % 3;
+                float v = k < 3    ? want[3 * i + c]
+                          : k < 6  ? r->rgb[3 * i + c]
+                          : k < 9  ? g.albedo[3 * i + c]
+                          : k < 12 ? g.normal[3 * i + c]
+                                   : g.depth[i];
+                mismatched += ch[i] != v;
+                denoised_differs += k < 3 && ch[i] != r->rgb[3 * i + c];
+            }
+        }
+        printf("EXR layers: %d values differ from what was written, the denoised R, G, B differ "
+               "from the noisy image in %d of %d values\n", mismatched, denoised_differs,
+               3 * W * H);
+        CHECK(mismatched == 0 && denoised_differs > W * H);
+    } else
+        fprintf(stderr, "%s\n", e.msg);
+    atmo_exr_file_free(&f);
+    remove(path);
+    free(want);
+    free(data);
+}
+
+int main(void)
+{
+    test_require_opencl();
+    atmo_err e;
+    int rc = atmo_denoise_load(&e);
+    if (rc == ATMO_ERR_USAGE) {
+        printf("skipped: %s\n", e.msg);
+        return 77;
+    }
+    CHECK(rc == ATMO_OK);
+    printf("Open Image Denoise %d (%s)\n", atmo_denoise_version(), atmo_denoise_library_path());
+    static const char *const sky[] = {"sun.zenith_deg=60", "camera.pitch_deg=-5", NULL};
+    static const char *const terrain[] = {
+        "terrain.enabled=true", "camera.position_m=0,600,0", "camera.pitch_deg=-8",
+        "sun.zenith_deg=60", "path.sky=uniform", "path.uniform_sky=0.05,0.08,0.12",
+        "path.bounces=2", NULL};
+    atmo_render_result ref;
+    check_scene("clear sky over the ground", sky, &ref);
+    atmo_render_result_free(&ref);
+    check_scene("terrain", terrain, &ref);
+    atmo_render_result_free(&ref);
+    check_scene("objects", objects_keys, &ref);
+    check_guides(&ref);
+    check_exr_layers(&ref);
+    atmo_render_result_free(&ref);
+    return test_finish();
+}
