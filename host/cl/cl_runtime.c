@@ -493,26 +493,32 @@ int atmo_cl_list_devices(const char *selector, int json, atmo_err *e)
     return ATMO_OK;
 }
 
-int atmo_cl_check_selector(const char *selector, atmo_err *e)
+/* The devices into list[] and the index of the one the selector (NULL or "": ATMO_DEVICE, else
+ * the default) names, by the rule of cl_choose. */
+static int cl_find(const char *selector, cl_device_entry *list, int *index, atmo_err *e)
 {
     if (!selector || !*selector)
         selector = getenv("ATMO_DEVICE");
-    cl_device_entry list[ATMO_MAX_DEVICES];
-    int n = 0, index = 0, rc;
+    int n = 0, rc;
     if ((rc = cl_enumerate(list, &n, e)))
         return rc;
-    return cl_choose(list, n, selector, &index, e);
+    return cl_choose(list, n, selector, index, e);
+}
+
+int atmo_cl_check_selector(const char *selector, atmo_err *e)
+{
+    cl_device_entry list[ATMO_MAX_DEVICES];
+    int index = 0;
+    return cl_find(selector, list, &index, e);
 }
 
 int atmo_cl_open(atmo_cl *cl, const char *selector, atmo_err *e)
 {
     memset(cl, 0, sizeof *cl);
-    if (!selector || !*selector)
-        selector = getenv("ATMO_DEVICE");
     cl_device_entry list[ATMO_MAX_DEVICES];
-    int n = 0, index = 0, rc;
+    int index = 0, rc;
     cl_int err;
-    if ((rc = cl_enumerate(list, &n, e)) || (rc = cl_choose(list, n, selector, &index, e)))
+    if ((rc = cl_find(selector, list, &index, e)))
         return rc;
     cl_describe(cl, list[index].platform, list[index].device);
     cl->device_index = index;
