@@ -31,7 +31,12 @@
  *     cosine at least 0.55; and full snow (weight 1) wherever the altitude is above 3100 m
  *     plus 200 m and the cosine above 0.70. Margins for the float evaluation: 0.5 m in height
  *     (its rounding is below 1 cm, test_terrain_noise) and 2e-3 in the cosine (the hit's float
- *     position moves the normal by about 1e-4). */
+ *     position moves the normal by about 1e-4).
+ *  4. The sun reaches thesis-2's and thesis-3's sites (their objects' anchors, presets.md's
+ *     "shadows" and "low sun near the open-box site"): from every point of a 9 x 9 grid of
+ *     5 m around each, 0.5 m above the surface, the double reference's march (10 m steps,
+ *     bisected) toward the sun's centre meets no terrain within terrain.shadow_far_m. On seed
+ *     7 every one of these rays is blocked, at both sites. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -168,6 +173,36 @@ static void check_snow(const atmo_scene *s, const atmo_plan *p, double R, const 
     CHECK(missing_snow == 0);
 }
 
+/* the fraction of a 9 x 9 grid of 5 m around planar (x, z), 0.5 m above the surface, that sees
+ * the sun's centre (shadow rays of the double reference) */
+static double site_lit(const char *preset, double x, double z)
+{
+    atmo_scene s;
+    atmo_plan p;
+    test_scene_preset(&s, preset);
+    test_plan(&s, &p);
+    const atmo_gpu_terrain_field *f = &p.gpu.terrain.field;
+    double R = s.atmosphere.bottom_radius_m, sea = s.terrain.sea_level_m;
+    double sun[3] = {p.gpu.sun_direction.x, p.gpu.sun_direction.y, p.gpu.sun_direction.z};
+    double len = sqrt(sun[0] * sun[0] + sun[1] * sun[1] + sun[2] * sun[2]);
+    int lit = 0;
+    for (int k = 0; k < 3; k++)
+        sun[k] /= len;
+    for (int i = -4; i <= 4; i++)
+        for (int j = -4; j <= 4; j++) {
+            double u = x + 5.0 * i, v = z + 5.0 * j, t;
+            double h = terrain_ref_height(f, u, v, NULL, NULL);
+            double o[3] = {u, sqrt((R + h) * (R + h) - u * u - v * v) - R, v};
+            for (int k = 0; k < 4; k++) /* (u, v) is the foot's, not the point's: settle */
+                o[1] += 0.5 - terrain_ref_clearance(f, R, sea, o);
+            lit += !terrain_ref_hit(f, R, sea, o, sun, s.terrain.shadow_far_m, 10.0, &t, NULL);
+        }
+    printf("%s: the sun's centre seen from %d of 81 points around (%.1f, %.1f)\n", preset, lit,
+           x, z);
+    atmo_plan_free(&p);
+    return lit / 81.0;
+}
+
 int main(void)
 {
     atmo_scene s;
@@ -180,5 +215,7 @@ int main(void)
     check_relief(&s, &p.gpu.terrain.field, R, cam);
     check_snow(&s, &p, R, cam);
     atmo_plan_free(&p);
+    CHECK(site_lit("thesis-2", 22832.0, 13326.0) == 1.0);
+    CHECK(site_lit("thesis-3", 26631.5, 10749.5) == 1.0);
     return test_finish();
 }

@@ -35,9 +35,15 @@
  * Views 1, 2, 3, 8 and 9 and `space` have the procedural terrain (docs/guide/terrain.md). The
  * thesis views' seed 7 puts land under every thesis camera and snow-capped mountains of up to
  * 3.9 km in view 1 (tests/test_terrain_thesis.c), its camera 330 m above the ground (`atmo
- * terrain --at X,Z`); `space` keeps seed 46, whose land/sea field gives its continents.
+ * terrain --at X,Z`); `space` keeps seed 46, whose land/sea field gives its continents. Seed
+ * 7 puts views 2's and 3's sites in a ridge's shadow at their low suns (6.7 and 3.7 degrees),
+ * where the objects' own shadows cannot show; those two views take seed 34, the same
+ * mountains' field (first octave 1e-4 /m), on which both sites and the ground 20 m around them
+ * see the sun (tests/test_terrain_thesis.c; of seeds 0-159 only 25, 30, 34, 52, 66, 75 and 126
+ * light both sites fully over land, none of them with view 1's snow as well) on slopes of 7
+ * and 12 degrees.
  * In the views with terrain (2, 3) the objects stand on it ("on_terrain":
- * their heights above the terrain's surface), about 270 m (view 2) and 1080 m (view 3) above
+ * their heights above the terrain's surface), about 660 m below (view 2) and 500 m above (view 3)
  * where the thesis' terrain had them, and so do the cameras (camera.on_terrain=at, their
  * heights taken at the objects' anchors), keeping presets.md's offsets from the objects: view
  * 2's camera 6 m above the sphere's centre (7 m above the terrain at the sphere's foot), view
@@ -56,8 +62,9 @@ const char *const atmo_default_preset = "sky-sunset";
 #define THESIS_CLOUDS " [clouds]"
 #define THESIS_CLOUDS_TERRAIN " [clouds and terrain]"
 /* the thesis views' terrain: a 10 km first octave (steep mountains, docs/guide/terrain.md)
- * and seed 7 */
+ * and seed 7; views 2 and 3 on seed 34, whose sites the low sun reaches */
 #define THESIS_MOUNTAINS "terrain.seed=7", "terrain.frequency_per_m=1e-4"
+#define THESIS_SITES "terrain.seed=34", "terrain.frequency_per_m=1e-4"
 /* presets.md's objects (albedo in linear RGB; the small spheres' (38, 25, 17)/255 written out) */
 /* view 2's sphere resting on the terrain (centre 1 m above it) and its box standing on it */
 #define THESIS_VIEW2_OBJECTS                                                                       \
@@ -125,14 +132,14 @@ const atmo_preset atmo_presets[] = {
            "camera.kind=perspective", "camera.position_m=22831,7,13332",
            "camera.on_terrain=at", "camera.terrain_at_m=22832,13326", "camera.pitch_deg=-51.5", "camera.yaw_deg=-518", "camera.fov_deg=45",
            "sun.zenith_deg=83.222271", "sun.azimuth_deg=171.887327", THESIS_VIEW2_OBJECTS,
-           "terrain.enabled=true", THESIS_MOUNTAINS),
+           "terrain.enabled=true", THESIS_SITES),
     PRESET("thesis-3",
            "thesis view 3: low sun near the open-box site, sun in frame" THESIS_TERRAIN_OBJECTS,
            "camera.kind=perspective", "camera.position_m=26632,1.25,10748", "camera.on_terrain=at",
            "camera.terrain_at_m=26631.5,10749.5", "camera.pitch_deg=-5",
            "camera.yaw_deg=-575", "camera.fov_deg=45", "sun.zenith_deg=86.098524",
            "sun.azimuth_deg=-134.254613", THESIS_OPEN_BOX_ON_TERRAIN,
-           "terrain.enabled=true", THESIS_MOUNTAINS),
+           "terrain.enabled=true", THESIS_SITES),
     PRESET("thesis-4",
            "thesis view 4: the planet from 2000 km, terminator, cloud field, blue "
            "limb" THESIS_CLOUDS,
