@@ -278,7 +278,7 @@ const atmo_param atmo_params[] = {
               "side of the square the heightmap covers, centred on the origin"),
     ROW_INT("terrain.steps", terrain.steps, "", 1, 4096, 600,
             "sphere-tracing steps per ray (then a bounded fallback march)"),
-    ROW_FLOAT("terrain.optimism", terrain.optimism, "", 0.1, 10, 5,
+    ROW_FLOAT("terrain.optimism", terrain.optimism, "", 0.1, 10, 3,
               "sphere-tracing step relaxation (1: within the slope bound; more: faster, "
               "back-steps on overshoot)"),
     ROW_ENUM("terrain.shadow", terrain.shadow, terrain_shadow_names, ATMO_TERRAIN_SHADOW_EXACT,
