@@ -358,7 +358,7 @@ const atmo_param atmo_params[] = {
               "east-west size of a PNG/EXR heightmap (north-south by its aspect); GeoTIFF: 0, "
               "from the file"),
     ROW_VEC2("terrain.heightmap_center_m", dem.center_m, "m", -1e8, 1e8, 0, 0,
-             "world X, Z of the heightmap's centre (+X east, +Z south; row 0 is north)"),
+             "world X, Z of the heightmap's centre (+X east, +Z north; row 0 is north)"),
     ROW_FLOAT("terrain.heightmap_scale_m", dem.scale_m, "m", 0, 1e5, 1000,
               "PNG heightmap: metres between value 0 and the largest value (65535 or 255)"),
     ROW_FLOAT("terrain.heightmap_offset_m", dem.offset_m, "m", -1e5, 1e5, 0,
