@@ -234,6 +234,10 @@ void test_trace_make_rays(const atmo_gpu_terrain_field *f, const float *hm, cons
                     for (int c = 0; c < 3; c++)
                         o[c] = q[c] + above * m[c] - back * d[c];
                 } while (back > 1.0 && terrain_ref_clearance_map(f, hm, test_trace_R_m, 0.0, o) < 1.0);
+                if (terrain_ref_clearance_map(f, hm, test_trace_R_m, 0.0, o) < 1.0) {
+                    i--; /* a slope too steep to start 1 m above it: draw another point */
+                    continue;
+                }
                 t_max = back + 3000.0;
             }
         }

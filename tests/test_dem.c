@@ -47,6 +47,7 @@
 #include <stb_image_write.h>
 #include "atmo/dem.h"
 #include "atmo/plan.h"
+#include "atmo/plan.h"
 #include "testlib.h"
 #ifdef ATMO_HAVE_GDAL
 #include <gdal.h>
@@ -787,7 +788,40 @@ static void make_dem(atmo_dem *d, double cell)
     for (int row = 0; row < d->height; row++)
         for (int col = 0; col < d->width; col++)
             d->heights_m[row * d->width + col] =
-                (float)surface(centre_x(col, d->width, cell), centre_x(row, d->height, cell));
+                (float)surface(centre_x(col, d->width, cell), -centre_x(row, d->height, cell));
+}
+
+/* East on the right of a camera looking north: a DEM with a ridge along its eastern edge
+ * (columns W/2 ..: 1000 m) and a plateau along its northern one (rows .. H/4: 500 m, row 0
+ * north, column 0 west, dem.h's layout and GDAL's north-up one) is sampled where the renderer
+ * samples it (atmo_dem_sample at world X, Z less the centre: plan_terrain.c's plan_dem,
+ * `atmo terrain`); the camera whose forward points at the plateau (atmo_camera_basis, the
+ * renderer's own) must have the ridge on its right (right . east > 0), as on a map. */
+static void test_orientation(void)
+{
+    atmo_dem d;
+    memset(&d, 0, sizeof d);
+    d.width = d.height = 64;
+    d.extent_m[0] = d.extent_m[1] = 6400.0;
+    d.heights_m = malloc(sizeof *d.heights_m * 64 * 64);
+    for (int row = 0; row < 64; row++)
+        for (int col = 0; col < 64; col++)
+            d.heights_m[row * 64 + col] = (float)((col >= 32 ? 1000.0 : 0.0) + (row < 16 ? 500.0 : 0.0));
+    /* where the plateau and the ridge lie, from the interpolated heights at +-2500 m */
+    double north = atmo_dem_sample(&d, -2500.0, 2500.0, ATMO_DEM_BILINEAR) -
+                   atmo_dem_sample(&d, -2500.0, -2500.0, ATMO_DEM_BILINEAR);
+    double east = atmo_dem_sample(&d, 2500.0, -2500.0, ATMO_DEM_BILINEAR) -
+                  atmo_dem_sample(&d, -2500.0, -2500.0, ATMO_DEM_BILINEAR);
+    double n_dir[3] = {0, 0, north > 0 ? 1.0 : -1.0}, e_dir[3] = {east > 0 ? 1.0 : -1.0, 0, 0};
+    double yaw = n_dir[2] > 0 ? 0.0 : 180.0, fw[3], rt[3], up[3];
+    atmo_camera_basis(0.0, yaw, fw, rt, up);
+    double ahead = fw[0] * n_dir[0] + fw[2] * n_dir[2], side = rt[0] * e_dir[0] + rt[2] * e_dir[2];
+    printf("orientation: north plateau toward world Z %+.0f, east ridge toward X %+.0f; a camera "
+           "at yaw %.0f faces it (%.2f) with the ridge on its %s\n", n_dir[2], e_dir[0], yaw,
+           ahead, side > 0 ? "right" : "LEFT");
+    CHECK(fabs(north) > 400.0 && fabs(east) > 900.0);
+    CHECK(ahead > 0.99 && side > 0.99);
+    free(d.heights_m);
 }
 
 /* A low-discrepancy (golden-ratio) sequence over [-2500, 2500] x [-1500, 1500], inside the
@@ -863,7 +897,7 @@ static void test_resample(void)
                 for (int filter = 0; filter < 2; filter++)
                     at_centres = fmax(at_centres,
                                       fabs(atmo_dem_sample(&d, centre_x(col, d.width, cell),
-                                                           centre_x(row, d.height, cell), filter) -
+                                                           -centre_x(row, d.height, cell), filter) -
                                            d.heights_m[row * d.width + col]));
         CHECK(at_centres <= surface_max * 1e-12);
         /* the grid form equals the point form, as float, with and without derivatives */
@@ -884,8 +918,8 @@ static void test_resample(void)
                         out3[3 * k + 1] == (float)grad[0] && out3[3 * k + 2] == (float)grad[1];
             }
         CHECK(same);
-        /* far outside, the edge extends */
-        CHECK(atmo_dem_sample(&d, -1e7, -1e7, ATMO_DEM_BILINEAR) == d.heights_m[0]);
+        /* far outside, the edge extends: far north-west, the first sample */
+        CHECK(atmo_dem_sample(&d, -1e7, 1e7, ATMO_DEM_BILINEAR) == d.heights_m[0]);
         atmo_dem_free(&d);
     }
     double order_lin = log2(err_lin[0] / err_lin[1]), order_cub = log2(err_cub[0] / err_cub[1]);
@@ -925,6 +959,7 @@ int main(void)
     test_not_a_dem();
     test_plan();
     test_resample();
+    test_orientation();
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     CHECK(system(cmd) == 0);

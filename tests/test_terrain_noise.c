@@ -27,7 +27,12 @@
  *  5. A host-supplied height grid (atmo_plan_terrain_base; 33 x 33 samples of a smooth
  *     surface over the heightmap's square, detail 0.25): each texel against the grid's bilinear
  *     interpolation in double plus 0.25 times the double fBm, within bound 2 plus 1e-6 of the
- *     grid's heights (the interpolation's float rounding). */
+ *     grid's heights (the interpolation's float rounding).
+ *  6. The tracer's slope L (plan_terrain.c: the sampled envelope of the eroded fBm's slopes,
+ *     not the sum of the octaves' bounds) above every slope of the double reference at 2^16
+ *     land points of the 120 km square around the thesis' sites, for the default field (seed
+ *     46 here) and the thesis presets' mountains (seed 7, first octave 1e-4 /m); the largest
+ *     measured is printed as a fraction of L. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -77,6 +82,34 @@ static double grad_bound(const atmo_gpu_terrain_field *f, double L, double u, do
     return 4.0 * L * eps * (fmax(fabs(u), fabs(v)) / cell + 1.0);
 }
 
+/* 6: the largest slope of the double reference over 2^16 land points around the thesis'
+ * sites, as a fraction of the plan's slope L (seed, first octave) */
+static double slope_fraction(const char *seed, const char *frequency)
+{
+    atmo_scene s;
+    atmo_plan p;
+    test_scene_preset(&s, "sky-noon");
+    test_scene_set(&s, "atmosphere.method=single");
+    test_scene_set(&s, "terrain.enabled=true");
+    test_scene_set(&s, seed);
+    test_scene_set(&s, frequency);
+    test_plan(&s, &p);
+    const atmo_gpu_terrain_field *f = &p.gpu.terrain.field;
+    double L = atmo_terrain_slope_bound(f), worst = 0.0;
+    unsigned rng = 2024u;
+    for (int i = 0; i < 65536; i++) {
+        double u = 23796.0 + (2 * urand(&rng) - 1) * 60000.0;
+        double v = 16636.0 + (2 * urand(&rng) - 1) * 60000.0, g[2], c;
+        terrain_ref_height(f, u, v, g, &c);
+        if (c > 0.0)
+            worst = fmax(worst, hypot(g[0], g[1]));
+    }
+    printf("%s, %s: largest sampled slope %.3f, %.3f of the tracer's L %.3f\n", seed, frequency,
+           worst, worst / L, L);
+    atmo_plan_free(&p);
+    return worst / L;
+}
+
 int main(void)
 {
     atmo_plan plan;
@@ -118,6 +151,8 @@ int main(void)
            "worst %.3g m (%.3f of its bound), gradient %.3f of its bound; largest slope %.3f "
            "(slope bound %.3f)\n",
            worst_fd, worst_h, worst_h_rel, worst_g, max_slope, L);
+    CHECK(slope_fraction("terrain.seed=46", "terrain.frequency_per_m=3e-5") < 1.0);
+    CHECK(slope_fraction("terrain.seed=7", "terrain.frequency_per_m=1e-4") < 1.0);
 
     /* 3 and 4: the heightmap pass in both formats */
     test_require_opencl();

@@ -88,7 +88,7 @@ static void print_text(const char *path, const atmo_dem *d, const atmo_dem_optio
     printf("file        %s\n", path);
     printf("format      %s\n", d->format_name);
     printf("size        %d x %d samples\n", d->width, d->height);
-    printf("extent      %.6g x %.6g m (cells %.6g x %.6g m; x east, z south)\n", d->extent_m[0],
+    printf("extent      %.6g x %.6g m (cells %.6g x %.6g m; x east, z north)\n", d->extent_m[0],
            d->extent_m[1], d->extent_m[0] / d->width, d->extent_m[1] / d->height);
     printf("height      %.6g .. %.6g m\n", d->min_m, d->max_m);
     printf("projection  %s\n", d->projection);

@@ -6,18 +6,32 @@
  * this part follows the view), the sphere tracer's slope bound, tolerance and budget, and the
  * shadow and shaft settings.
  *
- * Slope bound. Octave i of the eroded fBm contributes to e = (a / sum b + 1) / 2 at most
- *     b_i 2^i f |grad n|_max relief / sum b = f (15/8) (2 sqrt 2) relief / sum b
- * (quintic fade: q' <= 15/8; a cell's corner differences: |k1 + k3 q| <= 2 per axis), the
- * erosion denominator >= 1 only lowering it; with H the maximum height,
- *     L = H f N (15/8) 2 sqrt 2 relief / sum b   (relief 0.8, noise.h),
- * about 2.29 for the thesis' terrain (H 4 km, f 3e-5 /m, 9 octaves). The erosion's second
- * term and the coverage's slope are left out, which is what terrain.optimism and the tracer's
- * back-stepping answer for; tests/test_terrain_trace.c measures the misses.
+ * Slope bound. Value noise's gradient has norm at most 15/4 (lattice units): the gradient is
+ * linear in the corner values, so its norm (convex in them) is largest at corner values of
+ * +-1; over the 16 sign patterns and a 2001^2-point grid of the cell the largest norm is 15/4,
+ * at edge midpoints (one of n_x, n_y reaches (15/8) 2 where the other vanishes), against the
+ * (15/8) 2 sqrt 2 that bounding each axis apart gives. Octave i of the
+ * eroded fBm then contributes to e = (1 + tanh(2 relief a / sum b)) / 2 a slope of at most
+ *     b_i 2^i f (15/4) relief / sum b = f (15/4) relief / sum b
+ * (tanh' <= 1, the erosion denominator >= 1 only lowering it), N of them H f N (15/4) relief /
+ * sum b with H the maximum height (relief TERRAIN_RELIEF, noise.h). That sum is reached only
+ * where every octave's steepest point lines up, which the erosion prevents: steep coarse
+ * octaves damp the fine ones. The largest slopes of the double reference sampled over the
+ * land of the 120 km square around the thesis' sites (2^21 points for each of seeds 1, 7 and 46
+ * at N = 9, 5 10^5 of seed 46 for the other N) are, in units of H f relief / sum b, 8.9,
+ * 12.9, 16.9, 15.1 and 15.7 for N = 3, 6, 9, 12 and 15, against the sum's 11, 23, 34, 45 and
+ * 56. The tracer takes
+ *     L = H f (relief / sum b) min((15/4) N, TERRAIN_SLOPE_ENVELOPE sqrt N),
+ * TERRAIN_SLOPE_ENVELOPE = 6: above every sampled maximum (18 at N = 9), so L is the
+ * steepest slope the field shows rather than one it cannot reach; about 1.3 for the default
+ * terrain (H 4 km, f 3e-5 /m, 9 octaves, relief 1.2) and 4.3 for the thesis presets' (f 1e-4
+ * /m). tests/test_terrain_noise.c samples the slopes against L (the erosion's second term
+ * included); the coverage's slope, at coasts only, is left out. terrain.optimism and the tracer's back-stepping
+ * answer for steps longer than L allows; tests/test_terrain_trace.c measures the misses.
  *
  * The detail below a DEM's cells (kernels/terrain/terrain_detail.h) adds
- *     L_d = K A_i0 2^i0 f (15/8) 2 sqrt 2
- * (K octaves, A_i 2^i constant), about 1.0 for the default terrain whatever the cell size
+ *     L_d = K A_i0 2^i0 f (15/4)
+ * (K octaves, A_i 2^i constant), about 1.1 for the default terrain whatever the cell size
  * (A_i0 2^i0 = H relief / sum b).
  *
  * A digital elevation model (terrain.heightmap_file, atmo/dem.h) becomes the heightmap's base
@@ -56,14 +70,17 @@
  * over bumps (6 errors in 32356 hits, test_dem_detail_miss_rate); twice the budget leaves none,
  * and the mean steps per ray grow by 1 % (the few rays that need them) */
 #define TERRAIN_DETAIL_STEPS_FACTOR 2
+/* the eroded fBm's slope envelope in units of H f relief / sum b, times sqrt(octaves) (above) */
+#define TERRAIN_SLOPE_ENVELOPE 6.0
 
 double atmo_terrain_slope_bound(const atmo_gpu_terrain_field *f)
 {
-    double norm = 2.0 * (1.0 - pow(0.5, f->octaves)), per_octave = (15.0 / 8.0) * 2.0 * sqrt(2.0);
+    double norm = 2.0 * (1.0 - pow(0.5, f->octaves)), per_octave = 15.0 / 4.0;
     double detail = f->detail_octaves * (double)f->detail_amplitude_m *
                     ldexp((double)f->frequency_per_m, f->detail_octave0) * per_octave;
-    return (double)f->max_height_m * (double)f->frequency_per_m * f->octaves * per_octave * 0.8 /
-               norm + detail;
+    double octaves = fmin(f->octaves * per_octave, TERRAIN_SLOPE_ENVELOPE * sqrt(f->octaves));
+    return (double)f->max_height_m * (double)f->frequency_per_m * octaves *
+               (double)TERRAIN_RELIEF / norm + detail;
 }
 
 /* The scene's DEM (p->dem, read by the plan) as the heightmap's base: resampled bicubically
@@ -239,7 +256,7 @@ int atmo_plan_terrain_detail(atmo_plan *p, double cell_m, atmo_err *e)
     double norm = 2.0 * (1.0 - pow(0.5, f->octaves));
     f->detail_octave0 = i0;
     f->detail_octaves = TERRAIN_DETAIL_OCTAVES;
-    f->detail_amplitude_m = (float)ldexp((double)f->max_height_m * 0.8 / norm, -i0);
+    f->detail_amplitude_m = (float)ldexp((double)f->max_height_m * (double)TERRAIN_RELIEF / norm, -i0);
     p->gpu.terrain.slope_bound = (float)atmo_terrain_slope_bound(f);
     p->gpu.terrain.steps *= TERRAIN_DETAIL_STEPS_FACTOR;
     return ATMO_OK;

@@ -261,7 +261,8 @@ const atmo_param atmo_params[] = {
     ROW_FLOAT("terrain.sea_level_m", terrain.sea_level_m, "m", 0, 2e4, 0,
               "water covers the terrain up to this altitude"),
     ROW_FLOAT("terrain.frequency_per_m", terrain.frequency_per_m, "1/m", 1e-7, 1e-2, 3e-5,
-              "first octave of the height fBm (thesis: 3e-5, a 33 km period)"),
+              "first octave of the height fBm (thesis: 3e-5, its heightmap's 33 km period: gentle "
+              "hills; the thesis presets set 1e-4, steep mountains)"),
     ROW_FLOAT("terrain.coverage_frequency_per_m", terrain.coverage_frequency_per_m, "1/m", 1e-9,
               1e-3, 2e-7, "first octave of the land/sea field (thesis: 2e-7)"),
     ROW_FLOAT("terrain.land_fraction", terrain.land_fraction, "", 0, 1, 0.6,
@@ -279,7 +280,7 @@ const atmo_param atmo_params[] = {
              "height (2 bytes, rounded to 2^-11 of it)"),
     ROW_FLOAT("terrain.heightmap_extent_m", terrain.heightmap_extent_m, "m", 1, 1e7, 65536,
               "side of the square the heightmap covers, centred on the origin"),
-    ROW_INT("terrain.steps", terrain.steps, "", 1, 4096, 300,
+    ROW_INT("terrain.steps", terrain.steps, "", 1, 4096, 600,
             "sphere-tracing steps per ray (then a bounded fallback march)"),
     ROW_FLOAT("terrain.optimism", terrain.optimism, "", 0.1, 10, 3,
               "sphere-tracing step relaxation (1: within the slope bound; more: faster, "
@@ -361,7 +362,7 @@ const atmo_param atmo_params[] = {
               "east-west size of a PNG/EXR heightmap (north-south by its aspect); GeoTIFF: 0, "
               "from the file"),
     ROW_VEC2("terrain.heightmap_center_m", dem.center_m, "m", -1e8, 1e8, 0, 0,
-             "world X, Z of the heightmap's centre (+X east, +Z south; row 0 is north)"),
+             "world X, Z of the heightmap's centre (+X east, +Z north; row 0 is north)"),
     ROW_FLOAT("terrain.heightmap_scale_m", dem.scale_m, "m", 0, 1e5, 1000,
               "PNG heightmap: metres between value 0 and the largest value (65535 or 255)"),
     ROW_FLOAT("terrain.heightmap_offset_m", dem.offset_m, "m", -1e5, 1e5, 0,

@@ -32,10 +32,18 @@
  * hides all of its terrain under cloud: tests/test_preset_clouds.c measures both, and of
  * seeds 0-24 only 6, 11 and 22 show both, the others all cloud or all terrain, as the
  * coverage field's 500 km features lie over the whole view).
- * Views 1, 2, 3, 8 and 9 and `space` have the procedural terrain; its seed 46 puts land under
- * every thesis camera (thesis-1's camera 630 m above the ground: `atmo terrain --at X,Z`).
+ * Views 1, 2, 3, 8 and 9 and `space` have the procedural terrain (docs/guide/terrain.md). The
+ * thesis views' seed 7 puts land under every thesis camera and snow-capped mountains of up to
+ * 3.9 km in view 1 (tests/test_terrain_thesis.c), its camera 330 m above the ground (`atmo
+ * terrain --at X,Z`); `space` keeps seed 46, whose land/sea field gives its continents. Seed
+ * 7 puts views 2's and 3's sites in a ridge's shadow at their low suns (6.7 and 3.7 degrees),
+ * where the objects' own shadows cannot show; those two views take seed 34, the same
+ * mountains' field (first octave 1e-4 /m), on which both sites and the ground 20 m around them
+ * see the sun (tests/test_terrain_thesis.c; of seeds 0-159 only 25, 30, 34, 52, 66, 75 and 126
+ * light both sites fully over land, none of them with view 1's snow as well) on slopes of 7
+ * and 12 degrees.
  * In the views with terrain (2, 3) the objects stand on it ("on_terrain":
- * their heights above the terrain's surface), about 440 m (view 2) and 50 m (view 3) below
+ * their heights above the terrain's surface), about 660 m below (view 2) and 500 m above (view 3)
  * where the thesis' terrain had them, and so do the cameras (camera.on_terrain=at, their
  * heights taken at the objects' anchors), keeping presets.md's offsets from the objects: view
  * 2's camera 6 m above the sphere's centre (7 m above the terrain at the sphere's foot), view
@@ -53,6 +61,12 @@ const char *const atmo_default_preset = "sky-sunset";
 #define THESIS_OBJECTS " [objects over the sea-level ground, path traced]"
 #define THESIS_CLOUDS " [clouds]"
 #define THESIS_CLOUDS_TERRAIN " [clouds and terrain]"
+/* the thesis views' terrain: a 10 km first octave (steep mountains, docs/guide/terrain.md)
+ * and seed 7; views 2 and 3 on seed 34, whose sites the low sun reaches. Sphere tracing with
+ * optimism 4: no error in 35708 hits over these mountains (tests/test_terrain_miss_rate.c; 5
+ * gave 3); the default field keeps 3 (4 missed 1 of its 32570). */
+#define THESIS_MOUNTAINS "terrain.seed=7", "terrain.frequency_per_m=1e-4", "terrain.optimism=4"
+#define THESIS_SITES "terrain.seed=34", "terrain.frequency_per_m=1e-4", "terrain.optimism=4"
 /* presets.md's objects (albedo in linear RGB; the small spheres' (38, 25, 17)/255 written out) */
 /* view 2's sphere resting on the terrain (centre 1 m above it) and its box standing on it */
 #define THESIS_VIEW2_OBJECTS                                                                       \
@@ -114,20 +128,20 @@ const atmo_preset atmo_presets[] = {
            "camera.kind=perspective", "camera.position_m=23796,2266,16636",
            "camera.pitch_deg=-4.962", "camera.yaw_deg=-550", "camera.fov_deg=45",
            "sun.zenith_deg=87.476967", "sun.azimuth_deg=-150.985019",
-           "terrain.enabled=true", "terrain.seed=46"),
+           "terrain.enabled=true", THESIS_MOUNTAINS),
     PRESET("thesis-2",
            "thesis view 2: looking down at a small sphere and box, shadows" THESIS_TERRAIN_OBJECTS,
            "camera.kind=perspective", "camera.position_m=22831,7,13332",
            "camera.on_terrain=at", "camera.terrain_at_m=22832,13326", "camera.pitch_deg=-51.5", "camera.yaw_deg=-518", "camera.fov_deg=45",
            "sun.zenith_deg=83.222271", "sun.azimuth_deg=171.887327", THESIS_VIEW2_OBJECTS,
-           "terrain.enabled=true", "terrain.seed=46"),
+           "terrain.enabled=true", THESIS_SITES),
     PRESET("thesis-3",
            "thesis view 3: low sun near the open-box site, sun in frame" THESIS_TERRAIN_OBJECTS,
            "camera.kind=perspective", "camera.position_m=26632,1.25,10748", "camera.on_terrain=at",
            "camera.terrain_at_m=26631.5,10749.5", "camera.pitch_deg=-5",
            "camera.yaw_deg=-575", "camera.fov_deg=45", "sun.zenith_deg=86.098524",
            "sun.azimuth_deg=-134.254613", THESIS_OPEN_BOX_ON_TERRAIN,
-           "terrain.enabled=true", "terrain.seed=46"),
+           "terrain.enabled=true", THESIS_SITES),
     PRESET("thesis-4",
            "thesis view 4: the planet from 2000 km, terminator, cloud field, blue "
            "limb" THESIS_CLOUDS,
@@ -163,13 +177,13 @@ const atmo_preset atmo_presets[] = {
            "camera.yaw_deg=-535", "camera.fov_deg=45", "sun.zenith_deg=81.435892",
            "sun.azimuth_deg=-170.007181",
            "clouds.enabled=true", "clouds.seed=11", "clouds.max_distance_m=1e5",
-           "atmosphere.method=march", "terrain.enabled=true", "terrain.seed=46"),
+           "atmosphere.method=march", "terrain.enabled=true", THESIS_MOUNTAINS),
     PRESET("thesis-9", "thesis view 9: high-altitude sunset over clouds" THESIS_CLOUDS_TERRAIN,
            "camera.kind=perspective", "camera.position_m=18181,37415,3431", "camera.pitch_deg=-16",
            "camera.yaw_deg=-556", "camera.fov_deg=45", "sun.zenith_deg=87.476967",
            "sun.azimuth_deg=-150.985019",
            "clouds.enabled=true", "clouds.seed=5", "clouds.max_distance_m=4e5",
-           "atmosphere.method=march", "terrain.enabled=true", "terrain.seed=46"),
+           "atmosphere.method=march", "terrain.enabled=true", THESIS_MOUNTAINS),
     PRESET("glory",
            "above a cloud deck of thesis-disperse drops, looking down at the antisolar point: "
            "the fog bow and the glory's bright centre (its one ring lies within 1 deg, smoothed "

@@ -2,8 +2,9 @@
  * and the resampling of a whole grid (what the heightmap pass uploads as a host table).
  *
  * Sample (col, row) of a W x H grid with extent (X, Z) sits at the centre of its cell:
- *   x = (col + 1/2) X / W - X / 2,   z = (row + 1/2) Z / H - Z / 2   (DEM frame, dem.h),
- * so a point's continuous index is u = (x + X/2) W / X - 1/2 (likewise v along z), and with
+ *   x = (col + 1/2) X / W - X / 2,   z = Z / 2 - (row + 1/2) Z / H   (DEM frame, dem.h: row 0
+ * north at +Z), so a point's continuous index is u = (x + X/2) W / X - 1/2 and
+ * v = (Z/2 - z) H / Z - 1/2, and with
  * i = floor(u), t = u - i:
  *   bilinear  h = sum over the 2 x 2 samples i..i+1 of (1 - t, t) x (1 - s, s) weights;
  *             error <= (dx^2 / 8) max |h_xx| + (dz^2 / 8) max |h_zz| (tensor-product linear
@@ -18,7 +19,7 @@
  * Indices beyond the grid are clamped to its edge, so the outermost half cell (and anything
  * beyond) takes the edge samples: the interpolation never reads outside the grid. The gradient
  * is the interpolant's own derivative (t's weights differentiated, times W / X samples per
- * metre): bicubic's, with weights w-1' = (-3t^2 + 4t - 1)/2, w0' = (9t^2 - 10t)/2,
+ * metre; along z times -H / Z, rows running south): bicubic's, with weights w-1' = (-3t^2 + 4t - 1)/2, w0' = (9t^2 - 10t)/2,
  * w1' = (-9t^2 + 8t + 1)/2, w2' = (3t^2 - 2t)/2, is continuous and second-order accurate.
  * Arithmetic is in double; the heights come out as float. */
 #include <math.h>
@@ -54,9 +55,9 @@ double atmo_dem_sample(const atmo_dem *dem, double x_m, double z_m, int filter)
 double atmo_dem_sample_gradient(const atmo_dem *dem, double x_m, double z_m, int filter,
                                 double gradient[2])
 {
-    double per_x = dem->width / dem->extent_m[0], per_z = dem->height / dem->extent_m[1];
+    double per_x = dem->width / dem->extent_m[0], per_z = -dem->height / dem->extent_m[1];
     double u = (x_m / dem->extent_m[0] + 0.5) * dem->width - 0.5;
-    double v = (z_m / dem->extent_m[1] + 0.5) * dem->height - 0.5;
+    double v = (0.5 - z_m / dem->extent_m[1]) * dem->height - 0.5;
     /* far outside, clamp before floor so the index stays a small long */
     u = fmin(fmax(u, -2.0), dem->width + 1.0);
     v = fmin(fmax(v, -2.0), dem->height + 1.0);

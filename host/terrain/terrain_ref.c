@@ -11,11 +11,12 @@
 #include <math.h>
 #include <stddef.h>
 #include "atmo/terrain_ref.h"
+#include "terrain/noise.h"
 
 #define ROT_C 0.8
 #define ROT_S 0.6
 #define COAST 0.05
-#define RELIEF 0.8
+#define RELIEF ((double)TERRAIN_RELIEF)
 
 static unsigned hash(int ix, int iy, unsigned seed)
 {

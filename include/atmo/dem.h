@@ -14,8 +14,10 @@
  *
  * The grid: width x height samples at the centres of square-or-not cells ("pixel is area"),
  * row 0 the northern edge, column 0 the western edge; heights_m[row * width + col] in metres
- * above sea level. In the world (Y up) the grid lies in the X-Z plane with +X east and +Z south
- * (so X x Y = Z: right-handed), its centre at the scene's terrain.heightmap_center_m.
+ * above sea level. In the world (Y up) the grid lies in the X-Z plane with +X east and +Z north,
+ * the camera's frame (kernels/common/camera.h: right x up = forward), so a camera looking north
+ * (camera.yaw_deg = 0) has east on its right and sun.azimuth_deg is a compass bearing; its
+ * centre at the scene's terrain.heightmap_center_m.
  *
  * Missing samples (GDAL's nodata value, alpha 0 in a PNG, or a non-finite value in any format)
  * are filled, as the options say (terrain.heightmap_nodata):
@@ -49,7 +51,7 @@ typedef enum { ATMO_DEM_GEOTIFF = 0, ATMO_DEM_PNG = 1, ATMO_DEM_EXR = 2 } atmo_d
 typedef enum { ATMO_DEM_NODATA_NEIGHBOURS = 0, ATMO_DEM_NODATA_SEA_LEVEL = 1 } atmo_dem_nodata;
 
 typedef struct atmo_dem {
-    int width, height;         /* samples along X (east) and Z (south) */
+    int width, height;         /* samples along X (east) and -Z (south) */
     float *heights_m;          /* width * height, row 0 north; malloc'd, atmo_dem_free */
     double extent_m[2];        /* size of the whole grid along X and Z, metres */
     double min_m, max_m;       /* lowest and highest height after filling */
@@ -82,7 +84,7 @@ int atmo_dem_have_gdal(void);
 
 typedef enum { ATMO_DEM_BILINEAR = 0, ATMO_DEM_BICUBIC = 1 } atmo_dem_filter;
 
-/* A target grid in the DEM's own frame (metres from the DEM's centre, +X east, +Z south):
+/* A target grid in the DEM's own frame (metres from the DEM's centre, +X east, +Z north):
  * sample (i, j) at (x0_m + i * dx_m, z0_m + j * dz_m), written to out[j * width + i], or with
  * `derivatives` to out[3 (j * width + i) + 0, 1, 2] = h, dh/dx, dh/dz (the layout of a height
  * + derivatives heightmap). */

@@ -21,9 +21,12 @@
  *     grad a = sum_i b_i [J_i^T g_i (1 + |D_i|^2) - 2 n_i (sum_{j<=i} J_j^T H_j) D_i]
  *              / (1 + |D_i|^2)^2.
  * The terrain's elevation is e = (1 + tanh(2 TERRAIN_RELIEF a / sum b_i)) / 2 in (0, 1): a
- * relief of 0.8 spreads the fBm's narrow distribution over about [0.1, 0.9] (valleys and snowy
- * peaks under a 4 km maximum) with slope 0.8 / sum b_i at the middle, the rare values beyond
- * saturating smoothly (a clamp would leave flat plateaus whose edges trace the lattice).
+ * relief of 1.2 spreads the fBm's narrow distribution (a / sum b_i mostly within +-0.3) so that
+ * 90 % of the land lies in e in [0.2, 0.8] and 1 % above 0.89 (grass valleys to snowy peaks
+ * under a 4 km maximum: docs/guide/terrain.md) with slope 1.2 / sum b_i at the middle, the rare
+ * values beyond saturating smoothly (a clamp would leave flat plateaus whose edges trace the
+ * lattice). The relief and the first octave's frequency together set the slopes: each octave
+ * adds a slope of about H f TERRAIN_RELIEF / sum b_i, so steep mountains need both.
  *
  * Coverage (land and sea): plain fBm c0 of `coverage_octaves` octaves (no erosion), normalised
  * to [0, 1] the same way, then smoothstep(t - 0.05, t + 0.05, c0) with t = 1 - land_fraction.
@@ -42,7 +45,7 @@
 #define TERRAIN_ROT_C 0.8f
 #define TERRAIN_ROT_S 0.6f
 #define TERRAIN_COAST_HALF_WIDTH 0.05f
-#define TERRAIN_RELIEF 0.8f
+#define TERRAIN_RELIEF 1.2f
 #define TERRAIN_BOUND_OCTAVE_A 4
 #define TERRAIN_BOUND_OCTAVE_B 7
 

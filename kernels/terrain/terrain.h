@@ -39,10 +39,10 @@
  * exact clearance would make except to shorten a step, and costs a few octaves instead of
  * fifteen. Tracing is confined to the shell between sea level and the highest terrain
  * (max_height_m plus the detail's bound); the ray's end at sea level is a hit by construction.
- * A ray that has used `steps` steps is resolved by TERRAIN_FALLBACK_STEPS = 112 more steps,
- * each at least a minimum that starts at the clearance plus eps(t) and grows by a factor 1.5 per
- * step up to U = 1/64 of the rest of the shell (at most 48 steps to reach U from 1 cm for any
- * U below 1e6 m, then 64 of U), with the same back-stepping and bisection, so it ends as a hit
+ * A ray that has used `steps` steps is resolved by TERRAIN_FALLBACK_STEPS = 304 more steps,
+ * each at least a minimum that starts at the safe step there, (g + eps(t)) / the rate above,
+ * and grows by a factor 1.5 per step up to U = 1/256 of the rest of the shell (at most 48
+ * steps to reach U from 1 cm for any U below 1e6 m, then 256 of U), with the same back-stepping and bisection, so it ends as a hit
  * or leaves the shell: never as sky by exhaustion.
  *
  * Shadows, from a point toward the sun (unit vector s, angular radius alpha, within
@@ -67,7 +67,7 @@
 #include "atmo/gpu_types.h"
 #endif
 
-#define TERRAIN_FALLBACK_STEPS 112
+#define TERRAIN_FALLBACK_STEPS 304
 #define TERRAIN_FALLBACK_GROWTH 1.5f
 #define TERRAIN_BISECTIONS 24
 #define TERRAIN_EPS_M 0.01f
@@ -294,9 +294,11 @@ ATMO_FN int terrain_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const
     float omega = tr->optimism, t_prev = t, g_prev = g, min_step = 0.0f, uniform = 0.0f;
     int total = steps + TERRAIN_FALLBACK_STEPS, hit = 0;
     for (n = 0; n < total; n++) {
-        if (n == steps) { /* the fallback: steps from the clearance up to a 64th of the rest */
-            min_step = g + TERRAIN_EPS_M + tr->tolerance * t;
-            uniform = (t_end - t) / 64.0f;
+        float mu = terrain_ray_cosine(r_o, mu_o, t);
+        float rate = fmaxf(tr->slope_bound * atmo_safe_sqrt(1.0f - mu * mu) - mu, 0.05f);
+        if (n == steps) { /* the fallback: from the safe step up to a 256th of the rest */
+            min_step = (g + TERRAIN_EPS_M + tr->tolerance * t) / rate;
+            uniform = (t_end - t) / 256.0f;
         } else if (n > steps) {
             min_step = fminf(min_step * TERRAIN_FALLBACK_GROWTH, uniform);
         }
@@ -304,8 +306,6 @@ ATMO_FN int terrain_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const
             hit = 1;
             break;
         }
-        float mu = terrain_ray_cosine(r_o, mu_o, t);
-        float rate = fmaxf(tr->slope_bound * atmo_safe_sqrt(1.0f - mu * mu) - mu, 0.05f);
         float dt = fmaxf(omega * g / rate, min_step);
         t_prev = t, g_prev = g;
         t = fminf(t + dt, t_end);

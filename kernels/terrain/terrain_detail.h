@@ -16,7 +16,7 @@
  * A_{i0} = detail_amplitude_m (the fBm's own gain: H relief / sum b 0.5^i0, noise.h's slope
  * of the elevation times the octave weight). Its gradient is exact:
  *     grad d = sum_i A_i J_i^T grad n_i,   J_i = (2 M)^i f,
- * so |d| <= A_{i0} (2 - 2^(1 - K)) (|n| <= 1) and |grad d| <= K A_{i0} 2^i0 f (15/8) 2 sqrt 2
+ * so |d| <= A_{i0} (2 - 2^(1 - K)) (|n| <= 1) and |grad d| <= K A_{i0} 2^i0 f (15/4)
  * (each octave as in plan_terrain.c's slope bound, A_i 2^i constant): the tracer's shell and
  * slope bound include both. Octave i hashes with seed + i, as in the fBm. Float precision: the
  * lattice coordinates reach f 2^(i0 + K) |u|, about 3e4 over a 30 m DEM 30 km from the origin,
