@@ -1,7 +1,7 @@
 /* test_clouds_march — the fBm cloud layer's marcher (kernels/media/cloud_march.h, host build of
  * the shared headers) converges to single scattering through the clouds as its steps shrink.
  * labels: unit slow
- * composes: atmosphere clouds clouds_majorant clouds_medium visibility clouds_march medium reference
+ * composes: atmosphere clouds clouds_majorant clouds_tracked clouds_medium visibility clouds_march medium reference
  *
  * Oracle: a double-precision host quadrature of the same integral over the same density field
  * (the kernel's clouds_density, evaluated at the quadrature's points),

@@ -2,7 +2,7 @@
  * build) under a thick absorbing overcast at noon: its multiple-scattering octaves must not
  * carry the sun's light through a deck that the light does not cross.
  * labels: unit slow
- * composes: atmosphere clouds clouds_majorant clouds_medium visibility clouds_march medium reference
+ * composes: atmosphere clouds clouds_majorant clouds_tracked clouds_medium visibility clouds_march medium reference
  *
  * Scene: tests/support_clouds.c's overcast deck (1-3 km, coverage 1, the thesis' extinction and
  * albedo 0.9512, HG g 0.85, the atmosphere off) with the sun at the zenith and its density

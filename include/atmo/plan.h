@@ -25,7 +25,7 @@
 #include "atmo/scene.h"
 #include "atmo/status.h"
 
-#define ATMO_PLAN_MAX_FRAGMENTS 64
+#define ATMO_PLAN_MAX_FRAGMENTS 96
 #define ATMO_PLAN_MAX_PASSES 64
 #define ATMO_PLAN_MAX_BUFFERS 8
 #define ATMO_PLAN_MAX_FEATURES 32
