@@ -3,8 +3,8 @@
  * labels: render slow
  *
  * Oracle 1, a closed form: a heightfield that is a tilted plane, h(x, z) = H0 + A x + B z over
- * the DEM's frame (world X east, Z along the DEM's rows; a one-channel float EXR through
- * terrain.heightmap_file), whose bilinear interpolation and central differences are the plane
+ * the DEM's frame (world X east, Z north: row 0 is the DEM's north edge, dem.h; a one-channel
+ * float EXR through terrain.heightmap_file), whose bilinear interpolation and central differences are the plane
  * itself. Its normal is N = normalize(-A, 1, -B) in the tangent frame of the ground sphere at
  * the point (terrain.h), with H0 = 1000 m high enough that the view (camera at 2500 m, 60 deg
  * down) sees no sea; the frame turns away from the origin's by at most d / R for a point
@@ -46,7 +46,8 @@ static int write_plane_exr(const char *path)
     double cell = DEM_EXTENT_M / DEM_N;
     for (int row = 0; row < DEM_N; row++)
         for (int col = 0; col < DEM_N; col++) {
-            double x = (col + 0.5) * cell - DEM_EXTENT_M / 2, z = (row + 0.5) * cell - DEM_EXTENT_M / 2;
+            double x = (col + 0.5) * cell - DEM_EXTENT_M / 2;
+            double z = DEM_EXTENT_M / 2 - (row + 0.5) * cell;
             h[row * DEM_N + col] = (float)(PLANE_H0 + PLANE_A * x + PLANE_B * z);
         }
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
