@@ -11,10 +11,12 @@
  *
  * Oracle: the Monte Carlo reference (method_reference.h's walk through the clouds and their
  * majorant grid, host build, all orders, PATHS paths) on the same ray. The marcher may be off
- * by its measured bias on the moderate deck (test_clouds_march: BIAS_BOUND below), so it must
- * lie below (1 + BIAS_BOUND) (reference + 4.5 standard errors). Before the octaves' deep decay
- * (cloud_march.h: diffusion exponent, light march stop), the marcher exceeded that bound many
- * times over on these decks. The numbers are printed. */
+ * by its measured bias on the moderate deck (test_clouds_march's FAST_BIAS_BOUND, 0.42: 41.4 %
+ * measured with the default octaves), so it must lie below (1 + BIAS_BOUND) (reference + 4.5
+ * standard errors). Measured with the default octaves: density 1 +12.7 % (reference +-5.7 %),
+ * 2 +55.3 % (+-10.9 %), 4 +13.9 % (+-43 %). Octaves that carry the sun's light through the deck
+ * without the deep decay (cloud_march.h: diffusion exponent, light march stop) exceed the bound
+ * many times over on the denser decks. The numbers are printed. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -23,7 +25,7 @@
 #include "testclouds.h"
 #include "testlib.h"
 
-#define BIAS_BOUND 0.51
+#define BIAS_BOUND 0.42
 #define LUTS lut, lut, lut, lut, lut, lut, lut, lut, cdf, grid
 enum { PATHS = 4000, JITTERS = 16 };
 

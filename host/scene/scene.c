@@ -234,13 +234,13 @@ const atmo_param atmo_params[] = {
               "level of detail: octaves of the cloud noise finer than this many pixels' footprint "
               "at their distance are replaced by their mean and spread (0: every octave, "
               "point-sampled; kernels/media/cloud_layer.h)"),
-    ROW_INT("clouds.ms_octaves", clouds.ms_octaves, "", 1, 16, 12,
-            "multiple-scattering octaves of the marcher (1: single scattering only; 12 fitted to "
+    ROW_INT("clouds.ms_octaves", clouds.ms_octaves, "", 1, 16, 4,
+            "multiple-scattering octaves of the marcher (1: single scattering only; 4 fitted to "
             "the reference by atmo bench clouds --fit)"),
     ROW_FLOAT("clouds.ms_a", clouds.ms_a, "", 0, 1, 0.05,
               "per octave: factor on the optical depth toward the sun (fitted: 0.05)"),
-    ROW_FLOAT("clouds.ms_b", clouds.ms_b, "", 0, 1, 0.43,
-              "per octave: factor on the contribution (fitted: 0.43)"),
+    ROW_FLOAT("clouds.ms_b", clouds.ms_b, "", 0, 1, 0.48,
+              "per octave: factor on the contribution (fitted: 0.48)"),
     ROW_FLOAT("clouds.ms_c", clouds.ms_c, "", 0, 1, 0.9,
               "per octave: factor on the phase function's anisotropy (fitted: 0.9)"),
     ROW_ENUM("clouds.look", clouds.look, clouds_look_names, ATMO_CLOUDS_LOOK_PHYSICAL,

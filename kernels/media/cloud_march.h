@@ -23,8 +23,9 @@
  *   clouds: sigma_s E T_air V sum_{i<N} b^i p_i(nu) e^{-a^i tau_sun}
  * the octaves of Wrenninge, Kulla & Lundqvist 2013 ("Oz: the great and volumetric"): octave 0 is
  * single scattering with the true phase, octave i >= 1 Henyey-Greenstein with the table's g
- * times c^i; N = ms_octaves, a, b, c = ms_a, ms_b, ms_c, by default 12, 0.05, 0.43, 0.9,
- * fitted to the reference by `atmo bench clouds --fit` (docs/notes/clouds.md). With a this
+ * times c^i; N = ms_octaves, a, b, c = ms_a, ms_b, ms_c, by default 4, 0.05, 0.48, 0.9,
+ * fitted to the reference (its own seed) by `atmo bench clouds --fit` (docs/notes/clouds.md),
+ * 5.1 % RMS over the bench's four views (docs/bench/README.md). With a this
  * small, octaves i >= 2 see the sun nearly unshadowed (a^2 tau_sun = tau_sun / 400): they carry
  * the light that diffuses deep into a thick deck. In an absorbing cloud (albedo w < 1) diffuse
  * light decays with depth at least as e^{-k_d tau}, the diffusion exponent
