@@ -32,6 +32,10 @@
  *   - double drop: the recurrence with twice the per-texel drop (too high a sun).
  * Each reports hundreds of violations at these scenes (printed); the test fails unless each
  * reports at least one.
+ * Cache: the map's key (atmo_product_key) changes with the sun's azimuth and the camera's
+ * position and not with the image's height; with the disk cache on, a second precompute
+ * loads the stored map bit for bit, and a damaged file (a payload byte flipped) is reported,
+ * recomputed to the same bits and rewritten.
  * Also: a point beyond the square gets -1 (the caller marches); the sun below the camera's
  * horizon plans an empty map; terrain.sun_visibility = exact and path mode plan none. */
 #include <math.h>
@@ -43,7 +47,11 @@
 #include "terrain/terrain.h"
 #include "terrain/terrain_sun.h"
 #include "terrain/terrain_sun_map.h"
+#include "atmo/cl_runtime.h"
+#include "atmo/embedded.h"
+#include "atmo/features.h"
 #include "atmo/plan_terrain.h"
+#include "atmo/render.h"
 #include "testlib.h"
 #include "testscene.h"
 
@@ -234,6 +242,86 @@ static int planned(const char *const *sets)
     return size;
 }
 
+static void small_plan(atmo_plan *p, const char *set)
+{
+    atmo_scene sc;
+    test_scene_preset(&sc, "thesis-1");
+    test_scene_set(&sc, "image.width=8");
+    test_scene_set(&sc, "image.height=8");
+    test_scene_set(&sc, "terrain.sun_map_size=64");
+    if (set)
+        test_scene_set(&sc, set);
+    test_plan(&sc, p);
+}
+
+static unsigned long long map_key(const char *set, const atmo_device_identity *dev)
+{
+    atmo_plan p;
+    small_plan(&p, set);
+    int f = -1;
+    for (int i = 0; i < p.feature_count; i++)
+        if (strcmp(p.features[i]->name, "terrain_sun_map") == 0)
+            f = i;
+    CHECK(f >= 0);
+    unsigned long long k = f >= 0 ? atmo_product_key(&p, f, dev, atmo_kernel_sources) : 0;
+    atmo_plan_free(&p);
+    return k;
+}
+
+/* The map of plan p through atmo_precompute (its disk cache as p says) into out (64 x 64). */
+static atmo_precompute_info cached_map(atmo_cl *cl, cl_program prog, const atmo_plan *p,
+                                       float *out)
+{
+    cl_mem scene = test_cl_buffer(cl, sizeof p->gpu, &p->gpu);
+    cl_mem luts[ATMO_PLAN_MAX_BUFFERS] = {0};
+    atmo_precompute_info info;
+    atmo_err e;
+    CHECK(atmo_precompute(cl, prog, p, scene, luts, &info, &e) == ATMO_OK);
+    test_cl_read(cl, test_plan_buffer(p, luts, "terrain_sun_map"), sizeof(float) * 64 * 64, out);
+    test_release_luts(luts);
+    clReleaseMemObject(scene);
+    return info;
+}
+
+static void test_cache(atmo_cl *cl)
+{
+    atmo_device_identity dev = {cl->device_name, cl->device_vendor, cl->driver_version};
+    unsigned long long k = map_key(NULL, &dev);
+    CHECK(map_key("sun.azimuth_deg=-150", &dev) != k);
+    CHECK(map_key("camera.position_m=23796,2266,16700", &dev) != k);
+    CHECK(map_key("image.height=16", &dev) == k);
+
+    test_fresh_cache_dir();
+    char dir[1024], path[1200];
+    CHECK(atmo_cache_dir(dir, sizeof dir) == 0);
+    atmo_plan p;
+    small_plan(&p, NULL);
+    p.cache_luts = 2;
+    cl_program prog = test_plan_program(cl, &p, "");
+    static float first[64 * 64], again[64 * 64], healed[64 * 64];
+    atmo_precompute_info a = cached_map(cl, prog, &p, first);
+    atmo_precompute_info b = cached_map(cl, prog, &p, again);
+    CHECK(a.loaded == 0 && b.loaded > a.loaded);
+    CHECK(memcmp(first, again, sizeof first) == 0);
+    snprintf(path, sizeof path, "%s/terrain_sun_map-%016llx.bin", dir, k);
+    FILE *f = fopen(path, "r+b");
+    CHECK(f != NULL);
+    if (f) {
+        long at = 4096; /* inside the payload: the map's floats */
+        int c;
+        CHECK(fseek(f, at, SEEK_SET) == 0 && (c = fgetc(f)) != EOF);
+        CHECK(fseek(f, at, SEEK_SET) == 0 && fputc(c ^ 0x5a, f) != EOF);
+        fclose(f);
+    }
+    atmo_precompute_info d = cached_map(cl, prog, &p, healed);
+    CHECK(d.damaged == 1);
+    CHECK(memcmp(first, healed, sizeof first) == 0);
+    atmo_precompute_info e2 = cached_map(cl, prog, &p, healed);
+    CHECK(e2.damaged == 0 && e2.loaded == b.loaded);
+    clReleaseProgram(prog);
+    atmo_plan_free(&p);
+}
+
 int main(void)
 {
     test_require_opencl();
@@ -241,6 +329,7 @@ int main(void)
     test_cl_open(&cl);
     run_case("thesis-1", &cl);
     run_case("thesis-3", &cl);
+    test_cache(&cl);
     atmo_cl_close(&cl);
     const char *const below[] = {"sun.zenith_deg=90.5", NULL};
     const char *const exact[] = {"terrain.sun_visibility=exact", NULL};
