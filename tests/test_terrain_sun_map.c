@@ -37,7 +37,7 @@
  * loads the stored map bit for bit, and a damaged file (a payload byte flipped) is reported,
  * recomputed to the same bits and rewritten.
  * Also: a point beyond the square gets -1 (the caller marches); the sun below the camera's
- * horizon plans an empty map; terrain.sun_visibility = exact and path mode plan none. */
+ * horizon or at its zenith (the rows' vanishing point inside the bake) plans an empty map; terrain.sun_visibility = exact and path mode plan none. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -332,11 +332,13 @@ int main(void)
     test_cache(&cl);
     atmo_cl_close(&cl);
     const char *const below[] = {"sun.zenith_deg=90.5", NULL};
+    const char *const noon[] = {"sun.zenith_deg=0", NULL};
     const char *const exact[] = {"terrain.sun_visibility=exact", NULL};
     const char *const path[] = {"render.mode=path", NULL};
     const char *const none[] = {NULL};
     CHECK(planned(none) == 1024);
     CHECK(planned(below) == 0);
+    CHECK(planned(noon) == 0);
     CHECK(planned(exact) == -1);
     CHECK(planned(path) == -1);
     return test_finish();

@@ -3,19 +3,22 @@
  *
  * The map's rows run along the sun's horizontal direction at the camera, a = (s - (s.n) n) /
  * |...| (n the camera's vertical, s the sun), and the bake needs tan(e0), e0 the sun's
- * elevation there, both from the float vectors the kernels hold. The map is planned only for
- * 0 <= e0 and cos(e0) >= TERRAIN_SUN_MIN_COS: below the camera's horizon a sun ray's lowest
- * point lies sunward of the camera, possibly beyond the baked span, and near the zenith the
- * rows lose their direction (and shadows are short: the march is cheap). Lead: the bake starts
+ * elevation there, both from the float vectors the kernels hold. Lead: the bake starts
  * terrain.shadow_far_m beyond the map's sunward edge (at most 4 N texels), so every point of
- * the map sees at least as far toward the sun as the march does. */
+ * the map sees at least as far toward the sun as the march does. The map is planned only for
+ * 0 <= e0, and where the rows' vanishing point x_v = R cot(e0) (the point under the sun, where
+ * they meet) lies beyond twice the bake's sunward end X, i.e. X tan(e0) <= R / 2 (e0 up to
+ * about 88.6 degrees at the defaults): below the camera's horizon a sun ray's lowest point lies
+ * sunward of the camera, possibly beyond the baked span; nearer the sub-solar point the rows
+ * converge and the sun reaches the zenith of the baked texels (and shadows are short there:
+ * the march is cheap). */
 #include <math.h>
 #include "atmo/plan_terrain.h"
 
 /* the soft edge of the lookup, m: a few metres, below the bake's error band */
 #define TERRAIN_SUN_SOFT_M 4.0
-/* the largest cos(e0) refused: a sun within 0.08 degrees of the camera's zenith */
-#define TERRAIN_SUN_MIN_COS 1e-3
+/* the rows' least spacing at the bake's sunward end, relative to the camera's (see above) */
+#define TERRAIN_SUN_MIN_LATERAL 0.5
 /* the lead's cap, in map sides */
 #define TERRAIN_SUN_MAX_LEAD 4
 
@@ -30,9 +33,10 @@ int atmo_plan_terrain_sun_map(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     double cos_e = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
     int size = s->terrain.sun_map_size;
     double extent = s->terrain.sun_map_extent_m, texel = extent / size;
+    double lead = fmin(ceil(s->terrain.shadow_far_m / texel), TERRAIN_SUN_MAX_LEAD * size);
+    double end = (size - 0.5 + lead) * texel - 0.5 * extent, R = p->gpu.atmosphere.bottom_radius;
     t->sun_map_size = 0;
-    if (sin_e >= 0.0 && cos_e >= TERRAIN_SUN_MIN_COS) {
-        double lead = fmin(ceil(s->terrain.shadow_far_m / texel), TERRAIN_SUN_MAX_LEAD * size);
+    if (sin_e >= 0.0 && end * sin_e <= (1.0 - TERRAIN_SUN_MIN_LATERAL) * R * cos_e) {
         t->sun_map_size = size;
         t->sun_map_extent_m = (float)extent;
         t->sun_map_lead = (int)lead;

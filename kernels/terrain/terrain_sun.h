@@ -23,8 +23,9 @@
  * interpolation across rows) is bounded by the slope bound L times a texel:
  * tests/test_terrain_sun_map.c. The map returns -1 (the caller marches instead) where it has
  * no answer: outside the square, or without a map (sun_map_size 0: terrain.sun_visibility =
- * exact, the path tracer, or a sun below the camera's horizon, where a ray's lowest point
- * lies sunward of the camera and may pass beyond the baked span).
+ * exact, the path tracer, a sun below the camera's horizon, where a ray's lowest point lies
+ * sunward of the camera and may pass beyond the baked span, or a sun so high that the rows'
+ * vanishing point, under the sun, comes near the baked span: plan_terrain_sun.c).
  *
  * Parameters (gpu_terrain.h): sun_map_size N (terrain.sun_map_size, 2 to 4096, default 1024),
  * sun_map_extent_m E (terrain.sun_map_extent_m, default 80000 m), sun_map_lead (texels,
