@@ -33,7 +33,9 @@
     X(atmo_gpu_terrain_field, detail_octave0) X(atmo_gpu_terrain_field, detail_octaves)          \
     X(atmo_gpu_terrain_field, detail_amplitude_m)                                                \
     X(atmo_gpu_terrain, camera) X(atmo_gpu_terrain, steps) X(atmo_gpu_terrain, shafts)          \
-    X(atmo_gpu_terrain, pixel_angle)
+    X(atmo_gpu_terrain, pixel_angle) X(atmo_gpu_terrain, sun_map_size)                          \
+    X(atmo_gpu_terrain, sun_map_extent_m) X(atmo_gpu_terrain, sun_map_soft_m)                    \
+    X(atmo_gpu_terrain, sun_map_axis)
 
 #define HOST_OFFSET(type, field) (uint)offsetof(type, field),
 #define DEVICE_OFFSET(type, field) "out[n++] = (uint)__builtin_offsetof(" #type ", " #field ");\n"

@@ -42,6 +42,11 @@ static int objects_preview(const atmo_scene *s) { return has_objects(s) && !path
 /* a heightmap file is drawn as terrain, so it implies terrain.enabled */
 static int has_terrain(const atmo_scene *s) { return s->terrain.enabled || s->dem.file[0]; }
 static int terrain_surface(const atmo_scene *s) { return has_terrain(s) && !path_mode(s); }
+/* the sun-height map of the view rays' sun queries; the path tracer marches */
+static int terrain_sun_map(const atmo_scene *s)
+{
+    return has_terrain(s) && !path_mode(s) && s->terrain.sun_visibility == ATMO_TERRAIN_SUN_BY_MAP;
+}
 static int path_water(const atmo_scene *s) { return path_mode(s) && has_terrain(s); }
 static int terrain_stage(const atmo_scene *s)
 {
@@ -216,6 +221,7 @@ static const char *const terrain_fragments[] = {"kernels/terrain/noise.h",
                                                 "kernels/terrain/terrain_detail.h",
                                                 "kernels/terrain/terrain_half.h",
                                                 "kernels/terrain/terrain.h",
+                                                "kernels/terrain/terrain_sun.h",
                                                 "kernels/terrain/terrain_shafts.h",
                                                 "kernels/terrain/water.h",
                                                 "kernels/terrain/terrain_material.h",
@@ -234,6 +240,29 @@ static const char *const terrain_sources[] = {
     "kernels/common/compat.h",   "include/atmo/gpu_enums.h",   "include/atmo/gpu_terrain.h",
     "include/atmo/gpu_types.h",  "kernels/terrain/noise.h",    "kernels/terrain/heightmap.cl",
     NULL};
+/* the bake of the sun-height map (the lookup, terrain_sun.h, is the terrain's own: its
+ * shadow queries ask it and march where it has no answer); it follows the view */
+static const char *const terrain_sun_map_fragments[] = {"kernels/terrain/terrain_sun_map.h",
+                                                        "kernels/terrain/terrain_sun_map.cl",
+                                                        NULL};
+/* its key: the height field and the heightmap's (through needs), the camera's placement and
+ * vertical, the sun, the sea, the map's own fields, the planet's radius */
+static const atmo_gpu_field terrain_sun_map_params[] = {
+    ATMO_GPU_FIELD(terrain.field),          ATMO_GPU_FIELD(terrain.camera),
+    ATMO_GPU_FIELD(terrain.sea_level_m),    ATMO_GPU_FIELD(terrain.sun_map_size),
+    ATMO_GPU_FIELD(terrain.sun_map_extent_m), ATMO_GPU_FIELD(terrain.sun_map_lead),
+    ATMO_GPU_FIELD(terrain.sun_map_axis),   ATMO_GPU_FIELD(camera.local_up),
+    ATMO_GPU_FIELD(sun_direction),          ATMO_GPU_FIELD(atmosphere.bottom_radius),
+    {0, 0}};
+static const char *const terrain_sun_map_sources[] = {
+    "kernels/common/compat.h",           "include/atmo/gpu_enums.h",
+    "include/atmo/gpu_terrain.h",        "include/atmo/gpu_types.h",
+    "kernels/common/geometry.h",         "kernels/terrain/noise.h",
+    "kernels/terrain/terrain_detail.h",  "kernels/terrain/terrain_half.h",
+    "kernels/terrain/terrain.h",         "kernels/terrain/terrain_sun.h",
+    "kernels/terrain/terrain_sun_map.h", "kernels/terrain/terrain_sun_map.cl",
+    NULL};
+static const char *const needs_heightmap[] = {"terrain", NULL};
 /* methods fast and lut read whole rays from tables that know no terrain: a render stage finds
  * the hit first and asks the method for the air in front of it */
 static const char *const terrain_stage_fragments[] = {"kernels/render/terrain_stage.h", NULL};
@@ -291,6 +320,11 @@ const atmo_feature atmo_features[] = {
     /* an opaque surface and a visibility source */
     {"terrain", -1, has_terrain, terrain_fragments, "-DATMO_TERRAIN", terrain_params,
      terrain_sources, NULL, atmo_plan_terrain, 0, NULL, 0},
+    /* the sun-height map over the terrain, baked per camera and sun: it follows the view and
+     * is cached under a key that covers them */
+    {"terrain_sun_map", -1, terrain_sun_map, terrain_sun_map_fragments,
+     "-DATMO_TERRAIN_SUN_MAP", terrain_sun_map_params, terrain_sun_map_sources, needs_heightmap,
+     atmo_plan_terrain_sun_map, 0, NULL, 0},
     /* the scene's spheres and boxes: sun occluders and the preview's surfaces (visibility.h),
      * the path tracer's surfaces; after the terrain, whose height field places the objects
      * with on_terrain */

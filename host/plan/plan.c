@@ -54,11 +54,13 @@ _Static_assert(offsetof(atmo_gpu_terrain_field, base_detail) == 64, "atmo_gpu_te
 _Static_assert(offsetof(atmo_gpu_terrain_field, detail_octave0) == 68, "atmo_gpu_terrain_field");
 _Static_assert(offsetof(atmo_gpu_terrain_field, detail_amplitude_m) == 76,
                "atmo_gpu_terrain_field");
-_Static_assert(sizeof(atmo_gpu_terrain) == 144, "atmo_gpu_terrain layout");
+_Static_assert(sizeof(atmo_gpu_terrain) == 176, "atmo_gpu_terrain layout");
 _Static_assert(offsetof(atmo_gpu_terrain, camera) == 80, "atmo_gpu_terrain layout");
 _Static_assert(offsetof(atmo_gpu_terrain, shafts) == 132, "atmo_gpu_terrain layout");
+_Static_assert(offsetof(atmo_gpu_terrain, sun_map_size) == 140, "atmo_gpu_terrain layout");
+_Static_assert(offsetof(atmo_gpu_terrain, sun_map_axis) == 160, "atmo_gpu_terrain layout");
 _Static_assert(offsetof(atmo_gpu_scene, terrain) == 752, "atmo_gpu_scene layout");
-_Static_assert(sizeof(atmo_gpu_scene) == 896, "atmo_gpu_scene layout");
+_Static_assert(sizeof(atmo_gpu_scene) == 928, "atmo_gpu_scene layout");
 
 #define DEG (M_PI / 180.0)
 

@@ -23,7 +23,11 @@
  * does not verify is reported on stderr in one line, deleted, recomputed and rewritten. Computed
  * buffers of float type are checked for NaN and Inf before they are stored or used: one is an
  * error naming the buffer. Features whose buffers follow the view (fast's sky-view LUT) are
- * never cached. Stores fsync and rename a temporary file, so a reader never sees half a file. */
+ * never cached, unless their row names params, which then cover the camera and the sun their
+ * passes read (the terrain's sun-height map): those are loaded and stored like the others when
+ * a session opens, and on a view change (atmo_precompute_view) loaded where a file verifies
+ * but not stored, so a moving viewer writes no file per frame. Stores fsync and rename a
+ * temporary file, so a reader never sees half a file. */
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -122,7 +126,9 @@ static int follows_view(const atmo_plan *plan, int feature)
     return 0;
 }
 
-/* A feature's buffers can be cached: it has passes and none of its buffers follows the view. */
+/* A feature's buffers can be cached: it has passes, sources and data, and none of its buffers
+ * follows the view unless its row names params (its key then covers the camera and the sun its
+ * passes read: the terrain's sun-height map). */
 static int cacheable(const atmo_plan *plan, int feature)
 {
     int passes = 0, data = 0;
@@ -131,7 +137,9 @@ static int cacheable(const atmo_plan *plan, int feature)
     for (int i = 0; i < plan->buffer_count; i++)
         if (plan->buffers[i].feature == feature)
             data += plan->buffers[i].bytes > 0;
-    return passes > 0 && data > 0 && !follows_view(plan, feature) && plan->features[feature]->sources != NULL;
+    const atmo_feature *f = plan->features[feature];
+    return passes > 0 && data > 0 && f->sources != NULL &&
+           (!follows_view(plan, feature) || f->params != NULL);
 }
 
 /* The feature's buffers in plan order (indices into plan->buffers); returns their count. */
@@ -307,6 +315,60 @@ static int run_pass(atmo_cl *cl, cl_program program, const atmo_plan *plan, cl_m
     return rc;
 }
 
+/* One feature's buffers: loaded from its cache file under dir (NULL: no cache) where one
+ * verifies, else computed by its passes, checked for non-finite values and, with store, written
+ * to the cache when they took long enough (or the file was damaged, or cache_luts is 2). */
+static int precompute_feature(atmo_cl *cl, cl_program program, const atmo_plan *plan,
+                              cl_mem scene, cl_mem buffers[], int f,
+                              const atmo_precompute_control *control, const char *dir, int store,
+                              atmo_precompute_info *info, atmo_err *e)
+{
+    atmo_device_identity device = {cl->device_name, cl->device_vendor, cl->driver_version};
+    int cached = dir && cacheable(plan, f), damaged = 0, rc;
+    unsigned long long key = 0;
+    char path[1200];
+    cl_int err;
+    if (cached) {
+        key = atmo_product_key(plan, f, &device, atmo_kernel_sources);
+        snprintf(path, sizeof path, "%s/%s-%016llx.bin", dir, plan->features[f]->name, key);
+        int loaded = cache_load(cl, plan, f, key, path, buffers);
+        if (loaded == -2)
+            return atmo_fail(e, ATMO_ERR_RUNTIME, "clEnqueueWriteBuffer(cached %s) failed",
+                             plan->features[f]->name);
+        if (loaded == 0) {
+            info->loaded++;
+            return ATMO_OK;
+        }
+        if (loaded == -1) {
+            info->damaged++;
+            damaged = 1;
+        }
+    }
+    double tf = atmo_now_seconds();
+    for (int p = 0; p < plan->pass_count; p++)
+        if (plan->passes[p].feature == f &&
+            (rc = run_pass(cl, program, plan, scene, buffers, &plan->passes[p], control, e)))
+            return rc;
+    if ((err = clFinish(cl->queue)) != CL_SUCCESS)
+        return atmo_cl_fail(e, "clFinish(precompute)", err);
+    if (!cacheable(plan, f))
+        return ATMO_OK;
+    info->computed++;
+    store = store && cached &&
+            (damaged || plan->cache_luts == 2 ||
+             atmo_now_seconds() - tf > ATMO_LUT_CACHE_MIN_SECONDS);
+    unsigned char *payload = NULL;
+    size_t bytes = 0;
+    if ((rc = read_feature(cl, plan, f, buffers, &payload, &bytes, e)))
+        return rc;
+    uint64_t file_key = key;
+    if (store)
+        atmo_cache_file_write(path, plan->features[f]->name, &file_key, sizeof file_key, payload,
+                              bytes);
+    free(payload);
+    return ATMO_OK;
+}
+
 int atmo_bind_buffers(cl_kernel k, int first_arg, const atmo_plan *plan,
                       cl_mem buffers[ATMO_PLAN_MAX_BUFFERS], atmo_err *e)
 {
@@ -346,7 +408,6 @@ int atmo_precompute_controlled(atmo_cl *cl, cl_program program, const atmo_plan 
     int rc, cacheables = 0;
     char dir[1024];
     int use_cache = plan->cache_luts && atmo_cache_dir(dir, sizeof dir) == 0;
-    atmo_device_identity device = {cl->device_name, cl->device_vendor, cl->driver_version};
     memset(info, 0, sizeof *info);
     for (int i = 0; i < ATMO_PLAN_MAX_BUFFERS; i++)
         buffers[i] = NULL;
@@ -368,52 +429,15 @@ int atmo_precompute_controlled(atmo_cl *cl, cl_program program, const atmo_plan 
                                                         NULL)) != CL_SUCCESS)
             return atmo_cl_fail(e, "clEnqueueFillBuffer(buffer)", err);
     }
-    for (int f = 0; f < plan->feature_count; f++) {
-        int cached = use_cache && cacheable(plan, f), damaged = 0;
-        unsigned long long key = 0;
-        char path[1200];
-        cacheables += cacheable(plan, f);
-        if (cached) {
-            key = atmo_product_key(plan, f, &device, atmo_kernel_sources);
-            snprintf(path, sizeof path, "%s/%s-%016llx.bin", dir, plan->features[f]->name, key);
-            int loaded = cache_load(cl, plan, f, key, path, buffers);
-            if (loaded == -2)
-                return atmo_fail(e, ATMO_ERR_RUNTIME, "clEnqueueWriteBuffer(cached %s) failed",
-                                 plan->features[f]->name);
-            if (loaded == 0) {
-                info->loaded++;
-                continue;
-            }
-            if (loaded == -1) {
-                info->damaged++;
-                damaged = 1;
-            }
-        }
-        double tf = atmo_now_seconds();
-        for (int p = 0; p < plan->pass_count; p++)
-            if (plan->passes[p].feature == f &&
-                (rc = run_pass(cl, program, plan, scene, buffers, &plan->passes[p], control, e)))
-                return rc;
-        if ((err = clFinish(cl->queue)) != CL_SUCCESS)
-            return atmo_cl_fail(e, "clFinish(precompute)", err);
-        if (!cacheable(plan, f))
-            continue;
-        info->computed++;
-        int store = cached && (damaged || plan->cache_luts == 2 ||
-                               atmo_now_seconds() - tf > ATMO_LUT_CACHE_MIN_SECONDS);
-        unsigned char *payload = NULL;
-        size_t bytes = 0;
-        if ((rc = read_feature(cl, plan, f, buffers, &payload, &bytes, e)))
+    for (int f = 0; f < plan->feature_count; f++)
+        if ((rc = precompute_feature(cl, program, plan, scene, buffers, f, control,
+                                     use_cache ? dir : NULL, 1, info, e)))
             return rc;
-        uint64_t file_key = key;
-        if (store)
-            atmo_cache_file_write(path, plan->features[f]->name, &file_key, sizeof file_key,
-                                  payload, bytes);
-        free(payload);
-    }
     err = clFinish(cl->queue);
     if (err != CL_SUCCESS)
         return atmo_cl_fail(e, "clFinish(precompute)", err);
+    for (int f = 0; f < plan->feature_count; f++)
+        cacheables += cacheable(plan, f);
     info->cache_hit = cacheables > 0 && info->loaded == cacheables;
     info->seconds = atmo_now_seconds() - t0;
     return ATMO_OK;
@@ -424,9 +448,14 @@ int atmo_precompute_view(atmo_cl *cl, cl_program program, const atmo_plan *plan,
                          const atmo_precompute_control *control, double *seconds, atmo_err *e)
 {
     double t0 = atmo_now_seconds();
-    for (int p = 0; p < plan->pass_count; p++) {
-        int rc = follows_view(plan, plan->passes[p].feature)
-                     ? run_pass(cl, program, plan, scene, buffers, &plan->passes[p], control, e)
+    char dir[1024];
+    int use_cache = plan->cache_luts && atmo_cache_dir(dir, sizeof dir) == 0;
+    atmo_precompute_info info;
+    memset(&info, 0, sizeof info);
+    for (int f = 0; f < plan->feature_count; f++) {
+        int rc = follows_view(plan, f)
+                     ? precompute_feature(cl, program, plan, scene, buffers, f, control,
+                                          use_cache ? dir : NULL, 0, &info, e)
                      : ATMO_OK;
         if (rc)
             return rc;

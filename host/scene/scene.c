@@ -75,6 +75,7 @@ _Static_assert(ATMO_RENDER_PATH == 1 && ATMO_PATH_SKY_UNIFORM == 1 && ATMO_SAMPL
                "enum name tables follow the order of the constants");
 static const char *const terrain_format_names[] = {"float", "derivatives", "half", NULL};
 static const char *const terrain_shadow_names[] = {"none", "exact", "estimate", NULL};
+static const char *const terrain_sun_names[] = {"map", "exact", NULL};
 _Static_assert(ATMO_CAMERA_PANORAMA == 1 && ATMO_CAMERA_FISHEYE == 2 && ATMO_PHASE_HENYEY_GREENSTEIN == 1 &&
                    ATMO_QUANTITY_LUMINANCE == 1 && ATMO_TONEMAP_LOTTES == 7 &&
                    ATMO_TRANSFER_GAMMA22 == 1,
@@ -299,6 +300,16 @@ const atmo_param atmo_params[] = {
             "2 samples beyond terrain.shadow_far_m = lit, 4 within 400 m of a shadowed "
             "surface = shadowed, 8 every 6th sample away from the sun, 16 shadow march from "
             "0.6 of the way to the surface, 32 shadowed beyond half the path = rest shadowed"),
+    ROW_ENUM("terrain.sun_visibility", terrain.sun_visibility, terrain_sun_names,
+             ATMO_TERRAIN_SUN_BY_MAP,
+             "how points of view rays (aerial perspective, light shafts) ask the terrain for "
+             "the sun: map (a sun-height map baked per camera and sun, a bilinear lookup) or "
+             "exact (a march toward the sun per point); the path tracer always marches"),
+    ROW_INT("terrain.sun_map_size", terrain.sun_map_size, "", 2, 4096, 1024,
+            "texels per side of the sun-height map"),
+    ROW_FLOAT("terrain.sun_map_extent_m", terrain.sun_map_extent_m, "m", 100, 1e6, 80000,
+              "side of the sun-height map's square, centred under the camera (outside it "
+              "points march)"),
     ROW_INT("lut.orders", atmosphere.lut_orders, "", 1, 15, 7,
             "lut method: scattering orders precomputed (1 = single scattering only)"),
     ROW_INT("lut.r_size", atmosphere.lut_r_size, "", 2, 1024, 32,

@@ -44,6 +44,10 @@ enum { ATMO_TERRAIN_FORMAT_FLOAT = 0, ATMO_TERRAIN_FORMAT_DERIVATIVES = 1,
  * (shadow rays to points of the sun disc), or Quilez's penumbra estimate from one ray */
 enum { ATMO_TERRAIN_SHADOW_NONE = 0, ATMO_TERRAIN_SHADOW_EXACT, ATMO_TERRAIN_SHADOW_ESTIMATE };
 
+/* terrain.sun_visibility: how the points of view rays ask the terrain for the sun
+ * (kernels/terrain/terrain_sun.h): the baked sun-height map, or the exact march */
+enum { ATMO_TERRAIN_SUN_BY_MAP = 0, ATMO_TERRAIN_SUN_BY_MARCH = 1 };
+
 /* terrain.shafts: the light-shaft shortcuts of the thesis (presets.md), each a bit; 0: every
  * sample of the medium integrator asks the terrain's shadow */
 enum {

@@ -52,7 +52,14 @@ typedef struct atmo_gpu_terrain {
     float shadow_far_m;   /* shadow rays and shafts look this far toward the sun */
     int shafts;           /* bit set of ATMO_TERRAIN_SHAFT_* shortcuts */
     float pixel_angle;    /* radians per pixel: the distance filter of shading detail */
-    int pad2;
+    int sun_map_size;     /* the sun-height map's texels per side (terrain_sun.h); 0: no map,
+                             every sun query marches */
+    float sun_map_extent_m; /* side of the map's square on the camera's tangent plane, m */
+    int sun_map_lead;     /* texels the bake marches beyond the map's sunward edge */
+    float sun_map_soft_m; /* width of the query's soft edge around the stored height, m */
+    int pad3;
+    float4 sun_map_axis;  /* xyz: the sun's horizontal direction at the camera (the map's
+                             rows); w: tan of the sun's elevation there */
 } atmo_gpu_terrain;
 
 #endif

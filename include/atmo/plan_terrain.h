@@ -12,6 +12,14 @@
  * terrain_heightmap (feature "terrain" of features.c, planned when terrain.enabled). */
 int atmo_plan_terrain(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 
+/* With terrain.sun_visibility = map, outside path mode (feature "terrain_sun_map", flag
+ * -DATMO_TERRAIN_SUN_MAP; host/plan/plan_terrain_sun.c): fills gpu.terrain's sun_map_* (the
+ * map's frame from the camera's vertical and the sun) and declares the buffer
+ * terrain_sun_map (N x N floats, following the view) and its pass terrain_sun_map_rows; with
+ * the sun below the camera's horizon (or at its zenith) the map is empty (sun_map_size 0) and
+ * every point marches. */
+int atmo_plan_terrain_sun_map(const atmo_scene *s, atmo_plan *p, atmo_err *e);
+
 /* For a loader of real terrain (host/terrain/dem*.c): after atmo_plan_make of a scene with
  * terrain and a heightmap, hand the heightmap pass a height grid of nx x nz samples in metres
  * above sea level (row-major in z, kept alive by the caller or owned by the plan through

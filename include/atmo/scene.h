@@ -202,6 +202,9 @@ typedef struct atmo_scene {
         int shadow_rays, shadow_steps;
         double shadow_far_m;
         int shafts;            /* bit set of ATMO_TERRAIN_SHAFT_* */
+        int sun_visibility;    /* ATMO_TERRAIN_SUN_BY_* */
+        int sun_map_size;      /* the sun-height map's texels per side */
+        double sun_map_extent_m;
     } terrain;
 } atmo_scene;
 

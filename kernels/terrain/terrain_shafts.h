@@ -7,6 +7,11 @@
  * terrain for 0 < u <= shadow_far_m (terrain.h's tracer). Every sample of every ray asks it,
  * which is nearly the whole cost of a low sun over mountains: a sun ray a few degrees high
  * stays inside the terrain's shell for tens of kilometres.
+ * Map: with terrain.sun_visibility = map (the default outside path mode) a point inside the
+ * sun-height map baked for this camera and sun (terrain_sun.h) takes the map's lookup instead
+ * of the march, with a soft edge of a few metres (so a sample's answer lies in [0, 1]); points
+ * outside it, and every point without a map, march. The shortcuts below apply either way,
+ * except (4), which the map, holding the whole ray, does not need.
  *
  * Shortcuts, with the ray's state in terrain_shafts (the integrator's walk carries it from
  * one sample to the next, pbrt-v4's SampleT_maj shape; t the sample's distance along the ray,
@@ -39,6 +44,7 @@
 #include "atmosphere/sky_method.h"
 #include "media/ray.h"
 #include "terrain/terrain.h"
+#include "terrain/terrain_sun.h"
 #include "atmo/gpu_types.h"
 #endif
 
@@ -84,22 +90,29 @@ ATMO_FN void terrain_shafts_begin(ATMO_GLOBAL const atmo_gpu_scene *s, const med
                   v3_dot(dh, sh) > TERRAIN_SHAFT_ALIGN_COS * norms;
 }
 
-/* 1 where the terrain leaves the sun's centre visible from the point q, 0 where it hides it. */
+/* 1 where the terrain leaves the sun's centre visible from the point q, 0 where it hides it:
+ * the sun-height map's lookup where it answers (terrain_sun.h; it holds the whole ray, so
+ * start does not apply), else the march. */
 ATMO_FN float terrain_shafts_trace(ATMO_GLOBAL const atmo_gpu_scene *s,
-                                   ATMO_GLOBAL const float *hm, vec3 p, float start)
+                                   ATMO_GLOBAL const float *hm, ATMO_GLOBAL const float *sun_map,
+                                   vec3 p, float start)
 {
     ATMO_GLOBAL const atmo_gpu_terrain *tr = &s->terrain;
-    float t;
+    float t, v = terrain_sun_map_visibility(s, sun_map, p);
+    if (v >= 0.0f)
+        return v;
     return terrain_trace(s, hm, p, v3_from4(s->sun_direction), start, tr->shadow_far_m,
                          tr->shadow_steps, &t, 0)
                ? 0.0f
                : 1.0f;
 }
 
-/* The terrain's shadow, 0 or 1, at the sample q at distance t along the ray of state st (st
- * may be 0: a point on no ray, only the stateless shortcuts (1) and (6) apply). */
+/* The terrain's shadow, 0 to 1, at the sample q at distance t along the ray of state st (st
+ * may be 0: a point on no ray, only the stateless shortcuts (1) and (6) apply); sun_map: the
+ * sun-height map, or 0 (every point marches). */
 ATMO_FN float terrain_shafts_visibility(ATMO_GLOBAL const atmo_gpu_scene *s,
-                                        ATMO_GLOBAL const float *hm, const medium_point *q,
+                                        ATMO_GLOBAL const float *hm,
+                                        ATMO_GLOBAL const float *sun_map, const medium_point *q,
                                         float t, terrain_shafts *st)
 {
     ATMO_GLOBAL const atmo_gpu_terrain *tr = &s->terrain;
@@ -109,7 +122,7 @@ ATMO_FN float terrain_shafts_visibility(ATMO_GLOBAL const atmo_gpu_scene *s,
     if ((bits & ATMO_TERRAIN_SHAFT_FAR) && v3_dot(q->p, q->p) > atmo_sq(tr->shadow_far_m))
         return 1.0f;
     if (!st)
-        return terrain_shafts_trace(s, hm, q->p, 0.0f);
+        return terrain_shafts_trace(s, hm, sun_map, q->p, 0.0f);
     if (st->rest_shadowed)
         return 0.0f;
     float left = st->surface_t - t; /* to the surface */
@@ -120,7 +133,7 @@ ATMO_FN float terrain_shafts_visibility(ATMO_GLOBAL const atmo_gpu_scene *s,
             vec3 lifted = v3_add(st->surface_p,
                                  v3_scale(n, TERRAIN_SHAFT_LIFT_M +
                                                  2.0f * tr->tolerance * st->surface_t));
-            st->surface_shadow = terrain_shafts_trace(s, hm, lifted, 0.0f) > 0.0f ? 0 : 1;
+            st->surface_shadow = terrain_shafts_trace(s, hm, sun_map, lifted, 0.0f) > 0.0f ? 0 : 1;
         }
         if (st->surface_shadow)
             return 0.0f;
@@ -130,7 +143,7 @@ ATMO_FN float terrain_shafts_visibility(ATMO_GLOBAL const atmo_gpu_scene *s,
     float start = (bits & ATMO_TERRAIN_SHAFT_START) && st->surface_t >= 0.0f && left > 0.0f
                       ? TERRAIN_SHAFT_START * left
                       : 0.0f;
-    float v = terrain_shafts_trace(s, hm, q->p, start);
+    float v = terrain_shafts_trace(s, hm, sun_map, q->p, start);
     st->last = v;
     if (st->aligned && v == 0.0f && t > 0.5f * st->end)
         st->rest_shadowed = 1;
@@ -142,7 +155,11 @@ ATMO_FN float terrain_shafts_visibility(ATMO_GLOBAL const atmo_gpu_scene *s,
 ATMO_FN float terrain_shafts_sun_visibility(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                             const medium_point *q, float t, terrain_shafts *st)
 {
-    return terrain_shafts_visibility(s, heightmap, q, t, st);
+#ifdef ATMO_TERRAIN_SUN_MAP
+    return terrain_shafts_visibility(s, heightmap, terrain_sun_map, q, t, st);
+#else
+    return terrain_shafts_visibility(s, heightmap, 0, q, t, st);
+#endif
 }
 
 #endif
