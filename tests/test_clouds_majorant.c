@@ -52,7 +52,7 @@ static const char probe[] =
     "  medium_ray m = medium_ray_make(s, v3(o.x, o.y, o.z), v3_from4(s->sun_direction));\n"
     "  medium_point q = medium_ray_at(&m, 0.0f, s->atmosphere.bottom_radius);\n"
     "  rng_stream g = rng_stream_stage(11u, item, 0u, 0u);\n"
-    "  out[item] = media_walk_sun_transmittance(s, ATMO_LUT_ARGS, &q, &g).y;\n"
+    "  out[item] = media_walk_sun_transmittance(s, ATMO_LUT_ARGS, &q, MEDIA_WALK_SHADOW, &g).y;\n"
     "}\n";
 
 /* The green extinction at the point t along the sun's ray from q (what the walk sees). */

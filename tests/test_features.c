@@ -16,7 +16,15 @@
  *     sky-only scene's assembled source holds no cloud code (sizes printed: what the shell
  *     costs to compile);
  *  4. the composition refuses two features in a slot that takes one (a registry bug) and a
- *     buffer too small for the text. */
+ *     buffer too small for the text;
+ *  5. the path tracer's volume medium (row clouds_path_volume, slot volume_at) composes the
+ *     volume functions from its row (MEDIA_VOLUME 1, media_volume_at calling its volume_at) and
+ *     enters the walk's majorant in volume mode only, while a medium of the methods' walk
+ *     (clouds_tracked) enters it in every mode but volume mode; without a volume medium the
+ *     volume functions are the empty medium's and the majorant has no mode test; two volume
+ *     media are refused. The media group of the largest composition (the air, the volume
+ *     medium, the tracked layer, the layer's medium, the cloud shell, Psi_ms) must fit the
+ *     plan's 8192-byte buffer (its size printed). */
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/cl_runtime.h"
@@ -211,10 +219,40 @@ static void test_compose_single_slots(void)
     CHECK(atmo_compose(both_media, 2, ATMO_COMPOSE_MEDIA, text, 64) == -1); /* does not fit */
 }
 
+/* The volume medium's composition (5 above). */
+static void test_compose_volume(void)
+{
+    static char text[8192], big[8192];
+    const atmo_feature *volume = atmo_feature_find("clouds_path_volume");
+    const atmo_feature *tracked = atmo_feature_find("clouds_tracked");
+    CHECK(volume && tracked);
+    if (!volume || !tracked)
+        return;
+    const atmo_feature *rows[] = {atmo_feature_find("atmosphere"), volume, tracked};
+    CHECK(atmo_compose(rows, 3, ATMO_COMPOSE_MEDIA, text, sizeof text) == 0);
+    CHECK(strstr(text, "#define MEDIA_VOLUME 1") != NULL);
+    CHECK(strstr(text, "return clouds_volume_at(s, ATMO_LUT_ARGS, q, scattering);") != NULL);
+    CHECK(strstr(text, "if (mode == MEDIA_WALK_VOLUME)\n        clouds_track_begin(") != NULL);
+    CHECK(strstr(text, "if (mode != MEDIA_WALK_VOLUME)\n        clouds_track_begin(") != NULL);
+    const atmo_feature *plain[] = {atmo_feature_find("atmosphere"), tracked};
+    CHECK(atmo_compose(plain, 2, ATMO_COMPOSE_MEDIA, text, sizeof text) == 0);
+    CHECK(strstr(text, "#define MEDIA_VOLUME 0") != NULL);
+    CHECK(strstr(text, "MEDIA_WALK_VOLUME") == NULL);
+    CHECK(strstr(text, "    *scattering = v3(0.0f, 0.0f, 0.0f);") != NULL);
+    const atmo_feature *two[] = {volume, volume};
+    CHECK(atmo_compose(two, 2, ATMO_COMPOSE_MEDIA, text, sizeof text) == -1);
+    const atmo_feature *largest[] = {atmo_feature_find("atmosphere"), atmo_feature_find("cloud"),
+                                     volume, tracked, atmo_feature_find("clouds_medium"),
+                                     atmo_feature_find("ms_lut")};
+    CHECK(atmo_compose(largest, 6, ATMO_COMPOSE_MEDIA, big, sizeof big) == 0);
+    printf("the largest media composition: %zu of %zu bytes\n", strlen(big), sizeof big);
+}
+
 int main(void)
 {
     test_registry_files();
     test_compose_single_slots();
+    test_compose_volume();
     test_methods();
     test_cloud();
     return test_finish();

@@ -216,6 +216,18 @@ feature_ifs() {
     done
 }
 
+# stage_ifs FILE...: "FILE:LINE" of each #if / #ifdef / #ifndef / #elif that is neither the
+# file's include guard nor the host-only include block (#ifndef __OPENCL_VERSION__): a stage
+# that runs on the composed media (render/volume_stage.h) builds the same for every scene.
+stage_ifs() {
+    local f
+    for f in "$@"; do
+        grep -nE '^[[:space:]]*#[[:space:]]*(if|ifdef|ifndef|elif)\b' "$f" |
+            grep -vE '#[[:space:]]*ifndef[[:space:]]+(ATMO_[A-Z0-9_]*_H|__OPENCL_VERSION__)[[:space:]]*$' |
+            sed "s|^|$f:|"
+    done
+}
+
 # The detectors on synthetic files: a prototype of a function defined in another file (and
 # one defined in the same file, which is not forward), a feature's identifier and a feature's
 # flag in code (and both in comments, which do not count).
@@ -234,6 +246,11 @@ if [ "$found" = "generic.h:2:cloud_sun generic.h:8:cloud_sun generic.h:10:ATMO_C
 found=$(feature_ifs "$syn/generic.h" | sed "s|$syn/||")
 if [ "$found" = "generic.h:10:#ifdef ATMO_CLOUD" ]; then ok; else
     bad "the feature-#if detector on a synthetic file found '$found'"; fi
+printf '%s\n' '#ifndef ATMO_RENDER_X_H' '#define ATMO_RENDER_X_H' '#ifndef __OPENCL_VERSION__' \
+    '#endif' '#if MEDIA_VOLUME > 0' '#endif' '#endif' >"$syn/stage.h"
+found=$(stage_ifs "$syn/stage.h" | sed "s|$syn/||")
+if [ "$found" = "stage.h:5:#if MEDIA_VOLUME > 0" ]; then ok; else
+    bad "the stage-#if detector on a synthetic file found '$found'"; fi
 rm -rf "$syn"
 
 kernel_files=$(find kernels -name '*.h' -o -name '*.cl' | sort)
@@ -251,6 +268,14 @@ else ok; fi
 found=$(feature_ifs $generic_files)
 if [ -n "$found" ]; then
     bad "feature #if in the generic integrator (compose the feature instead):"
+    echo "$found" | sed 's/^/    /' >&2
+else ok; fi
+
+# The path tracer's volume stage runs on the one majorant walk over the composed volume medium:
+# no #if and no feature's name in it.
+found=$( (stage_ifs kernels/render/volume_stage.h; feature_identifiers kernels/render/volume_stage.h) )
+if [ -n "$found" ]; then
+    bad "render/volume_stage.h tests a flag or names a feature (compose the volume medium instead):"
     echo "$found" | sed 's/^/    /' >&2
 else ok; fi
 

@@ -24,7 +24,7 @@
  * of an open one's (T > 0.9).
  *
  * Part 2, the air in the layer's shadow with path.clouds = volume (the layer no medium of the
- * method; media/visibility.h's visibility_air_volume ratio-tracks it toward the sun at every
+ * method; media/media_walk.h's media_walk_volume_sun ratio-tracks it toward the sun at every
  * air sample of the integrator). The same camera and layer, method single (the
  * single-scattering form the oracle integrates), the ground black (albedo 0: every surface
  * term and every continuation is zero, so the image is the air's in-scatter between the

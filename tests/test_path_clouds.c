@@ -1,5 +1,5 @@
 /* test_path_clouds — the path tracer's scattering events in the fBm cloud layer (path.clouds =
- * volume: kernels/render/volume_stage.h, kernels/media/cloud_walk.h, kernels/render/path.h).
+ * volume: kernels/render/volume_stage.h, kernels/media/media_walk.h, kernels/render/path.h).
  * labels: render kernel stat slow
  *
  * 1. Furnace (oracle: closed form). The uniform test world (path.sky = uniform: no air, no

@@ -51,7 +51,7 @@ static const char probe_src[] =
     "  medium_point x;\n" /* the ray's start at radius q.x, toward cosine q.y */
     "  x.p = v3(0.0f, 0.0f, 0.0f); x.r = q.x; x.h = q.x - s->atmosphere.bottom_radius;\n"
     "  x.mu = q.y; x.mu_s = q.y;\n"
-    "  out[i] = (float4)(media_walk_sun_transmittance(s, ATMO_LUT_ARGS, &x, &g), 0.0f);\n"
+    "  out[i] = (float4)(media_walk_sun_transmittance(s, ATMO_LUT_ARGS, &x, MEDIA_WALK_SHADOW, &g), 0.0f);\n"
     "}\n";
 
 typedef struct ctx {

@@ -82,32 +82,48 @@ static void compose_media_at(text *t, const atmo_feature *const *f, int n)
     put(t, "    return x;\n}\n\n");
 }
 
+/* The condition under which a walk in mode `mode` (media.h's MEDIA_WALK_*) includes medium f's
+ * majorant: the volume media only in volume mode, the media of exact sun transmittance only in
+ * the walk of the media (not toward the sun), the others in every mode but volume mode (no
+ * condition where the composition has no volume medium). */
+static const char *walk_condition(const atmo_feature *f, int volumes, int state)
+{
+    static const char *const begin[3] = {"if (mode == MEDIA_WALK_VOLUME)\n        ",
+                                         "if (mode == MEDIA_WALK_MEDIA)\n        ",
+                                         "if (mode != MEDIA_WALK_VOLUME)\n        "};
+    static const char *const segment[3] = {"if (mm->mode == MEDIA_WALK_VOLUME) ",
+                                           "if (mm->mode == MEDIA_WALK_MEDIA) ",
+                                           "if (mm->mode != MEDIA_WALK_VOLUME) "};
+    int k = f->slots->volume_at ? 0 : f->slots->sun_exact ? 1 : volumes ? 2 : -1;
+    return k < 0 ? "" : state ? segment[k] : begin[k];
+}
+
 /* The media of the Monte Carlo walk (kernels/media/media_walk.h): their majorants, summed over
- * the media that give one (a walk toward the sun, shadow != 0, leaves out those whose sun
- * transmittance is exact and takes that from media_sun_attenuate's terms instead), the
- * extinction such a walk tracks, and each component's direction sampling and roulette gain. */
-static void compose_majorant(text *t, const atmo_feature *const *f, int n)
+ * the media that give one for the walk's mode (a walk toward the sun leaves out those whose sun
+ * transmittance is exact and takes that from media_sun_attenuate's terms instead; a walk in
+ * volume mode has the volume media alone), the extinction a walk toward the sun tracks, and each
+ * component's direction sampling and roulette gain. */
+static void compose_majorant(text *t, const atmo_feature *const *f, int n, int volumes)
 {
     int tracked = 0;
     for (int i = 0; i < n; i++)
-        tracked += SLOT(f[i], majorant_begin) != NULL;
-    put(t, "/* The media with a majorant of their own (beyond the air's). */\n");
-    put(t, "#define MEDIA_TRACKED %d\n\n", tracked);
+        tracked += SLOT(f[i], majorant_begin) != NULL && !f[i]->slots->volume_at;
+    put(t, "/* The media with a majorant of their own (beyond the air's), the volume media. */\n");
+    put(t, "#define MEDIA_TRACKED %d\n#define MEDIA_VOLUME %d\n\n", tracked, volumes);
     put(t, "/* Their majorants' states along one ray. */\n");
-    put(t, "typedef struct media_majorant {\n    int shadow; /* a walk toward the sun */\n");
+    put(t, "typedef struct media_majorant {\n    int mode; /* the walk's (media.h) */\n");
     for (int i = 0; i < n; i++)
         if (SLOT(f[i], majorant_begin))
             put(t, "    %s %s;\n", f[i]->slots->majorant_state, f[i]->name);
     put(t, "} media_majorant;\n\n");
     put(t, "ATMO_FN void media_majorant_begin(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,\n"
            "                                  vec3 origin, vec3 dir, float r, float mu, float end,\n"
-           "                                  int shadow, media_majorant *mm)\n{\n"
-           "    mm->shadow = shadow;\n");
+           "                                  int mode, media_majorant *mm)\n{\n"
+           "    mm->mode = mode;\n");
     for (int i = 0; i < n; i++)
         if (SLOT(f[i], majorant_begin))
             put(t, "    %s%s(s, ATMO_LUT_ARGS, origin, dir, r, mu, end, &mm->%s);\n",
-                f[i]->slots->sun_exact ? "if (!shadow)\n        " : "",
-                f[i]->slots->majorant_begin, f[i]->name);
+                walk_condition(f[i], volumes, 0), f[i]->slots->majorant_begin, f[i]->name);
     put(t, "}\n\n");
     put(t, "/* The media's majorant from t up to *seg_end (the air's is the walk's own). */\n");
     put(t, HEAD "media_majorant *mm, float t, float *seg_end)\n{\n", "float",
@@ -117,8 +133,7 @@ static void compose_majorant(text *t, const atmo_feature *const *f, int n)
         if (SLOT(f[i], majorant_begin))
             put(t, "    %s{\n        rate += %s(s, ATMO_LUT_ARGS, &mm->%s, t, &e);\n"
                    "        *seg_end = fminf(*seg_end, e);\n    }\n",
-                f[i]->slots->sun_exact ? "if (!mm->shadow) " : "",
-                f[i]->slots->majorant_segment, f[i]->name);
+                walk_condition(f[i], volumes, 1), f[i]->slots->majorant_segment, f[i]->name);
     put(t, "    (void)e;\n    return rate;\n}\n\n");
 
     put(t, "/* The extinction a walk toward the sun tracks: the media's, less the exact ones'. */\n");
@@ -143,7 +158,7 @@ static void compose_majorant(text *t, const atmo_feature *const *f, int n)
     for (int i = 0; i < n; i++) {
         const atmo_slots *sl = f[i]->slots;
         const char *comp = sl ? (sl->walk_component ? sl->walk_component : sl->component) : NULL;
-        if (sl && sl->media_direction && comp)
+        if (sl && sl->media_direction && comp && !sl->volume_at)
             put(t, "    if (k == MEDIA_%s)\n        return %s(s, ATMO_LUT_ARGS, dir, to_sun, beta, "
                    "u1, u2, g, weight);\n", comp, sl->media_direction);
     }
@@ -152,9 +167,46 @@ static void compose_majorant(text *t, const atmo_feature *const *f, int n)
     put(t, HEAD "float nu)\n{\n", "float", "media_roulette_gain");
     put(t, "    float gain = 1.0f;\n");
     for (int i = 0; i < n; i++)
-        if (SLOT(f[i], roulette_gain))
+        if (SLOT(f[i], roulette_gain) && !f[i]->slots->volume_at)
             put(t, "    gain *= %s(s, ATMO_LUT_ARGS, nu);\n", f[i]->slots->roulette_gain);
     put(t, "    return gain;\n}\n\n");
+}
+
+/* The path tracer's volume medium (at most one: volume_at's row; media.h): its coefficients,
+ * phase function, direction sampling and roulette gain, or no medium (zero extinction, zero
+ * phase, weight zero, gain 1) without one. */
+static void compose_volume(text *t, const atmo_slots *v)
+{
+    put(t, "/* The volume medium's extinction at q, its scattering in *scattering. */\n");
+    put(t, HEAD "const medium_point *q,\n"
+           "                                vec3 *scattering)\n{\n", "vec3", "media_volume_at");
+    if (v)
+        put(t, "    return %s(s, ATMO_LUT_ARGS, q, scattering);\n}\n\n", v->volume_at);
+    else
+        put(t, "    (void)q;\n    *scattering = v3(0.0f, 0.0f, 0.0f);\n"
+               "    return v3(0.0f, 0.0f, 0.0f);\n}\n\n");
+    put(t, "/* Its phase function per steradian at cosine nu. */\n");
+    put(t, HEAD "float nu)\n{\n", "vec3", "media_volume_phase");
+    if (v)
+        put(t, "    return %s(s, ATMO_LUT_ARGS, nu);\n}\n\n", v->media_phase);
+    else
+        put(t, "    (void)nu;\n    return v3(0.0f, 0.0f, 0.0f);\n}\n\n");
+    put(t, "/* A new direction at a scattering by it (weight: phase over the density). */\n");
+    put(t, HEAD "vec3 dir, vec3 to_sun, vec3 beta,\n"
+           "                                       float u1, float u2, rng_stream *g, "
+           "vec3 *weight)\n{\n", "vec3", "media_volume_direction");
+    if (v)
+        put(t, "    return %s(s, ATMO_LUT_ARGS, dir, to_sun, beta, u1, u2, g, weight);\n}\n\n",
+            v->media_direction);
+    else
+        put(t, "    (void)to_sun, (void)beta, (void)u1, (void)u2, (void)g;\n"
+               "    *weight = v3(0.0f, 0.0f, 0.0f);\n    return dir;\n}\n\n");
+    put(t, "/* The factor on a path's roulette survival leaving it at cosine nu to the sun. */\n");
+    put(t, HEAD "float nu)\n{\n", "float", "media_volume_roulette_gain");
+    if (v)
+        put(t, "    return %s(s, ATMO_LUT_ARGS, nu);\n}\n\n", v->roulette_gain);
+    else
+        put(t, "    (void)nu;\n    return 1.0f;\n}\n\n");
 }
 
 static int compose_ms(text *t, const atmo_feature *const *f, int n)
@@ -176,14 +228,7 @@ static int compose_ms(text *t, const atmo_feature *const *f, int n)
     if (ground)
         put(t, "    return %s(s, ATMO_LUT_ARGS, mu_s);\n}\n", ground);
     else
-        put(t, "    return v3(0.0f, 0.0f, 0.0f);\n}\n\n");
-    const char *volume = single(f, n, offsetof(atmo_slots, volume_sun), &twice);
-    put(t, "/* The sun's transmittance to q through the volume stage's media (1 without). */\n");
-    put(t, HEAD "const medium_point *q)\n{\n", "vec3", "visibility_air_volume");
-    if (volume)
-        put(t, "    return %s(s, ATMO_LUT_ARGS, q);\n}\n", volume);
-    else
-        put(t, "    return v3(1.0f, 1.0f, 1.0f);\n}\n");
+        put(t, "    return v3(0.0f, 0.0f, 0.0f);\n}\n");
     return twice ? -1 : 0;
 }
 
@@ -292,8 +337,18 @@ int atmo_compose(const atmo_feature *const *f, int n, int group, char *out, size
     put(&t, "/* %s: generated by the plan (host/plan/compose.c) from the features' slots. */\n",
         atmo_compose_name(group));
     if (group == ATMO_COMPOSE_MEDIA) {
+        int volumes = 0;
+        const atmo_slots *v = NULL;
+        for (int i = 0; i < n; i++)
+            if (SLOT(f[i], volume_at))
+                v = f[i]->slots, volumes++;
+        /* the volume stage's one scattering component; every function it gives is needed */
+        if (volumes > 1 || (v && !(v->media_phase && v->majorant_begin && v->media_direction &&
+                                   v->roulette_gain)))
+            return -1;
         compose_media_at(&t, f, n);
-        compose_majorant(&t, f, n);
+        compose_majorant(&t, f, n, volumes);
+        compose_volume(&t, v);
         rc = compose_ms(&t, f, n);
     } else if (group == ATMO_COMPOSE_SUN) {
         compose_sun(&t, f, n);

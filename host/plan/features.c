@@ -20,6 +20,7 @@ static int ms_methods(const atmo_scene *s)
 static int cloud_shell(const atmo_scene *s) { return s->cloud.enabled || s->observer.enabled; }
 /* path.clouds = volume: the path tracer scatters in the layer, the methods see only the air */
 static int cloud_volume(const atmo_scene *s) { return atmo_plan_clouds_volume(s); }
+static int has_clouds(const atmo_scene *s) { return s->clouds.enabled; }
 /* the layer as a medium of the methods (media.h, visibility.h, the marcher) */
 static int cloud_layer(const atmo_scene *s) { return s->clouds.enabled && !cloud_volume(s); }
 static int cloud_grid(const atmo_scene *s)
@@ -188,11 +189,11 @@ static const char *const cloud_march_fragments[] = {"kernels/media/cloud_shell_m
 static const char *const clouds_fragments[] = {"kernels/media/cloud_noise.h",
                                                "kernels/media/phase_table.h",
                                                "kernels/media/cloud_layer.h", NULL};
-/* the grid and the layer's majorant over it (cloud_walk.h: the walk's slots below, the volume
- * stage's walk) */
+/* the grid and the layer's majorant over it, the layer in the one walk (cloud_track.h: the
+ * slots below) */
 static const char *const clouds_majorant_fragments[] = {"kernels/media/cloud_majorant.h",
                                                         "kernels/media/cloud_majorant.cl",
-                                                        "kernels/media/cloud_walk.h", NULL};
+                                                        "kernels/media/cloud_track.h", NULL};
 static const char *const clouds_shadow_map_fragments[] = {
     "kernels/media/cloud_majorant.h", "kernels/media/cloud_shadow_map.h",
     "kernels/media/cloud_shadow_map.cl", NULL};
@@ -204,9 +205,16 @@ static const atmo_slots clouds_slots = {.component = "CLOUDS",
                                         .media_sun = "clouds_media_sun",
                                         .media_intervals = "clouds_media_intervals",
                                         .media_interval = "clouds_media_interval"};
-/* the volume stage's walk through the layer, over its majorant grid: the shadows it casts on
- * the air's samples of every method */
-static const atmo_slots clouds_walk_slots = {.volume_sun = "clouds_volume_sun"};
+/* the layer as the path tracer's volume medium in the one walk, over its majorant grid: the
+ * volume stage's free flights and shadow rays, the shadows it casts on the air's samples of
+ * every method */
+static const atmo_slots clouds_path_volume_slots = {.volume_at = "clouds_volume_at",
+                                                    .media_phase = "clouds_volume_phase",
+                                                    .majorant_state = "clouds_track",
+                                                    .majorant_begin = "clouds_track_begin",
+                                                    .majorant_segment = "clouds_track_segment",
+                                                    .media_direction = "clouds_media_direction",
+                                                    .roulette_gain = "clouds_roulette_gain"};
 /* the layer as a medium of the reference's walk: its majorant, its scattering's sampling */
 static const atmo_slots clouds_tracked_slots = {.majorant_state = "clouds_track",
                                                 .majorant_begin = "clouds_track_begin",
@@ -297,17 +305,15 @@ const atmo_feature atmo_features[] = {
     {"cloud", -1, cloud_shell, cloud_fragments, "-DATMO_CLOUD", NULL, NULL, NULL,
      atmo_plan_cloud, 0, &cloud_slots, 0},
     /* the fBm cloud layer: its density, optics and light march */
-    {"clouds", -1, cloud_layer, clouds_fragments, "-DATMO_CLOUDS", NULL, NULL, NULL,
+    {"clouds", -1, has_clouds, clouds_fragments, "-DATMO_CLOUDS", NULL, NULL, NULL,
      atmo_plan_clouds, 0, NULL, 0},
-    /* the same layer for the path tracer's volume stage alone (render/volume_stage.h): no
-     * method, integrator or visibility source sees it */
-    {"clouds_volume", -1, cloud_volume, clouds_fragments, "-DATMO_CLOUDS_VOLUME", NULL, NULL,
-     NULL, atmo_plan_clouds, 0, NULL, 0},
     /* the layer's majorant grid for the reference's walk and the volume stage's; it follows the
      * view (never cached) */
     {"clouds_majorant", -1, cloud_grid, clouds_majorant_fragments, "", NULL, NULL, NULL,
      atmo_plan_clouds_majorant, 0, NULL, 0},
-    {"clouds_walk", -1, cloud_volume, NULL, "", NULL, NULL, NULL, NULL, 0, &clouds_walk_slots, 0},
+    /* the layer as the path tracer's volume medium (render/volume_stage.h): no method sees it */
+    {"clouds_path_volume", -1, cloud_volume, NULL, "", NULL, NULL, NULL, NULL, 0,
+     &clouds_path_volume_slots, 0},
     {"clouds_tracked", -1, cloud_tracked, NULL, "", NULL, NULL, NULL, NULL, 0,
      &clouds_tracked_slots, 0},
     /* the layer's sun shadow map for the visibility source and the marcher (over the majorant

@@ -16,12 +16,13 @@
  * once, so a kernel's noise point p + origin is exact to float rounding of the sum. The global
  * majorant of the Monte Carlo walk is clouds.density (the density's bound, cloud_layer.h); the
  * majorant grid (cloud_majorant.h) of the reference's walk and of the path tracer's volume stage
- * (path.clouds = volume: cloud_walk.h) refines it around the camera: a buffer of
+ * (path.clouds = volume: cloud_track.h) refines it around the camera: a buffer of
  * CLOUDS_GRID_NX x NY x NZ cell bounds, filled by its pass for each view. The sun shadow map
  * (clouds.shadow_map, cloud_shadow_map.h) of the methods single and march is a buffer of
  * size^2 x levels density integrals toward the sun, filled by its pass for each view. With path.clouds =
- * volume in path mode the layer is planned for the volume stage alone (-DATMO_CLOUDS_VOLUME),
- * so every atmosphere method can be the air's. */
+ * volume in path mode the layer is the path tracer's volume medium alone (registry row
+ * clouds_path_volume: the one majorant walk in volume mode), so every atmosphere method can be
+ * the air's. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

@@ -48,9 +48,12 @@ typedef struct atmo_gpu_field {
  *                         const media_sample *m, int ground): a method's multiple-scattering
  *                         source (at most one method)
  *   ms_ground_irradiance  vec3 (s, ATMO_LUT_PARAMS, float mu_s): its sky irradiance on the ground
- *   volume_sun            vec3 (s, ATMO_LUT_PARAMS, const medium_point *q): the sun's
- *                         transmittance to q through a medium that only the path tracer's
- *                         volume stage holds (at most one)
+ *   volume_at             vec3 (s, ATMO_LUT_PARAMS, const medium_point *q, vec3 *scattering):
+ *                         marks the row as the path tracer's volume medium (at most one, which
+ *                         no method sees): its extinction at q, its scattering in *scattering;
+ *                         the row's media_phase, majorant_*, media_direction and roulette_gain
+ *                         (all needed) then compose the volume functions (media.h) and the
+ *                         walk's volume mode instead of the methods' media
  *   sun_occluder          float (s, ATMO_LUT_PARAMS, const medium_point *q): 1 where it leaves
  *                         the sun visible from q, 0 in its shadow
  *   surface_occluder      1: that occluder also shadows the path tracer's surface points
@@ -86,7 +89,7 @@ typedef struct atmo_slots {
     const char *media_add, *media_phase, *media_sun;
     const char *media_intervals, *media_interval;
     const char *ms_source, *ms_ground_irradiance;
-    const char *volume_sun;
+    const char *volume_at;
     const char *sun_occluder;
     int surface_occluder;
     const char *ray_occluder, *ray_state, *ray_begin;
@@ -102,11 +105,13 @@ typedef struct atmo_slots {
 enum {
     ATMO_COMPOSE_NONE,
     ATMO_COMPOSE_MEDIA,     /* media_at, media_phase, media_sun_attenuate, medium_ms_source,
-                               medium_ms_ground_irradiance, visibility_air_volume; the walk's
-                               MEDIA_TRACKED, media_majorant, media_majorant_begin,
+                               medium_ms_ground_irradiance; the walk's MEDIA_TRACKED,
+                               MEDIA_VOLUME, media_majorant, media_majorant_begin,
                                media_majorant_segment, media_tracked_extinction,
                                media_sun_exact_attenuate, media_phase_direction,
-                               media_roulette_gain */
+                               media_roulette_gain; the volume medium's media_volume_at,
+                               media_volume_phase, media_volume_direction,
+                               media_volume_roulette_gain */
     ATMO_COMPOSE_SUN,       /* visibility_ray, visibility_ray_begin, visibility_sun_occluders,
                                visibility_sun_occluders_on_ray, visibility_surface_occluders */
     ATMO_COMPOSE_SURFACES,  /* visibility_surface_hit, visibility_surface_radiance */

@@ -4,9 +4,9 @@
 #define ATMO_PLAN_CLOUDS_H
 #include "atmo/plan.h"
 
-/* 1 where the layer is the path tracer's volume alone (render.mode = path, path.clouds = volume,
- * -DATMO_CLOUDS_VOLUME): no method sees it as a medium, and the air's sunlight passes it by
- * ratio tracking (kernels/media/visibility.h's visibility_air_volume). */
+/* 1 where the layer is the path tracer's volume medium alone (render.mode = path, path.clouds =
+ * volume): no method sees it as a medium, and the air's sunlight passes it by ratio tracking
+ * (kernels/media/media_walk.h's media_walk_volume_sun). */
 int atmo_plan_clouds_volume(const atmo_scene *s);
 
 /* When the scene has clouds.enabled: checks the method (single, march or reference) and the

@@ -132,15 +132,11 @@ ATMO_FN void lut_whole_ray(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
  * (tests/test_aerial.c, which also checks that the difference still fails; its numbers:
  * docs/notes/lut_method.md). It costs view_steps lookups of the density table and of the
  * transmittance LUT instead of six table lookups.
- * Under -DATMO_CLOUDS_VOLUME (path.clouds = volume) the air's sunlight at each sample passes
- * the path tracer's cloud layer (media/visibility.h, visibility_air_volume), which the tables
+ * With a volume medium of the path tracer (MEDIA_VOLUME > 0: path.clouds = volume) the air's
+ * sunlight at each sample passes it (media_walk.h's media_walk_volume_sun), which the tables
  * cannot hold: every ray is marched then, a whole one with its lit ground and sun disc
  * (medium_integrate). */
-#ifdef ATMO_CLOUDS_VOLUME
-#define LUT_TABLE_RAYS 0 /* the tables know no shadows of the volume stage's layer in the air */
-#else
-#define LUT_TABLE_RAYS 1
-#endif
+#define LUT_TABLE_RAYS (MEDIA_VOLUME == 0) /* the tables know no shadows of a volume medium */
 
 ATMO_FN void sky_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, const medium_ray *m,
                        float t_max, rng_stream *g, vec3 *sky, vec3 *sun, vec3 *view_t)

@@ -53,7 +53,7 @@
  * paths would see no tentative point there, and the few that do would carry the whole
  * estimate; 4 points per segment cut its standard error about 2.7 times for about 1.5 times
  * the time (measured on tests/test_aerial.c's rays: docs/notes/reference_segments.md).
- * Clouds. A cloud medium (the fBm layer, cloud_walk.h; the homogeneous shell,
+ * Clouds. A cloud medium (the fBm layer, cloud_track.h; the homogeneous shell,
  * cloud_shell_walk.h; they exclude each other) is one more component of media_at and adds its
  * majorant to the walk's: the layer the density bound of each grid cell the segment crosses
  * (cloud_majorant.h's DDA) times its largest extinction, its global bound beyond the grid,
@@ -169,8 +169,8 @@ ATMO_FN vec3 reference_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PA
     float vis = visibility_sun_occluders(s, ATMO_LUT_ARGS, q);
     if (vis <= 0.0f)
         return v3(0.0f, 0.0f, 0.0f);
-    vec3 t = v3_mul(media_walk_sun_transmittance(s, ATMO_LUT_ARGS, q, g),
-                    visibility_air_volume(s, ATMO_LUT_ARGS, q));
+    vec3 t = v3_mul(media_walk_sun_transmittance(s, ATMO_LUT_ARGS, q, MEDIA_WALK_SHADOW, g),
+                    media_walk_volume_sun(s, ATMO_LUT_ARGS, q));
     return v3_scale(v3_mul(v3_from4(s->atmosphere.solar_irradiance), t), vis);
 }
 
@@ -226,7 +226,8 @@ ATMO_FN void reference_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
         /* on a cut segment, at least REFERENCE_SEGMENT_POINTS tentative points */
         media_walk rw = media_walk_begin(s, ATMO_LUT_ARGS, reference_world_point(&frame, pos),
                                          reference_world_dir(&frame, dir), r0, mu0, d,
-                                         blocked ? REFERENCE_SEGMENT_POINTS / d : 0.0f, 0);
+                                         blocked ? REFERENCE_SEGMENT_POINTS / d : 0.0f,
+                                         MEDIA_WALK_MEDIA);
         int count = order + 1 >= min_order; /* light reaching the camera through this segment's
                                                next-event estimates has order + 1 events */
         int more = max_order == 0 || order + 1 < max_order;

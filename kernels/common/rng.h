@@ -19,6 +19,7 @@
 #ifndef ATMO_RNG_H
 #define ATMO_RNG_H
 #ifndef __OPENCL_VERSION__
+#include <string.h>
 #include "common/compat.h"
 #endif
 
@@ -73,6 +74,28 @@ ATMO_FN rng_stream rng_stream_next_stage(const rng_stream *g)
 ATMO_FN float rng_next(rng_stream *g)
 {
     return rng_uniform(g->seed, g->pixel, g->sample, g->dim++);
+}
+
+/* The bits of a float, as an unsigned integer. */
+ATMO_FN uint rng_float_bits(float x)
+{
+#ifdef __OPENCL_VERSION__
+    return as_uint(x);
+#else
+    uint u;
+    memcpy(&u, &x, sizeof u);
+    return u;
+#endif
+}
+
+/* A 32-bit hash of the point p's bits and seed (the same permutation folds in each
+ * coordinate): a counter for streams and offsets that are a function of a point, the same
+ * in any tile and launch. */
+ATMO_FN uint rng_point_hash(vec3 p, uint seed)
+{
+    uint h = rng_permute(seed ^ 0x2545f491u ^ rng_float_bits(p.x));
+    h = rng_permute(h ^ rng_float_bits(p.y));
+    return rng_permute(h ^ rng_float_bits(p.z));
 }
 
 #endif

@@ -57,7 +57,6 @@
 #ifndef ATMO_MEDIA_CLOUD_LAYER_H
 #define ATMO_MEDIA_CLOUD_LAYER_H
 #ifndef __OPENCL_VERSION__
-#include <string.h>
 #include "common/compat.h"
 #include "common/geometry.h"
 #include "common/phase.h"
@@ -76,30 +75,10 @@
 #define CLOUDS_CLEAR_STRIDE 4.0f
 #define CLOUDS_STEP_GROWTH 0.002f
 
-/* The bits of a float, as an unsigned integer. */
-ATMO_FN uint clouds_bits(float x)
-{
-#ifdef __OPENCL_VERSION__
-    return as_uint(x);
-#else
-    uint u;
-    memcpy(&u, &x, sizeof u);
-    return u;
-#endif
-}
-
-/* A 32-bit hash of the point p's bits and seed. */
-ATMO_FN uint clouds_point_hash(vec3 p, uint seed)
-{
-    uint h = rng_permute(seed ^ 0x2545f491u ^ clouds_bits(p.x));
-    h = rng_permute(h ^ clouds_bits(p.y));
-    return rng_permute(h ^ clouds_bits(p.z));
-}
-
 /* A number in [0, 1) that is a hash of the point p (the light march's offset). */
 ATMO_FN float clouds_point_jitter(vec3 p, uint seed)
 {
-    return (float)(clouds_point_hash(p, seed) >> 8) * (1.0f / 16777216.0f);
+    return (float)(rng_point_hash(p, seed) >> 8) * (1.0f / 16777216.0f);
 }
 
 /* The height fade: 0 at the bottom and the top, 1 more than fade_m inside, smoothstep between. */

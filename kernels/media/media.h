@@ -21,7 +21,17 @@
  * so this file and the integrator name no medium. A medium with its own stepping supplies
  * break points (media_intervals), which the integrator integrates with that medium's stepping
  * (media_interval: it adds the light of everything in its part, air included) and marches the
- * rest with media_at. Units: 1/m, per steradian. */
+ * rest with media_at.
+ * The path tracer's volume media (path.clouds = volume: a medium that no method sees, which
+ * the path tracer's volume stage scatters in itself) are composed apart (MEDIA_VOLUME of them):
+ *     media_volume_at             their extinction and scattering at a point
+ *     media_volume_phase,         their phase function, a new direction at a scattering by
+ *     media_volume_direction,       them, and the roulette gain of a path leaving it
+ *     media_volume_roulette_gain
+ * and the one majorant walk (media_walk.h) runs over the scene's media with the air
+ * (MEDIA_WALK_MEDIA), toward the sun (MEDIA_WALK_SHADOW) or over the volume media alone
+ * (MEDIA_WALK_VOLUME), the walk's mode, which the composed majorant reads too.
+ * Units: 1/m, per steradian. */
 #ifndef ATMO_MEDIA_H
 #define ATMO_MEDIA_H
 #ifndef __OPENCL_VERSION__
@@ -43,6 +53,11 @@
 #define MEDIA_RAYLEIGH 0
 #define MEDIA_MIE 1
 #define MEDIA_MAX_INTERVALS 2 /* parts of one ray with their own stepping */
+
+/* The modes of the one majorant walk (media_walk.h) and of the composed majorant. */
+#define MEDIA_WALK_MEDIA 0  /* the scene's media with the air (method reference's rays) */
+#define MEDIA_WALK_SHADOW 1 /* the same toward the sun, less the media of exact sun transmittance */
+#define MEDIA_WALK_VOLUME 2 /* the path tracer's volume media alone, no air */
 
 typedef struct media_sample {
     vec3 extinction;                   /* sigma_t, 1/m */

@@ -55,6 +55,7 @@
 #include "media/ray.h"
 #include "media/media.h"
 #include "media/visibility.h"
+#include "media/media_walk.h"
 #include "atmo/gpu_types.h"
 #endif
 
@@ -96,10 +97,10 @@ ATMO_FN void medium_piece(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
     media_sample ms = media_at(s, ATMO_LUT_ARGS, &q);
     vr->t = t;
     vec3 sun_e = medium_sunlight_on_ray(s, ATMO_LUT_ARGS, &q, vr);
-    /* the volume stage's layer toward the sun (visibility_air_volume), for the sun and the
-     * multiple-scattering source alike; not tracked where neither needs it */
+    /* the path tracer's volume medium toward the sun (media_walk_volume_sun), for the sun and
+     * the multiple-scattering source alike; not tracked where neither needs it */
     vec3 volume_t = use_ms || sun_e.x > 0.0f || sun_e.y > 0.0f || sun_e.z > 0.0f
-                        ? visibility_air_volume(s, ATMO_LUT_ARGS, &q)
+                        ? media_walk_volume_sun(s, ATMO_LUT_ARGS, &q)
                         : v3(1.0f, 1.0f, 1.0f);
     sun_e = v3_mul(sun_e, volume_t);
     vec3 step;

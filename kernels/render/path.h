@@ -27,8 +27,9 @@
  *   the sky behind: both strategies estimate the same integral of S, so their weights sum to 1
  *   and the sum is unbiased (Veach 1997). The sun's disc is left to next-event estimation: a
  *   continuation ray that finds it adds nothing there (path.sun_nee = 0: it adds the disc).
- * Clouds (path.clouds = volume, -DATMO_CLOUDS_VOLUME): the fBm cloud layer is no medium of the
- * method then; each segment's free flight through it (volume_stage.h) may end in a scattering
+ * Clouds (path.clouds = volume): the fBm cloud layer is no medium of the method then but the
+ * path tracer's volume medium; each segment's free flight through it (volume_stage.h, the one
+ * majorant walk in volume mode) may end in a scattering
  * at t_c before the surface: S is the air's light up to t_c and the scattering is the next
  * vertex, lit by the sun (beta p(nu) E T_sun V T_clouds: the same shadow function as a
  * surface's, path_shadow, the layer's transmittance ratio-tracked) and continued by a direction
@@ -76,6 +77,7 @@
 #include "common/rng.h"
 #include "atmosphere/sky_method.h"
 #include "media/medium.h"
+#include "media/media_walk.h"
 #include "media/tracking.h"
 #include "render/path_camera.h"
 #include "render/surfaces.h"
@@ -238,8 +240,9 @@ ATMO_FN vec3 path_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
 
 /* The one shadow function of surface and cloud vertices: the sunlight arriving at q along the
  * direction w sampled on the disc, for rays leaving from p: E T_sun V (path_sunlight; in the
- * uniform world E), zero where a surface blocks w (surfaces_occluded), times the cloud layer's
- * transmittance toward the sun by ratio tracking (volume_stage.h; 1 without its volume). */
+ * uniform world E), zero where a surface blocks w (surfaces_occluded), times the volume
+ * medium's transmittance toward the sun by ratio tracking (media_walk.h's shadow query in
+ * volume mode; 1 without a volume medium). */
 ATMO_FN vec3 path_shadow(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                          const medium_point *q, vec3 p, vec3 w, rng_stream *g)
 {
@@ -247,7 +250,7 @@ ATMO_FN vec3 path_shadow(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                                    : path_sunlight(s, ATMO_LUT_ARGS, q);
     if ((e.x <= 0.0f && e.y <= 0.0f && e.z <= 0.0f) || surfaces_occluded(s, ATMO_LUT_ARGS, p, w))
         return v3(0.0f, 0.0f, 0.0f);
-    return v3_mul(e, volume_sun_transmittance(s, ATMO_LUT_ARGS, q, g));
+    return v3_mul(e, media_walk_sun_transmittance(s, ATMO_LUT_ARGS, q, MEDIA_WALK_VOLUME, g));
 }
 
 /* Sunlight scattered at v toward the ray (without the throughput): a surface's albedo/pi cos, a
