@@ -109,9 +109,11 @@ ATMO_FN vec3 media_walk_sun_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s, A
                                           const medium_point *q, int mode, rng_stream *g)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    int volume = mode == MEDIA_WALK_VOLUME;
+    /* flags of 0 or 1, joined bitwise: a composed constant in a logical operator is a warning */
+    const int volume = mode == MEDIA_WALK_VOLUME;
+    const int roulette = volume | (MEDIA_TRACKED > 0);
     vec3 T = v3(1.0f, 1.0f, 1.0f), sun = v3_from4(s->sun_direction), sigma_s;
-    if (volume && MEDIA_VOLUME == 0)
+    if (volume & (MEDIA_VOLUME == 0))
         return T;
     float r = q->r, mu = q->mu_s;
     float d = geometry_distance_to_top(r, mu, a->top_radius);
@@ -123,7 +125,7 @@ ATMO_FN vec3 media_walk_sun_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s, A
         T = walk_ratio(&mw.w, T,
                        volume ? media_volume_at(s, ATMO_LUT_ARGS, &x, &sigma_s)
                               : media_tracked_extinction(s, ATMO_LUT_ARGS, &x));
-        if (volume || MEDIA_TRACKED > 0)
+        if (roulette)
             T = tracking_roulette(T, MEDIA_WALK_ROULETTE_T, g);
         if (tracking_max3(T) <= 0.0f)
             break;
