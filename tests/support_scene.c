@@ -115,6 +115,38 @@ int test_bind_buffers(cl_kernel k, cl_mem luts[ATMO_PLAN_MAX_BUFFERS])
     return 1 + i;
 }
 
+void test_run_walks(atmo_cl *cl, cl_program prog, cl_mem scene, cl_mem luts[ATMO_PLAN_MAX_BUFFERS],
+                    const void *in, size_t in_bytes, size_t out_size, cl_uint n, cl_uint walks,
+                    void *out, void *out_reversed)
+{
+    cl_int err;
+    cl_kernel k = clCreateKernel(prog, "walks", &err);
+    CHECK(err == CL_SUCCESS);
+    cl_uint *order = malloc(sizeof(cl_uint) * n);
+    CHECK(order != NULL);
+    cl_mem b_in = test_cl_buffer(cl, in_bytes, in);
+    cl_mem b_out = test_cl_buffer(cl, out_size * n, NULL);
+    for (int pass = 0; pass < 2; pass++) {
+        for (cl_uint i = 0; i < n; i++)
+            order[i] = pass ? n - 1 - i : i;
+        cl_mem b_order = test_cl_buffer(cl, sizeof(cl_uint) * n, order);
+        CHECK(clSetKernelArg(k, 0, sizeof scene, &scene) == CL_SUCCESS);
+        cl_uint arg = (cl_uint)test_bind_buffers(k, luts);
+        CHECK(clSetKernelArg(k, arg, sizeof b_in, &b_in) == CL_SUCCESS);
+        CHECK(clSetKernelArg(k, arg + 1, sizeof b_order, &b_order) == CL_SUCCESS);
+        CHECK(clSetKernelArg(k, arg + 2, sizeof b_out, &b_out) == CL_SUCCESS);
+        CHECK(clSetKernelArg(k, arg + 3, sizeof n, &n) == CL_SUCCESS);
+        CHECK(clSetKernelArg(k, arg + 4, sizeof walks, &walks) == CL_SUCCESS);
+        test_cl_run_1d(cl, k, n);
+        test_cl_read(cl, b_out, out_size * n, pass ? out_reversed : out);
+        clReleaseMemObject(b_order);
+    }
+    clReleaseMemObject(b_out);
+    clReleaseMemObject(b_in);
+    clReleaseKernel(k);
+    free(order);
+}
+
 cl_mem test_plan_buffer(const atmo_plan *p, cl_mem luts[ATMO_PLAN_MAX_BUFFERS], const char *name)
 {
     int i = atmo_plan_buffer_index(p, name);

@@ -201,29 +201,10 @@ int main(void)
     }
     CHECK(found == RAYS);
     uint n = RAYS * WALKS, walks = WALKS;
-    uint *order = malloc(sizeof(uint) * n);
     float *out = malloc(sizeof(float) * n), *out2 = malloc(sizeof(float) * n);
-    CHECK(order && out && out2);
-    cl_int err;
-    cl_kernel k = clCreateKernel(prog, "walks", &err);
-    CHECK(err == CL_SUCCESS);
-    cl_mem b_origins = test_cl_buffer(&cl, sizeof origins, origins);
-    cl_mem b_out = test_cl_buffer(&cl, sizeof(float) * n, NULL);
-    for (int pass = 0; pass < 2; pass++) {
-        for (uint i = 0; i < n; i++)
-            order[i] = pass ? n - 1 - i : i;
-        cl_mem b_order = test_cl_buffer(&cl, sizeof(uint) * n, order);
-        CHECK(clSetKernelArg(k, 0, sizeof scene, &scene) == CL_SUCCESS);
-        cl_uint arg = (cl_uint)test_bind_buffers(k, luts);
-        CHECK(clSetKernelArg(k, arg, sizeof b_origins, &b_origins) == CL_SUCCESS);
-        CHECK(clSetKernelArg(k, arg + 1, sizeof b_order, &b_order) == CL_SUCCESS);
-        CHECK(clSetKernelArg(k, arg + 2, sizeof b_out, &b_out) == CL_SUCCESS);
-        CHECK(clSetKernelArg(k, arg + 3, sizeof n, &n) == CL_SUCCESS);
-        CHECK(clSetKernelArg(k, arg + 4, sizeof walks, &walks) == CL_SUCCESS);
-        test_cl_run_1d(&cl, k, n);
-        test_cl_read(&cl, b_out, sizeof(float) * n, pass ? out2 : out);
-        clReleaseMemObject(b_order);
-    }
+    CHECK(out && out2);
+    test_run_walks(&cl, prog, scene, luts, origins, sizeof origins, sizeof(float), n, walks, out,
+                   out2);
     CHECK(memcmp(out, out2, sizeof(float) * n) == 0);
     for (int r = 0; r < RAYS; r++) {
         double sum = 0.0, sum2 = 0.0;
@@ -237,10 +218,7 @@ int main(void)
                r, T_want[r], T_err[r], mean, se, (mean - T_want[r]) / se);
         CHECK_ABS(mean, T_want[r], Z_MAX * se + T_err[r]);
     }
-    clReleaseMemObject(b_out);
-    clReleaseMemObject(b_origins);
-    clReleaseKernel(k);
-    free(out2), free(out), free(order), free(cells), free(grid2), free(grid);
+    free(out2), free(out), free(cells), free(grid2), free(grid);
     test_release_luts(again);
     test_release_luts(luts);
     clReleaseMemObject(scene);

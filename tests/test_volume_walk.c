@@ -183,29 +183,10 @@ int main(void)
         geometry[2 * r + 1].z = rays[r].d.z, geometry[2 * r + 1].w = LENGTH_M;
     }
     uint n = RAYS * WALKS, walks = WALKS;
-    uint *order = malloc(sizeof(uint) * n);
     float4 *out = malloc(sizeof(float4) * n), *out2 = malloc(sizeof(float4) * n);
-    CHECK(order && out && out2);
-    cl_int err;
-    cl_kernel k = clCreateKernel(prog, "walks", &err);
-    CHECK(err == CL_SUCCESS);
-    cl_mem b_rays = test_cl_buffer(&cl, sizeof geometry, geometry);
-    cl_mem b_out = test_cl_buffer(&cl, sizeof(float4) * n, NULL);
-    for (int pass = 0; pass < 2; pass++) {
-        for (uint i = 0; i < n; i++)
-            order[i] = pass ? n - 1 - i : i;
-        cl_mem b_order = test_cl_buffer(&cl, sizeof(uint) * n, order);
-        CHECK(clSetKernelArg(k, 0, sizeof scene, &scene) == CL_SUCCESS);
-        cl_uint arg = (cl_uint)test_bind_buffers(k, luts);
-        CHECK(clSetKernelArg(k, arg, sizeof b_rays, &b_rays) == CL_SUCCESS);
-        CHECK(clSetKernelArg(k, arg + 1, sizeof b_order, &b_order) == CL_SUCCESS);
-        CHECK(clSetKernelArg(k, arg + 2, sizeof b_out, &b_out) == CL_SUCCESS);
-        CHECK(clSetKernelArg(k, arg + 3, sizeof n, &n) == CL_SUCCESS);
-        CHECK(clSetKernelArg(k, arg + 4, sizeof walks, &walks) == CL_SUCCESS);
-        test_cl_run_1d(&cl, k, n);
-        test_cl_read(&cl, b_out, sizeof(float4) * n, pass ? out2 : out);
-        clReleaseMemObject(b_order);
-    }
+    CHECK(out && out2);
+    test_run_walks(&cl, prog, scene, luts, geometry, sizeof geometry, sizeof(float4), n, walks, out,
+                   out2);
     CHECK(memcmp(out, out2, sizeof(float4) * n) == 0);
 
     double albedo = s->clouds.albedo.y;
@@ -236,10 +217,7 @@ int main(void)
         z_test("sun transmittance vs exp(-tau_sun)", r, sun, sun2, exp(-ry->sun),
                exp(-ry->sun) * ry->sun_err);
     }
-    clReleaseMemObject(b_out);
-    clReleaseMemObject(b_rays);
-    clReleaseKernel(k);
-    free(out2), free(out), free(order);
+    free(out2), free(out);
     test_release_luts(luts);
     clReleaseMemObject(scene);
     clReleaseProgram(prog);

@@ -23,6 +23,13 @@ void test_precompute(atmo_cl *cl, cl_program prog, cl_mem scene, const atmo_plan
 /* Bind luts[0], luts[1], ... up to the first NULL as arguments 1, 2, ... of k (the kernel's
  * ATMO_LUT_PARAMS); returns the index of the kernel's next argument. */
 int test_bind_buffers(cl_kernel k, cl_mem luts[ATMO_PLAN_MAX_BUFFERS]);
+/* Runs the program's kernel "walks" (arguments: the scene, luts[] as test_bind_buffers binds
+ * them, then in, the order of the work-items' ids, out, n, walks) over n work-items twice: in
+ * the ids' order into out, in reverse order into out_reversed (n results of out_size bytes
+ * each), so a caller can check that a walk's result depends on its id alone. */
+void test_run_walks(atmo_cl *cl, cl_program prog, cl_mem scene, cl_mem luts[ATMO_PLAN_MAX_BUFFERS],
+                    const void *in, size_t in_bytes, size_t out_size, cl_uint n, cl_uint walks,
+                    void *out, void *out_reversed);
 /* The plan's buffer `name` in luts[] (exits 1 when the plan has none). */
 cl_mem test_plan_buffer(const atmo_plan *p, cl_mem luts[ATMO_PLAN_MAX_BUFFERS], const char *name);
 void test_release_luts(cl_mem luts[ATMO_PLAN_MAX_BUFFERS]);
