@@ -1,7 +1,8 @@
 /* fast_luts.cl — the per-frame LUTs of method "fast" (method_fast.h): the sky-view LUT around
  * the camera, into the buffer sky_view_lut, in three planes of w x h texels: single scattering
  * without its phase functions, Rayleigh (0) and Mie (1), and the rest (2: multiple scattering and
- * the ground): the parts of the medium integrator's result (kernels/media/medium.h). Needs the
+ * the ground): the parts of the medium integrator's result over the air alone, no opaque surface
+ * (medium_integrate_air, kernels/media/medium.h; why: method_fast.h). Needs the
  * transmittance and Psi_ms LUTs (passes before it). */
 
 __kernel void sky_view_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PARAMS, int arg)
@@ -17,8 +18,8 @@ __kernel void sky_view_lut(__global const atmo_gpu_scene *scene, ATMO_LUT_OUT_PA
                                               cos_phi);
     medium_ray m = medium_ray_from_cosines(scene, scene->camera.local_up.w, mu, mu_s, nu);
     medium_result res;
-    medium_integrate(scene, ATMO_LUT_ARGS, &m, 0.0f, INFINITY, scene->sky_view.steps, 0.5f, 1,
-                     &res);
+    medium_integrate_air(scene, ATMO_LUT_ARGS, &m, 0.0f, INFINITY, scene->sky_view.steps, 0.5f,
+                         1, &res);
     int idx = j * w + i, n = w * h;
     sky_view_lut[idx] = (float4)(res.single[MEDIA_RAYLEIGH], 0.0f);
     sky_view_lut[n + idx] = (float4)(res.single[MEDIA_MIE], 0.0f);

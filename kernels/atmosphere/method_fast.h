@@ -13,7 +13,12 @@
  * without them, multiplied by p_R(nu) and p_M(nu) of each pixel's own ray at lookup; the third
  * plane holds the rest (multiple scattering, the ground). The aerosol peak around the sun,
  * narrower than a LUT column, then comes from the exact phase function instead of the
- * interpolation of texels (measured choices: docs/notes/fast_method.md). Each plane has two halves
+ * interpolation of texels (measured choices: docs/notes/fast_method.md). A texel's march is of
+ * the air alone (medium_integrate_air: no opaque surface ends it, the occluders' shadows on its
+ * samples stay): a texel's ray is one 3-D ray from the camera, on one side of the sun's vertical
+ * plane, and a terrain or object it met would lend its light to the sky rows next to it on both
+ * sides; the rays that meet a surface are the render's (terrain_stage.h, sky.cl) and never read
+ * the LUT. Each plane has two halves
  * of n rows:
  *   rows 0 .. n-1 : rays that leave the atmosphere, x = 1 - sqrt(1 - theta / theta_h)
  *   rows n .. 2n-1: rays that hit the ground,       x = sqrt((theta - theta_h) / (pi - theta_h))

@@ -119,10 +119,12 @@ ATMO_FN void medium_piece(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
 
 /* The integral above over [t0, t1] of the ray (t1 = INFINITY: to the ground or the top) with
  * n grid segments and sample offset jitter in [0, 1); use_ms adds the method's
- * multiple-scattering source and the sky's light on the ground. */
-ATMO_FN void medium_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                              const medium_ray *ray, float t0, float t1, int n, float jitter,
-                              int use_ms, medium_result *out)
+ * multiple-scattering source and the sky's light on the ground; surfaces = 0 asks no opaque
+ * surface (visibility_surface_hit), so the ray ends only at t1, the ground or the top (the
+ * occluders' shadows on its samples stay). */
+ATMO_FN void medium_integrate_any(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                  const medium_ray *ray, float t0, float t1, int n, float jitter,
+                                  int use_ms, int surfaces, medium_result *out)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     for (int k = 0; k < MEDIA_COMPONENTS; k++)
@@ -148,7 +150,7 @@ ATMO_FN void medium_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
     int ground = geometry_ray_hits_ground(m.r, m.mu, a->bottom_radius);
     float d = ground ? geometry_distance_to_bottom(m.r, m.mu, a->bottom_radius)
                      : geometry_distance_to_top(m.r, m.mu, a->top_radius);
-    float t_surface = visibility_surface_hit(s, ATMO_LUT_ARGS, &m);
+    float t_surface = surfaces ? visibility_surface_hit(s, ATMO_LUT_ARGS, &m) : -1.0f;
     int hits_surface = t_surface >= 0.0f && t_surface <= d; /* a surface on the ground wins */
     if (hits_surface)
         d = t_surface;
@@ -215,6 +217,23 @@ ATMO_FN void medium_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
                           medium_t);
     }
     out->view_t = T;
+}
+
+/* medium_integrate_any with the opaque surfaces: what a ray of the scene sees. */
+ATMO_FN void medium_integrate(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                              const medium_ray *ray, float t0, float t1, int n, float jitter,
+                              int use_ms, medium_result *out)
+{
+    medium_integrate_any(s, ATMO_LUT_ARGS, ray, t0, t1, n, jitter, use_ms, 1, out);
+}
+
+/* medium_integrate_any without them: the air along the ray to the ground or the top, for a
+ * table of rays whose surfaces the renderer finds itself (method fast's sky-view LUT). */
+ATMO_FN void medium_integrate_air(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                  const medium_ray *ray, float t0, float t1, int n, float jitter,
+                                  int use_ms, medium_result *out)
+{
+    medium_integrate_any(s, ATMO_LUT_ARGS, ray, t0, t1, n, jitter, use_ms, 0, out);
 }
 
 /* The parts put together: L = sum_k p_k(nu) single[k] + rest. */
