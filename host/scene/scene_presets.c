@@ -26,7 +26,10 @@
  * the open box from above and bounces inside it.
  * Thesis 4, 5, 6, 8 and 9 have the fBm cloud layer (with method march, which it needs, the
  * thesis' far plane for clouds as clouds.max_distance_m, and a noise seed that gives each view
- * what the thesis' shows: seed 5 a deck under view 5's glory, seed 47 scattered cumulus around
+ * what the thesis' shows: seed 0 a deck under view 5's glory (the march of
+ * tests/test_preset_clouds.c through 32 x 18 pixels reaches optical depth 1 in cloud on every
+ * ray of the lower half and 94 % of all; seed 5, that of views 4 and 9, leaves 64 % of the
+ * lower half clear, and 0 is the first seed to cover it), seed 47 scattered cumulus around
  * view 6's sun, where seed 0 puts view 6's camera inside a cloud; seed 55 clear air around
  * view 8's camera with clouds under 31 % of its view and terrain under the rest, where seed 5
  * hides all of its terrain under cloud: tests/test_preset_clouds.c measures both, and of
@@ -156,7 +159,7 @@ const atmo_preset atmo_presets[] = {
            "camera.kind=perspective", "camera.position_m=61950,42398,-83371",
            "camera.pitch_deg=-34", "camera.yaw_deg=-549", "camera.fov_deg=45",
            "sun.zenith_deg=35.396615", "sun.azimuth_deg=0",
-           "clouds.enabled=true", "clouds.seed=5", "clouds.max_distance_m=2e5",
+           "clouds.enabled=true", "clouds.seed=0", "clouds.max_distance_m=2e5",
            "atmosphere.method=march"),
     PRESET("thesis-6",
            "thesis view 6: sky with the sun and clouds, lens flare, bright cloud "
