@@ -99,17 +99,11 @@ ATMO_FN vec3 noise_rotate(vec3 x)
               -0.780487805f * x.x + 0.585365854f * x.y - 0.219512195f * x.z);
 }
 
-/* The lattice offset o_i of octave i: multiples of 1/4 cell, exact in float. */
-ATMO_FN float noise_octave_offset(int i)
-{
-    return (float)(i * 37) + 0.25f * (float)(i & 3);
-}
-
-/* The point of octave i's lattice for the octave's turned point y = (2 R)^i R x: y + (o, -o,
- * o / 2) with o = o_i. */
+/* The point of octave i's lattice for the octave's turned point y = (2 R)^i R x: y + o_i with
+ * o_i = (o, -o, o / 2), o = 37 i + (i mod 4) / 4 (multiples of 1/4 cell, exact in float). */
 ATMO_FN vec3 noise_octave_point(vec3 y, int i)
 {
-    float o = noise_octave_offset(i);
+    float o = (float)(i * 37) + 0.25f * (float)(i & 3);
     return v3(y.x + o, y.y - o, y.z + 0.5f * o);
 }
 
