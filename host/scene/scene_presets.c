@@ -26,12 +26,16 @@
  * the open box from above and bounces inside it.
  * Thesis 4, 5, 6, 8 and 9 have the fBm cloud layer (with method march, which it needs, the
  * thesis' far plane for clouds as clouds.max_distance_m, and a noise seed that gives each view
- * what the thesis' shows: seed 5 a deck under view 5's glory, seed 47 scattered cumulus around
- * view 6's sun, where seed 0 puts view 6's camera inside a cloud; seed 11 clear air around
- * view 8's camera with clouds under 38 % of its view and terrain under the rest, where seed 5
+ * what the thesis' shows: seed 0 a deck under view 5's glory (the march of
+ * tests/test_preset_clouds.c through 32 x 18 pixels reaches optical depth 1 in cloud on every
+ * ray of the lower half and 94 % of all; seed 5, that of views 4 and 9, leaves 64 % of the
+ * lower half clear, and 0 is the first seed to cover it), seed 47 scattered cumulus around
+ * view 6's sun, where seed 0 puts view 6's camera inside a cloud; seed 55 clear air around
+ * view 8's camera with clouds under 31 % of its view and terrain under the rest, where seed 5
  * hides all of its terrain under cloud: tests/test_preset_clouds.c measures both, and of
- * seeds 0-24 only 6, 11 and 22 show both, the others all cloud or all terrain, as the
- * coverage field's 500 km features lie over the whole view).
+ * seeds 0-89 only 17, 38, 44, 47 and 55 show both (cloud under 24, 66, 26, 18 and 31 % of
+ * the view), the others at least 87 % cloud or 87 % terrain, as the coverage field's 500 km
+ * features lie over the whole view).
  * Views 1, 2, 3, 8 and 9 and `space` have the procedural terrain (docs/guide/terrain.md). The
  * thesis views' seed 7 puts land under every thesis camera and snow-capped mountains of up to
  * 3.9 km in view 1 (tests/test_terrain_thesis.c), its camera 330 m above the ground (`atmo
@@ -155,7 +159,7 @@ const atmo_preset atmo_presets[] = {
            "camera.kind=perspective", "camera.position_m=61950,42398,-83371",
            "camera.pitch_deg=-34", "camera.yaw_deg=-549", "camera.fov_deg=45",
            "sun.zenith_deg=35.396615", "sun.azimuth_deg=0",
-           "clouds.enabled=true", "clouds.seed=5", "clouds.max_distance_m=2e5",
+           "clouds.enabled=true", "clouds.seed=0", "clouds.max_distance_m=2e5",
            "atmosphere.method=march"),
     PRESET("thesis-6",
            "thesis view 6: sky with the sun and clouds, lens flare, bright cloud "
@@ -172,11 +176,11 @@ const atmo_preset atmo_presets[] = {
            "render.mode=path", "path.bounces=5"),
     PRESET("thesis-8",
            "thesis view 8: over clouds and terrain at moderate sun" THESIS_CLOUDS_TERRAIN
-           " (cloud seed 11: clear air at the camera, cloud under about 40 % of the view)",
+           " (cloud seed 55: clear air at the camera, cloud under about a third of the view)",
            "camera.kind=perspective", "camera.position_m=7866,5837,-143910", "camera.pitch_deg=-29",
            "camera.yaw_deg=-535", "camera.fov_deg=45", "sun.zenith_deg=81.435892",
            "sun.azimuth_deg=-170.007181",
-           "clouds.enabled=true", "clouds.seed=11", "clouds.max_distance_m=1e5",
+           "clouds.enabled=true", "clouds.seed=55", "clouds.max_distance_m=1e5",
            "atmosphere.method=march", "terrain.enabled=true", THESIS_MOUNTAINS),
     PRESET("thesis-9", "thesis view 9: high-altitude sunset over clouds" THESIS_CLOUDS_TERRAIN,
            "camera.kind=perspective", "camera.position_m=18181,37415,3431", "camera.pitch_deg=-16",

@@ -21,9 +21,10 @@
  * clouds.lod, from the plan; 0 with clouds.lod = 0): cloud_noise.h's noise_fbm_lod replaces
  * the octaves finer than F (in lattice units of the axis of highest frequency) by their mean.
  * The threshold c - fbm then moves only where the unresolved octaves would have moved it both
- * ways, so the fraction of a region under cloud is kept (the mean of a far view within 0.4 % of
- * the point-sampled one on thesis-4, docs/notes/clouds-lod.md), where the expected density over
- * the footprint would spread opaque cloud over every partly covered pixel (12 % brighter). The
+ * ways, so the fraction of a region under cloud is kept (the mean of a far view within 2 % of
+ * the point-sampled one on thesis-4 and thesis-5, tests/test_clouds_lod.c; how much depends on
+ * the view, docs/notes/clouds-lod.md), where the expected density over the footprint would
+ * spread opaque cloud over every partly covered pixel (12 % brighter). The
  * filtered fBm stays in [0, 1), so d <= density c^sharpness still bounds it for the majorants.
  * The coverage field is not filtered: its finest cells (coverage_scale_m / 8) are wider than a
  * pixel's footprint within the far planes. The path tracer's bounces and the light march

@@ -26,15 +26,19 @@
  *     any bound n_max of fbm_4 over the box; the smaller of two bounds is used:
  *     (a) value noise is a convex combination of the 8 lattice values around its point (the
  *     quintic fade's weights lie in [0, 1]), so over a box it is at most the largest lattice
- *     value of the lattice points of the cells the box touches; per octave (its lattice offset
- *     and scale as cloud_noise.h applies them) the box's axis-aligned bound in noise space
- *     gives those points, and an octave whose box holds more than CLOUDS_GRID_LATTICE_MAX of
- *     them is bounded by 1: n_max = sum_i a_i v_i,max / sum_i a_i;
- *     (b) Lipschitz: along each axis the trilinear blend's derivative is s'(f) times a blend
- *     of differences of values in [0, 1), and |s'(f)| = 30 f^2 (1 - f)^2 <= 15/8, so octave i
- *     (scale 2^i f_c, weight a_i = 2^-i) moves by at most 15/8 2^i f_c per metre and axis, and
- *     n_max = fbm_4(centre) + 15/8 f_c (sum_i a_i 2^i / sum_i a_i) |half-size|_1 (+ 1e-5 for
- *     the rounding of the centre's value). The coverage field's features are hundreds of km
+ *     value of the lattice points of the cells the box touches; octave i samples its lattice
+ *     at the turned point (2 R)^i R f_c x + o_i (cloud_noise.h's octave rotation R), so the
+ *     cell's box (centre +- its half-size, world axes) maps into the axis-aligned box of that
+ *     octave's lattice centred on the centre's turned point with half-size 2^i |R^(i+1)| f_c
+ *     ext (the bounding box of the turned box: |M| the entries' absolute values), grown for
+ *     the coordinates' rounding; an octave whose box holds more than CLOUDS_GRID_LATTICE_MAX
+ *     lattice points is bounded by 1: n_max = sum_i a_i v_i,max / sum_i a_i;
+ *     (b) Lipschitz: along each lattice axis the trilinear blend's derivative is s'(f) times a
+ *     blend of differences of values in [0, 1), and |s'(f)| = 30 f^2 (1 - f)^2 <= 15/8 per
+ *     lattice unit, so between the centre's turned point and any other point of the same
+ *     lattice box octave i moves by at most 15/8 times the box's half-size summed over the
+ *     three axes, H_i: n_max = fbm_4(centre) + 15/8 sum_i a_i H_i / sum_i a_i (+ 1e-5 for the
+ *     rounding of the centre's value). The coverage field's features are hundreds of km
  *     wide, so (b) is within a few hundredths of the field over a cell of a few km.
  * The bound is multiplied by 1 + 1e-4 for the rounding of the kernels' powf and products (a few
  * ulp). The shape fBm's lower bound (it would need the warp's reach, 3 km, around each box) is
@@ -63,8 +67,9 @@
 #define CLOUDS_GRID_MARGIN_M 16.0f         /* each cell's bound covers its box grown by this */
 #define CLOUDS_GRID_ALTITUDE_MARGIN_M 16.0f
 #define CLOUDS_GRID_LATTICE_MAX 512        /* lattice points per octave and cell, else bound 1 */
-#define CLOUDS_GRID_LATTICE_MARGIN 1e-3f   /* lattice units, relative above 1000: the rounding
-                                              of the noise's coordinates (1e-7 relative) */
+#define CLOUDS_GRID_LATTICE_MARGIN 1e-3f   /* lattice units, relative above |y|_1 = 100: the
+                                              rounding of the noise's coordinates (a few 1e-6
+                                              relative, clouds_grid_lattice_margin) */
 #define CLOUDS_GRID_ROUNDING 1.0001f
 
 typedef struct clouds_grid_frame {
@@ -107,22 +112,28 @@ ATMO_FN float clouds_grid_altitude(float R, float q2, float y)
     return (q2 + y * (y + 2.0f * R)) / (r + R);
 }
 
-/* How far the rounding of noise_fbm's coordinates may move a lattice coordinate near x. */
-ATMO_FN float clouds_grid_lattice_margin(float x)
+/* |v| per component. */
+ATMO_FN vec3 clouds_grid_abs(vec3 v)
 {
-    return CLOUDS_GRID_LATTICE_MARGIN * (1.0f + 1e-3f * fabsf(x));
+    return v3(fabsf(v.x), fabsf(v.y), fabsf(v.z));
+}
+
+/* How far the rounding of noise_fbm's coordinates may move a lattice coordinate of a point y of
+ * an octave's lattice: f_c x and each of the (at most CLOUDS_COVERAGE_OCTAVES) turns by R round
+ * by a few ulp of |y| (3 products and 2 sums of terms at most |y|: 3.1e-7 |y| per turn, 1.3e-6
+ * |y| after four, 2.6e-6 |y| between two points), under CLOUDS_GRID_LATTICE_MARGIN
+ * (1 + 1e-2 |y|_1). */
+ATMO_FN float clouds_grid_lattice_margin(vec3 y)
+{
+    return CLOUDS_GRID_LATTICE_MARGIN * (1.0f + 1e-2f * (fabsf(y.x) + fabsf(y.y) + fabsf(y.z)));
 }
 
 /* The largest lattice value (cloud_noise.h) over the lattice points of the cells that the noise
  * coordinates in [lo, hi] touch; 1 when they are more than CLOUDS_GRID_LATTICE_MAX. */
 ATMO_FN float clouds_grid_lattice_max(vec3 lo, vec3 hi, uint seed)
 {
-    int i0 = (int)floorf(lo.x - clouds_grid_lattice_margin(lo.x));
-    int j0 = (int)floorf(lo.y - clouds_grid_lattice_margin(lo.y));
-    int l0 = (int)floorf(lo.z - clouds_grid_lattice_margin(lo.z));
-    int i1 = (int)floorf(hi.x + clouds_grid_lattice_margin(hi.x)) + 1;
-    int j1 = (int)floorf(hi.y + clouds_grid_lattice_margin(hi.y)) + 1;
-    int l1 = (int)floorf(hi.z + clouds_grid_lattice_margin(hi.z)) + 1;
+    int i0 = (int)floorf(lo.x), j0 = (int)floorf(lo.y), l0 = (int)floorf(lo.z);
+    int i1 = (int)floorf(hi.x) + 1, j1 = (int)floorf(hi.y) + 1, l1 = (int)floorf(hi.z) + 1;
     if ((i1 - i0 + 1) * (j1 - j0 + 1) * (l1 - l0 + 1) > CLOUDS_GRID_LATTICE_MAX)
         return 1.0f;
     float m = 0.0f;
@@ -133,38 +144,44 @@ ATMO_FN float clouds_grid_lattice_max(vec3 lo, vec3 hi, uint seed)
     return m;
 }
 
-/* A bound on the coverage fBm (clouds_coverage_field's fbm_4) over the world noise points in
- * [lo, hi], with the octaves' scales and offsets of noise_fbm. */
-ATMO_FN float clouds_grid_coverage_fbm_max(ATMO_GLOBAL const atmo_gpu_clouds *c, vec3 lo, vec3 hi)
+/* A bound on the coverage fBm (clouds_coverage_field's fbm_4) over the world noise points
+ * centre +- ext: the smaller of (a) and (b) (see the top of the file). Octave i of the fBm at
+ * the noise point u = f_c x is value noise at y_i + o_i, y_i = (2 R)^i R u (cloud_noise.h); over
+ * the box u_c +- E (u_c = f_c centre, E = f_c ext) y_i lies in the axis-aligned box
+ * y_i(u_c) +- 2^i |R^(i+1)| E, |M| the entries' absolute values (each coordinate of M d is a
+ * sum of M's entries times d's, |d| <= E). R^(i+1)'s columns are the unit vectors turned i + 1
+ * times by noise_rotate, in float (a relative 1e-6 off the exact product, under the factor
+ * 1.0001 on E); the box is grown by clouds_grid_lattice_margin for the rounding of the noise's
+ * coordinates. */
+ATMO_FN float clouds_grid_coverage_fbm_bound(ATMO_GLOBAL const atmo_gpu_clouds *c, vec3 centre,
+                                            vec3 ext)
 {
-    float sum = 0.0f, norm = 0.0f, amp = 1.0f, scale = c->frequency.w;
+    float sum = 0.0f, slope = 0.0f, norm = 0.0f, amp = 1.0f, scale = 1.0f;
     uint seed = c->seed ^ 0x5bd1e995u;
+    vec3 u = v3_scale(centre, c->frequency.w), e = v3_scale(ext, c->frequency.w * 1.0001f);
+    vec3 y = noise_rotate(u);
+    vec3 cx = noise_rotate(v3(1.0f, 0.0f, 0.0f)), cy = noise_rotate(v3(0.0f, 1.0f, 0.0f));
+    vec3 cz = noise_rotate(v3(0.0f, 0.0f, 1.0f));
     for (int i = 0; i < CLOUDS_COVERAGE_OCTAVES; i++) {
-        float o = (float)(i * 37) + 0.25f * (float)(i & 3);
-        vec3 off = v3(o, -o, 0.5f * o);
-        vec3 a = v3_add(v3_scale(lo, scale), off), b = v3_add(v3_scale(hi, scale), off);
-        sum += amp * clouds_grid_lattice_max(a, b, seed + (uint)i);
+        vec3 mid = noise_octave_point(y, i);
+        float m = clouds_grid_lattice_margin(mid);
+        vec3 hw = v3_add(v3_scale(v3_add(v3_add(v3_scale(clouds_grid_abs(cx), e.x),
+                                                  v3_scale(clouds_grid_abs(cy), e.y)),
+                                           v3_scale(clouds_grid_abs(cz), e.z)),
+                                    scale),
+                           v3(m, m, m));
+        sum += amp * clouds_grid_lattice_max(v3_sub(mid, hw), v3_add(mid, hw), seed + (uint)i);
+        slope += amp * (hw.x + hw.y + hw.z);
         norm += amp;
         amp *= 0.5f;
         scale *= 2.0f;
+        y = noise_rotate(v3_scale(y, 2.0f));
+        cx = noise_rotate(cx), cy = noise_rotate(cy), cz = noise_rotate(cz);
     }
-    return sum / norm;
-}
-
-/* The Lipschitz bound (b) on the coverage fBm over the box centre +- ext (world noise points). */
-ATMO_FN float clouds_grid_coverage_fbm_lipschitz(ATMO_GLOBAL const atmo_gpu_clouds *c, vec3 centre,
-                                                 vec3 ext)
-{
-    float slope = 0.0f, norm = 0.0f, amp = 1.0f, scale = 1.0f;
-    for (int i = 0; i < CLOUDS_COVERAGE_OCTAVES; i++) {
-        slope += amp * scale;
-        norm += amp;
-        amp *= 0.5f;
-        scale *= 2.0f;
-    }
-    float n = noise_fbm(v3_scale(centre, c->frequency.w), CLOUDS_COVERAGE_OCTAVES,
-                        c->seed ^ 0x5bd1e995u);
-    return n + 1.875f * c->frequency.w * slope / norm * (ext.x + ext.y + ext.z) * 1.0001f + 1e-5f;
+    /* (b): the fBm at the centre plus, per octave, its slope bound 15/8 per lattice unit along
+     * each of its axes times its box's half-size (1e-5 for the rounding of the centre's value) */
+    float n = noise_fbm(u, CLOUDS_COVERAGE_OCTAVES, seed);
+    return fminf(sum / norm, n + 1.875f * slope / norm * 1.0001f + 1e-5f);
 }
 
 /* The bound on the density over cell (i, j, k) of the grid (see the top of the file). */
@@ -196,8 +213,7 @@ ATMO_FN float clouds_grid_cell_bound(ATMO_GLOBAL const atmo_gpu_scene *s,
     vec3 ext = v3_add(v3_add(v3_scale(v3(fabsf(f->ax.x), fabsf(f->ax.y), fabsf(f->ax.z)), size.x),
                              v3_scale(v3(fabsf(f->ay.x), fabsf(f->ay.y), fabsf(f->ay.z)), size.y)),
                       v3_scale(v3(fabsf(f->az.x), fabsf(f->az.y), fabsf(f->az.z)), size.z));
-    float n = fminf(clouds_grid_coverage_fbm_max(c, v3_sub(centre, ext), v3_add(centre, ext)),
-                    clouds_grid_coverage_fbm_lipschitz(c, centre, ext));
+    float n = clouds_grid_coverage_fbm_bound(c, centre, ext);
     float field = clamp(CLOUDS_COVERAGE_CONTRAST * (n - 0.5f) + c->coverage, 0.0f, 1.0f);
     float cov = field * fade;
     return cov > 0.0f ? c->density * powf(cov, c->sharpness) * CLOUDS_GRID_ROUNDING : 0.0f;
