@@ -43,10 +43,16 @@ static int objects_preview(const atmo_scene *s) { return has_objects(s) && !path
 /* a heightmap file is drawn as terrain, so it implies terrain.enabled */
 static int has_terrain(const atmo_scene *s) { return s->terrain.enabled || s->dem.file[0]; }
 static int terrain_surface(const atmo_scene *s) { return has_terrain(s) && !path_mode(s); }
+/* the terrain as an occluder of the sun at points of the media (light shafts) */
+static int terrain_air_shadows(const atmo_scene *s)
+{
+    return has_terrain(s) && s->terrain.air_shadows;
+}
 /* the sun-height map of the view rays' sun queries; the path tracer marches */
 static int terrain_sun_map(const atmo_scene *s)
 {
-    return has_terrain(s) && !path_mode(s) && s->terrain.sun_visibility == ATMO_TERRAIN_SUN_BY_MAP;
+    return terrain_air_shadows(s) && !path_mode(s) &&
+           s->terrain.sun_visibility == ATMO_TERRAIN_SUN_BY_MAP;
 }
 static int path_water(const atmo_scene *s) { return path_mode(s) && has_terrain(s); }
 static int terrain_stage(const atmo_scene *s)
@@ -235,12 +241,13 @@ static const char *const terrain_fragments[] = {"kernels/terrain/noise.h",
                                                 "kernels/terrain/terrain_material.h",
                                                 "kernels/terrain/heightmap.cl", NULL};
 /* the terrain's light, which takes the method's sky irradiance from the media's composition;
- * its shadows, after the objects' (their order is that of the samples its shortcuts remember),
- * and its surface, which the path tracer traces itself */
+ * its shadows in the media, after the objects' (their order is that of the samples its
+ * shortcuts remember), unless terrain.air_shadows is off; and its surface, which the path
+ * tracer traces itself */
 static const char *const terrain_light_fragments[] = {"kernels/terrain/terrain_shade.h", NULL};
-static const atmo_slots terrain_light_slots = {.ray_occluder = "terrain_shafts_sun_visibility",
-                                               .ray_state = "terrain_shafts",
-                                               .ray_begin = "terrain_shafts_begin"};
+static const atmo_slots terrain_shadow_slots = {.ray_occluder = "terrain_shafts_sun_visibility",
+                                                .ray_state = "terrain_shafts",
+                                                .ray_begin = "terrain_shafts_begin"};
 static const atmo_slots terrain_surface_slots = {.surface_hit = "terrain_surface_hit",
                                                  .surface_radiance = "terrain_radiance"};
 static const atmo_gpu_field terrain_params[] = {ATMO_GPU_FIELD(terrain.field), {0, 0}};
@@ -350,7 +357,9 @@ const atmo_feature atmo_features[] = {
     {"objects_preview", -1, objects_preview, objects_preview_fragments, "-DATMO_OBJECTS_PREVIEW",
      NULL, NULL, NULL, NULL, 0, &objects_preview_slots, 0},
     {"terrain_light", -1, has_terrain, terrain_light_fragments, "", NULL, NULL, NULL, NULL, 0,
-     &terrain_light_slots, 0},
+     NULL, 0},
+    {"terrain_shadow", -1, terrain_air_shadows, NULL, "", NULL, NULL, NULL, NULL, 0,
+     &terrain_shadow_slots, 0},
     {"terrain_surface", -1, terrain_surface, NULL, "", NULL, NULL, NULL, NULL, 0,
      &terrain_surface_slots, 0},
     {"compose_surfaces", -1, always, NULL, "", NULL, NULL, NULL, NULL, 0, NULL,

@@ -300,6 +300,10 @@ const atmo_param atmo_params[] = {
             "2 samples beyond terrain.shadow_far_m = lit, 4 within 400 m of a shadowed "
             "surface = shadowed, 8 every 6th sample away from the sun, 16 shadow march from "
             "0.6 of the way to the surface, 32 shadowed beyond half the path = rest shadowed"),
+    ROW_BOOL("terrain.air_shadows", terrain.air_shadows, 1,
+             "terrain shadows in the air (light shafts) and on the clouds and the preview's "
+             "objects: false leaves the terrain out of the sun's occluders at those points; "
+             "the terrain's own surface keeps its shadows"),
     ROW_ENUM("terrain.sun_visibility", terrain.sun_visibility, terrain_sun_names,
              ATMO_TERRAIN_SUN_BY_MAP,
              "how points of view rays (aerial perspective, light shafts) ask the terrain for "

@@ -202,6 +202,7 @@ typedef struct atmo_scene {
         int shadow_rays, shadow_steps;
         double shadow_far_m;
         int shafts;            /* bit set of ATMO_TERRAIN_SHAFT_* */
+        int air_shadows;       /* the terrain shadows the sun at points of the media */
         int sun_visibility;    /* ATMO_TERRAIN_SUN_BY_* */
         int sun_map_size;      /* the sun-height map's texels per side */
         double sun_map_extent_m;
