@@ -26,7 +26,9 @@
  * and for path.clouds = march and volume alike): a transmittance-weighted average, not the
  * first scattering. A ray's values are
  *     albedo = (1 - T) w + T a_behind,   normal = (1 - T_y) (-dir) + T_y n_behind
- * per channel, T = e^{-tau} the view transmittance through the clouds in front of the first
+ * per channel, T = e^{-tau} the view transmittance through the clouds that the image shows
+ * (not the method's under the path tracer's uniform sky or before a surface nearer than its
+ * PATH_AIR_MIN_M, which the path tracer does not march) in front of the first
  * surface (all of them for a ray that meets none), w the clouds' single-scattering albedo
  * (the media's weighted by their optical depths), a_behind and n_behind the surface's values
  * or the sky's (1 and 0). T and w are integrated on the first ray of each 2 x 2 block of the
@@ -109,9 +111,16 @@ float3 guides_clouds(__global const atmo_gpu_scene *scene, const medium_ray *ray
 {
     float3 tau = (float3)(0.0f), tau_albedo = (float3)(0.0f);
     float lo[2], hi[2];
+    /* the method's media: not in the path tracer's uniform world (path.sky = uniform), where
+     * only a volume medium (path.clouds = volume, MEDIA_VOLUME) scatters, */
+    int method_media = 1;
+#ifdef ATMO_PATH
+    /* nor on a segment shorter than PATH_AIR_MIN_M to its surface (path.h) */
+    method_media = scene->path.sky != ATMO_PATH_SKY_UNIFORM && t_end >= PATH_AIR_MIN_M;
+#endif
 #ifdef ATMO_CLOUD
     float chord = 0.0f;
-    int n = cloud_shell_intervals(scene, ray, 0.0f, t_end, lo, hi);
+    int n = method_media ? cloud_shell_intervals(scene, ray, 0.0f, t_end, lo, hi) : 0;
     for (int k = 0; k < n; k++)
         chord += hi[k] - lo[k];
     float3 shell = scene->cloud.extinction.xyz * chord;
@@ -120,8 +129,11 @@ float3 guides_clouds(__global const atmo_gpu_scene *scene, const medium_ray *ray
 #endif
 #ifdef ATMO_CLOUDS
     __global const atmo_gpu_clouds *c = &scene->clouds;
-    int parts = clouds_shell_parts(scene->atmosphere.bottom_radius, c->bottom_m, c->top_m, ray->r,
-                                   ray->mu, 0.0f, t_end, lo, hi);
+    /* flags of 0 or 1 joined bitwise: a composed constant in a logical operator is a warning */
+    int parts = method_media | (MEDIA_VOLUME > 0)
+                    ? clouds_shell_parts(scene->atmosphere.bottom_radius, c->bottom_m, c->top_m,
+                                         ray->r, ray->mu, 0.0f, t_end, lo, hi)
+                    : 0;
     float D = 0.0f;
     for (int k = 0; k < parts; k++)
         D += clouds_view_density(scene, ray, lo[k], hi[k],
