@@ -20,8 +20,8 @@
  *     scene's measured factor. The issue's expectation of 3x is met on the sky scene only.
  *     The fog (a cloud shell of tau about 0.1-1 along the view over the terrain scene, the
  *     sky the atmosphere's, so the path tracer marches the shell on every segment): 7.36x with
- *     the guides (8.42x colour alone). Its raw error is carried by a few bright pixels (the
- *     sea's glints through the fog), so it varies more: over raw seeds 2-5 against the same
+ *     the guides (8.42x colour alone). Its raw error is carried by a few bright pixels
+ *     (fireflies of the 4-spp paths), so it varies more: over raw seeds 2-5 against the same
  *     reference the factor measured 7.36, 6.25, 3.82 and 4.69, and FACTOR_FOG, 3 (the issue's
  *     expectation), lies below the least of them.
  *   - The guides help: e(guided) <= e(colour alone) on the sky and objects scenes (measured

@@ -130,7 +130,7 @@ float3 guides_clouds(__global const atmo_gpu_scene *scene, const medium_ray *ray
 #ifdef ATMO_CLOUDS
     __global const atmo_gpu_clouds *c = &scene->clouds;
     /* flags of 0 or 1 joined bitwise: a composed constant in a logical operator is a warning */
-    int parts = method_media | (MEDIA_VOLUME > 0)
+    int parts = (method_media | (MEDIA_VOLUME > 0))
                     ? clouds_shell_parts(scene->atmosphere.bottom_radius, c->bottom_m, c->top_m,
                                          ray->r, ray->mu, 0.0f, t_end, lo, hi)
                     : 0;
