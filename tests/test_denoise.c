@@ -19,17 +19,17 @@
  *     about 6 % (sqrt(2 / 300) per sum), so each FACTOR_ lies three of those (18 %) below its
  *     scene's measured factor. The issue's expectation of 3x is met on the sky scene only.
  *     The fog (a cloud shell of tau about 0.1-1 along the view over the terrain scene, the
- *     sky the atmosphere's, so the path tracer marches the shell on every segment): 7.36x with
+ *     sky the atmosphere's, so the path tracer marches the shell on every segment): 7.51x with
  *     the guides (8.42x colour alone). Its raw error is carried by a few bright pixels
  *     (fireflies of the 4-spp paths), so it varies more: over raw seeds 2-5 against the same
- *     reference the factor measured 7.36, 6.25, 3.82 and 4.69, and FACTOR_FOG, 3 (the issue's
+ *     reference the factor measured 7.51, 6.23, 3.83 and 4.62, and FACTOR_FOG, 3 (the issue's
  *     expectation), lies below the least of them.
  *   - The guides help: e(guided) <= e(colour alone) on the sky and objects scenes (measured
  *     0.78 and 0.77 of it; the ratio's estimate varies by about 8 %), and at most 1.25 of it
- *     on the terrain, the limb and the fog, where they measured 1.02, 0.91 and 1.14 (0.92 to
- *     1.14 over the fog's four seeds: no worse within three of those). On the fog the
+ *     on the terrain, the limb and the fog, where they measured 1.02, 0.91 and 1.12 (0.91 to
+ *     1.12 over the fog's four seeds: no worse within three of those). On the fog the
  *     clouds' share of the guides (guides.cl: transmittance-weighted) lowers the guided error
- *     to 0.84-0.89 of what guides that see through the fog gave, seed by seed.
+ *     to 0.84-0.90 of what guides that see through the fog gave, seed by seed.
  *   - Edges: on the band of pixels where a surface's silhouette against the sky lies (a pixel
  *     and its 8 neighbours disagree on whether the reference's samples mostly hit a surface),
  *     the error of the denoised image does not exceed the raw image's (the same estimate on the

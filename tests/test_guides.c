@@ -26,7 +26,7 @@
  * seen in the preview from 3000 m looking down at the ground sphere (albedo 0.25) and from
  * 500 m looking up at the sky. Each guide ray's values are (guides.cl)
  *     albedo_c = (1 - e^{-tau_c}) w_c + e^{-tau_c} a_behind,
- *     normal = (1 - e^{-tau_y}) (-d) + e^{-tau_y} n_behind,   tau_c = sigma_c L,
+ *     normal = e^{-tau_y} n_behind,   tau_c = sigma_c L,
  * L the ray's chord through the shell (double precision: the lengths of the ray inside the two
  * spheres before the ground), taken on the first ray of each 2 x 2 block of the 8 x 8 pattern
  * (the preview's box at the cell centres), a_behind, n_behind the ground's (0.25, its sphere's
@@ -305,7 +305,7 @@ static void shell_ray(double r, const double *db, const double *d, const float *
         }
         for (int c = 0; c < 3; c++) {
             a[c] += (1.0 - T[c]) * w[c] + T[c] * ab;
-            n[c] += T[1] * nb[c] - (1.0 - T[1]) * d[c];
+            n[c] += T[1] * nb[c];
         }
     }
 }

@@ -25,7 +25,7 @@
  * Volumes (the cloud shell, -DATMO_CLOUD; the fBm cloud layer, -DATMO_CLOUDS; in every mode
  * and for path.clouds = march and volume alike): a transmittance-weighted average, not the
  * first scattering. A ray's values are
- *     albedo = (1 - T) w + T a_behind,   normal = (1 - T_y) (-dir) + T_y n_behind
+ *     albedo = (1 - T) w + T a_behind,   normal = T_y n_behind
  * per channel, T = e^{-tau} the view transmittance through the clouds that the image shows
  * (not the method's under the path tracer's uniform sky or before a surface nearer than its
  * PATH_AIR_MIN_M, which the path tracer does not march) in front of the first
@@ -41,9 +41,11 @@
  * where it is one in the image, and a thin veil keeps the terrain's texture in the guide. The
  * first significant scattering is a random point (noise in the guide) or, taken as the point
  * of optical depth 1, a hard switch between cloud and ground where the image blends them. The
- * cloud's normal is the negative view direction: a cloud has no surface, its multiple
- * scattering follows no local normal, and facing the camera marks "a scatterer here" apart
- * from the sky's 0 (the density's gradient was not tried). The optical depth is the shell's
+ * cloud's own normal is 0, OIDN's "no surface": a cloud has no surface and its multiple
+ * scattering follows no local normal, so the filter takes a cloud's shading from the colour
+ * as it takes the sky's (a normal facing the camera, the negative view direction, measured
+ * 6.51 % against 6.28 % on thesis-8's preview, docs/guide/denoise.md; the density's gradient
+ * was not tried). The optical depth is the shell's
  * chord (closed form) and the layer's density integral on its marcher's steps at their
  * midpoints (cloud_layer.h's clouds_view_density): no random number either.
  *
@@ -188,7 +190,7 @@ __kernel void guide_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS
             }
             float3 T = block_t[b];
             a += T * behind_albedo + ((float3)(1.0f) - T) * block_albedo[b];
-            n += T.y * behind_normal - (1.0f - T.y) * dir;
+            n += T.y * behind_normal;
         }
     }
     float inv = 1.0f / (float)(GUIDES_GRID * GUIDES_GRID);
