@@ -26,28 +26,27 @@
  * and for path.clouds = march and volume alike): a transmittance-weighted average, not the
  * first scattering. A ray's values are
  *     albedo = (1 - T) w + T a_behind,   normal = T_y n_behind
- * per channel, T = e^{-tau} the view transmittance through the clouds that the image shows
- * (not the method's under the path tracer's uniform sky or before a surface nearer than its
- * PATH_AIR_MIN_M, which the path tracer does not march) in front of the first
- * surface (all of them for a ray that meets none), w the clouds' single-scattering albedo
- * (the media's weighted by their optical depths), a_behind and n_behind the surface's values
- * or the sky's (1 and 0). T and w are integrated on the first ray of each 2 x 2 block of the
- * pattern and shared by the block's rays (GUIDES_CLOUD_STRIDE). For a homogeneous shell of optical depth tau along the ray this is
- * the closed form (1 - e^{-tau}) w + e^{-tau} a_behind (tests/test_guides.c). Why this: OIDN
- * documents its features as those of the first hit, noise-free and under the colour's pixel
- * filter, and warns that features seen through transparent surfaces do not help; a cloud
- * pixel's light is a blend of the cloud's and what lies behind in the proportions 1 - T and
- * T, and the guide blends the same way, so a cloud edge over terrain is an edge in the guide
- * where it is one in the image, and a thin veil keeps the terrain's texture in the guide. The
- * first significant scattering is a random point (noise in the guide) or, taken as the point
- * of optical depth 1, a hard switch between cloud and ground where the image blends them. The
- * cloud's own normal is 0, OIDN's "no surface": a cloud has no surface and its multiple
- * scattering follows no local normal, so the filter takes a cloud's shading from the colour
- * as it takes the sky's (a normal facing the camera, the negative view direction, measured
- * 6.51 % against 6.28 % on thesis-8's preview, docs/guide/denoise.md; the density's gradient
- * was not tried). The optical depth is the shell's
- * chord (closed form) and the layer's density integral on its marcher's steps at their
- * midpoints (cloud_layer.h's clouds_view_density): no random number either.
+ * per channel, T = e^{-tau} the view transmittance through the clouds that the image shows (not
+ * the method's under the path tracer's uniform sky or before a surface nearer than its
+ * PATH_AIR_MIN_M, which the path tracer does not march) in front of the first surface (all of
+ * them for a ray that meets none), w the clouds' single-scattering albedo (the media's weighted
+ * by their optical depths), a_behind and n_behind the surface's values or the sky's (1 and 0).
+ * T and w are integrated on the first ray of each 2 x 2 block of the pattern and shared by the
+ * block's rays (GUIDES_CLOUD_STRIDE). For a homogeneous shell of optical depth tau along the
+ * ray this is the closed form (1 - e^{-tau}) w + e^{-tau} a_behind (tests/test_guides.c). Why
+ * this: OIDN documents its features as those of the first hit, noise-free and under the
+ * colour's pixel filter, and warns that features seen through transparent surfaces do not help;
+ * a cloud pixel's light is a blend of the cloud's and what lies behind in the proportions 1 - T
+ * and T, and the guide blends the same way, so a cloud edge over terrain is an edge in the
+ * guide where it is one in the image, and a thin veil keeps the terrain's texture in the guide.
+ * The first significant scattering is a random point (noise in the guide) or, taken as the
+ * point of optical depth 1, a hard switch between cloud and ground where the image blends them.
+ * The cloud's own normal is 0, OIDN's "no surface": a cloud has no surface and its multiple
+ * scattering follows no local normal, so the filter takes a cloud's shading from the colour as
+ * it takes the sky's (a normal facing the camera did worse, docs/guide/denoise.md; the
+ * density's gradient was not tried). The optical depth is the shell's chord (closed form) and
+ * the layer's density integral on its marcher's steps at their midpoints (cloud_layer.h's
+ * clouds_view_density): no random number either.
  *
  * The sun's disc: the share of the pattern's rays that meet no surface and point into the
  * disc (cos of their angle to the sun >= sun_direction.w, the cosine of its angular radius),
