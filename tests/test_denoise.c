@@ -18,10 +18,18 @@
  *     the sum is carried by about a hundred pixels: the estimate of each factor then varies by
  *     about 6 % (sqrt(2 / 300) per sum), so each FACTOR_ lies three of those (18 %) below its
  *     scene's measured factor. The issue's expectation of 3x is met on the sky scene only.
+ *     The fog (a cloud shell of tau about 0.1-1 along the view over the terrain scene, the
+ *     sky the atmosphere's, so the path tracer marches the shell on every segment): 7.51x with
+ *     the guides (8.42x colour alone). Its raw error is carried by a few bright pixels
+ *     (fireflies of the 4-spp paths), so it varies more: over raw seeds 2-5 against the same
+ *     reference the factor measured 7.51, 6.23, 3.83 and 4.62, and FACTOR_FOG, 3 (the issue's
+ *     expectation), lies below the least of them.
  *   - The guides help: e(guided) <= e(colour alone) on the sky and objects scenes (measured
  *     0.78 and 0.77 of it; the ratio's estimate varies by about 8 %), and at most 1.25 of it
- *     on the terrain and the limb, where they measured 1.02 and 0.91 (no worse within three
- *     of those).
+ *     on the terrain, the limb and the fog, where they measured 1.02, 0.91 and 1.12 (0.91 to
+ *     1.12 over the fog's four seeds: no worse within three of those). On the fog the
+ *     clouds' share of the guides (guides.cl: transmittance-weighted) lowers the guided error
+ *     to 0.84-0.90 of what guides that see through the fog gave, seed by seed.
  *   - Edges: on the band of pixels where a surface's silhouette against the sky lies (a pixel
  *     and its 8 neighbours disagree on whether the reference's samples mostly hit a surface),
  *     the error of the denoised image does not exceed the raw image's (the same estimate on the
@@ -40,9 +48,13 @@
  * and the noisy image and the guides as its Blender-named layers, value for value.
  * Scenes (48 x 32 pixels, path mode): a clear sky over the planet's ground (the horizon is the
  * silhouette), procedural terrain seen from 600 m at a grazing angle under a uniform sky, the
- * planet from 2000 km (preset space: its limb against space is the silhouette), and a sphere
- * and a box on the ground under a uniform sky. A cloud view (path.clouds = volume) is not
- * among them: its 128-spp reference takes minutes on two cores. Without the library the test exits 77
+ * planet from 2000 km (preset space: its limb against space is the silhouette), the terrain
+ * under the atmosphere's sky with a thin fog shell from sea level to 300 m (cloud.enabled,
+ * method single: the cloud view; its reference at FOG_REF_SPP), and a sphere and a box on the
+ * ground under a uniform sky. The fBm layer is not among them: a thesis cloud view at this
+ * size takes about 1 s per sample on two cores (thesis-8: 52 s for a 64-spp reference), and
+ * there the filter gained little (thesis-8, 48 x 27, 4 spp against 64: 9.6 % raw, 8.95 %
+ * guided, 11.3 % colour alone). Without the library the test exits 77
  * saying how to install it (setup.sh installs it, so CI runs it). */
 #include <math.h>
 #include <stdlib.h>
@@ -64,6 +76,10 @@
 #define FACTOR_TERRAIN 1.65
 #define FACTOR_LIMB 1.95
 #define FACTOR_OBJECTS 2.2
+#define FACTOR_FOG 3.0
+/* the fog's reference: its march of the shell on every path segment costs about 0.2 s per
+ * sample per 48 x 32 frame, so 64 samples (its own variance is subtracted all the same) */
+#define FOG_REF_SPP 64
 #define NO_HIT_DEPTH_M 1e10
 
 typedef struct sums {
@@ -173,11 +189,11 @@ static void denoise(const atmo_render_result *raw, int quality, int guided, floa
 }
 
 /* The error factors of one scene; the reference is left in *ref for the caller. */
-static void check_scene(const char *name, const char *const *keys, double factor_min,
-                        double guided_vs_colour_max, atmo_render_result *ref)
+static void check_scene(const char *name, const char *const *keys, int ref_spp,
+                        double factor_min, double guided_vs_colour_max, atmo_render_result *ref)
 {
     atmo_render_result raw;
-    render_scene(keys, REF_SPP, 1, ref);
+    render_scene(keys, ref_spp, 1, ref);
     render_scene(keys, RAW_SPP, 2, &raw);
     float *out = malloc(sizeof(float) * 3 * W * H);
     unsigned char band[W * H];
@@ -328,14 +344,20 @@ int main(void)
         "terrain.enabled=true", "camera.position_m=0,600,0", "camera.pitch_deg=-8",
         "sun.zenith_deg=60", "path.sky=uniform", "path.uniform_sky=0.05,0.08,0.12",
         "path.bounces=2", NULL};
+    static const char *const fog[] = {
+        "terrain.enabled=true", "camera.position_m=0,600,0", "camera.pitch_deg=-8",
+        "sun.zenith_deg=60", "path.bounces=2", "cloud.enabled=true", "cloud.bottom_m=0",
+        "cloud.top_m=300", "cloud.lwc_g_m3=0.0005", "atmosphere.method=single", NULL};
     atmo_render_result ref;
-    check_scene("clear sky over the ground", sky, FACTOR_SKY, 1.0, &ref);
+    check_scene("clear sky over the ground", sky, REF_SPP, FACTOR_SKY, 1.0, &ref);
     atmo_render_result_free(&ref);
-    check_scene("terrain", terrain, FACTOR_TERRAIN, 1.25, &ref);
+    check_scene("terrain", terrain, REF_SPP, FACTOR_TERRAIN, 1.25, &ref);
     atmo_render_result_free(&ref);
-    check_scene("the planet's limb from 2000 km", limb, FACTOR_LIMB, 1.25, &ref);
+    check_scene("the planet's limb from 2000 km", limb, REF_SPP, FACTOR_LIMB, 1.25, &ref);
     atmo_render_result_free(&ref);
-    check_scene("objects", objects_keys, FACTOR_OBJECTS, 1.0, &ref);
+    check_scene("fog over the terrain", fog, FOG_REF_SPP, FACTOR_FOG, 1.25, &ref);
+    atmo_render_result_free(&ref);
+    check_scene("objects", objects_keys, REF_SPP, FACTOR_OBJECTS, 1.0, &ref);
     check_guides(&ref);
     check_exr_layers(&ref);
     atmo_render_result_free(&ref);

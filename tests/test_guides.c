@@ -20,7 +20,21 @@
  * camera have the ground's albedo and the vertical (0, 1, 0) to 1e-4 (they lie within 20 m of
  * the camera's foot: 3e-6 rad of the sphere's curvature). Oracle 3, exact: the guides carry no
  * noise: two renders with other seeds and sample counts give the same guides, bit for bit.
- * Preview (fast method) and path mode alike, 32 x 24 pixels. */
+ * Preview (fast method) and path mode alike, 32 x 24 pixels.
+ * Oracle 4, a closed form for a volume: a homogeneous cloud shell (cloud.enabled, extinction
+ * sigma_c and single-scattering albedo w_c per channel from the plan) between 1000 and 2000 m,
+ * seen in the preview from 3000 m looking down at the ground sphere (albedo 0.25) and from
+ * 500 m looking up at the sky. Each guide ray's values are (guides.cl)
+ *     albedo_c = (1 - e^{-tau_c}) w_c + e^{-tau_c} a_behind,
+ *     normal = e^{-tau_y} n_behind,   tau_c = sigma_c L,
+ * L the ray's chord through the shell (double precision: the lengths of the ray inside the two
+ * spheres before the ground), taken on the first ray of each 2 x 2 block of the 8 x 8 pattern
+ * (the preview's box at the cell centres), a_behind, n_behind the ground's (0.25, its sphere's
+ * normal at the hit) or the sky's (1, 0); the pixel's guide is the mean over the 64 rays. The
+ * liquid water content puts tau near 1 along the vertical (0.5 to 3 over the views), where
+ * the guide depends most on tau. Tolerance 5e-6: the float mean of 64 values below 1 (2e-6,
+ * as above) and the float chord's rounding (the roots are formed without cancellation: a few
+ * 1e-7 of 3 km, 1e-3 m, times sigma_c of about 1e-3 / m: 1e-6 in tau). */
 #include <math.h>
 #include <openexr.h>
 #include <stdlib.h>
@@ -240,6 +254,115 @@ static void check_sphere(const char *mode)
     free(g);
 }
 
+/* The length of the ray from (0, r, 0) along d, over [0, t_end], inside the sphere of radius a
+ * about the origin. */
+static double inside_sphere(double r, const double *d, double t_end, double a)
+{
+    double b = r * d[1], disc = b * b - (r - a) * (r + a);
+    if (disc < 0.0)
+        return 0.0;
+    double t0 = -b - sqrt(disc), t1 = -b + sqrt(disc);
+    return fmax(fmin(t1, t_end) - fmax(t0, 0.0), 0.0);
+}
+
+/* The unit direction of the preview's ray at the sub-pixel position (px, py) (pinhole, fov 45
+ * deg vertical, yaw 0). */
+static void pixel_ray(double px, double py, double pitch_deg, double d[3])
+{
+    double forward[3], right[3], up[3], th = tan(22.5 * M_PI / 180.0), n = 0.0;
+    atmo_camera_basis(pitch_deg, 0.0, forward, right, up);
+    double sx = (2.0 * px / W - 1.0) * th * W / H, sy = (1.0 - 2.0 * py / H) * th;
+    for (int k = 0; k < 3; k++)
+        d[k] = forward[k] + sx * right[k] + sy * up[k], n += d[k] * d[k];
+    for (int k = 0; k < 3; k++)
+        d[k] /= sqrt(n);
+}
+
+/* One guide ray's closed form (oracle 4) at camera radius r: albedo into a[], normal into n[],
+ * the cloud's transmittance from the block's ray direction db, the ray's own direction d. */
+static void shell_ray(double r, const double *db, const double *d, const float *sigma,
+                      const float *w, double *a, double *n)
+{
+    double R = GROUND_RADIUS_M, T[3];
+    for (int pass = 0; pass < 2; pass++) { /* the block's ray's chord, then the ray's surface */
+        const double *v = pass == 0 ? db : d;
+        double b = r * v[1], disc = b * b - (r - R) * (r + R);
+        double t_ground = disc >= 0.0 && -b - sqrt(disc) > 0.0 ? -b - sqrt(disc) : INFINITY;
+        if (pass == 0) {
+            double L = inside_sphere(r, v, t_ground, R + 2000.0) -
+                       inside_sphere(r, v, t_ground, R + 1000.0);
+            for (int c = 0; c < 3; c++)
+                T[c] = exp(-sigma[c] * L);
+            continue;
+        }
+        double nb[3] = {0.0, 0.0, 0.0}, ab = 1.0;
+        if (isfinite(t_ground)) {
+            double p[3] = {t_ground * d[0], r + t_ground * d[1], t_ground * d[2]};
+            double len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+            for (int k = 0; k < 3; k++)
+                nb[k] = p[k] / len;
+            ab = 0.25;
+        }
+        for (int c = 0; c < 3; c++) {
+            a[c] += (1.0 - T[c]) * w[c] + T[c] * ab;
+            n[c] += T[1] * nb[c];
+        }
+    }
+}
+
+/* Oracle 4 on one view: camera at altitude_m, pitch pitch_deg. */
+static void check_cloud_shell(double altitude_m, double pitch_deg)
+{
+    char pos[64], pitch[64];
+    snprintf(pos, sizeof pos, "camera.position_m=0,%g,0", altitude_m);
+    snprintf(pitch, sizeof pitch, "camera.pitch_deg=%g", pitch_deg);
+    const char *const keys[] = {"atmosphere.ground_albedo=0.25", "cloud.enabled=true",
+                                "cloud.bottom_m=1000", "cloud.top_m=2000",
+                                "cloud.lwc_g_m3=0.006", pos, pitch, NULL};
+    atmo_scene s;
+    test_scene_preset(&s, "sky-noon");
+    for (int i = 0; keys[i]; i++)
+        test_scene_set(&s, keys[i]);
+    atmo_plan p;
+    test_plan(&s, &p);
+    float sigma[3] = {p.gpu.cloud.extinction.x, p.gpu.cloud.extinction.y,
+                      p.gpu.cloud.extinction.z};
+    float w[3] = {p.gpu.cloud.albedo.x, p.gpu.cloud.albedo.y, p.gpu.cloud.albedo.z};
+    atmo_plan_free(&p);
+    float *g = render_guides(keys, "preview", 1, 1);
+    size_t pixels = (size_t)W * H;
+    double r = GROUND_RADIUS_M + altitude_m, worst_a = 0.0, worst_n = 0.0, tau_lo = INFINITY,
+           tau_hi = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            double a[3] = {0, 0, 0}, n[3] = {0, 0, 0}, d[3], db[3];
+            for (int j = 0; j < 8; j++)
+                for (int i = 0; i < 8; i++) {
+                    pixel_ray(x + (i + 0.5) / 8, y + (j + 0.5) / 8, pitch_deg, d);
+                    pixel_ray(x + (i / 2 * 2 + 0.5) / 8, y + (j / 2 * 2 + 0.5) / 8, pitch_deg,
+                              db);
+                    shell_ray(r, db, d, sigma, w, a, n);
+                }
+            pixel_ray(x + 0.5, y + 0.5, pitch_deg, d);
+            double L = inside_sphere(r, d, INFINITY, GROUND_RADIUS_M + 2000.0) -
+                       inside_sphere(r, d, INFINITY, GROUND_RADIUS_M + 1000.0);
+            if (altitude_m > 2000.0) /* down through both spheres: the near part only */
+                L = 0.5 * L;
+            tau_lo = fmin(tau_lo, sigma[1] * L), tau_hi = fmax(tau_hi, sigma[1] * L);
+            size_t px = (size_t)y * W + x;
+            for (int c = 0; c < 3; c++) {
+                worst_a = fmax(worst_a, fabs(g[3 * px + c] - a[c] / 64.0));
+                worst_n = fmax(worst_n, fabs(g[3 * pixels + 3 * px + c] - n[c] / 64.0));
+            }
+        }
+    printf("preview, cloud shell from %g m, pitch %g deg: tau %.2f to %.2f, worst albedo error "
+           "%.2g, worst normal error %.2g (bound 5e-6)\n", altitude_m, pitch_deg, tau_lo, tau_hi,
+           worst_a, worst_n);
+    CHECK(tau_lo >= 0.3 && tau_hi <= 4.0);
+    CHECK(worst_a <= 5e-6 && worst_n <= 5e-6);
+    free(g);
+}
+
 int main(void)
 {
     test_require_opencl();
@@ -249,6 +372,8 @@ int main(void)
     check_plane("path", dem_path);
     check_sphere("preview");
     check_sphere("path");
+    check_cloud_shell(3000.0, -60.0);
+    check_cloud_shell(500.0, 60.0);
     remove(dem_path);
     return test_finish();
 }

@@ -205,6 +205,40 @@ ATMO_FN float clouds_sun_density_steps(ATMO_GLOBAL const atmo_gpu_scene *s, cons
     return D;
 }
 
+/* The marcher's step (cloud_march.h) at distance t_c from the camera: step_m + CLOUDS_STEP_GROWTH
+ * t_c, so the step follows the pixel's footprint, CLOUDS_CLEAR_STRIDE times longer where the
+ * coverage test finds clear air (`cloudy` 0). */
+ATMO_FN float clouds_march_step(ATMO_GLOBAL const atmo_gpu_clouds *c, float t_c, int cloudy)
+{
+    float dt = c->step_m + CLOUDS_STEP_GROWTH * t_c;
+    return cloudy ? dt : dt * CLOUDS_CLEAR_STRIDE;
+}
+
+/* The density integral D (m) along the view ray m over [t0, t1], a part of the ray inside the
+ * layer's shell, on the marcher's steps (clouds_march_step: the same lengths and coverage
+ * test, up to the far plane max_distance_m and `steps` steps), each sampled at its midpoint
+ * (no jitter: the result is a function of the ray alone), stopping once the optical depth
+ * (channel y) passes tau_stop. The denoiser's guides take the view transmittance through the
+ * layer, exp(-extinction D), from it (render/guides.cl). */
+ATMO_FN float clouds_view_density(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m,
+                                  float t0, float t1, float tau_stop)
+{
+    ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
+    float start = v3_length(m->origin); /* the camera's distance to the ray's origin */
+    float far = c->max_distance_m - start, t = t0, D = 0.0f;
+    for (int i = 0; i < c->steps && t < t1 && t < far && D * c->extinction.y <= tau_stop; i++) {
+        medium_point q = medium_ray_at(m, t, s->atmosphere.bottom_radius);
+        int cloudy = clouds_coverage(c, q.p) > 0.0f;
+        float dt = fminf(clouds_march_step(c, start + t, cloudy), t1 - t);
+        if (cloudy) {
+            medium_point x = medium_ray_at(m, t + 0.5f * dt, s->atmosphere.bottom_radius);
+            D += clouds_density(c, x.p, x.h) * dt;
+        }
+        t += dt;
+    }
+    return D;
+}
+
 /* The light march from the point q toward the sun: the density integral D (m) over the layer,
  * with the steps' sample offset `jitter` in [0, 1). */
 ATMO_FN float clouds_sun_density(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_point *q,

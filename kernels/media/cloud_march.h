@@ -238,11 +238,9 @@ ATMO_FN void clouds_march(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
     float t = t0;
     for (int i = 0; i < c->steps && t < t1 && t < far && tracking_max3(*T) >= CLOUDS_T_MIN;
          i++) {
-        float dt = c->step_m + CLOUDS_STEP_GROWTH * (start + t);
         medium_point q = medium_ray_at(m, t, s->atmosphere.bottom_radius);
         int cloudy = clouds_coverage(c, q.p) > 0.0f;
-        if (!cloudy)
-            dt *= CLOUDS_CLEAR_STRIDE;
+        float dt = clouds_march_step(c, start + t, cloudy);
         if (i == 0) /* a shorter first step: the samples' steps interleave */
             dt *= fmaxf(jitter, 1e-3f);
         dt = fminf(dt, t1 - t);
