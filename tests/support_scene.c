@@ -26,6 +26,19 @@ void test_scene_set(atmo_scene *s, const char *assignment)
     }
 }
 
+void test_scene_image(atmo_scene *s, int width, int height, int samples, int seed)
+{
+    char buf[64];
+    snprintf(buf, sizeof buf, "image.width=%d", width);
+    test_scene_set(s, buf);
+    snprintf(buf, sizeof buf, "image.height=%d", height);
+    test_scene_set(s, buf);
+    snprintf(buf, sizeof buf, "image.samples=%d", samples);
+    test_scene_set(s, buf);
+    snprintf(buf, sizeof buf, "image.seed=%d", seed);
+    test_scene_set(s, buf);
+}
+
 void test_plan(const atmo_scene *s, atmo_plan *p)
 {
     atmo_err e;

@@ -99,20 +99,12 @@ static const char *const objects_keys[] = {
 static void render_scene(const char *const *keys, int spp, int seed, atmo_render_result *r)
 {
     atmo_scene s;
-    char buf[64];
     test_scene_preset(&s, strncmp(keys[0], "preset=", 7) == 0 ? keys[0] + 7 : "sky-noon");
     for (int i = strncmp(keys[0], "preset=", 7) == 0; keys[i]; i++)
         test_scene_set(&s, keys[i]);
     test_scene_set(&s, "render.mode=path");
     test_scene_set(&s, "path.passes=true");
-    snprintf(buf, sizeof buf, "image.width=%d", W);
-    test_scene_set(&s, buf);
-    snprintf(buf, sizeof buf, "image.height=%d", H);
-    test_scene_set(&s, buf);
-    snprintf(buf, sizeof buf, "image.samples=%d", spp);
-    test_scene_set(&s, buf);
-    snprintf(buf, sizeof buf, "image.seed=%d", seed);
-    test_scene_set(&s, buf);
+    test_scene_image(&s, W, H, spp, seed);
     atmo_plan p;
     test_plan(&s, &p);
     atmo_render_settings rs;

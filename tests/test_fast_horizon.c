@@ -46,13 +46,7 @@ static void render(const char *method, int seed, int guides, atmo_render_result 
     test_scene_preset(&s, "thesis-3");
     snprintf(buf, sizeof buf, "atmosphere.method=%s", method);
     test_scene_set(&s, buf);
-    snprintf(buf, sizeof buf, "image.width=%d", W);
-    test_scene_set(&s, buf);
-    snprintf(buf, sizeof buf, "image.height=%d", H);
-    test_scene_set(&s, buf);
-    test_scene_set(&s, "image.samples=1");
-    snprintf(buf, sizeof buf, "image.seed=%d", seed);
-    test_scene_set(&s, buf);
+    test_scene_image(&s, W, H, 1, seed);
     atmo_plan p;
     test_plan(&s, &p);
     atmo_render_settings rs;

@@ -58,15 +58,8 @@ typedef struct shaft_image {
 static shaft_image render(int air_shadows, int seed, int guides)
 {
     atmo_scene s;
-    char buf[64];
     test_scene_preset(&s, "thesis-1");
-    snprintf(buf, sizeof buf, "image.width=%d", IMG_W);
-    test_scene_set(&s, buf);
-    snprintf(buf, sizeof buf, "image.height=%d", IMG_H);
-    test_scene_set(&s, buf);
-    test_scene_set(&s, "image.samples=2");
-    snprintf(buf, sizeof buf, "image.seed=%d", seed);
-    test_scene_set(&s, buf);
+    test_scene_image(&s, IMG_W, IMG_H, 2, seed);
     test_scene_set(&s, air_shadows ? "terrain.air_shadows=true" : "terrain.air_shadows=false");
     atmo_plan p;
     test_plan(&s, &p);
@@ -102,12 +95,8 @@ static void sun_point(double *xs, double *ys)
 {
     atmo_scene s;
     atmo_plan p;
-    char buf[64];
     test_scene_preset(&s, "thesis-1");
-    snprintf(buf, sizeof buf, "image.width=%d", IMG_W);
-    test_scene_set(&s, buf);
-    snprintf(buf, sizeof buf, "image.height=%d", IMG_H);
-    test_scene_set(&s, buf);
+    test_scene_image(&s, IMG_W, IMG_H, 2, 0); /* the camera alone matters here */
     test_plan(&s, &p);
     const atmo_gpu_camera *c = &p.gpu.camera;
     const float4 *sun = &p.gpu.sun_direction;

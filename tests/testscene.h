@@ -8,6 +8,8 @@
 
 void test_scene_preset(atmo_scene *s, const char *preset);
 void test_scene_set(atmo_scene *s, const char *assignment);
+/* image.width, image.height, image.samples and image.seed at once */
+void test_scene_image(atmo_scene *s, int width, int height, int samples, int seed);
 void test_plan(const atmo_scene *s, atmo_plan *p);
 /* The plan of the sky-noon preset with `method`, the camera at altitude_m above (0, 0) and the
  * sun at sun_zenith_deg; method lut at small tables (2 orders: tests of geometry and stability,
