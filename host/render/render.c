@@ -95,7 +95,7 @@ static int render_guides(atmo_session *s, atmo_render_result *res, atmo_err *e)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the denoiser's guides");
     double t0 = atmo_now_seconds();
     int rc = atmo_session_guides(s, res->guides, res->guides + 3 * pixels,
-                                 res->guides + 6 * pixels, res->guides + 7 * pixels, e);
+                                 res->guides + 6 * pixels, res->guides + 7 * pixels, NULL, e);
     res->seconds_guides = atmo_now_seconds() - t0;
     return rc;
 }
