@@ -14,8 +14,9 @@
  * VIEW_DENOISE_MAX_SPP samples per pixel, the texture holds the frame through Open Image
  * Denoise (atmo_outputs_denoise_rgb at quality fast) with the albedo and normal guides of the
  * view, as `atmo render` denoises: the render thread renders them once per view while they are
- * wanted (view_renderer_want_guides: N is on, or a save is denoised), so the display waits for
- * them after a change (the draft and the frames before them show as rendered), and a scene
+ * wanted (view_renderer_want_guides: N is on, or a save is denoised), when the view's image has
+ * a sample in every pixel, so the display waits for them after a change (the draft and the
+ * frames before them show as rendered; a screenshot waits for them too), and a scene
  * that takes none (atmo_guides_apply: a thin lens, the spectral mode) is denoised on the colour
  * alone. It is redone whenever the frame's request, phase or fewest samples change, in place of
  * the finished tiles' sub-images; the render thread's accumulation keeps the image as rendered,
@@ -83,6 +84,7 @@ typedef struct view_app {
     int denoised_phase, denoised_samples;
     int denoised_guided;            /* it was made with the guides */
     int save_pending;               /* P waits for the guides of the view on display */
+    int shown_guides;               /* the guides of the frame last taken were made */
 } view_app;
 
 static volatile sig_atomic_t interrupted;
@@ -245,6 +247,16 @@ static int save_ready(view_app *a)
     int ready = frame_guides(f, &g) || f->phase == VIEW_PHASE_ERROR;
     view_renderer_release(a->renderer, 0);
     return ready;
+}
+
+/* Whether the screenshot may be taken: neither the display (N) nor the --output waits for the
+ * guides of the frame on display (as take_frame last saw it, so the window shows what it
+ * decided with them). */
+static int guides_settled(const view_app *a)
+{
+    atmo_scene rendered;
+    view_mode_scene(&a->state.scene, a->state.mode, &rendered);
+    return a->shown_guides || (!a->state.denoise && !save_denoised(&rendered, a->o->output));
 }
 
 /* P: the image on display and the user's scene beside it. */
@@ -434,6 +446,8 @@ static int take_frame(view_app *a, atmo_err *e)
                 view_window_upload(&a->win, f->rgb, f->width, f->rects[i].x, f->rects[i].y,
                                    f->rects[i].w, f->rects[i].h);
     }
+    atmo_outputs_guides shown_guides;
+    a->shown_guides = frame_guides(f, &shown_guides);
     a->shown = *f;
     a->shown.rgb = NULL;
     a->shown.guides = NULL;
@@ -543,7 +557,8 @@ static int loop(view_app *a, atmo_err *e)
             last_title = now;
         }
         int shoot = a->o->screenshot_after > 0 && a->script.next >= a->script.count &&
-                    reached(a, a->o->screenshot_after) && !(change & VIEW_CHANGE_RENDER);
+                    reached(a, a->o->screenshot_after) && !(change & VIEW_CHANGE_RENDER) &&
+                    guides_settled(a);
         /* Drawing only what changed, and new tiles at most VIEW_TILE_FPS times a second, leaves
          * the CPU to the render where the device (and Mesa's OpenGL) is the CPU. */
         int tiles_due = a->redraw && now - last_draw >= 1.0 / VIEW_TILE_FPS;

@@ -20,9 +20,10 @@
  *
  * The denoiser's guides (view_renderer_want_guides) follow the view, not the samples: while
  * they are wanted the thread renders them once per request on the full-size session
- * (atmo_session_guides, buffers of their own), before that request's first refinement step, so
- * every refined frame of the request can be denoised with them, and hands them over in the
- * frame; a camera, sun or scene change is a new request and gets new guides.
+ * (atmo_session_guides, buffers of their own) as soon as the refined image has a sample in
+ * every pixel (so the first refined image is not held back: the pass costs about as much as a
+ * few samples), and hands them over in the frame; a camera, sun or scene change is a new
+ * request and gets new guides. A new request cancels the pass as it cancels a step.
  *
  * On Linux the thread lowers its own scheduling priority (nice 10) before its first OpenCL
  * call, so the CPU device's worker threads, which it creates, inherit it: where the device is
@@ -290,11 +291,15 @@ static int refine(view_renderer *r, unsigned generation, int samples, double t0,
     return ATMO_OK;
 }
 
-/* Under the lock: the current request's guides are wanted and not made yet. */
+/* Under the lock: the current request's guides are wanted and not made yet, and its image
+ * on display has a sample in every pixel (the first refined image is not held back by them). */
 static int guides_due(const view_renderer *r, unsigned generation)
 {
+    const view_frame *f = &r->frame;
     return r->want_guides && r->full_generation == generation &&
-           r->frame.guides_generation != generation;
+           f->guides_generation != generation && f->generation == generation &&
+           (f->phase == VIEW_PHASE_REFINING || f->phase == VIEW_PHASE_DONE) &&
+           f->samples_min >= 1;
 }
 
 /* The guides of the full-size session's view into the frame. */

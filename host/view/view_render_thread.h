@@ -51,9 +51,9 @@ int view_renderer_start(view_renderer **out, const atmo_render_settings *rs, int
 void view_renderer_request(view_renderer *r, const atmo_scene *scene, int samples,
                            unsigned generation);
 /* Whether the guides of each request's view are wanted (the denoised display, a denoised
- * save): while they are, the thread renders them once per request, after the full-size session
- * is brought to it and before its first refinement step (or at once when they become wanted
- * later), on the full-size session and into buffers of their own, so the accumulation goes on
+ * save): while they are, the thread renders them once per request, when the request's
+ * full-size image has a sample in every pixel (or at once when they become wanted later), on
+ * the full-size session and into buffers of their own, so the accumulation goes on
  * undisturbed. */
 void view_renderer_want_guides(view_renderer *r, int on);
 /* The frame, locked until view_renderer_release; release with taken = 1 clears the changes. */
