@@ -21,7 +21,6 @@ set -u
 atmo=$1
 . "${ATMO_SOURCE_DIR:-$(dirname "$0")/..}/tests/support_cli.sh"
 cli_begin
-export ATMO_CACHE_DIR=$work/cache
 
 scene=(--preset thesis-7 --width 48 --height 40 --samples 4 --seed 3 --denoise fast --quiet)
 if ! "$atmo" render "${scene[@]}" --output single.exr --output single.pfm --output single.png \
