@@ -1,6 +1,7 @@
 /* guides.c — the denoiser's guides of a session's image (atmo/guides.h): guide_render
  * (kernels/render/guides.cl) over the image's pixels, in launches of GUIDES_LAUNCH_ITEMS work
- * items so that none runs long on a GPU with a watchdog. */
+ * items so that none runs long on a GPU with a watchdog; with a cancel token each launch is
+ * waited for and the token checked before the next, so a cancel stops the pass within one. */
 #include <stdlib.h>
 #include "atmo/gpu_enums.h"
 #include "atmo/guides.h"
@@ -16,7 +17,7 @@ int atmo_guides_apply(const atmo_scene *scene)
 
 /* guide_render over every pixel into the two device buffers. */
 static int launch_all(atmo_session *s, cl_mem b_albedo, cl_mem b_normal, cl_uint pixels,
-                      atmo_err *e)
+                      const atmo_cancel *cancel, atmo_err *e)
 {
     atmo_cl *cl = atmo_session_cl(s);
     cl_int err;
@@ -39,6 +40,12 @@ static int launch_all(atmo_session *s, cl_mem b_albedo, cl_mem b_normal, cl_uint
             err = clSetKernelArg(k, arg + 3, sizeof count, &count);
         if (err == CL_SUCCESS)
             err = clEnqueueNDRangeKernel(cl->queue, k, 1, NULL, &global, &local, 0, NULL, NULL);
+        if (err == CL_SUCCESS && cancel)
+            err = clFinish(cl->queue);
+        if (err == CL_SUCCESS && atmo_cancel_requested(cancel)) {
+            rc = atmo_fail(e, ATMO_INTERRUPTED_EMPTY, "the guide pass was cancelled");
+            break;
+        }
     }
     if (err == CL_SUCCESS)
         err = clFinish(cl->queue);
@@ -50,7 +57,7 @@ cleanup:
 }
 
 int atmo_session_guides(atmo_session *s, float *albedo, float *normal, float *depth,
-                        float *disc, atmo_err *e)
+                        float *disc, const atmo_cancel *cancel, atmo_err *e)
 {
     const atmo_plan *p = atmo_session_plan(s);
     atmo_cl *cl = atmo_session_cl(s);
@@ -70,7 +77,7 @@ int atmo_session_guides(atmo_session *s, float *albedo, float *normal, float *de
         rc = atmo_cl_fail(e, "clCreateBuffer(guides)", err);
         goto cleanup;
     }
-    if ((rc = launch_all(s, b_albedo, b_normal, (cl_uint)pixels, e)))
+    if ((rc = launch_all(s, b_albedo, b_normal, (cl_uint)pixels, cancel, e)))
         goto cleanup;
     err = clEnqueueReadBuffer(cl->queue, b_albedo, CL_TRUE, 0, sizeof(float) * 4 * pixels, host,
                               0, NULL, NULL);

@@ -49,7 +49,7 @@ static int output_denoised(const atmo_scene *scene, const char *path)
     return scene->output.denoise != ATMO_OUTPUT_DENOISE_OFF;
 }
 
-static int any_denoised(const atmo_scene *scene, const char *const *outputs, int n)
+int atmo_outputs_any_denoised(const atmo_scene *scene, const char *const *outputs, int n)
 {
     int any = 0;
     for (int i = 0; i < n; i++)
@@ -71,7 +71,7 @@ int atmo_outputs_denoise_prepare(const atmo_scene *scene, const char *const *out
                                  char *warning, int warning_size, atmo_err *e)
 {
     warning[0] = 0;
-    if (!any_denoised(scene, outputs, n))
+    if (!atmo_outputs_any_denoised(scene, outputs, n))
         return ATMO_OK;
     atmo_err le = {{0}};
     int rc = atmo_denoise_load(&le);
@@ -180,7 +180,7 @@ static int denoise_layers(const atmo_image *img, const float *noisy,
 
 int atmo_outputs_want_guides(const atmo_scene *scene, const char *const *outputs, int n)
 {
-    return any_denoised(scene, outputs, n) && atmo_denoise_version() > 0 &&
+    return atmo_outputs_any_denoised(scene, outputs, n) && atmo_denoise_version() > 0 &&
            atmo_guides_apply(scene);
 }
 
@@ -287,7 +287,7 @@ int atmo_outputs_write_denoised(const atmo_scene *scene, const atmo_image *img,
     }
     meta.attributes = attributes;
     meta.attribute_count = n_attributes;
-    if (any_denoised(scene, outputs, n)) {
+    if (atmo_outputs_any_denoised(scene, outputs, n)) {
         atmo_err le = {{0}};
         int load = atmo_denoise_load(&le);
         /* auto without the library: the outputs as rendered */

@@ -1,5 +1,5 @@
-/* render.c — a whole render in one call over a session (atmo/render.h): its mean image, or the
- * raw sums of one part of a split render (atmo/part.h). */
+/* render.c — a whole render in one call over a session (atmo/render.h): its mean image, the
+ * raw sums of one part of a split render (atmo/part.h), or the denoiser's guides alone. */
 #include <stdio.h>
 #include <math.h>
 #include <stdlib.h>
@@ -95,7 +95,7 @@ static int render_guides(atmo_session *s, atmo_render_result *res, atmo_err *e)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the denoiser's guides");
     double t0 = atmo_now_seconds();
     int rc = atmo_session_guides(s, res->guides, res->guides + 3 * pixels,
-                                 res->guides + 6 * pixels, res->guides + 7 * pixels, e);
+                                 res->guides + 6 * pixels, res->guides + 7 * pixels, NULL, e);
     res->seconds_guides = atmo_now_seconds() - t0;
     return rc;
 }
@@ -179,5 +179,23 @@ int atmo_render_part(const atmo_plan *plan, const atmo_render_settings *settings
     free(samples);
     free(s2);
     free(s1);
+    return rc;
+}
+
+int atmo_render_guides(const atmo_plan *plan, const atmo_render_settings *settings,
+                       atmo_render_result *res, atmo_err *e)
+{
+    atmo_session *s = NULL;
+    memset(res, 0, sizeof *res);
+    int rc = atmo_session_open(&s, plan, settings, e);
+    if (!rc)
+        rc = render_guides(s, res, e);
+    if (!rc) {
+        atmo_render_result_from_session(s, res);
+        res->interrupted = 0;
+    }
+    if (rc)
+        atmo_render_result_free(res);
+    atmo_session_close(s);
     return rc;
 }

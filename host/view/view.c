@@ -12,12 +12,18 @@
  *
  * Denoised display (key N, view_state.denoise): while the frame has fewer than
  * VIEW_DENOISE_MAX_SPP samples per pixel, the texture holds the frame through Open Image
- * Denoise (atmo_outputs_denoise_rgb at quality fast, the colour alone: the viewer renders no
- * guide pass), redone whenever the frame's request, phase or fewest samples change, in place of
- * the finished tiles' sub-images; the render thread's accumulation and every save (P,
- * --output) keep the image as rendered. From VIEW_DENOISE_MAX_SPP samples on, or with the key
- * off again, the texture gets the rendered frame back. A missing library turns it off with
- * its message in the title.
+ * Denoise (atmo_outputs_denoise_rgb at quality fast) with the albedo and normal guides of the
+ * view, as `atmo render` denoises: the render thread renders them once per view while they are
+ * wanted (view_renderer_want_guides: N is on, or a save is denoised), when the view's image has
+ * a sample in every pixel, so the display waits for them after a change (the draft and the
+ * frames before them show as rendered; a screenshot waits for them too), and a scene
+ * that takes none (atmo_guides_apply: a thin lens, the spectral mode) is denoised on the colour
+ * alone. It is redone whenever the frame's request, phase or fewest samples change, in place of
+ * the finished tiles' sub-images; the render thread's accumulation keeps the image as rendered,
+ * and the saves (P, --output) are the files `atmo render` writes: denoised as output.denoise
+ * says, with the same guides. From VIEW_DENOISE_MAX_SPP samples on, or with the key off again,
+ * the texture gets the rendered frame back. A missing library turns it off with its message in
+ * the title.
  *
  * A screenshot (--screenshot-after N) is taken when the script, if any, has run to its end and
  * the current view's image has N samples per pixel: the image goes through view_save_image,
@@ -29,6 +35,7 @@
 #include <string.h>
 #include "atmo/clock.h"
 #include "atmo/denoise.h"
+#include "atmo/guides.h"
 #include "atmo/view.h"
 #include "view_controls.h"
 #include "view_mode.h"
@@ -75,6 +82,9 @@ typedef struct view_app {
     int denoised_on_screen;         /* the texture holds it */
     unsigned denoised_generation;   /* the frame it was made from: request, phase, samples */
     int denoised_phase, denoised_samples;
+    int denoised_guided;            /* it was made with the guides */
+    int save_pending;               /* P waits for the guides of the view on display */
+    int shown_guides;               /* the guides of the frame last taken were made */
 } view_app;
 
 static volatile sig_atomic_t interrupted;
@@ -128,10 +138,28 @@ static void refresh_callback(GLFWwindow *w)
     a->redraw = 1;
 }
 
+/* Whether output.denoise denoises `path`, saved from `rendered`, and the library loads. */
+static int save_denoised(const atmo_scene *rendered, const char *path)
+{
+    const char *outputs[1] = {path};
+    atmo_err le;
+    return path && atmo_outputs_any_denoised(rendered, outputs, 1) && atmo_denoise_load(&le) == 0;
+}
+
+/* Whether the render thread is to make the guides of each view (a guide pass costs about as
+ * much as a few samples, so only while something will denoise with them): the denoised
+ * display, a P save waiting for them, or the screenshot's denoised --output. */
+static int guides_wanted(const view_app *a, const atmo_scene *rendered)
+{
+    return a->state.denoise || a->save_pending ||
+           (a->o->screenshot_after > 0 && save_denoised(rendered, a->o->output));
+}
+
 static void request(view_app *a)
 {
     atmo_scene r;
     view_mode_scene(&a->state.scene, a->state.mode, &r);
+    view_renderer_want_guides(a->renderer, guides_wanted(a, &r));
     int samples = a->o->screenshot_after > 0 ? a->o->screenshot_after : r.image.samples;
     view_renderer_request(a->renderer, &r, samples, ++a->generation);
     a->requested_at = atmo_now_seconds();
@@ -153,11 +181,32 @@ static int reached(const view_app *a, double n)
                           (a->shown.phase == VIEW_PHASE_REFINING && a->shown.samples_min >= n));
 }
 
-/* The image on display, copied out of the frame (img->rgb malloc'd). */
-static int copy_image(view_app *a, atmo_image *img, int *samples_min, atmo_err *e)
+/* The guides of f's view for the denoiser, in *g (no guides where its scene takes none):
+ * 1 once the render thread made them for f's request and f is its full-size image, else 0. */
+static int frame_guides(const view_frame *f, atmo_outputs_guides *g)
+{
+    size_t pixels = (size_t)f->width * (size_t)f->height;
+    memset(g, 0, sizeof *g);
+    if (f->guides_generation != f->generation ||
+        (f->phase != VIEW_PHASE_REFINING && f->phase != VIEW_PHASE_DONE))
+        return 0;
+    if (f->guides) {
+        g->albedo = f->guides;
+        g->normal = f->guides + 3 * pixels;
+        g->depth = f->guides + 6 * pixels;
+        g->disc = f->guides + 7 * pixels;
+        g->clean = 1;
+    }
+    return 1;
+}
+
+/* The image on display, copied out of the frame (img->rgb malloc'd), and its view's guides
+ * where the render thread made them (*guide_block malloc'd, else NULL; *g points into it). */
+static int copy_image(view_app *a, atmo_image *img, int *samples_min, atmo_outputs_guides *g,
+                      float **guide_block, atmo_err *e)
 {
     view_frame *f = view_renderer_acquire(a->renderer);
-    size_t n = (size_t)f->width * (size_t)f->height * 3;
+    size_t pixels = (size_t)f->width * (size_t)f->height, n = pixels * 3;
     memset(img, 0, sizeof *img); /* no extra layers */
     img->width = f->width;
     img->height = f->height;
@@ -165,10 +214,49 @@ static int copy_image(view_app *a, atmo_image *img, int *samples_min, atmo_err *
     if (img->rgb)
         memcpy(img->rgb, f->rgb, n * sizeof(float));
     *samples_min = f->samples_min;
+    atmo_outputs_guides shared;
+    *guide_block = NULL;
+    memset(g, 0, sizeof *g);
+    if (frame_guides(f, &shared) && shared.albedo &&
+        (*guide_block = malloc(sizeof(float) * ATMO_GUIDES_FLOATS * pixels))) {
+        memcpy(*guide_block, f->guides, sizeof(float) * ATMO_GUIDES_FLOATS * pixels);
+        *g = (atmo_outputs_guides){*guide_block, *guide_block + 3 * pixels,
+                                   *guide_block + 6 * pixels, *guide_block + 7 * pixels, 1};
+    }
+    int no_memory = !img->rgb || (shared.albedo && !*guide_block);
     view_renderer_release(a->renderer, 0);
     if (!img->rgb)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "no image to save yet");
+    if (no_memory) {
+        free(img->rgb);
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the denoiser's guides");
+    }
     return ATMO_OK;
+}
+
+/* Whether a P save can be written now: its image is not denoised, or the guides of the view on
+ * display are made (or it failed). */
+static int save_ready(view_app *a)
+{
+    atmo_scene rendered;
+    atmo_outputs_guides g;
+    view_mode_scene(&a->state.scene, a->state.mode, &rendered);
+    if (!save_denoised(&rendered, a->o->save_path))
+        return 1;
+    view_frame *f = view_renderer_acquire(a->renderer);
+    int ready = frame_guides(f, &g) || f->phase == VIEW_PHASE_ERROR;
+    view_renderer_release(a->renderer, 0);
+    return ready;
+}
+
+/* Whether the screenshot may be taken: neither the display (N) nor the --output waits for the
+ * guides of the frame on display (as take_frame last saw it, so the window shows what it
+ * decided with them). */
+static int guides_settled(const view_app *a)
+{
+    atmo_scene rendered;
+    view_mode_scene(&a->state.scene, a->state.mode, &rendered);
+    return a->shown_guides || (!a->state.denoise && !save_denoised(&rendered, a->o->output));
 }
 
 /* P: the image on display and the user's scene beside it. */
@@ -177,11 +265,15 @@ static int save(view_app *a, atmo_err *e)
     char image[VIEW_PATH_MAX], scene[VIEW_PATH_MAX];
     atmo_image img;
     atmo_scene rendered;
+    atmo_outputs_guides guides;
+    float *guide_block;
     int spp, rc = view_save_names(a->o->save_path, ++a->saves, image, scene, e);
-    if (rc || (rc = copy_image(a, &img, &spp, e)))
+    if (rc || (rc = copy_image(a, &img, &spp, &guides, &guide_block, e)))
         return rc;
     view_mode_scene(&a->state.scene, a->state.mode, &rendered);
-    rc = view_save_image(image, &img, &rendered, spp, spp < a->shown.target || !current(a), e);
+    rc = view_save_image(image, &img, &guides, &rendered, spp,
+                         spp < a->shown.target || !current(a), e);
+    free(guide_block);
     free(img.rgb);
     if (!rc)
         rc = atmo_scene_save_json(&a->state.scene, scene, e);
@@ -203,7 +295,7 @@ static void held_move(view_app *a, int key, int mods, double seconds, int *chang
 static void run_script(view_app *a, double now, int *change)
 {
     view_script *s = &a->script;
-    while (s->next < s->count && !(*change & VIEW_CHANGE_QUIT)) {
+    while (s->next < s->count && !(*change & VIEW_CHANGE_QUIT) && !a->save_pending) {
         const view_action *act = &s->actions[s->next];
         atmo_err e = {{0}};
         if (act->kind == VIEW_ACT_WAIT) {
@@ -257,7 +349,10 @@ static void title(view_app *a)
     snprintf(text, sizeof text,
              "atmo view | %s %s %dx%d | %s%s | h %.4g m | sun %.1f/%.1f deg | exposure %.3g %s",
              view_mode_name(a->state.mode), m->names[r.atmosphere.method], r.image.width,
-             r.image.height, state, a->denoised_on_screen ? ", denoised" : "",
+             r.image.height, state,
+             !a->denoised_on_screen ? ""
+             : a->denoised_guided   ? ", denoised with guides"
+                                    : ", denoised",
              view_altitude_m(s), s->sun.zenith_deg, s->sun.azimuth_deg, s->post.exposure,
              t->names[s->post.tonemap]);
     view_window_title(&a->win, text);
@@ -286,8 +381,9 @@ static void overlay(view_app *a)
 
 /* New tiles into the texture; the frame's statistics into a->shown. */
 /* Whether the frame is to be shown denoised: the key is on, the library loads (else the key
- * goes off, with its message) and the frame has few samples. */
-static int denoise_wanted(view_app *a, const view_frame *f)
+ * goes off, with its message), the frame has few samples and the guides of its view are made
+ * (*g: atmo_outputs_denoise_rgb's guides, none where its scene takes none). */
+static int denoise_wanted(view_app *a, const view_frame *f, atmo_outputs_guides *g)
 {
     atmo_err le;
     if (!a->state.denoise || f->samples_max >= VIEW_DENOISE_MAX_SPP)
@@ -297,19 +393,20 @@ static int denoise_wanted(view_app *a, const view_frame *f)
         snprintf(a->message, sizeof a->message, "N (denoise): %.900s", le.msg);
         return 0;
     }
-    return 1;
+    return frame_guides(f, g);
 }
 
 /* The denoised display of f into the texture, when f differs from the frame it was made from
  * or the texture holds something else. A failing filter turns the key off, with its message. */
-static void show_denoised(view_app *a, const view_frame *f, int resized)
+static void show_denoised(view_app *a, const view_frame *f, const atmo_outputs_guides *g,
+                          int resized)
 {
     atmo_err de;
     if (a->denoised_on_screen && !resized && f->generation == a->denoised_generation &&
         f->phase == a->denoised_phase && f->samples_min == a->denoised_samples)
         return;
     float *out = realloc(a->denoised, sizeof(float) * 3 * (size_t)f->width * f->height);
-    if (!out || atmo_outputs_denoise_rgb(f->rgb, f->width, f->height, NULL, ATMO_DENOISE_FAST,
+    if (!out || atmo_outputs_denoise_rgb(f->rgb, f->width, f->height, g, ATMO_DENOISE_FAST,
                                          out, &de)) {
         snprintf(a->message, sizeof a->message, "N (denoise): %.900s",
                  out ? de.msg : "out of memory for the denoised image");
@@ -321,6 +418,7 @@ static void show_denoised(view_app *a, const view_frame *f, int resized)
     a->denoised = out;
     view_window_upload(&a->win, out, f->width, 0, 0, f->width, f->height);
     a->denoised_on_screen = 1;
+    a->denoised_guided = g->albedo != NULL;
     a->denoised_generation = f->generation;
     a->denoised_phase = f->phase;
     a->denoised_samples = f->samples_min;
@@ -335,9 +433,10 @@ static int take_frame(view_app *a, atmo_err *e)
         int resized = f->width != a->win.tex_width || f->height != a->win.tex_height;
         rc = view_window_image(&a->win, f->width, f->height, e);
         a->redraw |= resized || f->all_dirty || f->rect_count > 0;
-        int denoise = !rc && denoise_wanted(a, f);
+        atmo_outputs_guides g;
+        int denoise = !rc && denoise_wanted(a, f, &g);
         if (denoise)
-            show_denoised(a, f, resized);
+            show_denoised(a, f, &g, resized);
         else if (!rc && (resized || f->all_dirty || a->denoised_on_screen)) {
             view_window_upload(&a->win, f->rgb, f->width, 0, 0, f->width, f->height);
             a->denoised_on_screen = 0;
@@ -347,8 +446,11 @@ static int take_frame(view_app *a, atmo_err *e)
                 view_window_upload(&a->win, f->rgb, f->width, f->rects[i].x, f->rects[i].y,
                                    f->rects[i].w, f->rects[i].h);
     }
+    atmo_outputs_guides shown_guides;
+    a->shown_guides = frame_guides(f, &shown_guides);
     a->shown = *f;
     a->shown.rgb = NULL;
+    a->shown.guides = NULL;
     if (f->generation > a->last_generation_shown && f->phase != VIEW_PHASE_PREPARING) {
         a->last_generation_shown = f->generation;
         a->changes_shown++;
@@ -368,11 +470,14 @@ static int screenshot(view_app *a, atmo_err *e)
 {
     atmo_image img;
     atmo_scene rendered;
-    int spp, rc = copy_image(a, &img, &spp, e);
+    atmo_outputs_guides guides;
+    float *guide_block;
+    int spp, rc = copy_image(a, &img, &spp, &guides, &guide_block, e);
     if (rc)
         return rc;
     view_mode_scene(&a->state.scene, a->state.mode, &rendered);
-    rc = view_save_image(a->o->output, &img, &rendered, spp, 0, e);
+    rc = view_save_image(a->o->output, &img, &guides, &rendered, spp, 0, e);
+    free(guide_block);
     free(img.rgb);
     if (!rc && a->o->window_capture)
         rc = view_window_capture(&a->win, a->o->window_capture, e);
@@ -416,14 +521,24 @@ static int loop(view_app *a, atmo_err *e)
         change |= view_controls_zoom(&a->state, a->scroll);
         a->drag_dx = a->drag_dy = a->scroll = 0.0;
         run_script(a, now, &change);
-        if (change & VIEW_CHANGE_RENDER)
+        a->save_pending |= (change & VIEW_CHANGE_SAVE) != 0;
+        if (change & VIEW_CHANGE_RENDER) {
             request(a);
-        if (change & VIEW_CHANGE_SAVE) {
+        } else {
+            atmo_scene r;
+            view_mode_scene(&a->state.scene, a->state.mode, &r);
+            view_renderer_want_guides(a->renderer, guides_wanted(a, &r));
+        }
+        if (a->save_pending && save_ready(a)) {
             atmo_err se = {{0}};
+            a->save_pending = 0;
             if (save(a, &se))
                 snprintf(a->message, sizeof a->message, "%s", se.msg);
             if (!a->o->quiet)
                 fprintf(stderr, "atmo view: %s\n", a->message);
+        } else if (change & VIEW_CHANGE_SAVE) {
+            snprintf(a->message, sizeof a->message,
+                     "P: saving once the denoiser's guides of this view are made");
         }
         if (change & VIEW_CHANGE_QUIT)
             break;
@@ -442,7 +557,8 @@ static int loop(view_app *a, atmo_err *e)
             last_title = now;
         }
         int shoot = a->o->screenshot_after > 0 && a->script.next >= a->script.count &&
-                    reached(a, a->o->screenshot_after) && !(change & VIEW_CHANGE_RENDER);
+                    reached(a, a->o->screenshot_after) && !(change & VIEW_CHANGE_RENDER) &&
+                    guides_settled(a);
         /* Drawing only what changed, and new tiles at most VIEW_TILE_FPS times a second, leaves
          * the CPU to the render where the device (and Mesa's OpenGL) is the CPU. */
         int tiles_due = a->redraw && now - last_draw >= 1.0 / VIEW_TILE_FPS;

@@ -18,6 +18,13 @@
  * still cut short by the next change.
  * The launch budget of the caller's settings keeps each launch short.
  *
+ * The denoiser's guides (view_renderer_want_guides) follow the view, not the samples: while
+ * they are wanted the thread renders them once per request on the full-size session
+ * (atmo_session_guides, buffers of their own) as soon as the refined image has a sample in
+ * every pixel (so the first refined image is not held back: the pass costs about as much as a
+ * few samples), and hands them over in the frame; a camera, sun or scene change is a new
+ * request and gets new guides. A new request cancels the pass as it cancels a step.
+ *
  * On Linux the thread lowers its own scheduling priority (nice 10) before its first OpenCL
  * call, so the CPU device's worker threads, which it creates, inherit it: where the device is
  * the CPU the window then still gets the CPU at once whenever an event arrives. (Elsewhere, or
@@ -40,6 +47,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/clock.h"
+#include "atmo/guides.h"
 #include "atmo/plan.h"
 #include "view_mode.h"
 #include "view_render_thread.h"
@@ -62,6 +70,7 @@ struct view_renderer {
     atmo_cancel cancel;
     /* shared, under lock */
     int quit, pending;
+    int want_guides;      /* view_renderer_want_guides */
     int draft_shown;      /* the current request's draft is on screen */
     double draft_started; /* when the current request was taken up */
     double draft_seconds; /* the last draft that reused its session took this long */
@@ -71,6 +80,7 @@ struct view_renderer {
     view_frame frame;
     /* the thread's own */
     slot draft, full;
+    unsigned full_generation; /* the request the full-size session is brought to */
     float *mean, *se;
     size_t pixels;
     view_rect rects[VIEW_MAX_RECTS];
@@ -281,6 +291,45 @@ static int refine(view_renderer *r, unsigned generation, int samples, double t0,
     return ATMO_OK;
 }
 
+/* Under the lock: the current request's guides are wanted and not made yet, and its image
+ * on display has a sample in every pixel (the first refined image is not held back by them). */
+static int guides_due(const view_renderer *r, unsigned generation)
+{
+    const view_frame *f = &r->frame;
+    return r->want_guides && r->full_generation == generation &&
+           f->guides_generation != generation && f->generation == generation &&
+           (f->phase == VIEW_PHASE_REFINING || f->phase == VIEW_PHASE_DONE) &&
+           f->samples_min >= 1;
+}
+
+/* The guides of the full-size session's view into the frame. */
+static int make_guides(view_renderer *r, unsigned generation, const atmo_scene *scene,
+                       atmo_err *e)
+{
+    int apply = atmo_guides_apply(scene);
+    size_t pixels = (size_t)r->full.plan.width * (size_t)r->full.plan.height;
+    float *block = apply ? malloc(sizeof(float) * ATMO_GUIDES_FLOATS * pixels) : NULL;
+    if (apply && !block)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the denoiser's guides");
+    double t0 = atmo_now_seconds();
+    int rc = apply ? atmo_session_guides(r->full.session, block, block + 3 * pixels,
+                                         block + 6 * pixels, block + 7 * pixels, &r->cancel,
+                                         e)
+                   : ATMO_OK;
+    if (rc) {
+        free(block);
+        return rc;
+    }
+    pthread_mutex_lock(&r->lock);
+    free(r->frame.guides);
+    r->frame.guides = block;
+    r->frame.guides_generation = generation;
+    r->frame.guides_apply = apply;
+    r->frame.guides_seconds = atmo_now_seconds() - t0;
+    pthread_mutex_unlock(&r->lock);
+    return ATMO_OK;
+}
+
 static void publish_error(view_renderer *r, unsigned generation, const atmo_err *e)
 {
     pthread_mutex_lock(&r->lock);
@@ -314,7 +363,7 @@ static void *render_main(void *arg)
     double t0 = 0.0;
     for (;;) {
         pthread_mutex_lock(&r->lock);
-        while (!r->quit && !r->pending && stage == STAGE_NONE)
+        while (!r->quit && !r->pending && stage == STAGE_NONE && !guides_due(r, generation))
             pthread_cond_wait(&r->wake, &r->lock);
         if (r->quit) {
             pthread_mutex_unlock(&r->lock);
@@ -333,10 +382,13 @@ static void *render_main(void *arg)
             launches = 0;
             t0 = atmo_now_seconds();
         }
+        int guides = guides_due(r, generation);
         pthread_mutex_unlock(&r->lock);
         atmo_err e = {{0}};
-        int rc, done = 0;
-        if (stage == STAGE_START) {
+        int rc = ATMO_OK, done = 0;
+        if (guides) {
+            rc = make_guides(r, generation, &scene, &e);
+        } else if (stage == STAGE_START) {
             double tp = atmo_now_seconds();
             view_mode_draft(&scene, &draft);
             int opened;
@@ -352,12 +404,13 @@ static void *render_main(void *arg)
                 rc = prepare(r, &r->full, &scene, &opened, &e);
             if (!rc && !superseded(r)) {
                 stage = STAGE_REFINE;
+                r->full_generation = generation;
                 r->noise_time = atmo_now_seconds();
                 pthread_mutex_lock(&r->lock);
                 r->frame.precompute_seconds = atmo_now_seconds() - tp;
                 pthread_mutex_unlock(&r->lock);
             }
-        } else {
+        } else if (stage == STAGE_REFINE) {
             rc = refine(r, generation, samples, t0, &launches, &done, &e);
             if (!rc && done)
                 stage = STAGE_NONE;
@@ -418,6 +471,16 @@ void view_renderer_request(view_renderer *r, const atmo_scene *scene, int sample
     pthread_mutex_unlock(&r->lock);
 }
 
+void view_renderer_want_guides(view_renderer *r, int on)
+{
+    pthread_mutex_lock(&r->lock);
+    if (on != r->want_guides) {
+        r->want_guides = on;
+        pthread_cond_signal(&r->wake);
+    }
+    pthread_mutex_unlock(&r->lock);
+}
+
 view_frame *view_renderer_acquire(view_renderer *r)
 {
     pthread_mutex_lock(&r->lock);
@@ -446,6 +509,7 @@ void view_renderer_stop(view_renderer *r)
     pthread_cond_destroy(&r->wake);
     pthread_mutex_destroy(&r->lock);
     free(r->frame.rgb);
+    free(r->frame.guides);
     free(r->se);
     free(r->mean);
     free(r);

@@ -33,6 +33,13 @@ typedef struct view_frame {
                                    brought to it (set_view, set_scene or a new session, with
                                    their precompute passes) and the draft */
     char message[1024];         /* the error, in phase ERROR */
+    float *guides;              /* the denoiser's guides of request guides_generation's view
+                                   (atmo/guides.h: ATMO_GUIDES_FLOATS planes of the full-size
+                                   image), or NULL */
+    unsigned guides_generation; /* the request they are of (0: none made yet) */
+    int guides_apply;           /* 0: that request's scene takes no guides (atmo_guides_apply;
+                                   guides is then NULL) */
+    double guides_seconds;      /* their guide pass */
 } view_frame;
 
 typedef struct view_renderer view_renderer;
@@ -43,6 +50,12 @@ int view_renderer_start(view_renderer **out, const atmo_render_settings *rs, int
  * its launch and the accumulation restarts. */
 void view_renderer_request(view_renderer *r, const atmo_scene *scene, int samples,
                            unsigned generation);
+/* Whether the guides of each request's view are wanted (the denoised display, a denoised
+ * save): while they are, the thread renders them once per request, when the request's
+ * full-size image has a sample in every pixel (or at once when they become wanted later), on
+ * the full-size session and into buffers of their own, so the accumulation goes on
+ * undisturbed. */
+void view_renderer_want_guides(view_renderer *r, int on);
 /* The frame, locked until view_renderer_release; release with taken = 1 clears the changes. */
 view_frame *view_renderer_acquire(view_renderer *r);
 void view_renderer_release(view_renderer *r, int taken);

@@ -1,6 +1,7 @@
 /* view_save.c — what P and --screenshot-after write: the image through atmo_image_write (the
- * formats, metadata and atomic writes of `atmo render`, through atmo_outputs_write: a PNG with
- * the scene's post-processing) and, for P, the scene beside it through atmo_scene_save_json. */
+ * formats, metadata and atomic writes of `atmo render`, through atmo_outputs_write_denoised: a
+ * PNG with the scene's post-processing, denoised as output.denoise says with the view's guides)
+ * and, for P, the scene beside it through atmo_scene_save_json. */
 #include <stdio.h>
 #include <string.h>
 #include "atmo/outputs.h"
@@ -21,10 +22,11 @@ int view_save_names(const char *base, int n, char image[VIEW_PATH_MAX],
     return ATMO_OK;
 }
 
-int view_save_image(const char *path, const atmo_image *img, const atmo_scene *rendered,
+int view_save_image(const char *path, const atmo_image *img,
+                    const atmo_outputs_guides *guides, const atmo_scene *rendered,
                     int samples_min, int partial, atmo_err *e)
 {
     const char *outputs[1] = {path};
-    return atmo_outputs_write(rendered, img, samples_min, partial, ATMO_EXR_DEFAULT, outputs, 1,
-                              e);
+    return atmo_outputs_write_denoised(rendered, img, guides, samples_min, partial,
+                                       ATMO_EXR_DEFAULT, outputs, 1, NULL, e);
 }

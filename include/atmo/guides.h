@@ -14,9 +14,10 @@
 
 /* The guides of s's current view: albedo and normal W x H x 3, depth W x H and disc W x H (the
  * share of the pixel's guide rays that see the sun's disc unobstructed; either may be NULL),
- * row 0 = top. ATMO_ERR_RUNTIME names the failing OpenCL call. */
+ * row 0 = top. ATMO_ERR_RUNTIME names the failing OpenCL call. cancel (may be NULL) stops the
+ * pass after the launch in flight: ATMO_INTERRUPTED_EMPTY, the outputs unspecified. */
 int atmo_session_guides(atmo_session *s, float *albedo, float *normal, float *depth,
-                        float *disc, atmo_err *e);
+                        float *disc, const atmo_cancel *cancel, atmo_err *e);
 
 /* The floats per pixel of a guide block: albedo 3, normal 3, depth 1, disc 1, as planes. */
 #define ATMO_GUIDES_FLOATS 8

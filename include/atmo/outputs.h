@@ -80,6 +80,9 @@ int atmo_outputs_denoise_prepare(const atmo_scene *scene, const char *const *out
 int atmo_outputs_guides_from_passes(const atmo_render_result *r, atmo_outputs_guides *g,
                                     float **block);
 
+/* Whether output.denoise denoises some of outputs[0..n-1] (the library aside). */
+int atmo_outputs_any_denoised(const atmo_scene *scene, const char *const *outputs, int n);
+
 /* Whether a render of `scene` to outputs[0..n-1] wants the guide pass: some output is denoised,
  * the library is loaded (after atmo_outputs_denoise_prepare) and atmo_guides_apply(scene). */
 int atmo_outputs_want_guides(const atmo_scene *scene, const char *const *outputs, int n);

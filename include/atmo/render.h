@@ -51,6 +51,12 @@ void atmo_render_result_free(atmo_render_result *r);
  * result->rgb stays NULL. */
 int atmo_render_part(const atmo_plan *plan, const atmo_render_settings *settings,
                      atmo_render_result *result, atmo_part *part, atmo_err *e);
+/* The denoiser's guides of the plan's image alone, into result->guides (and its device names
+ * and timings), from a session that renders no sample: the guides draw no random number, so on
+ * one device they are those atmo_render makes with settings->guides, bit for bit (`atmo merge`
+ * denoises the parts' image with them). result->rgb stays NULL. */
+int atmo_render_guides(const atmo_plan *plan, const atmo_render_settings *settings,
+                       atmo_render_result *result, atmo_err *e);
 /* Fill result's device names, cache flags, timings, launches and sample range from a session. */
 void atmo_render_result_from_session(const atmo_session *s, atmo_render_result *result);
 
