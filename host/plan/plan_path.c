@@ -80,7 +80,8 @@ int atmo_plan_path(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     g->secondary = s->path.secondary;
     g->rr_bounce = s->path.rr_bounce;
     g->sun_nee = s->path.sun_nee;
-    g->sky_nee = s->path.sky_nee;
+    /* with the air a medium of the paths, the sky is its scattering: no sky term to sample */
+    g->sky_nee = s->path.sky_nee && s->path.air != ATMO_PATH_AIR_MEDIUM;
     g->sky = s->path.sky;
     g->ground = s->path.ground;
     g->sampler = s->path.sampler;
@@ -107,5 +108,15 @@ int atmo_plan_path(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     if (n < 0 || (size_t)n >= sizeof p->defines - used)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "plan text overflows (a build bug)");
     p->pass_planes = ATMO_PATH_PASS_PLANES;
+    return ATMO_OK;
+}
+
+int atmo_plan_path_air(const atmo_scene *s, atmo_plan *p, atmo_err *e)
+{
+    (void)p;
+    if (s->path.sky == ATMO_PATH_SKY_UNIFORM)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "path.air=medium needs the atmosphere's air, and path.sky=uniform is a "
+                         "world without air; set path.sky=atmosphere, or path.air=method");
     return ATMO_OK;
 }

@@ -42,13 +42,27 @@
 #include "atmo/gpu_types.h"
 #endif
 
-/* The distance of the first scattering in the volume medium along m before `end`, or -1 where
- * the ray passes; *w the tracking weight (1 without a volume medium). */
+/* The distance of the first scattering in the volume media along m before `end`, or -1 where
+ * the ray passes; *component the medium that scatters there (media_walk.h's
+ * MEDIA_WALK_VOLUME_*); *w the tracking weight (1 without a volume medium). */
 ATMO_FN float volume_flight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                            const medium_ray *m, float end, rng_stream *g, vec3 *w)
+                            const medium_ray *m, float end, rng_stream *g, vec3 *w,
+                            int *component)
 {
     float t;
-    return media_walk_volume_flight(s, ATMO_LUT_ARGS, m, end, g, &t, w) ? t : -1.0f;
+    *component = media_walk_volume_flight(s, ATMO_LUT_ARGS, m, end, g, &t, w);
+    return *component != WALK_NULL ? t : -1.0f;
+}
+
+/* The phase function per steradian of the volume component k (MEDIA_WALK_VOLUME_*) between
+ * the ray's direction and w, nu = d . w: the volume medium's, or the air's Rayleigh or aerosol
+ * phase (media.h's media_air_phase). */
+ATMO_FN vec3 volume_component_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, int k,
+                                    float nu)
+{
+    if (k == MEDIA_WALK_VOLUME_MEDIUM)
+        return media_volume_phase(s, ATMO_LUT_ARGS, nu);
+    return media_air_phase(s, k == MEDIA_WALK_VOLUME_RAYLEIGH ? MEDIA_RAYLEIGH : MEDIA_MIE, nu);
 }
 
 /* The volume medium's phase function per steradian between the ray's direction and w,
@@ -67,15 +81,22 @@ ATMO_FN float volume_roulette_gain(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT
     return media_volume_roulette_gain(s, ATMO_LUT_ARGS, v3_dot(d, v3_from4(s->sun_direction)));
 }
 
-/* A new direction at a volume vertex reached along d by a path of throughput beta (u1, u2, and
- * g for Jendersie-d'Eon): the medium's phase function's lobe around d mixed with its lobe
- * around the sun's direction (clouds.sun_guiding); *weight the phase over the density it was
- * drawn with (0 without a volume medium). */
-ATMO_FN vec3 volume_phase_direction(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, vec3 d,
-                                    vec3 beta, float u1, float u2, rng_stream *g, vec3 *weight)
+/* A new direction at a volume vertex of component k (MEDIA_WALK_VOLUME_*) reached along d by a
+ * path of throughput beta (u1, u2, and g for Jendersie-d'Eon): the volume medium's phase
+ * function's lobe around d mixed with its lobe around the sun's direction
+ * (clouds.sun_guiding), or the air's Rayleigh or aerosol phase sampled exactly
+ * (media_air_direction: Draine's sampler with g = 0, alpha = 1 for Rayleigh; Henyey-Greenstein
+ * or Cornette-Shanks; phase.h); *weight the phase over the density it was drawn with (0
+ * without a volume medium). */
+ATMO_FN vec3 volume_phase_direction(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, int k,
+                                    vec3 d, vec3 beta, float u1, float u2, rng_stream *g,
+                                    vec3 *weight)
 {
-    return media_volume_direction(s, ATMO_LUT_ARGS, d, v3_from4(s->sun_direction), beta, u1, u2,
-                                  g, weight);
+    if (k == MEDIA_WALK_VOLUME_MEDIUM)
+        return media_volume_direction(s, ATMO_LUT_ARGS, d, v3_from4(s->sun_direction), beta, u1,
+                                      u2, g, weight);
+    return media_air_direction(s, k == MEDIA_WALK_VOLUME_RAYLEIGH ? MEDIA_RAYLEIGH : MEDIA_MIE, d,
+                               u1, u2, weight);
 }
 
 #endif
