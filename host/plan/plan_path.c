@@ -10,7 +10,10 @@
  * (atmo_plan_terrain_surface_y, host/plan/plan_terrain.c). The rows
  * are a host table the plan owns, copied into the buffer `objects` before the passes. The path
  * tracer's settings are copied from the scene's path.* keys; its render kernel is path_render
- * (kernels/render/path.cl), which a session launches in place of sky_render; with path.passes
+ * (kernels/render/path.cl), which a session launches in place of sky_render; with path.air =
+ * medium the air is the paths' medium and its scattering the sky, so the sky sampling (whose
+ * table is the method's sky) is off (gpu.path.sky_nee = 0), and atmo_plan_path_air refuses
+ * the uniform test world, which has no air; with path.passes
  * it is compiled with -DATMO_RENDER_PASSES and sums the render passes into pass_planes more
  * planes. */
 #include <math.h>

@@ -407,7 +407,8 @@ const atmo_param atmo_params[] = {
     ROW_BOOL("path.sun_nee", path.sun_nee, 1,
              "path mode: next-event estimation to the sun disc (soft shadows)"),
     ROW_BOOL("path.sky_nee", path.sky_nee, 1,
-             "path mode: sample the sky at each hit, combined with BSDF sampling by MIS"),
+             "path mode: sample the sky at each hit, combined with BSDF sampling by MIS (off "
+             "with path.air = medium, whose sky is the air's scattering)"),
     ROW_ENUM("path.sky", path.sky, path_skies, ATMO_PATH_SKY_ATMOSPHERE,
              "path mode: the atmosphere (the method), or a uniform test sky with no air and an "
              "unattenuated sun"),

@@ -4,7 +4,11 @@
  *
  * Modes (media.h): MEDIA_WALK_MEDIA, the scene's media with the air; MEDIA_WALK_SHADOW, the
  * same toward the sun; MEDIA_WALK_VOLUME, the path tracer's volume media alone (no air: the
- * method's sky_trace gives the air's light and transmittance along the path's segments).
+ * method's sky_trace gives the air's light and transmittance along the path's segments),
+ * except in the free flight where the plan makes the air a volume medium (path.air = medium:
+ * MEDIA_VOLUME_AIR 1), whose rate then adds the air's bound and whose pick adds the air's
+ * Rayleigh and aerosol components; the shadow query in volume mode never tracks the air (the
+ * path tracer takes the air's sun transmittance from the LUT).
  *
  * Majorant. On the ray origin + t dir, t in [0, end] (radius r and cosine mu at the origin), the
  * rate is the air's bound on the whole ray (media_air_majorant: its extinction at the ray's
@@ -28,8 +32,9 @@
  * by it, unbiased), which ends walks through opaque cloud after a few optical depths instead of
  * kilometres.
  *
- * The free flight (media_walk_volume_flight; spectral tracking, Kutz et al. 2017, one
- * scattering component: the composition holds at most one volume medium): at each tentative
+ * The free flight (media_walk_volume_flight; spectral tracking, Kutz et al. 2017, over the
+ * components MEDIA_WALK_VOLUME_*: the one volume medium the composition may hold, then with
+ * MEDIA_VOLUME_AIR the air's Rayleigh and aerosols): at each tentative
  * point, scatter with sigma_s or null with sigma_bar - sigma_t, picked with probabilities
  * proportional to max_c of w sigma_s and w (sigma_bar - sigma_t), the vec3 weight w multiplied
  * by sigma_event / (sigma_bar P_event) (walk_pick): absorption folds into the weight, so the

@@ -1,6 +1,7 @@
 /* path.h — the path tracer's loop: one sample of a pixel's radiance, through the stages of
  * kernels/render/ (path_camera.h, surfaces.h, bsdf.h, bsdf_water.h, light_sun.h, light_sky.h) and
- * the scene's atmosphere method (sky_trace, atmosphere/sky_method.h) for the air along every segment.
+ * the scene's atmosphere method (sky_trace, atmosphere/sky_method.h) for the air along every
+ * segment, or (path.air = medium) the air as a volume medium of the paths (below).
  *
  * The estimator of the rendering equation with participating media reduced to the
  * single-scattering form the methods integrate (the air's in-scattered light along each
@@ -38,6 +39,14 @@
  * scatters at most path.volume_bounces times in the clouds; roulette counts every event.
  * (path.clouds = march: the method marches the layer along each segment, octave multiple
  * scattering, cloud_march.h; no vertex is ever in a cloud.)
+ * The air (path.air = medium, MEDIA_VOLUME_AIR): the air is a volume medium of the same free
+ * flight (volume_stage.h), no method is asked, and S is the sun's disc through the flight's
+ * weight on an escaping ray (with_sun; path_sun_disc), else nothing. A scattering by the air's
+ * Rayleigh or aerosols is a vertex like a cloud's (path_vertex.component says which): the sun
+ * by the same shadow function with that component's phase, the continuation drawn exactly
+ * from it, gain 1 in the roulette; air and cloud scatterings count together against
+ * path.volume_bounces. The sky is the air's scattering, so the plan turns the sky sampling off
+ * (its table is the method's sky) and surfaces meet the sky by their continuations.
  * N_s = path.secondary continuation rays leave the primary hit, each with beta / N_s (the
  * primary's direct light once, its sky MIS weighed against N_s BSDF samples); a path reflects
  * off surfaces at most N_b = path.bounces times, as pbrt's maxdepth counts: a reflection is
@@ -286,7 +295,7 @@ ATMO_FN vec3 path_shadow(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
 }
 
 /* Sunlight scattered at v toward the ray (without the throughput): a surface's albedo/pi cos, a
- * cloud vertex's phase function. */
+ * volume vertex's phase function (its component's: the cloud's, or the air's). */
 ATMO_FN vec3 path_direct_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                              const path_vertex *v, rng_stream *g)
 {
@@ -340,7 +349,7 @@ ATMO_FN vec3 path_direct_sky(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
 }
 
 /* The light of a path that leaves vertex v (depth: its reflections off surfaces so far, v's
- * included; scatters: its scattering events in the clouds so far) with throughput beta, its first
+ * included; scatters: its scattering events in the volume media so far) with throughput beta, its first
  * continuation from a surface weighed against n_bsdf BSDF samples. A cloud vertex continues by
  * its phase function, with weight 1 for the light its segment finds (no sky sampling there). */
 ATMO_FN void path_continue(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, path_vertex v,

@@ -1,6 +1,7 @@
 /* volume_stage.h — the path tracer's scattering events in its volume media (path.clouds =
  * volume: the fBm cloud layer, a medium that no method sees, whose sky_trace gives the air's
- * light alone, in the layer's shadow): the stage functions the loop (path.h) calls for a
+ * light alone, in the layer's shadow; path.air = medium: the air itself, below): the stage
+ * functions the loop (path.h) calls for a
  * segment's free flight, the sun's transmittance through the volume media, and a volume
  * vertex's phase function and continuation. All of them run on the one majorant walk in volume
  * mode (media/media_walk.h) over the plan's composed volume medium (media.h's media_volume_*);
@@ -30,6 +31,16 @@
  * takes the volume medium's spectral-tracking weight w of the whole segment, exact for a grey
  * medium (w = 1 with albedo 1; clouds.extinction_per_m > 0 gives the same extinction in every
  * channel).
+ * With the air a volume medium (path.air = medium, MEDIA_VOLUME_AIR) the same estimator holds
+ * with sigma_a moved from the method into the walk: the free flight draws t_c with density
+ * T(0, t_c) sigma_s,k(t_c) over the components k (cloud, air Rayleigh, air aerosols; T the
+ * transmittance of air and clouds together, absorption folded into the weight w), or none with
+ * probability T(0, end), so
+ *     t_c drawn:  w J_k(t_c)        none:  w L_end
+ * has the expectation L(0) with no method term: J_k is the next vertex with component k's
+ * phase (the air's sampled exactly, media_air_direction), its sun through the same shadow
+ * function (the air's transmittance from the LUT there), and an escaping ray's L_end is the
+ * sun's disc alone.
  * Units: radiance W m^-2 sr^-1 nm^-1, metres, phase per steradian. */
 #ifndef ATMO_RENDER_VOLUME_STAGE_H
 #define ATMO_RENDER_VOLUME_STAGE_H
