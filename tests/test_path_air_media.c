@@ -14,6 +14,9 @@
  *      noise stretched flat, as test_path_clouds's agreement scene: 1-2 km, coverage 1,
  *      extinction 0.002 /m, albedo 0.95, Henyey-Greenstein), the camera at 3000 m looking down
  *      through it (pitch -50), the sun at zenith 30; path.clouds = volume.
+ *   3. From space: the camera 200 km up (above the atmosphere's top at 60 km), looking down at
+ *      pitch -70 with a field of view of 10 degrees, the sun at zenith 40: the walk's start
+ *      outside the air, its end at the ground, the air's bound on a ray that enters from above.
  * The medium's horizontal uniformity makes the preview's box footprint and the path tracer's
  * Gaussian one see the same radiance up to the curvature across a 3.3-degree pixel, which is
  * far below the noise. Each pixel's means agree within a z-test on the two standard errors
@@ -58,6 +61,17 @@ static void cloud_scene(atmo_scene *s)
     test_scene_set(s, "camera.fov_deg=20");
     test_scene_set(s, "sun.zenith_deg=30");
     test_scene_image(s, 6, 6, SAMPLES, 5);
+}
+
+static void space_scene(atmo_scene *s)
+{
+    test_scene_preset(s, "sky-noon");
+    test_scene_set(s, "atmosphere.ground_albedo=0.3");
+    test_scene_set(s, "sun.zenith_deg=40");
+    test_scene_set(s, "camera.position_m=0,200000,0");
+    test_scene_set(s, "camera.pitch_deg=-70");
+    test_scene_set(s, "camera.fov_deg=10");
+    test_scene_image(s, 6, 6, SAMPLES, 9);
 }
 
 /* Scene `make` rendered by the reference method in preview and by the path tracer with the air
@@ -109,5 +123,6 @@ int main(void)
     atmo_cl_close(&cl);
     agreement("ground", ground_scene);
     agreement("clouds", cloud_scene);
+    agreement("space", space_scene);
     return test_finish();
 }
