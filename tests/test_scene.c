@@ -175,6 +175,7 @@ static const char *const spec_defaults[] = {"image.width=640",
                                             "path.passes=false",
                                             "path.clouds=march",
                                             "path.volume_bounces=256",
+                                            "path.air=method",
                                             "output.blender=false",
                                             NULL};
 

@@ -59,7 +59,7 @@ static const char probe[] =
     "  medium_ray m = medium_ray_make(s, v3(o.x, o.y, o.z), v3(d.x, d.y, d.z));\n"
     "  rng_stream g = rng_stream_stage(21u, item, 0u, 0u);\n"
     "  float t = -1.0f; vec3 w;\n"
-    "  int hit = media_walk_volume_flight(s, ATMO_LUT_ARGS, &m, d.w, &g, &t, &w);\n"
+    "  int hit = media_walk_volume_flight(s, ATMO_LUT_ARGS, &m, d.w, &g, &t, &w) != WALK_NULL;\n"
     "  medium_point q = medium_ray_at(&m, 0.0f, s->atmosphere.bottom_radius);\n"
     "  rng_stream h = rng_stream_stage(23u, item, 0u, 0u);\n"
     "  vec3 T = media_walk_sun_transmittance(s, ATMO_LUT_ARGS, &q, MEDIA_WALK_VOLUME, &h);\n"

@@ -718,7 +718,12 @@ static void render_cost_line(const render_args *a, const atmo_scene *s, const fr
             triplets > 1 ? " per triplet of bands" : "", 1e-6 * samples * frames,
             a->part_text && !a->frames_text ? " in this part" : "",
             method, why ? " (auto: " : "", why ? why : "", why ? ")" : "",
-            s->path.mode == ATMO_RENDER_PATH ? ", path traced" : "", frames,
+            s->path.mode != ATMO_RENDER_PATH ? ""
+            : s->path.air == ATMO_PATH_AIR_MEDIUM
+                ? ", path traced with the air as the paths' medium (path.air=medium: the "
+                  "method's sky goes unused)"
+                : ", path traced",
+            frames,
             frames == 1 ? "" : "s",
             s->image.samples > 1 ? "; the time follows the first pass over the image" : "");
 }

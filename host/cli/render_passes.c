@@ -4,7 +4,9 @@
  *   Env.R/G/B      the sky and the sun's disc seen directly (Blender: Environment)
  *   Emit.R/G/B     the objects' emission (Blender: Emission)
  *   Volume.R/G/B   the air's in-scattered light in front of surfaces (Blender's Volume Direct +
- *                  Indirect together)
+ *                  Indirect together); with path.air = medium, the light of the air's
+ *                  scatterings past the camera ray (those on a camera ray that meets no
+ *                  surface are the sky seen directly: Env)
  *   Sun.R/G/B      sunlight reflected by surfaces, every bounce
  *   Sky.R/G/B      skylight reflected by surfaces, every bounce (Sun + Sky = Blender's Diffuse
  *                  Direct + Indirect: atmo splits them by light instead of by bounce)

@@ -105,11 +105,15 @@ static const char *walk_condition(const atmo_feature *f, int volumes, int state)
  * component's direction sampling and roulette gain. */
 static void compose_majorant(text *t, const atmo_feature *const *f, int n, int volumes)
 {
-    int tracked = 0;
-    for (int i = 0; i < n; i++)
+    int tracked = 0, air = 0;
+    for (int i = 0; i < n; i++) {
         tracked += SLOT(f[i], majorant_begin) != NULL && !f[i]->slots->volume_at;
-    put(t, "/* The media with a majorant of their own (beyond the air's), the volume media. */\n");
-    put(t, "#define MEDIA_TRACKED %d\n#define MEDIA_VOLUME %d\n\n", tracked, volumes);
+        air |= f[i]->slots && f[i]->slots->volume_air;
+    }
+    put(t, "/* The media with a majorant of their own (beyond the air's), the volume media, and\n"
+           " * whether the air is a volume medium of the path tracer's walk too. */\n");
+    put(t, "#define MEDIA_TRACKED %d\n#define MEDIA_VOLUME %d\n#define MEDIA_VOLUME_AIR %d\n\n",
+        tracked, volumes, air);
     put(t, "/* Their majorants' states along one ray. */\n");
     put(t, "typedef struct media_majorant {\n    int mode; /* the walk's (media.h) */\n");
     for (int i = 0; i < n; i++)

@@ -39,6 +39,11 @@ static int cloud_shadow_map(const atmo_scene *s)
 }
 static int has_objects(const atmo_scene *s) { return s->objects.count > 0; }
 static int path_mode(const atmo_scene *s) { return s->path.mode == ATMO_RENDER_PATH; }
+/* path.air = medium: the path tracer scatters in the air itself */
+static int path_air(const atmo_scene *s)
+{
+    return path_mode(s) && s->path.air == ATMO_PATH_AIR_MEDIUM;
+}
 static int objects_preview(const atmo_scene *s) { return has_objects(s) && !path_mode(s); }
 /* a heightmap file is drawn as terrain, so it implies terrain.enabled */
 static int has_terrain(const atmo_scene *s) { return s->terrain.enabled || s->dem.file[0]; }
@@ -294,6 +299,8 @@ static const char *const objects_preview_fragments[] = {"kernels/render/objects_
 static const atmo_slots objects_preview_slots = {.sun_occluder = "objects_sun_visibility",
                                                  .surface_hit = "objects_surface_hit",
                                                  .surface_radiance = "objects_light_radiance"};
+/* the air as a volume medium of the path tracer's walk (render/volume_stage.h) */
+static const atmo_slots path_air_slots = {.volume_air = 1};
 static const char *const path_water_fragments[] = {"kernels/render/bsdf_water.h", NULL};
 static const char *const path_fragments[] = {
     "kernels/render/path_camera.h", "kernels/render/surfaces.h", "kernels/render/bsdf.h",
@@ -349,6 +356,10 @@ const atmo_feature atmo_features[] = {
     /* the density of orders >= 2: the integrator's source for aerial perspective */
     {"lut", ATMO_METHOD_LUT, is_lut, lut_fragments, "", lut_params, lut_sources,
      needs_transmittance, atmo_plan_lut, 0, &lut_slots, 0},
+    /* the air as the path tracer's volume medium (path.air = medium): no fragment of its own,
+     * the walk's composition takes it in */
+    {"path_air", -1, path_air, NULL, "", NULL, NULL, NULL, atmo_plan_path_air, 0,
+     &path_air_slots, 0},
     /* the generated composition: media, then the sun's occluders (the objects' and the
      * terrain's are asked in the order of their rows below, after the observer's) */
     {"compose_media", -1, always, NULL, "", NULL, NULL, NULL, NULL, 0, NULL, ATMO_COMPOSE_MEDIA},

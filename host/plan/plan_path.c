@@ -10,7 +10,10 @@
  * (atmo_plan_terrain_surface_y, host/plan/plan_terrain.c). The rows
  * are a host table the plan owns, copied into the buffer `objects` before the passes. The path
  * tracer's settings are copied from the scene's path.* keys; its render kernel is path_render
- * (kernels/render/path.cl), which a session launches in place of sky_render; with path.passes
+ * (kernels/render/path.cl), which a session launches in place of sky_render; with path.air =
+ * medium the air is the paths' medium and its scattering the sky, so the sky sampling (whose
+ * table is the method's sky) is off (gpu.path.sky_nee = 0), and atmo_plan_path_air refuses
+ * the uniform test world, which has no air; with path.passes
  * it is compiled with -DATMO_RENDER_PASSES and sums the render passes into pass_planes more
  * planes. */
 #include <math.h>
@@ -80,7 +83,8 @@ int atmo_plan_path(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     g->secondary = s->path.secondary;
     g->rr_bounce = s->path.rr_bounce;
     g->sun_nee = s->path.sun_nee;
-    g->sky_nee = s->path.sky_nee;
+    /* with the air a medium of the paths, the sky is its scattering: no sky term to sample */
+    g->sky_nee = s->path.sky_nee && s->path.air != ATMO_PATH_AIR_MEDIUM;
     g->sky = s->path.sky;
     g->ground = s->path.ground;
     g->sampler = s->path.sampler;
@@ -107,5 +111,15 @@ int atmo_plan_path(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     if (n < 0 || (size_t)n >= sizeof p->defines - used)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "plan text overflows (a build bug)");
     p->pass_planes = ATMO_PATH_PASS_PLANES;
+    return ATMO_OK;
+}
+
+int atmo_plan_path_air(const atmo_scene *s, atmo_plan *p, atmo_err *e)
+{
+    (void)p;
+    if (s->path.sky == ATMO_PATH_SKY_UNIFORM)
+        return atmo_fail(e, ATMO_ERR_USAGE,
+                         "path.air=medium needs the atmosphere's air, and path.sky=uniform is a "
+                         "world without air; set path.sky=atmosphere, or path.air=method");
     return ATMO_OK;
 }

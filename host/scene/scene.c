@@ -69,9 +69,10 @@ static const char *const clouds_look_names[] = {"physical", "thesis", NULL};
 static const char *const render_modes[] = {"preview", "path", NULL};
 static const char *const path_skies[] = {"atmosphere", "uniform", NULL};
 static const char *const path_clouds_names[] = {"march", "volume", NULL};
+static const char *const path_air_names[] = {"method", "medium", NULL};
 static const char *const sampler_names[] = {"sobol", "random", NULL};
 _Static_assert(ATMO_RENDER_PATH == 1 && ATMO_PATH_SKY_UNIFORM == 1 && ATMO_SAMPLER_RANDOM == 1 &&
-                   ATMO_PATH_CLOUDS_VOLUME == 1,
+                   ATMO_PATH_CLOUDS_VOLUME == 1 && ATMO_PATH_AIR_MEDIUM == 1,
                "enum name tables follow the order of the constants");
 static const char *const terrain_format_names[] = {"float", "derivatives", "half", NULL};
 static const char *const terrain_shadow_names[] = {"none", "exact", "estimate", NULL};
@@ -406,7 +407,8 @@ const atmo_param atmo_params[] = {
     ROW_BOOL("path.sun_nee", path.sun_nee, 1,
              "path mode: next-event estimation to the sun disc (soft shadows)"),
     ROW_BOOL("path.sky_nee", path.sky_nee, 1,
-             "path mode: sample the sky at each hit, combined with BSDF sampling by MIS"),
+             "path mode: sample the sky at each hit, combined with BSDF sampling by MIS (off "
+             "with path.air = medium, whose sky is the air's scattering)"),
     ROW_ENUM("path.sky", path.sky, path_skies, ATMO_PATH_SKY_ATMOSPHERE,
              "path mode: the atmosphere (the method), or a uniform test sky with no air and an "
              "unattenuated sun"),
@@ -433,8 +435,12 @@ const atmo_param atmo_params[] = {
              "segment, octave multiple scattering) or volume (paths scatter in the layer: delta "
              "tracking, ratio-tracked sun, phase sampling)"),
     ROW_INT("path.volume_bounces", path.volume_bounces, "", 1, 4096, 256,
-            "path mode, path.clouds = volume: most scattering events in the clouds per path "
-            "(Russian roulette ends most paths long before)"),
+            "path mode, path.clouds = volume or path.air = medium: most scattering events in "
+            "the clouds and the air per path (Russian roulette ends most paths long before)"),
+    ROW_ENUM("path.air", path.air, path_air_names, ATMO_PATH_AIR_METHOD,
+             "path mode: method (the atmosphere method gives each segment's air light) or "
+             "medium (the air is a volume medium of the paths: Rayleigh, aerosols and ozone "
+             "delta-tracked, scatterings lit by the sun, no sky term; an unbiased reference)"),
     ROW_BOOL("output.blender", output.blender, 0,
              "outputs for Blender (--blender): luminance-based linear Rec.709 RGB in cd/m^2 "
              "with the EXR chromaticities, the exposure scaled to luminance, panoramas in "

@@ -54,6 +54,9 @@ typedef struct atmo_gpu_field {
  *                         the row's media_phase, majorant_*, media_direction and roulette_gain
  *                         (all needed) then compose the volume functions (media.h) and the
  *                         walk's volume mode instead of the methods' media
+ *   volume_air            1: the air (media.h's media_air_at, its Rayleigh and Mie components)
+ *                         is a volume medium of the path tracer's walk too (path.air = medium):
+ *                         its free flights scatter in it (MEDIA_VOLUME_AIR, media_walk.h)
  *   sun_occluder          float (s, ATMO_LUT_PARAMS, const medium_point *q): 1 where it leaves
  *                         the sun visible from q, 0 in its shadow
  *   surface_occluder      1: that occluder also shadows the path tracer's surface points
@@ -90,6 +93,7 @@ typedef struct atmo_slots {
     const char *media_intervals, *media_interval;
     const char *ms_source, *ms_ground_irradiance;
     const char *volume_at;
+    int volume_air;
     const char *sun_occluder;
     int surface_occluder;
     const char *ray_occluder, *ray_state, *ray_begin;
@@ -109,7 +113,8 @@ enum {
                                MEDIA_VOLUME, media_majorant, media_majorant_begin,
                                media_majorant_segment, media_tracked_extinction,
                                media_sun_exact_attenuate, media_phase_direction,
-                               media_roulette_gain; the volume medium's media_volume_at,
+                               media_roulette_gain; MEDIA_VOLUME_AIR; the volume
+                               medium's media_volume_at,
                                media_volume_phase, media_volume_direction,
                                media_volume_roulette_gain */
     ATMO_COMPOSE_SUN,       /* visibility_ray, visibility_ray_begin, visibility_sun_occluders,

@@ -89,6 +89,9 @@ enum { ATMO_PATH_SKY_ATMOSPHERE = 0, ATMO_PATH_SKY_UNIFORM = 1 };
 /* path.clouds: the method marches the cloud layer along each segment, or the path scatters in
  * it (kernels/render/volume_stage.h) */
 enum { ATMO_PATH_CLOUDS_MARCH = 0, ATMO_PATH_CLOUDS_VOLUME = 1 };
+/* path.air: the method gives each segment's air light (sky_trace), or the air is a volume
+ * medium of the path tracer, whose paths scatter in it (kernels/render/volume_stage.h) */
+enum { ATMO_PATH_AIR_METHOD = 0, ATMO_PATH_AIR_MEDIUM = 1 };
 
 /* path.sampler: the primary samples (pixel position): Owen-scrambled Sobol, or the counter
  * hash of rng.h (independent random numbers, for comparison) */

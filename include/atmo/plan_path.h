@@ -9,5 +9,8 @@
 int atmo_plan_objects(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 /* Feature "path" (render.mode = path): gpu.path's settings and the render kernel path_render. */
 int atmo_plan_path(const atmo_scene *s, atmo_plan *p, atmo_err *e);
+/* Feature "path_air" (render.mode = path, path.air = medium): checks that the scene has the
+ * air to scatter in (path.sky = atmosphere). */
+int atmo_plan_path_air(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 
 #endif

@@ -178,7 +178,8 @@ typedef struct atmo_scene {
         double aperture_m, focus_m; /* thin lens (aperture 0: pinhole) */
         int passes;            /* 0/1: render passes (EXR layers) */
         int clouds;            /* ATMO_PATH_CLOUDS_*: how paths meet the fBm cloud layer */
-        int volume_bounces;    /* most scattering events in the cloud layer per path */
+        int volume_bounces;    /* most scattering events in the volume media per path */
+        int air;               /* ATMO_PATH_AIR_*: how paths meet the air */
     } path;
     struct {
         int count;

@@ -30,7 +30,9 @@
  *     media_volume_roulette_gain
  * and the one majorant walk (media_walk.h) runs over the scene's media with the air
  * (MEDIA_WALK_MEDIA), toward the sun (MEDIA_WALK_SHADOW) or over the volume media alone
- * (MEDIA_WALK_VOLUME), the walk's mode, which the composed majorant reads too.
+ * (MEDIA_WALK_VOLUME), the walk's mode, which the composed majorant reads too. With
+ * path.air = medium the composition's MEDIA_VOLUME_AIR is 1 and the volume mode's free
+ * flights scatter in the air as well (media_air_at, media_air_phase, media_air_direction).
  * Units: 1/m, per steradian. */
 #ifndef ATMO_MEDIA_H
 #define ATMO_MEDIA_H
@@ -57,7 +59,8 @@
 /* The modes of the one majorant walk (media_walk.h) and of the composed majorant. */
 #define MEDIA_WALK_MEDIA 0  /* the scene's media with the air (method reference's rays) */
 #define MEDIA_WALK_SHADOW 1 /* the same toward the sun, less the media of exact sun transmittance */
-#define MEDIA_WALK_VOLUME 2 /* the path tracer's volume media alone, no air */
+#define MEDIA_WALK_VOLUME 2 /* the path tracer's volume media alone (its free flights add the
+                               air where the plan makes it one: MEDIA_VOLUME_AIR) */
 
 typedef struct media_sample {
     vec3 extinction;                   /* sigma_t, 1/m */

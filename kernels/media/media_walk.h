@@ -4,7 +4,11 @@
  *
  * Modes (media.h): MEDIA_WALK_MEDIA, the scene's media with the air; MEDIA_WALK_SHADOW, the
  * same toward the sun; MEDIA_WALK_VOLUME, the path tracer's volume media alone (no air: the
- * method's sky_trace gives the air's light and transmittance along the path's segments).
+ * method's sky_trace gives the air's light and transmittance along the path's segments),
+ * except in the free flight where the plan makes the air a volume medium (path.air = medium:
+ * MEDIA_VOLUME_AIR 1), whose rate then adds the air's bound and whose pick adds the air's
+ * Rayleigh and aerosol components; the shadow query in volume mode never tracks the air (the
+ * path tracer takes the air's sun transmittance from the LUT).
  *
  * Majorant. On the ray origin + t dir, t in [0, end] (radius r and cosine mu at the origin), the
  * rate is the air's bound on the whole ray (media_air_majorant: its extinction at the ray's
@@ -28,8 +32,9 @@
  * by it, unbiased), which ends walks through opaque cloud after a few optical depths instead of
  * kilometres.
  *
- * The free flight (media_walk_volume_flight; spectral tracking, Kutz et al. 2017, one
- * scattering component: the composition holds at most one volume medium): at each tentative
+ * The free flight (media_walk_volume_flight; spectral tracking, Kutz et al. 2017, over the
+ * components MEDIA_WALK_VOLUME_*: the one volume medium the composition may hold, then with
+ * MEDIA_VOLUME_AIR the air's Rayleigh and aerosols): at each tentative
  * point, scatter with sigma_s or null with sigma_bar - sigma_t, picked with probabilities
  * proportional to max_c of w sigma_s and w (sigma_bar - sigma_t), the vec3 weight w multiplied
  * by sigma_event / (sigma_bar P_event) (walk_pick): absorption folds into the weight, so the
@@ -133,29 +138,68 @@ ATMO_FN vec3 media_walk_sun_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s, A
     return volume ? T : media_sun_exact_attenuate(s, ATMO_LUT_ARGS, q, T);
 }
 
-/* The free flight through the volume media along m over [0, end]: 1 with the first
- * scattering's distance in *t_hit, else 0; *w the spectral-tracking weight (see the top of the
- * file). */
+/* The components a free flight through the volume media scatters by (the walk's pick order):
+ * the volume medium, then with MEDIA_VOLUME_AIR the air's Rayleigh and Mie components. */
+#define MEDIA_WALK_VOLUME_MEDIUM 0
+#define MEDIA_WALK_VOLUME_RAYLEIGH 1
+#define MEDIA_WALK_VOLUME_MIE 2
+
+/* The air of the volume walk at x: its extinction into *sigma_t (added), its Rayleigh and Mie
+ * scattering into sigma[MEDIA_WALK_VOLUME_RAYLEIGH], sigma[MEDIA_WALK_VOLUME_MIE]; no air above
+ * the top of the atmosphere, where the methods' integrals end too. */
+ATMO_FN void media_walk_volume_air(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_point *x,
+                                   vec3 *sigma, vec3 *sigma_t)
+{
+    if (x->r > s->atmosphere.top_radius) {
+        sigma[MEDIA_WALK_VOLUME_RAYLEIGH] = v3(0.0f, 0.0f, 0.0f);
+        sigma[MEDIA_WALK_VOLUME_MIE] = v3(0.0f, 0.0f, 0.0f);
+        return;
+    }
+    media_sample air = media_air_at(s, x);
+    sigma[MEDIA_WALK_VOLUME_RAYLEIGH] = air.scattering[MEDIA_RAYLEIGH];
+    sigma[MEDIA_WALK_VOLUME_MIE] = air.scattering[MEDIA_MIE];
+    *sigma_t = v3_add(*sigma_t, air.extinction);
+}
+
+/* The free flight through the volume media along m over [0, end]: the component that scatters
+ * first (MEDIA_WALK_VOLUME_*) with its distance in *t_hit, else WALK_NULL; *w the
+ * spectral-tracking weight (see the top of the file). With the air in the walk
+ * (MEDIA_VOLUME_AIR) the walk ends at the ground and at the top of the atmosphere (an
+ * escaping ray's end is infinite), and its rate adds the air's bound on the ray
+ * (media_air_majorant: the extinction at the ray's lowest altitude, where the densities, which
+ * fall with altitude, are largest). */
 ATMO_FN int media_walk_volume_flight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                      const medium_ray *m, float end, rng_stream *g, float *t_hit,
                                      vec3 *w)
 {
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     *w = v3(1.0f, 1.0f, 1.0f);
-    if (MEDIA_VOLUME == 0)
-        return 0;
+    if ((MEDIA_VOLUME | MEDIA_VOLUME_AIR) == 0)
+        return WALK_NULL;
+    if (MEDIA_VOLUME_AIR) {
+        end = fminf(end, geometry_distance_to_top(m->r, m->mu, a->top_radius));
+        if (geometry_ray_hits_ground(m->r, m->mu, a->bottom_radius))
+            end = fminf(end, geometry_distance_to_bottom(m->r, m->mu, a->bottom_radius));
+    }
     media_walk mw = media_walk_begin(s, ATMO_LUT_ARGS, m->origin, m->dir, m->r, m->mu, end, 0.0f,
                                      MEDIA_WALK_VOLUME);
+    if (MEDIA_VOLUME_AIR)
+        mw.air = media_air_majorant(s, m->r, m->mu, end);
     while (media_walk_next(s, ATMO_LUT_ARGS, &mw, g)) {
-        medium_point x = medium_ray_at(m, mw.w.t, s->atmosphere.bottom_radius);
-        vec3 sigma_s, sigma_t = media_volume_at(s, ATMO_LUT_ARGS, &x, &sigma_s);
+        medium_point x = medium_ray_at(m, mw.w.t, a->bottom_radius);
+        vec3 sigma[3];
+        vec3 sigma_t = media_volume_at(s, ATMO_LUT_ARGS, &x, &sigma[MEDIA_WALK_VOLUME_MEDIUM]);
+        if (MEDIA_VOLUME_AIR)
+            media_walk_volume_air(s, &x, sigma, &sigma_t);
         if (tracking_max3(sigma_t) <= 0.0f)
             continue; /* a null point for certain: the weight is unchanged */
-        if (walk_pick(&mw.w, g, w, &sigma_s, 1, sigma_t) == 0) {
+        int k = walk_pick(&mw.w, g, w, sigma, MEDIA_VOLUME_AIR ? 3 : 1, sigma_t);
+        if (k != WALK_NULL) {
             *t_hit = mw.w.t;
-            return 1;
+            return k;
         }
     }
-    return 0;
+    return WALK_NULL;
 }
 
 /* The volume media's transmittance toward the sun from an air sample q, on the stream of q's

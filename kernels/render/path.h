@@ -1,6 +1,7 @@
 /* path.h — the path tracer's loop: one sample of a pixel's radiance, through the stages of
  * kernels/render/ (path_camera.h, surfaces.h, bsdf.h, bsdf_water.h, light_sun.h, light_sky.h) and
- * the scene's atmosphere method (sky_trace, atmosphere/sky_method.h) for the air along every segment.
+ * the scene's atmosphere method (sky_trace, atmosphere/sky_method.h) for the air along every
+ * segment, or (path.air = medium) the air as a volume medium of the paths (below).
  *
  * The estimator of the rendering equation with participating media reduced to the
  * single-scattering form the methods integrate (the air's in-scattered light along each
@@ -38,6 +39,14 @@
  * scatters at most path.volume_bounces times in the clouds; roulette counts every event.
  * (path.clouds = march: the method marches the layer along each segment, octave multiple
  * scattering, cloud_march.h; no vertex is ever in a cloud.)
+ * The air (path.air = medium, MEDIA_VOLUME_AIR): the air is a volume medium of the same free
+ * flight (volume_stage.h), no method is asked, and S is the sun's disc through the flight's
+ * weight on an escaping ray (with_sun; path_sun_disc), else nothing. A scattering by the air's
+ * Rayleigh or aerosols is a vertex like a cloud's (path_vertex.component says which): the sun
+ * by the same shadow function with that component's phase, the continuation drawn exactly
+ * from it, gain 1 in the roulette; air and cloud scatterings count together against
+ * path.volume_bounces. The sky is the air's scattering, so the plan turns the sky sampling off
+ * (its table is the method's sky) and surfaces meet the sky by their continuations.
  * N_s = path.secondary continuation rays leave the primary hit, each with beta / N_s (the
  * primary's direct light once, its sky MIS weighed against N_s BSDF samples); a path reflects
  * off surfaces at most N_b = path.bounces times, as pbrt's maxdepth counts: a reflection is
@@ -93,9 +102,11 @@
 /* The light passes (render passes, path.passes): a partition of a sample's radiance by where the
  * light was last scattered toward the camera, so they sum to it. */
 enum {
-    PATH_PASS_ENV = 0, /* the sky and the sun's disc seen directly (primary rays that escape) */
+    PATH_PASS_ENV = 0, /* the sky and the sun's disc seen directly (primary rays that escape;
+                          path.air = medium: the air's scatterings on them) */
     PATH_PASS_EMIT,    /* emission of the objects, at any bounce */
-    PATH_PASS_VOLUME,  /* the air's in-scattered light in front of surfaces, every segment */
+    PATH_PASS_VOLUME,  /* the air's in-scattered light in front of surfaces, every segment
+                          (path.air = medium: the light of air vertices past the camera ray) */
     PATH_PASS_SUN,     /* sunlight reflected by surfaces (next-event estimation), every bounce */
     PATH_PASS_SKY,     /* skylight reflected by surfaces (sky sampling and escaping bounces) */
     PATH_PASS_CLOUDS,  /* light scattered by the cloud layer's volume (path.clouds = volume):
@@ -131,20 +142,37 @@ ATMO_FN void path_add(path_parts *parts, int pass, vec3 L)
  * bounces inside an open box are all this short. */
 #define PATH_AIR_MIN_M 10.0f
 
+/* The sun's disc seen along m where it leaves the atmosphere without meeting the ground:
+ * its radiance outside the atmosphere (atmosphere.h) inside the disc, zero elsewhere. */
+ATMO_FN vec3 path_sun_disc(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m)
+{
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    if (m->nu < s->sun_direction.w || geometry_ray_hits_ground(m->r, m->mu, a->bottom_radius))
+        return v3(0.0f, 0.0f, 0.0f);
+    return atmosphere_sun_disc_radiance(a, s->sun_direction.w);
+}
+
 /* The light S that segment m brings to its origin, up to the first of the hit h and a
- * scattering in the cloud layer's volume (volume_stage.h's free flight: its distance in
- * *t_event, else -1), or out of the scene (the sun disc only with_sun), and its view
- * transmittance (the air's, times the layer's tracking weight). */
+ * scattering in the volume media (volume_stage.h's free flight: its distance in *t_event, else
+ * -1; the medium that scatters in *component), or out of the scene (the sun disc only
+ * with_sun), and its view transmittance (the air's, times the volume media's tracking weight).
+ * With the air a volume medium (MEDIA_VOLUME_AIR) the free flight crosses the air too: S is
+ * the sun's disc through it (weight w, the tracking estimate of the transmittance) on an
+ * escaping ray and nothing else, the air's light being the scatterings' own. */
 ATMO_FN vec3 path_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                           const medium_ray *m, const path_hit *h, int with_sun, rng_stream *g,
-                          vec3 *view_t, float *t_event)
+                          vec3 *view_t, float *t_event, int *component)
 {
     vec3 w;
     float t_c = volume_flight(s, ATMO_LUT_ARGS, m, h->kind == SURFACES_NONE ? INFINITY : h->t, g,
-                              &w);
+                              &w, component);
     int escapes = h->kind == SURFACES_NONE && t_c < 0.0f;
     *t_event = t_c;
     *view_t = w;
+    if (MEDIA_VOLUME_AIR)
+        return escapes && with_sun ? v3_mul(w, v3_mul(path_sun_disc(s, m),
+                                                      v3_from4(s->sun_factor)))
+                                   : v3(0.0f, 0.0f, 0.0f);
     if (s->path.sky == ATMO_PATH_SKY_UNIFORM) /* the sun's disc is left to the NEE here */
         return escapes ? v3_mul(w, v3_from4(s->path.uniform_sky)) : v3(0.0f, 0.0f, 0.0f);
     if (!escapes && (t_c >= 0.0f ? t_c : h->t) < PATH_AIR_MIN_M)
@@ -160,14 +188,17 @@ ATMO_FN vec3 path_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
 }
 
 /* A vertex: the hit of ray m, its facing normal and the offset origin of rays leaving it; or a
- * scattering in the cloud layer (volume: no normal, no albedo; dir the ray that reached it). */
+ * scattering in the volume media (volume: no normal, no albedo; dir the ray that reached it;
+ * component the medium that scattered, MEDIA_WALK_VOLUME_*: the cloud layer or the air's
+ * Rayleigh or aerosols). */
 typedef struct path_vertex {
     medium_point q; /* the hit point (for the visibility sources) */
     vec3 p;         /* origin for new rays, off the surface */
     vec3 n;         /* unit normal on the ray's side */
     vec3 albedo;
     vec3 dir;       /* the direction of the ray m */
-    int volume;     /* 1: a scattering in the cloud layer's volume */
+    int volume;     /* 1: a scattering in the volume media */
+    int component;  /* the medium that scattered (MEDIA_WALK_VOLUME_*); volume vertices only */
     float fresnel;  /* the sea's F(n . -dir); 0 elsewhere */
     int water;      /* 1 on the sea (bsdf_water.h) */
 } path_vertex;
@@ -182,6 +213,7 @@ ATMO_FN path_vertex path_vertex_at(ATMO_GLOBAL const atmo_gpu_scene *s, const me
     v.albedo = h->albedo;
     v.dir = m->dir;
     v.volume = 0;
+    v.component = MEDIA_WALK_VOLUME_MEDIUM;
     v.water = h->kind == SURFACES_WATER;
     v.fresnel = 0.0f;
 #ifdef ATMO_TERRAIN
@@ -191,9 +223,9 @@ ATMO_FN path_vertex path_vertex_at(ATMO_GLOBAL const atmo_gpu_scene *s, const me
     return v;
 }
 
-/* The vertex of a scattering at distance t along m in the cloud layer. */
+/* The vertex of a scattering by component k at distance t along m in the volume media. */
 ATMO_FN path_vertex path_vertex_volume(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m,
-                                       float t)
+                                       float t, int k)
 {
     path_vertex v;
     v.q = medium_ray_at(m, t, s->atmosphere.bottom_radius);
@@ -202,9 +234,18 @@ ATMO_FN path_vertex path_vertex_volume(ATMO_GLOBAL const atmo_gpu_scene *s, cons
     v.albedo = v3(0.0f, 0.0f, 0.0f);
     v.dir = m->dir;
     v.volume = 1;
+    v.component = k;
     v.water = 0;
     v.fresnel = 0.0f;
     return v;
+}
+
+/* The pass of light scattered toward the ray at volume vertex v: the cloud layer's, or
+ * air_pass for a scattering in the air (path.air = medium); `air_pass` also for a surface
+ * vertex (v->volume = 0). */
+ATMO_FN int path_volume_pass(const path_vertex *v, int air_pass)
+{
+    return v->volume && v->component == MEDIA_WALK_VOLUME_MEDIUM ? PATH_PASS_CLOUDS : air_pass;
 }
 
 /* The probability that v's continuation takes its cosine lobe (the sea's body; 1 elsewhere). */
@@ -254,7 +295,7 @@ ATMO_FN vec3 path_shadow(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
 }
 
 /* Sunlight scattered at v toward the ray (without the throughput): a surface's albedo/pi cos, a
- * cloud vertex's phase function. */
+ * volume vertex's phase function (its component's: the cloud's, or the air's). */
 ATMO_FN vec3 path_direct_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                              const path_vertex *v, rng_stream *g)
 {
@@ -263,7 +304,7 @@ ATMO_FN vec3 path_direct_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
         return v3(0.0f, 0.0f, 0.0f);
     vec3 w = light_sun_sample(v3_from4(s->sun_direction), s->sun_direction.w, u1, u2);
     if (v->volume) {
-        vec3 f = volume_phase(s, ATMO_LUT_ARGS, v3_dot(v->dir, w));
+        vec3 f = volume_component_phase(s, ATMO_LUT_ARGS, v->component, v3_dot(v->dir, w));
         vec3 e = path_shadow(s, ATMO_LUT_ARGS, &v->q, v->p, w, g);
         return v3_mul(v3_mul(f, e), v3_from4(s->sky_factor));
     }
@@ -299,14 +340,16 @@ ATMO_FN vec3 path_direct_sky(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
     medium_ray r = medium_ray_make(s, v->p, w);
     path_hit h = surfaces_hit(s, ATMO_LUT_ARGS, &r, INFINITY);
     vec3 view_t;
-    float t_event; /* a scattering in the clouds ends S there (its light is the continuation's) */
-    vec3 S = path_segment(s, ATMO_LUT_ARGS, &r, &h, 0, g, &view_t, &t_event);
+    float t_event; /* a scattering in the volume media ends S there (its light is the
+                      continuation's) */
+    int k;
+    vec3 S = path_segment(s, ATMO_LUT_ARGS, &r, &h, 0, g, &view_t, &t_event, &k);
     float weight = light_sky_power(1.0f, p_l, n_bsdf, p_b);
     return v3_scale(v3_mul(path_cosine_albedo(v), S), c / ATMO_PI * weight / p_l);
 }
 
 /* The light of a path that leaves vertex v (depth: its reflections off surfaces so far, v's
- * included; scatters: its scattering events in the clouds so far) with throughput beta, its first
+ * included; scatters: its scattering events in the volume media so far) with throughput beta, its first
  * continuation from a surface weighed against n_bsdf BSDF samples. A cloud vertex continues by
  * its phase function, with weight 1 for the light its segment finds (no sky sampling there). */
 ATMO_FN void path_continue(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, path_vertex v,
@@ -316,7 +359,9 @@ ATMO_FN void path_continue(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
     for (;;) {
         float u_rr = rng_next(g), u1 = rng_next(g), u2 = rng_next(g);
         if (depth + scatters >= s->path.rr_bounce) {
-            float gain = v.volume ? volume_roulette_gain(s, ATMO_LUT_ARGS, v.dir) : 1.0f;
+            float gain = v.volume && v.component == MEDIA_WALK_VOLUME_MEDIUM
+                             ? volume_roulette_gain(s, ATMO_LUT_ARGS, v.dir)
+                             : 1.0f;
             float q = tracking_survival(beta, gain, depth + scatters);
             if (u_rr >= q)
                 break;
@@ -328,7 +373,8 @@ ATMO_FN void path_continue(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
         float p_c = path_cosine_probability(&v);
         int mirror = !v.volume && u1 < 1.0f - p_c;
         if (v.volume) {
-            w = volume_phase_direction(s, ATMO_LUT_ARGS, v.dir, beta, u1, u2, g, &phase_weight);
+            w = volume_phase_direction(s, ATMO_LUT_ARGS, v.component, v.dir, beta, u1, u2, g,
+                                       &phase_weight);
             beta = v3_mul(beta, phase_weight); /* p / pdf */
         } else if (mirror) {
             w = v3_sub(v.dir, v3_scale(v.n, 2.0f * v3_dot(v.dir, v.n))); /* d - 2 (n . d) n */
@@ -341,23 +387,26 @@ ATMO_FN void path_continue(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
         path_hit h = surfaces_hit(s, ATMO_LUT_ARGS, &r, INFINITY);
         vec3 view_t;
         float t_event;
-        vec3 S = path_segment(s, ATMO_LUT_ARGS, &r, &h, !s->path.sun_nee, g, &view_t, &t_event);
+        int k;
+        vec3 S = path_segment(s, ATMO_LUT_ARGS, &r, &h, !s->path.sun_nee, g, &view_t, &t_event,
+                              &k);
         float weight = s->path.sky_nee && !v.volume && !mirror
                            ? light_sky_power(n_bsdf, p_c * bsdf_pdf_cosine(v.n, w), 1.0f,
                                              light_sky_pdf(s, sky_env, w))
                            : 1.0f;
         int escapes = h.kind == SURFACES_NONE && t_event < 0.0f;
         path_add(parts,
-                 !escapes ? PATH_PASS_VOLUME : v.volume ? PATH_PASS_CLOUDS : PATH_PASS_SKY,
+                 !escapes ? PATH_PASS_VOLUME
+                 : v.volume ? path_volume_pass(&v, PATH_PASS_VOLUME) : PATH_PASS_SKY,
                  v3_mul(beta, v3_scale(S, weight)));
         if (escapes)
             break;
         beta = v3_mul(beta, view_t);
-        if (t_event >= 0.0f) { /* a scattering in the clouds: the next vertex */
+        if (t_event >= 0.0f) { /* a scattering in the volume media: the next vertex */
             if (++scatters > s->path.volume_bounces)
                 break;
-            v = path_vertex_volume(s, &r, t_event);
-            path_add(parts, PATH_PASS_CLOUDS,
+            v = path_vertex_volume(s, &r, t_event, k);
+            path_add(parts, path_volume_pass(&v, PATH_PASS_VOLUME),
                      v3_mul(beta, path_direct_sun(s, ATMO_LUT_ARGS, &v, g)));
             continue;
         }
@@ -391,16 +440,19 @@ ATMO_FN void path_sample(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, i
     path_hit h = surfaces_hit(s, ATMO_LUT_ARGS, &ray, INFINITY);
     vec3 view_t;
     float t_event;
-    vec3 S = path_segment(s, ATMO_LUT_ARGS, &ray, &h, 1, &g, &view_t, &t_event);
+    int k;
+    vec3 S = path_segment(s, ATMO_LUT_ARGS, &ray, &h, 1, &g, &view_t, &t_event, &k);
     int escapes = h.kind == SURFACES_NONE && t_event < 0.0f;
     path_add(parts, escapes ? PATH_PASS_ENV : PATH_PASS_VOLUME, S);
     if (escapes)
         return;
     int n_s = s->path.secondary;
     path_vertex v;
-    if (t_event >= 0.0f) { /* the primary vertex is a scattering in the clouds */
-        v = path_vertex_volume(s, &ray, t_event);
-        path_add(parts, PATH_PASS_CLOUDS,
+    if (t_event >= 0.0f) { /* the primary vertex is a scattering in the volume media */
+        v = path_vertex_volume(s, &ray, t_event, k);
+        /* the air's light on a camera ray that meets no surface is the sky seen directly */
+        path_add(parts,
+                 path_volume_pass(&v, h.kind == SURFACES_NONE ? PATH_PASS_ENV : PATH_PASS_VOLUME),
                  v3_mul(view_t, path_direct_sun(s, ATMO_LUT_ARGS, &v, &g)));
     } else {
         path_add(parts, PATH_PASS_EMIT,

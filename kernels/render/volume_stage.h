@@ -1,6 +1,7 @@
 /* volume_stage.h — the path tracer's scattering events in its volume media (path.clouds =
  * volume: the fBm cloud layer, a medium that no method sees, whose sky_trace gives the air's
- * light alone, in the layer's shadow): the stage functions the loop (path.h) calls for a
+ * light alone, in the layer's shadow; path.air = medium: the air itself, below): the stage
+ * functions the loop (path.h) calls for a
  * segment's free flight, the sun's transmittance through the volume media, and a volume
  * vertex's phase function and continuation. All of them run on the one majorant walk in volume
  * mode (media/media_walk.h) over the plan's composed volume medium (media.h's media_volume_*);
@@ -30,6 +31,16 @@
  * takes the volume medium's spectral-tracking weight w of the whole segment, exact for a grey
  * medium (w = 1 with albedo 1; clouds.extinction_per_m > 0 gives the same extinction in every
  * channel).
+ * With the air a volume medium (path.air = medium, MEDIA_VOLUME_AIR) the same estimator holds
+ * with sigma_a moved from the method into the walk: the free flight draws t_c with density
+ * T(0, t_c) sigma_s,k(t_c) over the components k (cloud, air Rayleigh, air aerosols; T the
+ * transmittance of air and clouds together, absorption folded into the weight w), or none with
+ * probability T(0, end), so
+ *     t_c drawn:  w J_k(t_c)        none:  w L_end
+ * has the expectation L(0) with no method term: J_k is the next vertex with component k's
+ * phase (the air's sampled exactly, media_air_direction), its sun through the same shadow
+ * function (the air's transmittance from the LUT there), and an escaping ray's L_end is the
+ * sun's disc alone.
  * Units: radiance W m^-2 sr^-1 nm^-1, metres, phase per steradian. */
 #ifndef ATMO_RENDER_VOLUME_STAGE_H
 #define ATMO_RENDER_VOLUME_STAGE_H
@@ -42,13 +53,27 @@
 #include "atmo/gpu_types.h"
 #endif
 
-/* The distance of the first scattering in the volume medium along m before `end`, or -1 where
- * the ray passes; *w the tracking weight (1 without a volume medium). */
+/* The distance of the first scattering in the volume media along m before `end`, or -1 where
+ * the ray passes; *component the medium that scatters there (media_walk.h's
+ * MEDIA_WALK_VOLUME_*); *w the tracking weight (1 without a volume medium). */
 ATMO_FN float volume_flight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                            const medium_ray *m, float end, rng_stream *g, vec3 *w)
+                            const medium_ray *m, float end, rng_stream *g, vec3 *w,
+                            int *component)
 {
     float t;
-    return media_walk_volume_flight(s, ATMO_LUT_ARGS, m, end, g, &t, w) ? t : -1.0f;
+    *component = media_walk_volume_flight(s, ATMO_LUT_ARGS, m, end, g, &t, w);
+    return *component != WALK_NULL ? t : -1.0f;
+}
+
+/* The phase function per steradian of the volume component k (MEDIA_WALK_VOLUME_*) between
+ * the ray's direction and w, nu = d . w: the volume medium's, or the air's Rayleigh or aerosol
+ * phase (media.h's media_air_phase). */
+ATMO_FN vec3 volume_component_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, int k,
+                                    float nu)
+{
+    if (k == MEDIA_WALK_VOLUME_MEDIUM)
+        return media_volume_phase(s, ATMO_LUT_ARGS, nu);
+    return media_air_phase(s, k == MEDIA_WALK_VOLUME_RAYLEIGH ? MEDIA_RAYLEIGH : MEDIA_MIE, nu);
 }
 
 /* The volume medium's phase function per steradian between the ray's direction and w,
@@ -67,15 +92,22 @@ ATMO_FN float volume_roulette_gain(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT
     return media_volume_roulette_gain(s, ATMO_LUT_ARGS, v3_dot(d, v3_from4(s->sun_direction)));
 }
 
-/* A new direction at a volume vertex reached along d by a path of throughput beta (u1, u2, and
- * g for Jendersie-d'Eon): the medium's phase function's lobe around d mixed with its lobe
- * around the sun's direction (clouds.sun_guiding); *weight the phase over the density it was
- * drawn with (0 without a volume medium). */
-ATMO_FN vec3 volume_phase_direction(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, vec3 d,
-                                    vec3 beta, float u1, float u2, rng_stream *g, vec3 *weight)
+/* A new direction at a volume vertex of component k (MEDIA_WALK_VOLUME_*) reached along d by a
+ * path of throughput beta (u1, u2, and g for Jendersie-d'Eon): the volume medium's phase
+ * function's lobe around d mixed with its lobe around the sun's direction
+ * (clouds.sun_guiding), or the air's Rayleigh or aerosol phase sampled exactly
+ * (media_air_direction: Draine's sampler with g = 0, alpha = 1 for Rayleigh; Henyey-Greenstein
+ * or Cornette-Shanks; phase.h); *weight the phase over the density it was drawn with (0
+ * without a volume medium). */
+ATMO_FN vec3 volume_phase_direction(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, int k,
+                                    vec3 d, vec3 beta, float u1, float u2, rng_stream *g,
+                                    vec3 *weight)
 {
-    return media_volume_direction(s, ATMO_LUT_ARGS, d, v3_from4(s->sun_direction), beta, u1, u2,
-                                  g, weight);
+    if (k == MEDIA_WALK_VOLUME_MEDIUM)
+        return media_volume_direction(s, ATMO_LUT_ARGS, d, v3_from4(s->sun_direction), beta, u1,
+                                      u2, g, weight);
+    return media_air_direction(s, k == MEDIA_WALK_VOLUME_RAYLEIGH ? MEDIA_RAYLEIGH : MEDIA_MIE, d,
+                               u1, u2, weight);
 }
 
 #endif
