@@ -40,7 +40,7 @@ esac
 
 # name | preset | samples | extra flags | what to see
 entries=(
-"thesis-1|thesis-1|2||sunset over snowy mountains; the foreground lies in the peak's shadow"
+"thesis-1|thesis-1|2||sunset over snowy mountains, a sunlit cumulus left of the peak; the foreground lies in the peak's shadow"
 "thesis-2|thesis-2|1||looking down at a small sphere and a box standing on the terrain, the low sun's long shadows"
 "thesis-3|thesis-3|1||the low sun in frame over the hills beside the open box's site"
 "thesis-4|thesis-4|4||the planet from 2000 km: terminator, cloud field, blue limb"
