@@ -14,8 +14,11 @@
 # 48) and of 2. Also: the merge's report says what render's says (applied, quality fast, guides
 # "albedo, normal", clean_aux), the merged EXR holds the guide layers and the "denoise"
 # attribute naming the guides, and the merge refuses, exit 2 with one line and no output, a
-# heightmap that differs from the one the parts read (the guides would be another terrain's)
-# and a --device that names none.
+# heightmap that differs from the one the parts read (the guides would be another terrain's),
+# a --device that names none and a --denoise that names no quality. --denoise at the merge
+# replaces the parts' setting: parts rendered with --denoise off and merged with --denoise fast
+# give the single --denoise fast render's files byte for byte, and --denoise off denoises
+# nothing.
 # Without the library the test is skipped (setup.sh installs it, so CI runs it).
 set -u
 atmo=$1
@@ -83,6 +86,23 @@ fi
 
 refused "unknown --device" "device" merge p2_1.exr p2_2.exr --device no-such-device --output out/m.pfm
 
+# --denoise at the merge: parts rendered with --denoise off merge with --denoise fast into the
+# single render's denoised files (the parts are sums either way; the merge sets the quality);
+# and the parts' own setting is overridden the other way, --denoise off giving no denoised PNG
+for i in 1 2; do
+    "$atmo" render "${scene[@]}" --denoise off --part $i/2 --output raw2_$i.exr ||
+        bad "part $i/2 with --denoise off failed"
+done
+"$atmo" merge --quiet raw2_1.exr raw2_2.exr --denoise fast --output md.exr --output md.pfm \
+    --output md.png || bad "merge with --denoise fast failed"
+same_files single md
+"$atmo" merge --quiet p2_1.exr p2_2.exr --denoise off --output raw.png --report raw.json ||
+    bad "merge with --denoise off failed"
+python3 -c "import json, sys; d = json.load(open('raw.json'))['merge'].get('denoise', {}); sys.exit(d.get('applied', False))" &&
+    ok || bad "merge --denoise off still denoised"
+cmp -s raw.png single.png && bad "merge --denoise off wrote the denoised PNG" || ok
+refused "bad --denoise" "output.denoise.*did you mean 'high'" merge p2_1.exr p2_2.exr --denoise hig --output out/m.png
+
 # a heightmap changed after the parts were rendered: its guides would be another terrain's.
 # ramp FILE K: a 16x16 16-bit greyscale PNG of heights 4000 ((x + K y) mod 17)
 ramp() {
@@ -98,7 +118,7 @@ open(sys.argv[1], "wb").write(png + chunk(b"IDAT", zlib.compress(rows)) + chunk(
 EOF
 }
 ramp ramp.png 3
-dem=(--width 16 --height 16 --samples 1 --quiet --set render.mode=path --denoise fast
+dem=(--preset sky-sunset --width 16 --height 16 --samples 1 --quiet --set render.mode=path --denoise fast
      --set terrain.heightmap_file="$work/ramp.png" --set terrain.heightmap_file_extent_m=4000
      --set terrain.heightmap_scale_m=512)
 "$atmo" render "${dem[@]}" --part 1/2 --output d1.exr && "$atmo" render "${dem[@]}" --part 2/2 \

@@ -11,9 +11,10 @@
  * (atmo_outputs_write_denoised, host/render/outputs.c, writes both). Parts from different
  * devices merge with a warning: each pixel is then its own device's.
  *
- * Denoising (the parts' output.denoise) runs once, on the merged image, guided as `atmo render`
- * guides it: the merge renders the albedo and normal guides of the whole image itself
- * (atmo_render_guides on the device --device selects) rather than reading them from the parts.
+ * Denoising (the parts' output.denoise, or --denoise's quality in its place) runs once, on the
+ * merged image, guided as `atmo render` guides it: the merge renders the albedo and normal
+ * guides of the whole image itself (atmo_render_guides on the device --device selects) rather
+ * than reading them from the parts.
  * The guides draw no random number and depend on the scene alone, which the parts carry, so the
  * parts stay the sums they are (8 more floats a pixel would nearly double them) and, on the
  * parts' device, the guides and so the denoised files are the single render's bit for bit. A
@@ -45,11 +46,23 @@
 typedef struct merge_args {
     const char *outputs[MERGE_MAX_OUTPUTS];
     int n_out, quiet, force;
-    const char *report, *device;
+    const char *report, *device, *denoise;
     const char *parts[MERGE_MAX_PARTS];
 } merge_args;
 
 #define MERGE_FLAG(member) offsetof(merge_args, member)
+
+/* --denoise Q: checked as the scene key output.denoise checks it, applied to the parts' scene */
+static int take_denoise(void *args, const cli_flag *f, const char *v, atmo_err *e)
+{
+    merge_args *a = args;
+    atmo_scene probe;
+    atmo_scene_defaults(&probe);
+    int rc = atmo_scene_set(&probe, "output.denoise", v, f->name, e);
+    if (!rc)
+        a->denoise = v;
+    return rc;
+}
 
 static const cli_flag merge_flags[] = {
     {.type = CLI_PATH, .name = "--output", .alias = "-o", .offset = MERGE_FLAG(outputs),
@@ -61,6 +74,10 @@ static const cli_flag merge_flags[] = {
      .help = "no summary line"},
     {.type = CLI_PATH, .name = "--report", .offset = MERGE_FLAG(report), .def = "none",
      .help = "JSON report: the parts, the image, how it was denoised"},
+    {.type = CLI_STRING, .name = "--denoise", .metavar = "Q", .take = take_denoise,
+     .def = "the parts' scene's output.denoise",
+     .help = "denoise the merged image: auto, off, fast, balanced or high, as\n"
+             "atmo render --denoise (parts are never denoised themselves)"},
     {.type = CLI_STRING, .name = "--device", .metavar = "N|NAME", .offset = MERGE_FLAG(device),
      .def = "$ATMO_DEVICE, else the first GPU, else the first device",
      .help = "OpenCL device of the denoiser's guides (atmo devices); the parts'\n"
@@ -70,15 +87,15 @@ static const cli_flag merge_flags[] = {
 
 static const cli_command merge_cli = {
     .name = "merge",
-    .synopsis = "PART.exr... --output FILE [--output FILE ...] [--report FILE] [--device N|NAME]\n"
-                "            [--force] [--quiet]",
+    .synopsis = "PART.exr... --output FILE [--output FILE ...] [--report FILE] [--denoise Q]\n"
+                "            [--device N|NAME] [--force] [--quiet]",
     .about = "Joins the N parts of a split render (atmo render --part I/N --output PART.exr) into the\n"
              "images the single render writes (.png .hdr .exr .pfm, format from the extension), bit for\n"
              "bit when the parts were rendered on one device. Refused with exit status 2 and no output:\n"
              "a file that is not a part, parts of different scenes, a part given twice, a missing part,\n"
              "an incomplete (interrupted) part, an output that exists (without --force). Outputs that\n"
-             "the scene's output.denoise denoises are denoised once, after the merge, with the albedo\n"
-             "and normal guides that atmo render uses, rendered here on --device.\n",
+             "the scene's output.denoise (or --denoise) denoises are denoised once, after the merge,\n"
+             "with the albedo and normal guides that atmo render uses, rendered here on --device.\n",
     .flags = merge_flags,
     .max_positional = MERGE_MAX_PARTS,
 };
@@ -188,6 +205,8 @@ static int merge_parts(const merge_args *a, int n, atmo_err *e)
     if (!rc)
         rc = atmo_scene_load_json_text(&scene, parts[0].scene_json, strlen(parts[0].scene_json),
                                        paths[0], e);
+    if (!rc && a->denoise)
+        rc = atmo_scene_set(&scene, "output.denoise", a->denoise, "--denoise", e);
     if (!rc)
         rc = atmo_scene_validate(&scene, e);
     if (!rc && (scene.image.width != parts[0].width || scene.image.height != parts[0].height))
