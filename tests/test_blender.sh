@@ -144,7 +144,7 @@ sys.exit(0 if worst <= 1 else 1)
 EOF
 
 # radiance output: wavelengths, no chromaticities, no Blender attributes
-if "$atmo" render --width 16 --height 8 --samples 1 --quiet -o rad.exr 2>rad.err; then
+if "$atmo" render --preset sky-sunset --width 16 --height 8 --samples 1 --quiet -o rad.exr 2>rad.err; then
     [ "$(attr rad.exr wavelengths)" = '"R 680 nm, G 550 nm, B 440 nm"' ] && ok ||
         bad "radiance wavelengths: $(attr rad.exr wavelengths)"
     [ -z "$(attr rad.exr chromaticities)$(attr rad.exr colorInteropID)$(attr rad.exr blenderWorldStrength)" ] &&

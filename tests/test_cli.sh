@@ -13,17 +13,18 @@ atmo=$1
 cli_begin
 
 small=(--width 16 --height 8 --samples 2 --quiet)
+sunset=(--preset sky-sunset "${small[@]}") # the scene these checks were written for
 refused "unknown command" "unknown command" bogus
-refused "misspelt key" "did you mean 'sun.zenith_deg'" render "${small[@]}" --set sun.zenit=5 --output out/a.png
-refused "NaN value" "sun.zenith_deg" render "${small[@]}" --set sun.zenith_deg=nan --output out/a.png
-refused "out of range" "0 .. 180|range" render "${small[@]}" --set sun.zenith_deg=200 --output out/a.png
-refused "wrong type" "camera.kind" render "${small[@]}" --set camera.kind=orthographic --output out/a.png
-refused "vec3 syntax" "camera.position_m" render "${small[@]}" --set camera.position_m=1,2 --output out/a.png
-refused "set without =" "--set|=" render "${small[@]}" --set sun.zenith_deg --output out/a.png
+refused "misspelt key" "did you mean 'sun.zenith_deg'" render "${sunset[@]}" --set sun.zenit=5 --output out/a.png
+refused "NaN value" "sun.zenith_deg" render "${sunset[@]}" --set sun.zenith_deg=nan --output out/a.png
+refused "out of range" "0 .. 180|range" render "${sunset[@]}" --set sun.zenith_deg=200 --output out/a.png
+refused "wrong type" "camera.kind" render "${sunset[@]}" --set camera.kind=orthographic --output out/a.png
+refused "vec3 syntax" "camera.position_m" render "${sunset[@]}" --set camera.position_m=1,2 --output out/a.png
+refused "set without =" "--set|=" render "${sunset[@]}" --set sun.zenith_deg --output out/a.png
 refused "bad width" "image.width" render --width 0 --output out/a.png
 refused "bad samples" "image.samples" render --samples -3 --output out/a.png
-refused "unknown format" "format" render "${small[@]}" --output out/a.jpg
-refused "unwritable dir" "not writable|directory" render "${small[@]}" --output /nonexistent/dir/a.png
+refused "unknown format" "format" render "${sunset[@]}" --output out/a.jpg
+refused "unwritable dir" "not writable|directory" render "${sunset[@]}" --output /nonexistent/dir/a.png
 refused "unknown preset" "preset" render "${small[@]}" --preset nope --output out/a.png
 refused "missing scene" "missing.json" render "${small[@]}" --scene missing.json --output out/a.png
 echo '{"sun": {"zenith_deg": 30,}' >broken.json
@@ -35,9 +36,9 @@ refused "JSON unknown key" "did you mean" render "${small[@]}" --scene unknown.j
 refused "preset and scene" "preset|scene" render "${small[@]}" --preset sky-noon --scene unknown.json --output out/a.png
 refused "unknown option" "unknown option" render --frobnicate
 refused "missing value" "needs a value" render --output
-refused "bad tile size" "tile-size" render "${small[@]}" --tile-size 3 --output out/a.png
-refused "bad budget" "launch-budget" render "${small[@]}" --launch-budget-ms 0 --output out/a.png
-refused "bad device" "device" render "${small[@]}" --device 99 --output out/a.png
+refused "bad tile size" "tile-size" render "${sunset[@]}" --tile-size 3 --output out/a.png
+refused "bad budget" "launch-budget" render "${sunset[@]}" --launch-budget-ms 0 --output out/a.png
+refused "bad device" "device" render "${sunset[@]}" --device 99 --output out/a.png
 refused "devices option" "unknown option" devices --frobnicate
 
 # did you mean: a near miss of a command, flag, preset, choice, method or key gets the nearest
@@ -47,15 +48,15 @@ refused "misspelt flag" "unknown option '--widht' \(did you mean '--width'\? atm
 refused "misspelt flag with =" "unknown option '--outptu' \(did you mean '--output'\?" render --outptu=out/a.png
 refused "misspelt preset" "unknown preset 'thesis1' \(did you mean 'thesis-1'\? atmo presets lists them\)" render "${small[@]}" --preset thesis1 --output out/a.png
 refused "misspelt presets NAME" "did you mean 'sky-noon'" presets sky-nono
-refused "misspelt choice" "--camera: 'panoramma' is not one of .*did you mean 'panorama'" render "${small[@]}" --camera panoramma --output out/a.png
-refused "misspelt method" "did you mean 'reference'\? use one of" render "${small[@]}" --set atmosphere.method=refrence --output out/a.png
-refused "swapped letters in a choice" "did you mean 'piz'" render "${small[@]}" --exr-compression pzi --output out/a.exr
+refused "misspelt choice" "--camera: 'panoramma' is not one of .*did you mean 'panorama'" render "${sunset[@]}" --camera panoramma --output out/a.png
+refused "misspelt method" "did you mean 'reference'\? use one of" render "${sunset[@]}" --set atmosphere.method=refrence --output out/a.png
+refused "swapped letters in a choice" "did you mean 'piz'" render "${sunset[@]}" --exr-compression pzi --output out/a.exr
 refused "misspelt bench suite" "unknown suite 'mei' \(did you mean 'mie'\?" bench mei
 refused "unknown bench view" "--views: unknown view 'thesis-10'" bench views --views thesis-10 --output out/bench
 refused "misspelt cache action" "did you mean 'verify'\?" cache verfy
 refused "far preset: no guess" "^atmo render: unknown preset 'xyzzy'; use one of" render "${small[@]}" --preset xyzzy --output out/a.png
 refused "far flag: no guess" "^atmo render: unknown option '--frobnicate' \(atmo render --help\)$" render --frobnicate
-refused "far key: no guess" "unknown parameter 'qqq.zzz' \(from --set\); atmo params" render "${small[@]}" --set qqq.zzz=1 --output out/a.png
+refused "far key: no guess" "unknown parameter 'qqq.zzz' \(from --set\); atmo params" render "${sunset[@]}" --set qqq.zzz=1 --output out/a.png
 refused "not an integer" "--width: 'abc' is not an integer \(image.width: use a whole number in \[1, [0-9]+\], e.g. --width [0-9]+\)" render --width abc --output out/a.png
 refused "bool with a value" "--quiet takes no value" render --quiet=yes --output out/a.png
 
@@ -77,7 +78,7 @@ for line in open(sys.argv[1]):
 valued = [f for f, b in blocks.items() if re.match(r"  --[a-z-]+(, -[a-z])? \S", b)]
 lacking = [f for f in valued if "(default" not in blocks[f] and f not in ("--set", "--animate", "--scene")]
 assert len(valued) >= 20 and not lacking, (len(valued), lacking)
-assert "(default: the scene's; 16 in" in blocks["--samples"], blocks["--samples"]
+assert "(default: the scene's; 2 in planet)" in blocks["--samples"], blocks["--samples"]
 PY
 then ok; else bad "--help does not state every default"; fi
 
@@ -85,23 +86,23 @@ then ok; else bad "--help does not state every default"; fi
 # untouched; with --force it is replaced
 echo "an earlier image" >keep.png
 cp keep.png keep.orig
-refused "existing output" "--output 'keep.png' exists; add --force to overwrite it" render "${small[@]}" --output keep.png
+refused "existing output" "--output 'keep.png' exists; add --force to overwrite it" render "${sunset[@]}" --output keep.png
 if cmp -s keep.png keep.orig; then ok; else bad "a refused render changed keep.png"; fi
 echo "{}" >keep.json
-refused "existing report" "--report 'keep.json' exists; add --force" render "${small[@]}" --output out/a.png --report keep.json
+refused "existing report" "--report 'keep.json' exists; add --force" render "${sunset[@]}" --output out/a.png --report keep.json
 echo "theta_deg" >keep.csv
 refused "existing mie table" "--table 'keep.csv' exists; add --force" mie --radius-um 1 --wavelength-nm 550 --table keep.csv
-if "$atmo" render "${small[@]}" --force --output keep.png 2>stderr.txt && ! cmp -s keep.png keep.orig; then ok; else bad "--force did not replace keep.png"; cat stderr.txt >&2; fi
+if "$atmo" render "${sunset[@]}" --force --output keep.png 2>stderr.txt && ! cmp -s keep.png keep.orig; then ok; else bad "--force did not replace keep.png"; cat stderr.txt >&2; fi
 
 # plurals: one sample per pixel is "1 sample/pixel", one image "1 image"; the cost line before
 # the render states the size, the samples (16 x 8 x 1 = 128) and the method
-if "$atmo" render --width 16 --height 8 --samples 1 --set atmosphere.method=single \
+if "$atmo" render --preset sky-sunset --width 16 --height 8 --samples 1 --set atmosphere.method=single \
     --output one.pfm 2>one.txt && grep -q "wrote 1 image (16x8, 1 sample/pixel" one.txt &&
     grep -q "^atmo render: 16x8 at 1 sample/pixel (0.000128 M samples), method single; 1 frame$" one.txt
 then ok; else bad "plural or cost line: $(cat one.txt)"; fi
 
 # a good render writes every format, completely, and a report
-if "$atmo" render "${small[@]}" --camera panorama --output a.pfm --output a.png --output a.exr \
+if "$atmo" render "${sunset[@]}" --camera panorama --output a.pfm --output a.png --output a.exr \
     --output a.hdr --report run.json --save-scene scene.json 2>stderr.txt; then ok; else bad "render failed"; cat stderr.txt >&2; fi
 for f in a.pfm a.png a.exr a.hdr run.json scene.json; do
     if [ -s "$f" ]; then ok; else bad "$f missing"; fi
@@ -125,7 +126,7 @@ then ok; else bad "report content"; fi
 if "$atmo" render --quiet --scene scene.json --output b.pfm 2>stderr.txt && cmp -s a.pfm b.pfm; then ok; else bad "--save-scene does not reproduce the image"; cat stderr.txt >&2; fi
 
 # Ctrl-C: the samples so far are written, and the run says so (exit status 3: partial)
-"$atmo" render --width 32 --height 16 --samples 1000000 --output int.pfm --report int.json 2>int.txt &
+"$atmo" render --preset sky-sunset --width 32 --height 16 --samples 1000000 --output int.pfm --report int.json 2>int.txt &
 pid=$!
 sleep 4
 kill -INT $pid

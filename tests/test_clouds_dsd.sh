@@ -14,7 +14,7 @@ atmo=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail=0
-common=(--set clouds.enabled=true --set atmosphere.method=single --set clouds.extinction_per_m=0
+common=(--preset sky-sunset --set clouds.enabled=true --set atmosphere.method=single --set clouds.extinction_per_m=0
         --set camera.pitch_deg=20 --set clouds.coverage=0.8 --width 8 --height 8 --quiet)
 
 render() { # NAME DSD

@@ -77,20 +77,20 @@ one_line_error $? "info FILE"
 "$atmo" dem info "$tmp/ramp.png" --set terrain.heightmap_file_extent_m=-1 2>"$tmp/err" >/dev/null
 one_line_error $? "terrain.heightmap_file_extent_m"
 # method single: the smallest program to build (PoCL compiles it in a few seconds)
-"$atmo" render --quiet --width 4 --height 4 --samples 1 --set atmosphere.method=single \
+"$atmo" render --preset sky-sunset --quiet --width 4 --height 4 --samples 1 --set atmosphere.method=single \
     --output "$tmp/rgb.exr" 2>"$tmp/err" || bad "render to EXR failed"
 "$atmo" dem info "$tmp/rgb.exr" "${keys[@]}" 2>"$tmp/err" >/dev/null
 one_line_error $? "3 channels"
 
 # render: the file is checked while planning, before any work, and nothing is written
-"$atmo" render --quiet --width 4 --height 4 --samples 1 --set terrain.heightmap_file="$tmp/none.png" \
+"$atmo" render --preset sky-sunset --quiet --width 4 --height 4 --samples 1 --set terrain.heightmap_file="$tmp/none.png" \
     --output "$tmp/out.png" 2>"$tmp/err" >/dev/null
 one_line_error $? "none.png"
 [ -e "$tmp/out.png" ] && bad "a refused render wrote its output"
-"$atmo" render --quiet --width 4 --height 4 --samples 1 --set terrain.heightmap_file="$tmp/ramp.png" \
+"$atmo" render --preset sky-sunset --quiet --width 4 --height 4 --samples 1 --set terrain.heightmap_file="$tmp/ramp.png" \
     --output "$tmp/out.png" 2>"$tmp/err" >/dev/null
 one_line_error $? "terrain.heightmap_file_extent_m"
-"$atmo" render --quiet --width 4 --height 4 --samples 1 --set terrain.heightmap_file="$tmp/ramp.png" \
+"$atmo" render --preset sky-sunset --quiet --width 4 --height 4 --samples 1 --set terrain.heightmap_file="$tmp/ramp.png" \
     "${keys[@]}" --set atmosphere.method=single --output "$tmp/out.png" 2>"$tmp/err" >/dev/null ||
     bad "render with a heightmap failed"
 
@@ -121,7 +121,7 @@ PY
 # (the image differs from the procedural's), and with terrain.heightmap_detail the fBm's
 # octaves below its cells add to it (the image differs again, and has no NaN/Inf: a PFM's
 # floats read back finite); the detail without a file is refused
-view=(--set terrain.enabled=true --set atmosphere.method=single --set camera.position_m=0,3000,12000
+view=(--preset sky-sunset --set terrain.enabled=true --set atmosphere.method=single --set camera.position_m=0,3000,12000
       --set camera.pitch_deg=-12 --set camera.yaw_deg=180 --width 32 --height 16 --samples 1 --quiet)
 "$atmo" render "${view[@]}" --set terrain.heightmap_detail=true --output "$tmp/no.pfm" 2>"$tmp/err"
 one_line_error $? "terrain.heightmap_file"

@@ -15,11 +15,11 @@ atmo=$1
 cli_begin
 
 small=(--width 24 --height 16 --samples 2 --quiet)
-"$atmo" render "${small[@]}" --frames 1..3 --animate sun.zenith_deg=30..80 --output sky.pfm ||
+"$atmo" render --preset sky-sunset "${small[@]}" --frames 1..3 --animate sun.zenith_deg=30..80 --output sky.pfm ||
     bad "--frames 1..3 failed"
 for f in 1 2 3; do
     z=$((30 + 25 * (f - 1)))
-    "$atmo" render "${small[@]}" --set sun.zenith_deg=$z --output ref$f.pfm
+    "$atmo" render --preset sky-sunset "${small[@]}" --set sun.zenith_deg=$z --output ref$f.pfm
     cmp -s ref$f.pfm sky.000$f.pfm && ok || bad "frame $f differs from zenith $z"
 done
 [ ! -e sky.pfm ] && [ ! -e sky.0004.pfm ] && ok || bad "files beyond the frames: $(ls sky*)"
@@ -40,16 +40,16 @@ cmp -s last.pfm alt.0006.pfm && ok || bad "frame 6 differs from the end scene"
 
 # --part 2/2 of frames 1..3: frame 2 only
 rm -f sky.*.pfm
-"$atmo" render "${small[@]}" --frames 1..3 --animate sun.zenith_deg=30..80 --part 2/2 \
+"$atmo" render --preset sky-sunset "${small[@]}" --frames 1..3 --animate sun.zenith_deg=30..80 --part 2/2 \
     --output sky.pfm || bad "--frames with --part failed"
 [ "$(ls sky.*.pfm)" = "sky.0002.pfm" ] && ok || bad "part 2/2 wrote $(ls sky.*.pfm)"
 cmp -s ref2.pfm sky.0002.pfm && ok || bad "part 2/2's frame 2 differs"
 
-refused "reversed range" "--frames needs A..B" render "${small[@]}" --frames 3..1 --output out/a.pfm
-refused "animate a count" "only float keys" render "${small[@]}" --frames 1..2 --animate image.samples=1..4 --output out/a.pfm
-refused "animate unknown key" "did you mean 'sun.zenith_deg'" render "${small[@]}" --frames 1..2 --animate sun.zenit=1..4 --output out/a.pfm
-refused "animate out of range" "frame 2" render "${small[@]}" --frames 1..2 --animate sun.zenith_deg=30..200 --output out/a.pfm
-refused "animate without frames" "need --frames" render "${small[@]}" --animate sun.zenith_deg=30..80 --output out/a.pfm
+refused "reversed range" "--frames needs A..B" render --preset sky-sunset "${small[@]}" --frames 3..1 --output out/a.pfm
+refused "animate a count" "only float keys" render --preset sky-sunset "${small[@]}" --frames 1..2 --animate image.samples=1..4 --output out/a.pfm
+refused "animate unknown key" "did you mean 'sun.zenith_deg'" render --preset sky-sunset "${small[@]}" --frames 1..2 --animate sun.zenit=1..4 --output out/a.pfm
+refused "animate out of range" "frame 2" render --preset sky-sunset "${small[@]}" --frames 1..2 --animate sun.zenith_deg=30..200 --output out/a.pfm
+refused "animate without frames" "need --frames" render --preset sky-sunset "${small[@]}" --animate sun.zenith_deg=30..80 --output out/a.pfm
 echo '{"camera": {"kind": "panorama"}}' >kind.json
 refused "scene-end changes a choice" "camera.kind differs" render "${small[@]}" --frames 1..2 --scene-end kind.json --output out/a.pfm
 

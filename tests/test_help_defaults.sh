@@ -79,7 +79,7 @@ cmp -s default.json named.json && ok || bad "the scene without --preset is not -
 tile=$(grep -oE '^--tile-size.*\(default [0-9]+\)' render.txt | sed -E 's/.*\(default ([0-9]+)\)/\1/')
 budget=$(grep -oE '^--launch-budget-ms.*\(default [0-9.]+\)' render.txt | sed -E 's/.*\(default ([0-9.]+)\)/\1/')
 output=$(grep -oE '^--output.*\(default [a-z.]+\)' render.txt | sed -E 's/.*\(default ([a-z.]+)\)/\1/')
-"$atmo" render --width 8 --height 8 --samples 1 --quiet --report report.json 2>err.txt ||
+"$atmo" render --preset sky-sunset --width 8 --height 8 --samples 1 --quiet --report report.json 2>err.txt ||
     bad "a render without --output: $(cat err.txt)"
 [ -n "$output" ] && [ -s "$output" ] && ok || bad "--output's stated default '$output' was not written"
 python3 -c "

@@ -59,7 +59,7 @@ no_tmp "precompute"
 
 # the render: many samples of a small image, interrupted after the first launches (the kernel
 # binary and the transmittance LUT built first, so the signal lands in the render)
-single=(--set atmosphere.method=single)
+single=(--preset sky-sunset --set atmosphere.method=single)
 "$atmo" render "${single[@]}" --width 32 --height 16 --samples 1 --output warm.png --quiet || bad "warm-up run"
 rm -f warm.png
 for sig in INT TERM; do

@@ -23,7 +23,7 @@ same_files() {
     done
 }
 
-scene=(--width 48 --height 40 --samples 5 --seed 7 --set sun.zenith_deg=84 --quiet)
+scene=(--preset sky-sunset --width 48 --height 40 --samples 5 --seed 7 --set sun.zenith_deg=84 --quiet)
 "$atmo" render "${scene[@]}" --output single.exr --output single.pfm --output single.png ||
     { echo "single render failed"; exit 1; }
 
@@ -69,7 +69,7 @@ refused "no output" "no --output" merge p3_1.exr
 # part 1/1 of a scene of 10^6 samples per pixel; the signal must land in the render, after the
 # first launch: wait longer if it came too early
 for wait_s in 2 4 8; do
-    "$atmo" render --width 16 --height 16 --samples 1000000 --quiet --part 1/1 \
+    "$atmo" render --preset sky-sunset --width 16 --height 16 --samples 1000000 --quiet --part 1/1 \
         --output cut.exr 2>/dev/null &
     pid=$!
     sleep $wait_s

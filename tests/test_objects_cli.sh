@@ -14,7 +14,7 @@ atmo=$1
 . "${ATMO_SOURCE_DIR:-$(dirname "$0")/..}/tests/support_cli.sh"
 cli_begin
 
-small=(render --width 8 --height 6 --samples 1 --quiet --output out/a.png)
+small=(render --preset sky-sunset --width 8 --height 6 --samples 1 --quiet --output out/a.png)
 refused "not an array" "objects.*JSON array" "${small[@]}" --set 'objects={"type": "sphere"}'
 refused "no type" "objects\[0\].*type" "${small[@]}" --set 'objects=[{"center_m": [0, 1, 5]}]'
 refused "unknown type" "objects\[0\].*sphere.*box" "${small[@]}" --set 'objects=[{"type": "cone"}]'

@@ -45,7 +45,7 @@ refused() {
 }
 
 mkdir out out/dir.png
-r=(render --width 64 --height 32 --samples 64 --no-kernel-cache)
+r=(render --preset sky-sunset --width 64 --height 32 --samples 64 --no-kernel-cache)
 long_name=$(printf 'n%.0s' $(seq 1 300)).png
 long_path=out/$(printf 'd/%.0s' $(seq 1 2100))a.png
 refused "output is a directory" "'out/dir.png' is a directory" "${r[@]}" --output out/dir.png
@@ -68,7 +68,7 @@ if [ "$(id -u)" -ne 0 ]; then # root writes anywhere
 fi
 
 # the same file twice (as given, and through another spelling) is one output, said once
-"$atmo" render --width 16 --height 8 --samples 2 --output out/one.pfm --output ./out/one.pfm \
+"$atmo" render --preset sky-sunset --width 16 --height 8 --samples 2 --output out/one.pfm --output ./out/one.pfm \
     --output out/dir.png/../one.pfm --report out/one.json 2>stderr.txt
 rc=$?
 if [ $rc -eq 0 ] && grep -q "wrote 1 image " stderr.txt; then ok; else bad "same output thrice: exit $rc"; cat stderr.txt >&2; fi

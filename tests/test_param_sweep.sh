@@ -47,7 +47,7 @@ render() {
     local key=$1 method=$2
     shift 2
     rm -f out.pfm report.json
-    "$atmo" render --quiet --width 8 --height 4 --samples 1 "${small_lut[@]}" \
+    "$atmo" render --preset sky-sunset --quiet --width 8 --height 4 --samples 1 "${small_lut[@]}" \
         --set atmosphere.method="$method" "$@" --output out.pfm --report report.json \
         >stdout.txt 2>stderr.txt </dev/null
     local rc=$?

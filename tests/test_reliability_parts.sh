@@ -17,7 +17,7 @@ atmo=$1
 cli_begin
 export ATMO_CACHE_DIR=$work/cache TMPDIR=$work/tmp
 mkdir -p "$TMPDIR"
-scene=(--width 16 --height 16 --samples 2 --seed 3 --quiet)
+scene=(--preset sky-sunset --width 16 --height 16 --samples 2 --seed 3 --quiet)
 
 # write_dem FILE BASE [BAD_CRC]: an 8 x 8 16-bit grey PNG, heights BASE + 10 (x + y); with
 # BAD_CRC the IDAT chunk's stored CRC has one bit flipped (its data intact)
@@ -76,7 +76,7 @@ refused "--part with --time-limit" "--time-limit cannot stop it" \
 # and a tile that stopped before image.samples had met the target (the session's stopping rule,
 # atmo/session.h; the report's e is computed from the same sums, in double from float errors,
 # hence the relative slack of 1e-4)
-"$atmo" render --width 32 --height 16 --tile-size 8 --samples 256 --noise 5% --quiet \
+"$atmo" render --preset sky-sunset --width 32 --height 16 --tile-size 8 --samples 256 --noise 5% --quiet \
     --output noise.pfm --report noise.json || bad "--noise render failed"
 python3 - <<'PY' && ok || bad "the report's tiles_noise does not state each tile's noise"
 import json, sys

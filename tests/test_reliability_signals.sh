@@ -17,7 +17,7 @@ atmo=$1
 cli_begin
 export ATMO_CACHE_DIR=$work/cache TMPDIR=$work/tmp
 mkdir -p "$TMPDIR"
-single=(--set atmosphere.method=single --width 32 --height 16)
+single=(--preset sky-sunset --set atmosphere.method=single --width 32 --height 16)
 no_tmp() { [ -z "$(find . -name '*.tmp.*')" ] && ok || bad "$1: temporary files left: $(find . -name '*.tmp.*')"; }
 
 "$atmo" render "${single[@]}" --samples 1 --output warm.png --quiet || bad "warm-up run"
@@ -39,7 +39,7 @@ no_tmp "SIGHUP in the render"
 mkdir wr
 outs=()
 for i in 1 2 3 4 5 6 7 8; do outs+=(--output "wr/w$i.png"); done
-"$atmo" render --set atmosphere.method=single --width 1024 --height 512 --samples 1 "${outs[@]}" 2>wr.txt &
+"$atmo" render --preset sky-sunset --set atmosphere.method=single --width 1024 --height 512 --samples 1 "${outs[@]}" 2>wr.txt &
 pid=$!
 until grep -q "100.0% done" wr.txt || ! kill -0 $pid 2>/dev/null; do sleep 0.01; done
 kill -HUP $pid 2>/dev/null

@@ -692,7 +692,22 @@ static void test_presets(void)
 {
     atmo_err e;
     CHECK(atmo_preset_find(atmo_default_preset) != NULL);
-    CHECK(strcmp(atmo_default_preset, "sky-sunset") == 0);
+    CHECK(strcmp(atmo_default_preset, "planet") == 0);
+    {
+        /* the default is thesis view 9 (checked against presets.md below) at 2 samples per
+         * pixel: the two scenes' JSON differ in image.samples alone */
+        atmo_scene planet, view9;
+        atmo_scene_defaults(&planet);
+        atmo_scene_defaults(&view9);
+        CHECK(atmo_scene_apply_preset(&planet, "planet", &e) == ATMO_OK);
+        CHECK(atmo_scene_apply_preset(&view9, "thesis-9", &e) == ATMO_OK);
+        CHECK(planet.image.samples == 2 && view9.image.samples == 16);
+        view9.image.samples = planet.image.samples;
+        char *a = atmo_scene_to_json(&planet), *b = atmo_scene_to_json(&view9);
+        CHECK(a && b && strcmp(a, b) == 0);
+        free(a);
+        free(b);
+    }
     CHECK(atmo_preset_find("no-such-preset") == NULL);
     atmo_scene s;
     atmo_scene_defaults(&s);
@@ -710,7 +725,7 @@ static void test_presets(void)
         CHECK(p->summary && strlen(p->summary) > 10 && !strchr(p->summary, '\n'));
         CHECK(atmo_preset_find(p->name) == p);
     }
-    CHECK(count == 16);
+    CHECK(count == 17);
 
     /* thesis presets against presets.md: position, rotation and direction to the sun */
     static const struct {

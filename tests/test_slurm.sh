@@ -93,7 +93,7 @@ done
 sinfo -h -o %T 2>/dev/null | grep -qx idle || skip "the node did not come up"
 
 # the single-process render, then the same scene in 4 parts through Slurm
-scene=(--width 64 --height 64 --samples 4 --set sun.zenith_deg=80 --set camera.pitch_deg=5)
+scene=(--preset sky-sunset --width 64 --height 64 --samples 4 --set sun.zenith_deg=80 --set camera.pitch_deg=5)
 "$atmo" render "${scene[@]}" --quiet --output "$work"/single.exr --output "$work"/single.pfm ||
     bad "single render failed"
 export ATMO=$atmo ATMO_NODE_CACHE=$work/node
@@ -125,7 +125,7 @@ cmp -s single.pfm merged.pfm && ok || bad "merged .pfm differs from the single r
 [ -z "$(ls -A "$work"/node)" ] && ok || bad "tasks left cache directories: $(ls "$work"/node)"
 
 # an animation: 2 tasks render frames 1 and 2 whole, sharing one kept cache on the node
-anim=(--width 32 --height 16 --samples 2 --frames 1..2 --animate sun.zenith_deg=40..60)
+anim=(--preset sky-sunset --width 32 --height 16 --samples 2 --frames 1..2 --animate sun.zenith_deg=40..60)
 ids=$(ATMO_NODE_CACHE_SHARED=1 "$src"/tools/slurm/submit.sh 2 "$work"/frames sky.pfm "${anim[@]}") ||
     bad "submit.sh --frames failed"
 read -r array merge <<<"$ids"
@@ -134,7 +134,7 @@ wait_job "$array"
     { bad "frames job $array: $(state "$array")"; cat "$work"/frames/frames.*.log >&2; }
 [ "$merge" = - ] && ok || bad "a merge job ($merge) for an animation"
 for f in 1 2; do
-    "$atmo" render --width 32 --height 16 --samples 2 --set sun.zenith_deg=$((20 + 20 * f)) \
+    "$atmo" render --preset sky-sunset --width 32 --height 16 --samples 2 --set sun.zenith_deg=$((20 + 20 * f)) \
         --quiet --output ref$f.pfm
     cmp -s ref$f.pfm "$work"/frames/sky.000$f.pfm && ok || bad "Slurm frame $f differs"
 done

@@ -52,7 +52,7 @@ entries=(
 "space|space|1||the planet from 2000 km: continents, oceans, terminator, blue limb"
 "sky-noon|sky-noon|1||a clear sky at noon, looking at the horizon"
 "sky-afternoon|sky-afternoon|1||the afternoon sky, the sun 30° high to the right"
-"sky-sunset|sky-sunset|1||a sunset looking toward the sun (the default scene)"
+"sky-sunset|sky-sunset|1||a sunset looking toward the sun"
 "sky-sunset-panorama|sky-sunset|1|--camera panorama|the sunset as a 360° panorama (the Blender environment map's view)"
 )
 

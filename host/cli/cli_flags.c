@@ -8,7 +8,8 @@
  * error is one line naming the flag, the value, what is valid and an example; a mistyped flag
  * or choice gets the nearest one as a hint (atmo/suggest.h). The help is generated from the
  * same tables, with every default: the flag's own text, else the value its destination holds
- * before parsing, else for a scene key the value the default preset gives it. */
+ * before parsing, else for a scene key its value in the scene the command starts from (the
+ * defaults and the command's scene_preset). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,18 +51,14 @@ static void offer_flags(const cli_flag *t, atmo_suggest *s)
     }
 }
 
-/* The scene that a shorthand's default comes from: the defaults and the default preset. */
-static const atmo_scene *default_scene(void)
+/* The scene that a keyed flag's default comes from: the defaults and, for a command whose
+ * scene starts from a preset, that preset. */
+static void default_scene(const cli_command *c, atmo_scene *s)
 {
-    static atmo_scene s;
-    static int made;
-    if (!made) {
-        atmo_err e;
-        atmo_scene_defaults(&s);
-        atmo_scene_apply_preset(&s, atmo_default_preset, &e);
-        made = 1;
-    }
-    return &s;
+    atmo_err e;
+    atmo_scene_defaults(s);
+    if (c->scene_preset)
+        atmo_scene_apply_preset(s, *c->scene_preset, &e);
 }
 
 /* A flag's range and choices: its own, or its scene key's. */
@@ -91,7 +88,8 @@ static void choices_text(const char *const *choices, const char *sep, char *buf,
 }
 
 /* The default as the help states it and errors use as the example; "" when there is none. */
-static void default_text(const cli_flag *f, const void *args, char *buf, size_t n)
+static void default_text(const cli_command *c, const cli_flag *f, const void *args, char *buf,
+                         size_t n)
 {
     const void *dest = cfield(args, f->offset);
     buf[0] = '\0';
@@ -104,7 +102,9 @@ static void default_text(const cli_flag *f, const void *args, char *buf, size_t 
         double v[3];
         if (!p)
             return;
-        atmo_param_get(default_scene(), p, v);
+        atmo_scene scene;
+        default_scene(c, &scene);
+        atmo_param_get(&scene, p, v);
         if (p->type == ATMO_PARAM_ENUM)
             snprintf(buf, n, "%s", p->names[(int)v[0]]);
         else
@@ -123,11 +123,11 @@ static void default_text(const cli_flag *f, const void *args, char *buf, size_t 
 }
 
 /* "use a whole number in [8, 4096], e.g. --tile-size 64", after "image.width: " for a key */
-static void valid_text(const cli_flag *f, const cli_limits *l, const void *args, char *buf,
-                       size_t n)
+static void valid_text(const cli_command *c, const cli_flag *f, const cli_limits *l,
+                       const void *args, char *buf, size_t n)
 {
     char def[128], *end;
-    default_text(f, args, def, sizeof def);
+    default_text(c, f, args, def, sizeof def);
     double x = strtod(def, &end);
     if (!def[0] || *end || x < l->min || x > l->max || (l->open_min && x == l->min))
         snprintf(def, sizeof def, "%.15g", l->open_min ? fmin(l->max, l->min + 1.0) : l->min);
@@ -138,8 +138,8 @@ static void valid_text(const cli_flag *f, const cli_limits *l, const void *args,
 
 /* Check the value by the flag's type and range; the number (INT, FLOAT) or the choice's index
  * (ENUM) goes to *number. */
-static int check_value(const cli_flag *f, const void *args, const char *v, double *number,
-                       atmo_err *e)
+static int check_value(const cli_command *c, const cli_flag *f, const void *args, const char *v,
+                       double *number, atmo_err *e)
 {
     cli_limits l = flag_limits(f);
     char valid[256];
@@ -148,7 +148,7 @@ static int check_value(const cli_flag *f, const void *args, const char *v, doubl
         double x = 0.0;
         int parsed = f->type == CLI_INT ? atmo_parse_decimal(v, &x) && x == floor(x)
                                         : (x = strtod(v, &end), *v && !*end && isfinite(x));
-        valid_text(f, &l, args, valid, sizeof valid);
+        valid_text(c, f, &l, args, valid, sizeof valid);
         if (!parsed)
             return atmo_fail(e, ATMO_ERR_USAGE, "%s: '%s' is not %s (%s)", f->name, v,
                              f->type == CLI_INT ? "an integer" : "a number", valid);
@@ -182,7 +182,7 @@ static int take_value(const cli_command *c, const cli_flag *f, void *args, const
         *(int *)field(args, f->offset) = 1;
         return ATMO_OK;
     }
-    int rc = check_value(f, args, v, &x, e);
+    int rc = check_value(c, f, args, v, &x, e);
     if (rc || f->take)
         return rc ? rc : f->take(args, f, v, e);
     if (f->repeat) {
@@ -280,14 +280,16 @@ static void flag_left(const cli_flag *f, char *buf, size_t n)
     snprintf(buf, n, "%s%s%s%s", f->name, f->alias ? ", " : "", f->alias ? f->alias : "", meta);
 }
 
-static void print_flag(const cli_flag *f, const void *args, FILE *out)
+static void print_flag(const cli_command *c, const cli_flag *f, const void *args, FILE *out)
 {
     char left[192], def[160];
     flag_left(f, left, sizeof left);
-    default_text(f, args, def, sizeof def);
+    default_text(c, f, args, def, sizeof def);
     char tail[256] = "";
-    if (def[0] && f->key)
-        snprintf(tail, sizeof tail, "(default: the scene's; %s in %s)", def, atmo_default_preset);
+    if (def[0] && f->key && c->scene_preset)
+        snprintf(tail, sizeof tail, "(default: the scene's; %s in %s)", def, *c->scene_preset);
+    else if (def[0] && f->key)
+        snprintf(tail, sizeof tail, "(default: the scene's; %s)", def);
     else if (def[0])
         snprintf(tail, sizeof tail, "(default %s)", def);
     if (strlen(left) + 3 > CLI_HELP_COLUMN)
@@ -309,15 +311,15 @@ static void print_flag(const cli_flag *f, const void *args, FILE *out)
     fputc('\n', out);
 }
 
-static void print_flags(const cli_flag *t, const void *args, FILE *out)
+static void print_flags(const cli_command *c, const cli_flag *t, const void *args, FILE *out)
 {
     for (; t->type != CLI_END; t++) {
         if (t->type == CLI_SECTION)
             fprintf(out, "%s\n", t->help);
         else if (t->type == CLI_INCLUDE)
-            print_flags(t->include, cfield(args, t->offset), out);
+            print_flags(c, t->include, cfield(args, t->offset), out);
         else
-            print_flag(t, args, out);
+            print_flag(c, t, args, out);
     }
 }
 
@@ -326,7 +328,7 @@ void cli_print_help(const cli_command *c, const void *args, FILE *f)
     fprintf(f, "usage: atmo %s %s\n\n", c->name, c->synopsis);
     if (c->about)
         fprintf(f, "%s\n", c->about);
-    print_flags(c->flags, args, f);
+    print_flags(c, c->flags, args, f);
     fprintf(f, "  %-*s%s\n", CLI_HELP_COLUMN - 2, "--help, -h", "this text");
     if (c->epilogue)
         fprintf(f, "\n%s", c->epilogue);

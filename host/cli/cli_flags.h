@@ -58,6 +58,8 @@ typedef struct cli_command {
     const cli_flag *flags;
     const char *epilogue; /* the text after the flags, or NULL */
     int max_positional;   /* arguments that are not flags: at most this many (0: none) */
+    const char *const *scene_preset; /* the preset the command's scene starts from, where a
+                                        keyed flag's default is read; NULL: the defaults alone */
 } cli_command;
 
 /* Parse argv[1..argc-1] into args (already holding the defaults). Arguments that are not

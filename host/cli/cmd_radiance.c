@@ -1,8 +1,9 @@
 /* cmd_radiance.c — `atmo radiance`: the sky radiance of the scene's atmosphere for given view
  * directions, from any method, for users and tests.
  *
- * Scene: the defaults, then --scene FILE (or the default preset), then --set KEY=VALUE,
- * --method M and --seed N in command-line order (the flags are one table, cli_flags.h); --altitude-m, --sun-zenith-deg and --sun-azimuth-deg place
+ * Scene: the defaults (clear air, no terrain or clouds), then --scene
+ * FILE, then --set KEY=VALUE, --method M and --seed N in command-line order (the flags are one
+ * table, cli_flags.h); --altitude-m, --sun-zenith-deg and --sun-azimuth-deg place
  * the camera and the sun (zenith and azimuth in degrees; the azimuth of a view is measured like
  * the sun's, direction = (sin z sin a, cos z, sin z cos a)). Each view becomes a ray
  * (r = bottom radius + altitude, mu = cos z, mu_s, nu) for the plan's `sky_probe` kernel, which
@@ -157,8 +158,9 @@ static const cli_flag radiance_flags[] = {
      .help = "a view: zenith and azimuth in degrees (repeatable)"},
     {.type = CLI_ENUM, .name = "--method", .key = "atmosphere.method", .take = take_set,
      .help = "atmosphere method (auto: march with clouds or the observer, else fast)"},
-    {.type = CLI_PATH, .name = "--scene", .offset = RADIANCE_FLAG(scene_file), .def_var = &atmo_default_preset,
-     .help = "JSON scene file, read first wherever it stands; without it the\npreset"},
+    {.type = CLI_PATH, .name = "--scene", .offset = RADIANCE_FLAG(scene_file),
+     .def = "none: the scene defaults (clear air, no terrain or clouds)",
+     .help = "JSON scene file, read first wherever it stands"},
     {.type = CLI_STRING, .name = "--set", .metavar = "K=V", .take = take_set, .def = "none",
      .help = "override one parameter (repeatable, in order with --method and --seed)"},
     {.type = CLI_FLOAT, .name = "--distance-m", .metavar = "D", .min = 0.0, .max = 1e12,
@@ -214,14 +216,14 @@ static void radiance_run_free(radiance_run *run)
     free(run->rays);
 }
 
-/* The scene: the file or the default preset, the assignments in order, the sun. */
+/* The scene: the defaults (clear air, no terrain or clouds) or the file, the assignments in
+ * order, the sun. */
 static int radiance_scene(const radiance_args *a, atmo_scene *scene, atmo_err *e)
 {
     char number[64];
     int rc;
     atmo_scene_defaults(scene);
-    rc = a->scene_file ? atmo_scene_load_json(scene, a->scene_file, e)
-                       : atmo_scene_apply_preset(scene, atmo_default_preset, e);
+    rc = a->scene_file ? atmo_scene_load_json(scene, a->scene_file, e) : ATMO_OK;
     for (int i = 0; i < a->n_sets && !rc; i++)
         rc = atmo_scene_assign(scene, a->sets[i], "--set", e);
     if (rc)

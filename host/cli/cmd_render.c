@@ -171,6 +171,7 @@ static const cli_command render_cli = {
         "(docs/guide/blender.md).\n"
         "An output that exists is not replaced unless --force is given.\n",
     .flags = render_flags,
+    .scene_preset = &atmo_default_preset,
     .epilogue =
         "Ctrl-C (SIGINT), SIGTERM or SIGHUP stops the precompute or the render after the launch in\n"
         "flight: the samples finished so far are written, marked partial, with exit status 3;\n"

@@ -90,6 +90,7 @@ static const cli_command terrain_cli = {
              "terrain.enabled is implied; terrain.* keys (atmo params) change the terrain, and with\n"
              "terrain.heightmap_file it is the file's heights as a render draws them.\n",
     .flags = terrain_flags,
+    .scene_preset = &atmo_default_preset,
 };
 
 /* One point: the report as a cJSON object, or NULL with *e filled. */

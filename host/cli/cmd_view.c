@@ -103,6 +103,7 @@ static const cli_command view_cli = {
         "render passes, --noise and the lens flare are atmo render's. --set and the shorthands\n"
         "are reapplied over thesis views 1-9 too, but for camera.* and sun.*.\n",
     .flags = view_flags,
+    .scene_preset = &atmo_default_preset,
 };
 
 static void view_defaults(view_args *a)
