@@ -441,6 +441,11 @@ const atmo_param atmo_params[] = {
              "path mode: method (the atmosphere method gives each segment's air light) or "
              "medium (the air is a volume medium of the paths: Rayleigh, aerosols and ozone "
              "delta-tracked, scatterings lit by the sun, no sky term; an unbiased reference)"),
+    ROW_INT("path.air_collisions", path.air_collisions, "", 0, 256, 8,
+            "path mode, path.air = medium: least tentative collisions of a free flight through "
+            "the air (its majorant at least this over the flight's length), each one "
+            "estimating the sun's single scattering; more lowers the sky's noise and costs "
+            "a shadow query each"),
     ROW_BOOL("output.blender", output.blender, 0,
              "outputs for Blender (--blender): luminance-based linear Rec.709 RGB in cd/m^2 "
              "with the EXR chromaticities, the exposure scaled to luminance, panoramas in "

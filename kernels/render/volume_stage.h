@@ -53,18 +53,6 @@
 #include "atmo/gpu_types.h"
 #endif
 
-/* The distance of the first scattering in the volume media along m before `end`, or -1 where
- * the ray passes; *component the medium that scatters there (media_walk.h's
- * MEDIA_WALK_VOLUME_*); *w the tracking weight (1 without a volume medium). */
-ATMO_FN float volume_flight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                            const medium_ray *m, float end, rng_stream *g, vec3 *w,
-                            int *component)
-{
-    float t;
-    *component = media_walk_volume_flight(s, ATMO_LUT_ARGS, m, end, g, &t, w);
-    return *component != WALK_NULL ? t : -1.0f;
-}
-
 /* The phase function per steradian of the volume component k (MEDIA_WALK_VOLUME_*) between
  * the ray's direction and w, nu = d . w: the volume medium's, or the air's Rayleigh or aerosol
  * phase (media.h's media_air_phase). */
