@@ -43,6 +43,10 @@
  * multiply w by the same 1 - (1 - albedo) sigma_t / sigma_bar, and with albedo 1 w stays 1:
  * plain delta tracking. No scattering before `end`: the ray passes with weight w, an unbiased
  * estimate of T_volume(0, end). A point of zero extinction is null for certain and draws no pick.
+ * The flight is an iterator (media_walk_volume_flight_begin, media_walk_volume_point, then the
+ * caller's walk_pick), so a caller can estimate at every tentative point with the weight the
+ * point is reached with (the path tracer's sun in the air, render/path.h's path_flight); with
+ * the air in the walk the rate has a floor of a given number of points over the flight.
  *
  * The volume media's shadow on the air's samples (media_walk_volume_sun, which medium.h and the
  * reference multiply into the air's sunlight and multiple-scattering source): the shadow query

@@ -40,11 +40,13 @@
  * (path.clouds = march: the method marches the layer along each segment, octave multiple
  * scattering, cloud_march.h; no vertex is ever in a cloud.)
  * The air (path.air = medium, MEDIA_VOLUME_AIR): the air is a volume medium of the same free
- * flight (volume_stage.h), no method is asked, and S is the sun's disc through the flight's
- * weight on an escaping ray (with_sun; path_sun_disc), else nothing. A scattering by the air's
- * Rayleigh or aerosols is a vertex like a cloud's (path_vertex.component says which): the sun
- * by the same shadow function with that component's phase, the continuation drawn exactly
- * from it, gain 1 in the roulette; air and cloud scatterings count together against
+ * flight (path_flight), no method is asked, and S is the air's single scattering of the sun
+ * estimated at every tentative point of the flight (the collision estimator, path_flight; the
+ * same shadow function with the air's phases) plus the sun's disc through the flight's weight
+ * on an escaping ray (with_sun; path_sun_disc). A scattering by the air's Rayleigh or aerosols
+ * is a vertex like a cloud's (path_vertex.component says which) but without a sun of its own
+ * (its flight's points estimated it): the continuation drawn exactly from its phase, gain 1
+ * in the roulette; air and cloud scatterings count together against
  * path.volume_bounces. The sky is the air's scattering, so the plan turns the sky sampling off
  * (its table is the method's sky) and surfaces meet the sky by their continuations.
  * N_s = path.secondary continuation rays leave the primary hit, each with beta / N_s (the

@@ -1,9 +1,9 @@
 /* volume_stage.h — the path tracer's scattering events in its volume media (path.clouds =
  * volume: the fBm cloud layer, a medium that no method sees, whose sky_trace gives the air's
  * light alone, in the layer's shadow; path.air = medium: the air itself, below): the stage
- * functions the loop (path.h) calls for a
- * segment's free flight, the sun's transmittance through the volume media, and a volume
- * vertex's phase function and continuation. All of them run on the one majorant walk in volume
+ * functions the loop (path.h) calls for a volume vertex's phase function and continuation
+ * (the segment's free flight is path.h's path_flight on media_walk.h's iterator, and the sun's
+ * transmittance through the volume media its shadow query). All of them run on the one majorant walk in volume
  * mode (media/media_walk.h) over the plan's composed volume medium (media.h's media_volume_*);
  * without one they are the identity (no event, no attenuation, no random number), so the loop
  * is the same source for every build.
@@ -38,9 +38,12 @@
  * probability T(0, end), so
  *     t_c drawn:  w J_k(t_c)        none:  w L_end
  * has the expectation L(0) with no method term: J_k is the next vertex with component k's
- * phase (the air's sampled exactly, media_air_direction), its sun through the same shadow
- * function (the air's transmittance from the LUT there), and an escaping ray's L_end is the
- * sun's disc alone.
+ * phase (the air's sampled exactly, media_air_direction), and an escaping ray's L_end is the
+ * sun's disc alone. The air's J_a = J_sun + J_ms splits: its single scattering of the sun
+ * (J_sun = int p_a E T_sun) moves from the vertex to every tentative point of the flight
+ * (path.h's path_flight: the collision estimator sum_i w_i sigma_s,a J_sun(x_i) / sigma_bar_i,
+ * whose expectation is int_0^t_c-or-end T sigma_s,a J_sun dt, the same as that of w J_sun at
+ * the vertex), and the vertex keeps J_ms, its continuation.
  * Units: radiance W m^-2 sr^-1 nm^-1, metres, phase per steradian. */
 #ifndef ATMO_RENDER_VOLUME_STAGE_H
 #define ATMO_RENDER_VOLUME_STAGE_H
