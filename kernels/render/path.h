@@ -196,10 +196,9 @@ ATMO_FN vec3 path_air_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
     float u1 = rng_next(g), u2 = rng_next(g);
     vec3 w = light_sun_sample(v3_from4(s->sun_direction), s->sun_direction.w, u1, u2);
     float nu = v3_dot(dir, w);
-    vec3 f = v3_add(v3_mul(sigma[MEDIA_WALK_VOLUME_RAYLEIGH],
-                           volume_component_phase(s, ATMO_LUT_ARGS, MEDIA_WALK_VOLUME_RAYLEIGH, nu)),
-                    v3_mul(sigma[MEDIA_WALK_VOLUME_MIE],
-                           volume_component_phase(s, ATMO_LUT_ARGS, MEDIA_WALK_VOLUME_MIE, nu)));
+    vec3 f = v3_add(
+        v3_mul(sigma[MEDIA_WALK_VOLUME_RAYLEIGH], media_air_phase(s, MEDIA_RAYLEIGH, nu)),
+        v3_mul(sigma[MEDIA_WALK_VOLUME_MIE], media_air_phase(s, MEDIA_MIE, nu)));
     vec3 e = path_shadow(s, ATMO_LUT_ARGS, x, x->p, w, g);
     return v3_mul(v3_mul(f, e), v3_from4(s->sky_factor));
 }

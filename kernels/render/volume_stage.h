@@ -3,10 +3,10 @@
  * light alone, in the layer's shadow; path.air = medium: the air itself, below): the stage
  * functions the loop (path.h) calls for a volume vertex's phase function and continuation
  * (the segment's free flight is path.h's path_flight on media_walk.h's iterator, and the sun's
- * transmittance through the volume media its shadow query). All of them run on the one majorant walk in volume
- * mode (media/media_walk.h) over the plan's composed volume medium (media.h's media_volume_*);
- * without one they are the identity (no event, no attenuation, no random number), so the loop
- * is the same source for every build.
+ * transmittance through the volume media its shadow query). All of them run on the one
+ * majorant walk in volume mode (media/media_walk.h) over the plan's composed volume medium
+ * (media.h's media_volume_*); without one they are the identity (no event, no attenuation, no
+ * random number), so the loop is the same source for every build.
  *
  * The radiative transfer along a segment of the path [0, end] (end: the surface it hits, or
  * infinity), with the air (sigma_a: its method) and the volume medium (sigma_c) both present:
@@ -55,17 +55,6 @@
 #include "media/media_walk.h"
 #include "atmo/gpu_types.h"
 #endif
-
-/* The phase function per steradian of the volume component k (MEDIA_WALK_VOLUME_*) between
- * the ray's direction and w, nu = d . w: the volume medium's, or the air's Rayleigh or aerosol
- * phase (media.h's media_air_phase). */
-ATMO_FN vec3 volume_component_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, int k,
-                                    float nu)
-{
-    if (k == MEDIA_WALK_VOLUME_MEDIUM)
-        return media_volume_phase(s, ATMO_LUT_ARGS, nu);
-    return media_air_phase(s, k == MEDIA_WALK_VOLUME_RAYLEIGH ? MEDIA_RAYLEIGH : MEDIA_MIE, nu);
-}
 
 /* The volume medium's phase function per steradian between the ray's direction and w,
  * nu = d . w (0 without one). */
