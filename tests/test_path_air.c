@@ -11,7 +11,10 @@
  *    SUNS and each view of the table more than 10 degrees from the sun (the sun's disc and the
  *    aureole's steep gradient stay out of the 1-degree frame), a 4 x 4 image of field of view
  *    1 degree aimed at the view (pitch 90 - view zenith, yaw minus the view's azimuth from the
- *    sun, the sun at azimuth 0), independent samples (path.sampler = random). The frame's mean
+ *    sun, the sun at azimuth 0), independent samples (path.sampler = random); every other view
+ *    with path.air_collisions = 8 (the floor on the walk's collisions), the others with the
+ *    default 0, so both ways of placing the sun's estimates (render/path.h's path_flight) face
+ *    the table. The frame's mean
  *    estimates the view's radiance (the sky's curvature over half a degree changes it by < 1e-4
  *    of itself); its standard error is the pixels' (independent) combined,
  *    sqrt(sum se_i^2) / 16. Per view and channel z = (L - L_ref) / sqrt(se^2 + se_ref^2) must
@@ -114,6 +117,8 @@ static void test_against_table(const ref_row *rows, int n)
             continue;
         atmo_scene s;
         view_scene(&s, r, 4096, 100 + i);
+        if (views % 2)
+            test_scene_set(&s, "path.air_collisions=8");
         test_image im = test_render(&s, 0, 0);
         double L[3] = {0, 0, 0}, var[3] = {0, 0, 0}, z[3], err[3];
         for (int p = 0; p < FRAME * FRAME; p++)

@@ -176,6 +176,7 @@ static const char *const spec_defaults[] = {"image.width=640",
                                             "path.clouds=march",
                                             "path.volume_bounces=256",
                                             "path.air=method",
+                                            "path.air_collisions=0",
                                             "output.blender=false",
                                             NULL};
 

@@ -93,6 +93,7 @@ int atmo_plan_path(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     g->aperture_m = (float)s->path.aperture_m;
     g->focus_m = (float)s->path.focus_m;
     g->volume_bounces = s->path.volume_bounces;
+    g->air_collisions = s->path.air_collisions;
     p->render_kernel = "path_render";
     /* the sky's radiance table of the sky sampling (kernels/render/light_sky.h): 32 x 16
      * texels and 16 rows of CDF, made for this camera and sun */

@@ -441,6 +441,12 @@ const atmo_param atmo_params[] = {
              "path mode: method (the atmosphere method gives each segment's air light) or "
              "medium (the air is a volume medium of the paths: Rayleigh, aerosols and ozone "
              "delta-tracked, scatterings lit by the sun, no sky term; an unbiased reference)"),
+    ROW_INT("path.air_collisions", path.air_collisions, "", 0, 256, 0,
+            "path mode, path.air = medium: least tentative collisions of a free flight through "
+            "the air (its majorant at least this over the flight's length), each estimating "
+            "the sun's single scattering with a shadow query; 8-16 halve the noise of views up "
+            "through thin air at equal time to a given noise, 0 (the walk's own points) is "
+            "cheapest with clouds or terrain (docs/guide/path.md)"),
     ROW_BOOL("output.blender", output.blender, 0,
              "outputs for Blender (--blender): luminance-based linear Rec.709 RGB in cd/m^2 "
              "with the EXR chromaticities, the exposure scaled to luminance, panoramas in "

@@ -49,7 +49,8 @@ typedef struct atmo_gpu_path {
     float aperture_m;    /* thin lens: aperture radius (0: pinhole) */
     float focus_m;       /* thin lens: distance of the plane in focus */
     int volume_bounces;  /* path.clouds = volume: most scattering events in the clouds */
-    int pad1, pad2;
+    int air_collisions;  /* path.air = medium: least tentative collisions per flight */
+    int pad2;
 } atmo_gpu_path;
 
 #endif

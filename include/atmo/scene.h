@@ -180,6 +180,7 @@ typedef struct atmo_scene {
         int clouds;            /* ATMO_PATH_CLOUDS_*: how paths meet the fBm cloud layer */
         int volume_bounces;    /* most scattering events in the volume media per path */
         int air;               /* ATMO_PATH_AIR_*: how paths meet the air */
+        int air_collisions;    /* path.air = medium: least tentative collisions per flight */
     } path;
     struct {
         int count;

@@ -43,6 +43,10 @@
  * multiply w by the same 1 - (1 - albedo) sigma_t / sigma_bar, and with albedo 1 w stays 1:
  * plain delta tracking. No scattering before `end`: the ray passes with weight w, an unbiased
  * estimate of T_volume(0, end). A point of zero extinction is null for certain and draws no pick.
+ * The flight is an iterator (media_walk_volume_flight_begin, media_walk_volume_point, then the
+ * caller's walk_pick), so a caller can estimate at every tentative point with the weight the
+ * point is reached with (the path tracer's sun in the air, render/path.h's path_flight); with
+ * the air in the walk the rate has a floor of a given number of points over the flight.
  *
  * The volume media's shadow on the air's samples (media_walk_volume_sun, which medium.h and the
  * reference multiply into the air's sunlight and multiple-scattering source): the shadow query
@@ -161,39 +165,78 @@ ATMO_FN void media_walk_volume_air(ATMO_GLOBAL const atmo_gpu_scene *s, const me
     *sigma_t = v3_add(*sigma_t, air.extinction);
 }
 
-/* The free flight through the volume media along m over [0, end]: the component that scatters
- * first (MEDIA_WALK_VOLUME_*) with its distance in *t_hit, else WALK_NULL; *w the
- * spectral-tracking weight (see the top of the file). With the air in the walk
- * (MEDIA_VOLUME_AIR) the walk ends at the ground and at the top of the atmosphere (an
- * escaping ray's end is infinite), and its rate adds the air's bound on the ray
+/* The walk of a free flight through the volume media along m over [0, end] (see the top of
+ * the file), into *mw; 0 where there are no volume media (no walk, no number drawn). With the
+ * air in the walk (MEDIA_VOLUME_AIR) the walk ends at the ground and at the top of the
+ * atmosphere (an escaping ray's end is infinite), and its rate adds the air's bound on the ray
  * (media_air_majorant: the extinction at the ray's lowest altitude, where the densities, which
- * fall with altitude, are largest). */
-ATMO_FN int media_walk_volume_flight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                                     const medium_ray *m, float end, rng_stream *g, float *t_hit,
-                                     vec3 *w)
+ * fall with altitude, are largest), at least `points` / (the walk's length): any rate at or
+ * above sigma_t is a majorant, and the floor gives a segment of thin air about `points`
+ * tentative points to estimate at (the path tracer's sun at every tentative point; 0: none). */
+ATMO_FN int media_walk_volume_flight_begin(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                           const medium_ray *m, float end, int points,
+                                           media_walk *mw)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    *w = v3(1.0f, 1.0f, 1.0f);
     if ((MEDIA_VOLUME | MEDIA_VOLUME_AIR) == 0)
-        return WALK_NULL;
+        return 0;
+    float least = 0.0f;
     if (MEDIA_VOLUME_AIR) {
         end = fminf(end, geometry_distance_to_top(m->r, m->mu, a->top_radius));
         if (geometry_ray_hits_ground(m->r, m->mu, a->bottom_radius))
             end = fminf(end, geometry_distance_to_bottom(m->r, m->mu, a->bottom_radius));
+        least = end > 0.0f ? (float)points / end : 0.0f;
     }
-    media_walk mw = media_walk_begin(s, ATMO_LUT_ARGS, m->origin, m->dir, m->r, m->mu, end, 0.0f,
-                                     MEDIA_WALK_VOLUME);
+    *mw = media_walk_begin(s, ATMO_LUT_ARGS, m->origin, m->dir, m->r, m->mu, end, least,
+                           MEDIA_WALK_VOLUME);
     if (MEDIA_VOLUME_AIR)
-        mw.air = media_air_majorant(s, m->r, m->mu, end);
-    while (media_walk_next(s, ATMO_LUT_ARGS, &mw, g)) {
-        medium_point x = medium_ray_at(m, mw.w.t, a->bottom_radius);
-        vec3 sigma[3];
-        vec3 sigma_t = media_volume_at(s, ATMO_LUT_ARGS, &x, &sigma[MEDIA_WALK_VOLUME_MEDIUM]);
+        mw->air = media_air_majorant(s, m->r, m->mu, end);
+    return 1;
+}
+
+/* The flight's next tentative point of non-zero extinction (a point of zero extinction is null
+ * for certain and leaves the weight unchanged): 1 with the point in *x, the components'
+ * scattering coefficients in sigma[MEDIA_WALK_VOLUME_*] (the air's zero without
+ * MEDIA_VOLUME_AIR) and the extinction in *sigma_t, the rate there mw->w.sigma_bar; 0 past the
+ * end. The caller picks the event (walk_pick, count media_walk_volume_components()). */
+ATMO_FN int media_walk_volume_point(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                    media_walk *mw, const medium_ray *m, rng_stream *g,
+                                    medium_point *x, vec3 *sigma, vec3 *sigma_t)
+{
+    while (media_walk_next(s, ATMO_LUT_ARGS, mw, g)) {
+        *x = medium_ray_at(m, mw->w.t, s->atmosphere.bottom_radius);
+        *sigma_t = media_volume_at(s, ATMO_LUT_ARGS, x, &sigma[MEDIA_WALK_VOLUME_MEDIUM]);
+        sigma[MEDIA_WALK_VOLUME_RAYLEIGH] = v3(0.0f, 0.0f, 0.0f);
+        sigma[MEDIA_WALK_VOLUME_MIE] = v3(0.0f, 0.0f, 0.0f);
         if (MEDIA_VOLUME_AIR)
-            media_walk_volume_air(s, &x, sigma, &sigma_t);
-        if (tracking_max3(sigma_t) <= 0.0f)
-            continue; /* a null point for certain: the weight is unchanged */
-        int k = walk_pick(&mw.w, g, w, sigma, MEDIA_VOLUME_AIR ? 3 : 1, sigma_t);
+            media_walk_volume_air(s, x, sigma, sigma_t);
+        if (tracking_max3(*sigma_t) > 0.0f)
+            return 1;
+    }
+    return 0;
+}
+
+/* The number of components the flight picks among: the volume medium, and the air's two. */
+ATMO_FN int media_walk_volume_components(void)
+{
+    return MEDIA_VOLUME_AIR ? 3 : 1;
+}
+
+/* The free flight through the volume media along m over [0, end] with no estimate at its
+ * tentative points: the component that scatters first (MEDIA_WALK_VOLUME_*) with its distance
+ * in *t_hit, else WALK_NULL; *w the spectral-tracking weight (see the top of the file). */
+ATMO_FN int media_walk_volume_flight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                     const medium_ray *m, float end, rng_stream *g, float *t_hit,
+                                     vec3 *w)
+{
+    media_walk mw;
+    medium_point x;
+    vec3 sigma[3], sigma_t;
+    *w = v3(1.0f, 1.0f, 1.0f);
+    if (!media_walk_volume_flight_begin(s, ATMO_LUT_ARGS, m, end, 0, &mw))
+        return WALK_NULL;
+    while (media_walk_volume_point(s, ATMO_LUT_ARGS, &mw, m, g, &x, sigma, &sigma_t)) {
+        int k = walk_pick(&mw.w, g, w, sigma, media_walk_volume_components(), sigma_t);
         if (k != WALK_NULL) {
             *t_hit = mw.w.t;
             return k;

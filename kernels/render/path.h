@@ -40,11 +40,13 @@
  * (path.clouds = march: the method marches the layer along each segment, octave multiple
  * scattering, cloud_march.h; no vertex is ever in a cloud.)
  * The air (path.air = medium, MEDIA_VOLUME_AIR): the air is a volume medium of the same free
- * flight (volume_stage.h), no method is asked, and S is the sun's disc through the flight's
- * weight on an escaping ray (with_sun; path_sun_disc), else nothing. A scattering by the air's
- * Rayleigh or aerosols is a vertex like a cloud's (path_vertex.component says which): the sun
- * by the same shadow function with that component's phase, the continuation drawn exactly
- * from it, gain 1 in the roulette; air and cloud scatterings count together against
+ * flight (path_flight), no method is asked, and S is the air's single scattering of the sun
+ * estimated at every tentative point of the flight (the collision estimator, path_flight; the
+ * same shadow function with the air's phases) plus the sun's disc through the flight's weight
+ * on an escaping ray (with_sun; path_sun_disc). A scattering by the air's Rayleigh or aerosols
+ * is a vertex like a cloud's (path_vertex.component says which) but without a sun of its own
+ * (its flight's points estimated it): the continuation drawn exactly from its phase, gain 1
+ * in the roulette; air and cloud scatterings count together against
  * path.volume_bounces. The sky is the air's scattering, so the plan turns the sky sampling off
  * (its table is the method's sky) and surfaces meet the sky by their continuations.
  * N_s = path.secondary continuation rays leave the primary hit, each with beta / N_s (the
@@ -152,27 +154,128 @@ ATMO_FN vec3 path_sun_disc(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray
     return atmosphere_sun_disc_radiance(a, s->sun_direction.w);
 }
 
-/* The light S that segment m brings to its origin, up to the first of the hit h and a
- * scattering in the volume media (volume_stage.h's free flight: its distance in *t_event, else
- * -1; the medium that scatters in *component), or out of the scene (the sun disc only
- * with_sun), and its view transmittance (the air's, times the volume media's tracking weight).
- * With the air a volume medium (MEDIA_VOLUME_AIR) the free flight crosses the air too: S is
- * the sun's disc through it (weight w, the tracking estimate of the transmittance) on an
- * escaping ray and nothing else, the air's light being the scatterings' own. */
-ATMO_FN vec3 path_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                          const medium_ray *m, const path_hit *h, int with_sun, rng_stream *g,
-                          vec3 *view_t, float *t_event, int *component)
+/* The sunlight E T_sun V arriving at a surface point q: V from visibility_sun_surface (the
+ * planet, the shadowing media), the opaque surfaces left to the shadow ray along the direction
+ * sampled on the disc (surfaces_occluded). */
+ATMO_FN vec3 path_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                           const medium_point *q)
 {
-    vec3 w;
-    float t_c = volume_flight(s, ATMO_LUT_ARGS, m, h->kind == SURFACES_NONE ? INFINITY : h->t, g,
-                              &w, component);
+    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
+    vec3 vis = visibility_sun_surface(s, ATMO_LUT_ARGS, q);
+    if (vis.x <= 0.0f && vis.y <= 0.0f && vis.z <= 0.0f)
+        return v3(0.0f, 0.0f, 0.0f);
+    vec3 to_sun = atmosphere_transmittance_to_top(a, transmittance_lut, s->transmittance_width,
+                                                  s->transmittance_height, q->r, q->mu_s);
+    return v3_mul(v3_from4(a->solar_irradiance), v3_mul(to_sun, vis));
+}
+
+/* The one shadow function of surface and cloud vertices: the sunlight arriving at q along the
+ * direction w sampled on the disc, for rays leaving from p: E T_sun V (path_sunlight; in the
+ * uniform world E), zero where a surface blocks w (surfaces_occluded), times the volume
+ * medium's transmittance toward the sun by ratio tracking (media_walk.h's shadow query in
+ * volume mode; 1 without a volume medium). */
+ATMO_FN vec3 path_shadow(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                         const medium_point *q, vec3 p, vec3 w, rng_stream *g)
+{
+    vec3 e = s->path.sky == ATMO_PATH_SKY_UNIFORM ? v3_from4(s->atmosphere.solar_irradiance)
+                                                   : path_sunlight(s, ATMO_LUT_ARGS, q);
+    if ((e.x <= 0.0f && e.y <= 0.0f && e.z <= 0.0f) || surfaces_occluded(s, ATMO_LUT_ARGS, p, w))
+        return v3(0.0f, 0.0f, 0.0f);
+    return v3_mul(e, media_walk_sun_transmittance(s, ATMO_LUT_ARGS, q, MEDIA_WALK_VOLUME, g));
+}
+
+/* The sunlight the air scatters toward the ray's origin per unit length at x, along a ray of
+ * direction dir, with the air's Rayleigh and aerosol scattering coefficients sigma[] there
+ * (media_walk.h's MEDIA_WALK_VOLUME_*): sum_k sigma_s,k p_k(nu) E T_sun V T_clouds, the sun's
+ * direction w sampled on its disc (u1, u2) and its light through the one shadow function
+ * (path_shadow: the air's transmittance from the LUT, the planet, the surfaces along w, the
+ * volume medium's ratio tracking), times sky_factor. */
+ATMO_FN vec3 path_air_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                          const medium_point *x, vec3 dir, const vec3 *sigma, rng_stream *g)
+{
+    float u1 = rng_next(g), u2 = rng_next(g);
+    vec3 w = light_sun_sample(v3_from4(s->sun_direction), s->sun_direction.w, u1, u2);
+    float nu = v3_dot(dir, w);
+    vec3 f = v3_add(
+        v3_mul(sigma[MEDIA_WALK_VOLUME_RAYLEIGH], media_air_phase(s, MEDIA_RAYLEIGH, nu)),
+        v3_mul(sigma[MEDIA_WALK_VOLUME_MIE], media_air_phase(s, MEDIA_MIE, nu)));
+    vec3 e = path_shadow(s, ATMO_LUT_ARGS, x, x->p, w, g);
+    return v3_mul(v3_mul(f, e), v3_from4(s->sky_factor));
+}
+
+/* The free flight of segment m through the volume media up to `end` (media_walk.h's spectral
+ * tracking): the distance of the first scattering, or -1 where the ray passes; *component the
+ * medium that scatters there (MEDIA_WALK_VOLUME_*), *w the tracking weight (1 without volume
+ * media). With the air a volume medium and air_sun set, *air_light is the air's single
+ * scattering of the sun along the flight, estimated at every tentative point x_i the walk
+ * reaches (null and real, the last one included) with the weight w_i it reaches it with:
+ *     air_light = sum_i w_i sum_k sigma_s,k(x_i) p_k E T_sun(x_i) / sigma_bar_i
+ * By Campbell's theorem (majorant_walk.h: the points are a Poisson process of rate sigma_bar,
+ * and E[w_i | the point is reached] is the ratio-tracking estimate of T(0, x_i)),
+ * E[air_light] = int_0^end T(0, t) sum_k sigma_s,k p_k E T_sun dt, the same expectation as the
+ * sun's next-event estimate at the flight's real air scattering (E[w'] = w sigma_s,k /
+ * sigma_bar for the pick of k), which therefore adds no sun of its own (path_direct_sun). The
+ * walk's rate is at least path.air_collisions over the flight's length, so a flight through
+ * thin air still has that many estimates. Where the volume medium raises the rate above the
+ * air's part a = max(the air's bound, that floor) (inside a cloud, whose points are dense and
+ * whose shadow queries ratio-track the cloud), a point estimates with probability
+ * P = a / sigma_bar and its estimate is divided by P (Russian roulette: E[1{u < P} / P] = 1),
+ * so the air's estimates keep the air's rate. Otherwise *air_light is zero. */
+ATMO_FN float path_flight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                          const medium_ray *m, float end, int air_sun, rng_stream *g, vec3 *w,
+                          int *component, vec3 *air_light)
+{
+    media_walk mw;
+    medium_point x;
+    vec3 sigma[3], sigma_t;
+    int estimate = MEDIA_VOLUME_AIR && air_sun;
+    *w = v3(1.0f, 1.0f, 1.0f);
+    *component = WALK_NULL;
+    *air_light = v3(0.0f, 0.0f, 0.0f);
+    if (!media_walk_volume_flight_begin(s, ATMO_LUT_ARGS, m, end,
+                                        MEDIA_VOLUME_AIR ? s->path.air_collisions : 0, &mw))
+        return -1.0f;
+    float air_rate = fmaxf(mw.air, mw.w.least); /* 1/m */
+    while (media_walk_volume_point(s, ATMO_LUT_ARGS, &mw, m, g, &x, sigma, &sigma_t)) {
+        float p = fminf(air_rate / mw.w.sigma_bar, 1.0f);
+        if (estimate &&
+            tracking_max3(v3_add(sigma[MEDIA_WALK_VOLUME_RAYLEIGH],
+                                 sigma[MEDIA_WALK_VOLUME_MIE])) > 0.0f &&
+            (p >= 1.0f || rng_next(g) < p))
+            *air_light = v3_add(*air_light,
+                                v3_mul(*w, v3_scale(path_air_sun(s, ATMO_LUT_ARGS, &x, m->dir,
+                                                                 sigma, g),
+                                                    1.0f / (mw.w.sigma_bar * p))));
+        *component = walk_pick(&mw.w, g, w, sigma, media_walk_volume_components(), sigma_t);
+        if (*component != WALK_NULL)
+            return mw.w.t;
+    }
+    return -1.0f;
+}
+
+/* The light S that segment m brings to its origin, up to the first of the hit h and a
+ * scattering in the volume media (path_flight: its distance in *t_event, else -1; the medium
+ * that scatters in *component), or out of the scene (the sun disc only with_sun), and its view
+ * transmittance (the air's, times the volume media's tracking weight).
+ * With the air a volume medium (MEDIA_VOLUME_AIR) the free flight crosses the air too: S is
+ * the air's single scattering of the sun along the flight (path_flight's estimate at its
+ * tentative points, where air_sun is set) plus, on an escaping ray, the sun's disc through the
+ * flight's weight w (the tracking estimate of the transmittance); the air's higher orders are
+ * the scatterings' continuations. */
+ATMO_FN vec3 path_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                          const medium_ray *m, const path_hit *h, int with_sun, int air_sun,
+                          rng_stream *g, vec3 *view_t, float *t_event, int *component)
+{
+    vec3 w, air;
+    float t_c = path_flight(s, ATMO_LUT_ARGS, m, h->kind == SURFACES_NONE ? INFINITY : h->t,
+                            air_sun, g, &w, component, &air);
     int escapes = h->kind == SURFACES_NONE && t_c < 0.0f;
     *t_event = t_c;
     *view_t = w;
     if (MEDIA_VOLUME_AIR)
-        return escapes && with_sun ? v3_mul(w, v3_mul(path_sun_disc(s, m),
-                                                      v3_from4(s->sun_factor)))
-                                   : v3(0.0f, 0.0f, 0.0f);
+        return escapes && with_sun
+                   ? v3_add(air, v3_mul(w, v3_mul(path_sun_disc(s, m), v3_from4(s->sun_factor))))
+                   : air;
     if (s->path.sky == ATMO_PATH_SKY_UNIFORM) /* the sun's disc is left to the NEE here */
         return escapes ? v3_mul(w, v3_from4(s->path.uniform_sky)) : v3(0.0f, 0.0f, 0.0f);
     if (!escapes && (t_c >= 0.0f ? t_c : h->t) < PATH_AIR_MIN_M)
@@ -264,47 +367,20 @@ ATMO_FN vec3 path_cosine_albedo(const path_vertex *v)
     return v3_scale(v->albedo, 1.0f - v->fresnel);
 }
 
-/* The sunlight E T_sun V arriving at a surface point q: V from visibility_sun_surface (the
- * planet, the shadowing media), the opaque surfaces left to the shadow ray along the direction
- * sampled on the disc (surfaces_occluded). */
-ATMO_FN vec3 path_sunlight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                           const medium_point *q)
-{
-    ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
-    vec3 vis = visibility_sun_surface(s, ATMO_LUT_ARGS, q);
-    if (vis.x <= 0.0f && vis.y <= 0.0f && vis.z <= 0.0f)
-        return v3(0.0f, 0.0f, 0.0f);
-    vec3 to_sun = atmosphere_transmittance_to_top(a, transmittance_lut, s->transmittance_width,
-                                                  s->transmittance_height, q->r, q->mu_s);
-    return v3_mul(v3_from4(a->solar_irradiance), v3_mul(to_sun, vis));
-}
-
-/* The one shadow function of surface and cloud vertices: the sunlight arriving at q along the
- * direction w sampled on the disc, for rays leaving from p: E T_sun V (path_sunlight; in the
- * uniform world E), zero where a surface blocks w (surfaces_occluded), times the volume
- * medium's transmittance toward the sun by ratio tracking (media_walk.h's shadow query in
- * volume mode; 1 without a volume medium). */
-ATMO_FN vec3 path_shadow(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                         const medium_point *q, vec3 p, vec3 w, rng_stream *g)
-{
-    vec3 e = s->path.sky == ATMO_PATH_SKY_UNIFORM ? v3_from4(s->atmosphere.solar_irradiance)
-                                                   : path_sunlight(s, ATMO_LUT_ARGS, q);
-    if ((e.x <= 0.0f && e.y <= 0.0f && e.z <= 0.0f) || surfaces_occluded(s, ATMO_LUT_ARGS, p, w))
-        return v3(0.0f, 0.0f, 0.0f);
-    return v3_mul(e, media_walk_sun_transmittance(s, ATMO_LUT_ARGS, q, MEDIA_WALK_VOLUME, g));
-}
-
 /* Sunlight scattered at v toward the ray (without the throughput): a surface's albedo/pi cos, a
- * volume vertex's phase function (its component's: the cloud's, or the air's). */
+ * cloud vertex's phase function; none at a scattering in the air, whose sun is the flight's
+ * estimate at every tentative point up to it (path_flight; no random number drawn here). */
 ATMO_FN vec3 path_direct_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                              const path_vertex *v, rng_stream *g)
 {
+    if (v->volume && v->component != MEDIA_WALK_VOLUME_MEDIUM)
+        return v3(0.0f, 0.0f, 0.0f);
     float u1 = rng_next(g), u2 = rng_next(g);
     if (!s->path.sun_nee)
         return v3(0.0f, 0.0f, 0.0f);
     vec3 w = light_sun_sample(v3_from4(s->sun_direction), s->sun_direction.w, u1, u2);
     if (v->volume) {
-        vec3 f = volume_component_phase(s, ATMO_LUT_ARGS, v->component, v3_dot(v->dir, w));
+        vec3 f = volume_phase(s, ATMO_LUT_ARGS, v3_dot(v->dir, w));
         vec3 e = path_shadow(s, ATMO_LUT_ARGS, &v->q, v->p, w, g);
         return v3_mul(v3_mul(f, e), v3_from4(s->sky_factor));
     }
@@ -343,7 +419,8 @@ ATMO_FN vec3 path_direct_sky(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
     float t_event; /* a scattering in the volume media ends S there (its light is the
                       continuation's) */
     int k;
-    vec3 S = path_segment(s, ATMO_LUT_ARGS, &r, &h, 0, g, &view_t, &t_event, &k);
+    vec3 S = path_segment(s, ATMO_LUT_ARGS, &r, &h, 0, s->path.sun_nee, g, &view_t, &t_event,
+                          &k);
     float weight = light_sky_power(1.0f, p_l, n_bsdf, p_b);
     return v3_scale(v3_mul(path_cosine_albedo(v), S), c / ATMO_PI * weight / p_l);
 }
@@ -388,8 +465,11 @@ ATMO_FN void path_continue(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
         vec3 view_t;
         float t_event;
         int k;
-        vec3 S = path_segment(s, ATMO_LUT_ARGS, &r, &h, !s->path.sun_nee, g, &view_t, &t_event,
-                              &k);
+        /* the air's sun along the segment stands for the sun of the scattering it may end in,
+         * which path.volume_bounces allows while scatters < path.volume_bounces */
+        vec3 S = path_segment(s, ATMO_LUT_ARGS, &r, &h, !s->path.sun_nee,
+                              s->path.sun_nee && scatters < s->path.volume_bounces, g, &view_t,
+                              &t_event, &k);
         float weight = s->path.sky_nee && !v.volume && !mirror
                            ? light_sky_power(n_bsdf, p_c * bsdf_pdf_cosine(v.n, w), 1.0f,
                                              light_sky_pdf(s, sky_env, w))
@@ -441,18 +521,21 @@ ATMO_FN void path_sample(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, i
     vec3 view_t;
     float t_event;
     int k;
-    vec3 S = path_segment(s, ATMO_LUT_ARGS, &ray, &h, 1, &g, &view_t, &t_event, &k);
+    vec3 S = path_segment(s, ATMO_LUT_ARGS, &ray, &h, 1, s->path.sun_nee, &g, &view_t, &t_event,
+                          &k);
     int escapes = h.kind == SURFACES_NONE && t_event < 0.0f;
-    path_add(parts, escapes ? PATH_PASS_ENV : PATH_PASS_VOLUME, S);
+    /* the air's light on a camera ray that meets no surface is the sky seen directly */
+    path_add(parts,
+             h.kind == SURFACES_NONE && (escapes || MEDIA_VOLUME_AIR) ? PATH_PASS_ENV
+                                                                     : PATH_PASS_VOLUME,
+             S);
     if (escapes)
         return;
     int n_s = s->path.secondary;
     path_vertex v;
     if (t_event >= 0.0f) { /* the primary vertex is a scattering in the volume media */
         v = path_vertex_volume(s, &ray, t_event, k);
-        /* the air's light on a camera ray that meets no surface is the sky seen directly */
-        path_add(parts,
-                 path_volume_pass(&v, h.kind == SURFACES_NONE ? PATH_PASS_ENV : PATH_PASS_VOLUME),
+        path_add(parts, path_volume_pass(&v, PATH_PASS_VOLUME),
                  v3_mul(view_t, path_direct_sun(s, ATMO_LUT_ARGS, &v, &g)));
     } else {
         path_add(parts, PATH_PASS_EMIT,

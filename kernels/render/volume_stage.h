@@ -1,12 +1,12 @@
 /* volume_stage.h — the path tracer's scattering events in its volume media (path.clouds =
  * volume: the fBm cloud layer, a medium that no method sees, whose sky_trace gives the air's
  * light alone, in the layer's shadow; path.air = medium: the air itself, below): the stage
- * functions the loop (path.h) calls for a
- * segment's free flight, the sun's transmittance through the volume media, and a volume
- * vertex's phase function and continuation. All of them run on the one majorant walk in volume
- * mode (media/media_walk.h) over the plan's composed volume medium (media.h's media_volume_*);
- * without one they are the identity (no event, no attenuation, no random number), so the loop
- * is the same source for every build.
+ * functions the loop (path.h) calls for a volume vertex's phase function and continuation
+ * (the segment's free flight is path.h's path_flight on media_walk.h's iterator, and the sun's
+ * transmittance through the volume media its shadow query). All of them run on the one
+ * majorant walk in volume mode (media/media_walk.h) over the plan's composed volume medium
+ * (media.h's media_volume_*); without one they are the identity (no event, no attenuation, no
+ * random number), so the loop is the same source for every build.
  *
  * The radiative transfer along a segment of the path [0, end] (end: the surface it hits, or
  * infinity), with the air (sigma_a: its method) and the volume medium (sigma_c) both present:
@@ -38,9 +38,12 @@
  * probability T(0, end), so
  *     t_c drawn:  w J_k(t_c)        none:  w L_end
  * has the expectation L(0) with no method term: J_k is the next vertex with component k's
- * phase (the air's sampled exactly, media_air_direction), its sun through the same shadow
- * function (the air's transmittance from the LUT there), and an escaping ray's L_end is the
- * sun's disc alone.
+ * phase (the air's sampled exactly, media_air_direction), and an escaping ray's L_end is the
+ * sun's disc alone. The air's J_a = J_sun + J_ms splits: its single scattering of the sun
+ * (J_sun = int p_a E T_sun) moves from the vertex to every tentative point of the flight
+ * (path.h's path_flight: the collision estimator sum_i w_i sigma_s,a J_sun(x_i) / sigma_bar_i,
+ * whose expectation is int_0^t_c-or-end T sigma_s,a J_sun dt, the same as that of w J_sun at
+ * the vertex), and the vertex keeps J_ms, its continuation.
  * Units: radiance W m^-2 sr^-1 nm^-1, metres, phase per steradian. */
 #ifndef ATMO_RENDER_VOLUME_STAGE_H
 #define ATMO_RENDER_VOLUME_STAGE_H
@@ -52,29 +55,6 @@
 #include "media/media_walk.h"
 #include "atmo/gpu_types.h"
 #endif
-
-/* The distance of the first scattering in the volume media along m before `end`, or -1 where
- * the ray passes; *component the medium that scatters there (media_walk.h's
- * MEDIA_WALK_VOLUME_*); *w the tracking weight (1 without a volume medium). */
-ATMO_FN float volume_flight(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                            const medium_ray *m, float end, rng_stream *g, vec3 *w,
-                            int *component)
-{
-    float t;
-    *component = media_walk_volume_flight(s, ATMO_LUT_ARGS, m, end, g, &t, w);
-    return *component != WALK_NULL ? t : -1.0f;
-}
-
-/* The phase function per steradian of the volume component k (MEDIA_WALK_VOLUME_*) between
- * the ray's direction and w, nu = d . w: the volume medium's, or the air's Rayleigh or aerosol
- * phase (media.h's media_air_phase). */
-ATMO_FN vec3 volume_component_phase(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, int k,
-                                    float nu)
-{
-    if (k == MEDIA_WALK_VOLUME_MEDIUM)
-        return media_volume_phase(s, ATMO_LUT_ARGS, nu);
-    return media_air_phase(s, k == MEDIA_WALK_VOLUME_RAYLEIGH ? MEDIA_RAYLEIGH : MEDIA_MIE, nu);
-}
 
 /* The volume medium's phase function per steradian between the ray's direction and w,
  * nu = d . w (0 without one). */
