@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# test_view_denoise — the viewer's denoised display (key N, host/view/view.c) and its denoised
-# saves, both with the view's albedo and normal guides, as `atmo render --denoise` does.
+# test_view_denoise — the viewer's denoised display (key N, host/view/view_denoise.c) and its
+# denoised saves, both with the view's albedo and normal guides, as `atmo render --denoise` does.
 # labels: render
 #
 # Scene: thesis-7 path traced (an open box: Monte Carlo noise on every surface), 48x32, 4

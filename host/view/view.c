@@ -10,20 +10,7 @@
  * >= 30 Hz" figure: the share of turns over 33 ms, and the longest), with the time from a change
  * to its first image on screen (the draft, or an error).
  *
- * Denoised display (key N, view_state.denoise): while the frame has fewer than
- * VIEW_DENOISE_MAX_SPP samples per pixel, the texture holds the frame through Open Image
- * Denoise (atmo_outputs_denoise_rgb at quality fast) with the albedo and normal guides of the
- * view, as `atmo render` denoises: the render thread renders them once per view while they are
- * wanted (view_renderer_want_guides: N is on, or a save is denoised), when the view's image has
- * a sample in every pixel, so the display waits for them after a change (the draft and the
- * frames before them show as rendered; a screenshot waits for them too), and a scene
- * that takes none (atmo_guides_apply: a thin lens, the spectral mode) is denoised on the colour
- * alone. It is redone whenever the frame's request, phase or fewest samples change, in place of
- * the finished tiles' sub-images; the render thread's accumulation keeps the image as rendered,
- * and the saves (P, --output) are the files `atmo render` writes: denoised as output.denoise
- * says, with the same guides. From VIEW_DENOISE_MAX_SPP samples on, or with the key off again,
- * the texture gets the rendered frame back. A missing library turns it off with its message in
- * the title.
+ * The denoised display (key N) and the guides its denoised saves wait for: view_denoise.c.
  *
  * A screenshot (--screenshot-after N) is taken when the script, if any, has run to its end and
  * the current view's image has N samples per pixel: the image goes through view_save_image,
@@ -34,14 +21,13 @@
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/clock.h"
-#include "atmo/denoise.h"
-#include "atmo/guides.h"
+#include "atmo/outputs.h"
 #include "atmo/view.h"
 #include "view_controls.h"
+#include "view_denoise.h"
 #include "view_mode.h"
 #include "view_overlay.h"
 #include "view_render_thread.h"
-#include "atmo/outputs.h"
 #include "view_save.h"
 #include "view_script.h"
 #include "view_window.h"
@@ -51,9 +37,6 @@
 #define VIEW_TILE_FPS 30.0
 #define VIEW_HOLD_TICK (1.0 / 60.0)
 #define VIEW_MAX_KEYS 64
-/* the denoised display's limit: at 64 samples a path-traced frame is about as clean as the
- * denoised 4 (docs/guide/denoise.md) */
-#define VIEW_DENOISE_MAX_SPP 64
 
 typedef struct view_app {
     const atmo_view_options *o;
@@ -78,13 +61,8 @@ typedef struct view_app {
     int latency_count;
     unsigned last_generation_shown; /* the newest request whose image was on screen */
     int changes, changes_shown;     /* requests; of those, with an image on screen */
-    float *denoised;                /* the denoised display's image (malloc'd), or NULL */
-    int denoised_on_screen;         /* the texture holds it */
-    unsigned denoised_generation;   /* the frame it was made from: request, phase, samples */
-    int denoised_phase, denoised_samples;
-    int denoised_guided;            /* it was made with the guides */
+    view_denoise denoise;           /* the denoised display (N) */
     int save_pending;               /* P waits for the guides of the view on display */
-    int shown_guides;               /* the guides of the frame last taken were made */
 } view_app;
 
 static volatile sig_atomic_t interrupted;
@@ -138,28 +116,20 @@ static void refresh_callback(GLFWwindow *w)
     a->redraw = 1;
 }
 
-/* Whether output.denoise denoises `path`, saved from `rendered`, and the library loads. */
-static int save_denoised(const atmo_scene *rendered, const char *path)
+/* The render thread makes the guides of each view only while something will denoise with them
+ * (a guide pass costs about as much as a few samples). */
+static void want_guides(view_app *a)
 {
-    const char *outputs[1] = {path};
-    atmo_err le;
-    return path && atmo_outputs_any_denoised(rendered, outputs, 1) && atmo_denoise_load(&le) == 0;
-}
-
-/* Whether the render thread is to make the guides of each view (a guide pass costs about as
- * much as a few samples, so only while something will denoise with them): the denoised
- * display, a P save waiting for them, or the screenshot's denoised --output. */
-static int guides_wanted(const view_app *a, const atmo_scene *rendered)
-{
-    return a->state.denoise || a->save_pending ||
-           (a->o->screenshot_after > 0 && save_denoised(rendered, a->o->output));
+    const char *screenshot = a->o->screenshot_after > 0 ? a->o->output : NULL;
+    view_renderer_want_guides(a->renderer,
+                              view_denoise_guides_wanted(&a->state, a->save_pending, screenshot));
 }
 
 static void request(view_app *a)
 {
     atmo_scene r;
     view_mode_scene(&a->state.scene, a->state.mode, &r);
-    view_renderer_want_guides(a->renderer, guides_wanted(a, &r));
+    want_guides(a);
     int samples = a->o->screenshot_after > 0 ? a->o->screenshot_after : r.image.samples;
     view_renderer_request(a->renderer, &r, samples, ++a->generation);
     a->requested_at = atmo_now_seconds();
@@ -181,32 +151,13 @@ static int reached(const view_app *a, double n)
                           (a->shown.phase == VIEW_PHASE_REFINING && a->shown.samples_min >= n));
 }
 
-/* The guides of f's view for the denoiser, in *g (no guides where its scene takes none):
- * 1 once the render thread made them for f's request and f is its full-size image, else 0. */
-static int frame_guides(const view_frame *f, atmo_outputs_guides *g)
-{
-    size_t pixels = (size_t)f->width * (size_t)f->height;
-    memset(g, 0, sizeof *g);
-    if (f->guides_generation != f->generation ||
-        (f->phase != VIEW_PHASE_REFINING && f->phase != VIEW_PHASE_DONE))
-        return 0;
-    if (f->guides) {
-        g->albedo = f->guides;
-        g->normal = f->guides + 3 * pixels;
-        g->depth = f->guides + 6 * pixels;
-        g->disc = f->guides + 7 * pixels;
-        g->clean = 1;
-    }
-    return 1;
-}
-
 /* The image on display, copied out of the frame (img->rgb malloc'd), and its view's guides
  * where the render thread made them (*guide_block malloc'd, else NULL; *g points into it). */
 static int copy_image(view_app *a, atmo_image *img, int *samples_min, atmo_outputs_guides *g,
                       float **guide_block, atmo_err *e)
 {
     view_frame *f = view_renderer_acquire(a->renderer);
-    size_t pixels = (size_t)f->width * (size_t)f->height, n = pixels * 3;
+    size_t n = (size_t)f->width * (size_t)f->height * 3;
     memset(img, 0, sizeof *img); /* no extra layers */
     img->width = f->width;
     img->height = f->height;
@@ -214,49 +165,15 @@ static int copy_image(view_app *a, atmo_image *img, int *samples_min, atmo_outpu
     if (img->rgb)
         memcpy(img->rgb, f->rgb, n * sizeof(float));
     *samples_min = f->samples_min;
-    atmo_outputs_guides shared;
-    *guide_block = NULL;
-    memset(g, 0, sizeof *g);
-    if (frame_guides(f, &shared) && shared.albedo &&
-        (*guide_block = malloc(sizeof(float) * ATMO_GUIDES_FLOATS * pixels))) {
-        memcpy(*guide_block, f->guides, sizeof(float) * ATMO_GUIDES_FLOATS * pixels);
-        *g = (atmo_outputs_guides){*guide_block, *guide_block + 3 * pixels,
-                                   *guide_block + 6 * pixels, *guide_block + 7 * pixels, 1};
-    }
-    int no_memory = !img->rgb || (shared.albedo && !*guide_block);
+    int rc = view_denoise_copy_guides(f, g, guide_block, e);
     view_renderer_release(a->renderer, 0);
-    if (!img->rgb)
+    if (!img->rgb) {
+        free(*guide_block);
         return atmo_fail(e, ATMO_ERR_RUNTIME, "no image to save yet");
-    if (no_memory) {
-        free(img->rgb);
-        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory for the denoiser's guides");
     }
-    return ATMO_OK;
-}
-
-/* Whether a P save can be written now: its image is not denoised, or the guides of the view on
- * display are made (or it failed). */
-static int save_ready(view_app *a)
-{
-    atmo_scene rendered;
-    atmo_outputs_guides g;
-    view_mode_scene(&a->state.scene, a->state.mode, &rendered);
-    if (!save_denoised(&rendered, a->o->save_path))
-        return 1;
-    view_frame *f = view_renderer_acquire(a->renderer);
-    int ready = frame_guides(f, &g) || f->phase == VIEW_PHASE_ERROR;
-    view_renderer_release(a->renderer, 0);
-    return ready;
-}
-
-/* Whether the screenshot may be taken: neither the display (N) nor the --output waits for the
- * guides of the frame on display (as take_frame last saw it, so the window shows what it
- * decided with them). */
-static int guides_settled(const view_app *a)
-{
-    atmo_scene rendered;
-    view_mode_scene(&a->state.scene, a->state.mode, &rendered);
-    return a->shown_guides || (!a->state.denoise && !save_denoised(&rendered, a->o->output));
+    if (rc)
+        free(img->rgb);
+    return rc;
 }
 
 /* P: the image on display and the user's scene beside it. */
@@ -350,9 +267,9 @@ static void title(view_app *a)
              "atmo view | %s %s %dx%d | %s%s | h %.4g m | sun %.1f/%.1f deg | exposure %.3g %s",
              view_mode_name(a->state.mode), m->names[r.atmosphere.method], r.image.width,
              r.image.height, state,
-             !a->denoised_on_screen ? ""
-             : a->denoised_guided   ? ", denoised with guides"
-                                    : ", denoised",
+             !a->denoise.on_screen ? ""
+             : a->denoise.guided   ? ", denoised with guides"
+                                   : ", denoised",
              view_altitude_m(s), s->sun.zenith_deg, s->sun.azimuth_deg, s->post.exposure,
              t->names[s->post.tonemap]);
     view_window_title(&a->win, text);
@@ -379,52 +296,7 @@ static void overlay(view_app *a)
         a->overlay.count = 0;
 }
 
-/* New tiles into the texture; the frame's statistics into a->shown. */
-/* Whether the frame is to be shown denoised: the key is on, the library loads (else the key
- * goes off, with its message), the frame has few samples and the guides of its view are made
- * (*g: atmo_outputs_denoise_rgb's guides, none where its scene takes none). */
-static int denoise_wanted(view_app *a, const view_frame *f, atmo_outputs_guides *g)
-{
-    atmo_err le;
-    if (!a->state.denoise || f->samples_max >= VIEW_DENOISE_MAX_SPP)
-        return 0;
-    if (atmo_denoise_load(&le)) {
-        a->state.denoise = 0;
-        snprintf(a->message, sizeof a->message, "N (denoise): %.900s", le.msg);
-        return 0;
-    }
-    return frame_guides(f, g);
-}
-
-/* The denoised display of f into the texture, when f differs from the frame it was made from
- * or the texture holds something else. A failing filter turns the key off, with its message. */
-static void show_denoised(view_app *a, const view_frame *f, const atmo_outputs_guides *g,
-                          int resized)
-{
-    atmo_err de;
-    if (a->denoised_on_screen && !resized && f->generation == a->denoised_generation &&
-        f->phase == a->denoised_phase && f->samples_min == a->denoised_samples)
-        return;
-    float *out = realloc(a->denoised, sizeof(float) * 3 * (size_t)f->width * f->height);
-    if (!out || atmo_outputs_denoise_rgb(f->rgb, f->width, f->height, g, ATMO_DENOISE_FAST,
-                                         out, &de)) {
-        snprintf(a->message, sizeof a->message, "N (denoise): %.900s",
-                 out ? de.msg : "out of memory for the denoised image");
-        a->state.denoise = 0;
-        if (out)
-            a->denoised = out;
-        return;
-    }
-    a->denoised = out;
-    view_window_upload(&a->win, out, f->width, 0, 0, f->width, f->height);
-    a->denoised_on_screen = 1;
-    a->denoised_guided = g->albedo != NULL;
-    a->denoised_generation = f->generation;
-    a->denoised_phase = f->phase;
-    a->denoised_samples = f->samples_min;
-    a->redraw = 1;
-}
-
+/* The frame into the texture (view_denoise_upload); its statistics into a->shown. */
 static int take_frame(view_app *a, atmo_err *e)
 {
     view_frame *f = view_renderer_acquire(a->renderer);
@@ -433,21 +305,12 @@ static int take_frame(view_app *a, atmo_err *e)
         int resized = f->width != a->win.tex_width || f->height != a->win.tex_height;
         rc = view_window_image(&a->win, f->width, f->height, e);
         a->redraw |= resized || f->all_dirty || f->rect_count > 0;
-        atmo_outputs_guides g;
-        int denoise = !rc && denoise_wanted(a, f, &g);
-        if (denoise)
-            show_denoised(a, f, &g, resized);
-        else if (!rc && (resized || f->all_dirty || a->denoised_on_screen)) {
-            view_window_upload(&a->win, f->rgb, f->width, 0, 0, f->width, f->height);
-            a->denoised_on_screen = 0;
-            a->redraw = 1;
-        } else if (!rc)
-            for (int i = 0; i < f->rect_count; i++)
-                view_window_upload(&a->win, f->rgb, f->width, f->rects[i].x, f->rects[i].y,
-                                   f->rects[i].w, f->rects[i].h);
+        atmo_err note = {{0}};
+        if (!rc)
+            a->redraw |= view_denoise_upload(&a->denoise, &a->state, &a->win, f, resized, &note);
+        if (note.msg[0])
+            snprintf(a->message, sizeof a->message, "%s", note.msg);
     }
-    atmo_outputs_guides shown_guides;
-    a->shown_guides = frame_guides(f, &shown_guides);
     a->shown = *f;
     a->shown.rgb = NULL;
     a->shown.guides = NULL;
@@ -522,14 +385,11 @@ static int loop(view_app *a, atmo_err *e)
         a->drag_dx = a->drag_dy = a->scroll = 0.0;
         run_script(a, now, &change);
         a->save_pending |= (change & VIEW_CHANGE_SAVE) != 0;
-        if (change & VIEW_CHANGE_RENDER) {
+        if (change & VIEW_CHANGE_RENDER)
             request(a);
-        } else {
-            atmo_scene r;
-            view_mode_scene(&a->state.scene, a->state.mode, &r);
-            view_renderer_want_guides(a->renderer, guides_wanted(a, &r));
-        }
-        if (a->save_pending && save_ready(a)) {
+        else
+            want_guides(a);
+        if (a->save_pending && view_denoise_save_ready(&a->state, a->renderer, a->o->save_path)) {
             atmo_err se = {{0}};
             a->save_pending = 0;
             if (save(a, &se))
@@ -558,7 +418,7 @@ static int loop(view_app *a, atmo_err *e)
         }
         int shoot = a->o->screenshot_after > 0 && a->script.next >= a->script.count &&
                     reached(a, a->o->screenshot_after) && !(change & VIEW_CHANGE_RENDER) &&
-                    guides_settled(a);
+                    view_denoise_settled(&a->state, &a->shown, a->o->output);
         /* Drawing only what changed, and new tiles at most VIEW_TILE_FPS times a second, leaves
          * the CPU to the render where the device (and Mesa's OpenGL) is the CPU. */
         int tiles_due = a->redraw && now - last_draw >= 1.0 / VIEW_TILE_FPS;
@@ -640,7 +500,7 @@ cleanup:
     view_window_close(&a->win);
     view_overlay_free(&a->overlay);
     view_script_free(&a->script);
-    free(a->denoised);
+    view_denoise_free(&a->denoise);
     free(a);
     return rc;
 }

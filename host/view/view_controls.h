@@ -12,7 +12,7 @@ typedef struct view_state {
     int mode;                /* VIEW_MODE_* */
     int help;                /* the overlay is shown */
     int denoise;             /* N: the display shows the frame denoised while it has few
-                                samples (view.c) */
+                                samples (view_denoise.c) */
 } view_state;
 
 /* What a control changed (bit flags). */
