@@ -153,14 +153,15 @@ PY
 # interpolant there (the plan resamples it onto the centres) within the float rounding of
 # heights up to 2 km (1e-3 m), and "height_ref_m" is that interpolant in double; beyond the
 # heightmap's square (|X| > 32768 m) the procedural field goes on, as without the file
-dem=(--set terrain.heightmap_file="$tmp/ramp.png" --set terrain.heightmap_file_extent_m=20000
+# (sky-sunset leaves the terrain keys at their defaults, which the detail's bound below assumes)
+dem=(--preset sky-sunset --set terrain.heightmap_file="$tmp/ramp.png" --set terrain.heightmap_file_extent_m=20000
      --set terrain.heightmap_scale_m=2000)
 "$atmo" terrain "${dem[@]}" --at 32,32 --at 2080,-3104 --at 40000,100 --json >"$tmp/probe.json" \
     2>"$tmp/err" || { bad "atmo terrain --at with a heightmap file failed"; cat "$tmp/err" >&2; }
 "$atmo" terrain "${dem[@]}" --set terrain.heightmap_detail=true --at 32,32 --at 2080,-3104 \
     --json >"$tmp/probe_detail.json" 2>"$tmp/err" ||
     { bad "atmo terrain --at with a heightmap file and detail failed"; cat "$tmp/err" >&2; }
-"$atmo" terrain --at 40000,100 --json >"$tmp/probe_fbm.json" 2>"$tmp/err" ||
+"$atmo" terrain --preset sky-sunset --at 40000,100 --json >"$tmp/probe_fbm.json" 2>"$tmp/err" ||
     { bad "atmo terrain --at failed"; cat "$tmp/err" >&2; }
 python3 - "$tmp/probe.json" "$tmp/probe_fbm.json" <<'PY' || fail=1
 import json, math, sys
