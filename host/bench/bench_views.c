@@ -18,6 +18,7 @@
  * render it anew after a change to the renderer.
  * Sizes: 1280 x 720 at 1, 2, 4, 8, 16 samples, bias at 320 x 180 (default mode and reference
  * 64 samples each); --quick: 320 x 180 at 1, 2, bias at 80 x 45 (16 and 32 samples).
+ * --noise-only: the noise rows alone, no reference (which takes minutes to hours a view).
  * Writes DIR/views_VIEW.csv and the chart DIR/views_VIEW.svg (noise and bias against seconds,
  * with the goal lines: 2 % noise, 5 % bias, 120 s). */
 #include <errno.h>
@@ -247,7 +248,7 @@ static int views_noise_row(const char *name, const views_sizes *z, int samples,
 
 /* The view's chart: noise and bias against seconds with the goal lines. */
 static int views_chart(const char *csv, const char *svg, const char *name, const bench_row *rows,
-                       int n, double ref_noise, atmo_err *e)
+                       int n, const char *what, atmo_err *e)
 {
     char *script = NULL;
     size_t size = 0;
@@ -265,8 +266,7 @@ static int views_chart(const char *csv, const char *svg, const char *name, const
             "set datafile separator ','\nset logscale xy\nset grid\nset key outside right\n"
             "set xlabel 'seconds (build + precompute + render, warm caches)'\n"
             "set ylabel 'relative RMS of luminance'\n"
-            "set title '%s, default mode: two-seed noise and bias against the path-traced "
-            "reference (its own noise %.1f %%)'\n"
+            "set title '%s, default mode: %s'\n"
             "set xrange [%g:%g]\nset yrange [%g:%g]\n"
             "set arrow from %g, graph 0 to %g, graph 1 nohead dt 2 lc rgb 'black'\n"
             "set label '%g s' at %g, graph 0.95 offset 0.5,0\n"
@@ -276,18 +276,18 @@ static int views_chart(const char *csv, const char *svg, const char *name, const
             "pt 5 ps 1.5 title 'bias', '' using (strcol(1) eq 'bias' ? $3 : 1/0):4:2 with labels "
             "offset 1,-0.7 font ',8' notitle, %g with lines dt 2 lc rgb 'blue' title 'noise goal "
             "%g %%', %g with lines dt 2 lc rgb 'red' title 'bias goal %g %%'\n",
-            name, 100.0 * ref_noise, 0.5 * x_lo, 2.0 * x_hi, 0.5 * y_lo, 2.0 * y_hi,
+            name, what, 0.5 * x_lo, 2.0 * x_hi, 0.5 * y_lo, 2.0 * y_hi,
             VIEWS_TIME_GOAL_S, VIEWS_TIME_GOAL_S, VIEWS_TIME_GOAL_S, VIEWS_TIME_GOAL_S, csv,
             VIEWS_NOISE_GOAL, 100.0 * VIEWS_NOISE_GOAL, VIEWS_BIAS_GOAL, 100.0 * VIEWS_BIAS_GOAL);
     return bench_plot_close(f, &script, svg, 900, 500, e);
 }
 
 static int views_one(const char *dir, const char *name, const views_sizes *z, const char *device,
-                     atmo_err *e)
+                     int noise_only, atmo_err *e)
 {
     bench_row rows[8];
     int n = 0, rc = ATMO_OK;
-    double ref_noise = 0.0, seconds;
+    double ref_noise = NAN, seconds;
     atmo_scene warm;
     atmo_render_result r;
     /* a small render first: the kernel and LUT caches warm, so no row pays the build */
@@ -302,20 +302,30 @@ static int views_one(const char *dir, const char *name, const views_sizes *z, co
                 rows[n].seconds, 100.0 * rows[n].error);
         n++;
     }
-    if (!rc && !(rc = views_bias_row(dir, name, z, device, &rows[n], &ref_noise, e))) {
+    if (!rc && !noise_only && !(rc = views_bias_row(dir, name, z, device, &rows[n], &ref_noise, e))) {
         fprintf(stderr, "bench views: %s bias %.2f %% (the reference's own noise %.2f %%)\n",
                 name, 100.0 * rows[n].error, 100.0 * ref_noise);
         n++;
     }
     if (rc)
         return rc;
-    char csv[4096], svg[4096], device_note[512];
+    char csv[4096], svg[4096], device_note[512], what[160];
     snprintf(csv, sizeof csv, "%s/views_%s.csv", dir, name);
     snprintf(svg, sizeof svg, "%s/views_%s.svg", dir, name);
-    snprintf(device_note, sizeof device_note, "%s; reference noise %.4f",
-             device ? device : "default", ref_noise);
+    if (noise_only) {
+        snprintf(device_note, sizeof device_note, "%s; noise only (no reference)",
+                 device ? device : "default");
+        snprintf(what, sizeof what, "two-seed noise (no reference rendered)");
+    } else {
+        snprintf(device_note, sizeof device_note, "%s; reference noise %.4f",
+                 device ? device : "default", ref_noise);
+        snprintf(what, sizeof what,
+                 "two-seed noise and bias against the path-traced reference (its own noise "
+                 "%.1f %%)",
+                 100.0 * ref_noise);
+    }
     if ((rc = bench_write_csv(csv, rows, n, device_note, e)) ||
-        (rc = views_chart(csv, svg, name, rows, n, ref_noise, e)))
+        (rc = views_chart(csv, svg, name, rows, n, what, e)))
         return rc;
     printf("wrote %s and %s\n", csv, svg);
     return ATMO_OK;
@@ -339,7 +349,8 @@ int bench_views_check(const char *views, atmo_err *e)
     return ATMO_OK;
 }
 
-int bench_views(const char *dir, const char *device, const char *views, int quick, atmo_err *e)
+int bench_views(const char *dir, const char *device, const char *views, int quick, int noise_only,
+                atmo_err *e)
 {
     int rc = bench_views_check(views, e);
     if (rc)
@@ -351,6 +362,6 @@ int bench_views(const char *dir, const char *device, const char *views, int quic
                              "thesis-8,thesis-9");
     for (char *save = NULL, *v = strtok_r(list, ",", &save); v && !rc;
          v = strtok_r(NULL, ",", &save))
-        rc = views_one(dir, v, z, device, e);
+        rc = views_one(dir, v, z, device, noise_only, e);
     return rc;
 }

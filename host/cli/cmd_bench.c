@@ -21,7 +21,7 @@ static const char *const bench_suites[] = {"sky",    "atmosphere", "mie",     "c
 /* The flags' destinations (bench_flags), holding the defaults before parsing. */
 typedef struct bench_args {
     const char *dir, *device, *reference, *views;
-    int quick, fit;
+    int quick, fit, noise_only;
 } bench_args;
 
 #define BENCH_FLAG(member) offsetof(bench_args, member)
@@ -39,6 +39,8 @@ static const cli_flag bench_flags[] = {
     {.type = CLI_STRING, .name = "--views", .metavar = "LIST", .offset = BENCH_FLAG(views),
      .def = "all: thesis-1,...,thesis-9",
      .help = "views: the thesis views to measure, comma-separated"},
+    {.type = CLI_BOOL, .name = "--noise-only", .offset = BENCH_FLAG(noise_only),
+     .help = "views: the two-seed noise alone, no path-traced reference or bias"},
     {.type = CLI_PATH, .name = "--reference", .offset = BENCH_FLAG(reference),
      .help = "atmosphere: the Monte Carlo reference table"},
     {.type = CLI_END},
@@ -46,7 +48,8 @@ static const cli_flag bench_flags[] = {
 
 static const cli_command bench_cli = {
     .name = "bench",
-    .synopsis = "SUITE [--output DIR] [--device N|NAME] [--quick] [--fit] [--views LIST]",
+    .synopsis = "SUITE [--output DIR] [--device N|NAME] [--quick] [--fit] [--views LIST]\n"
+                "            [--noise-only]",
     .about =
         "Measures error against a high-quality reference and time for each setting of a method,\n"
         "and writes DIR/SUITE.csv and the chart DIR/SUITE.svg (gnuplot).\n",
@@ -74,7 +77,8 @@ static const cli_command bench_cli = {
         "              Denoise (fast, balanced, high): error against time, where denoising pays\n"
         "  views       each thesis view in the default mode: two-seed noise against time at\n"
         "              1280x720 (1-16 spp) and bias against the path-traced reference at 320x180\n"
-        "              (cached in DIR/views_ref/); --quick: 320x180 and 80x45; --views to choose\n",
+        "              (cached in DIR/views_ref/); --quick: 320x180 and 80x45; --views to choose;\n"
+        "              --noise-only: no reference, no bias\n",
     .max_positional = 1,
 };
 
@@ -118,7 +122,7 @@ int cmd_bench(int argc, char **argv)
              : strcmp(suite, "terrain") == 0 ? bench_terrain(dir, device, quick, &e)
              : strcmp(suite, "clouds") == 0 ? bench_clouds(dir, device, quick, a.fit, &e)
              : strcmp(suite, "denoise") == 0 ? bench_denoise(dir, device, quick, &e)
-             : strcmp(suite, "views") == 0 ? bench_views(dir, device, a.views, quick, &e)
+             : strcmp(suite, "views") == 0 ? bench_views(dir, device, a.views, quick, a.noise_only, &e)
                                          : bench_atmosphere(dir, device, a.reference, quick, &e);
     if (rc)
         fprintf(stderr, "atmo bench: %s\n", e.msg);

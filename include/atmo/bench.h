@@ -79,9 +79,11 @@ int bench_clouds(const char *dir, const char *device, int quick, int fit, atmo_e
 
 /* `atmo bench views`: each thesis view (views: a comma-separated subset, NULL all) in the
  * default mode, two-seed noise against time at 1280 x 720 and bias against the cached
- * path-traced reference at 320 x 180 (quick: 320 x 180 and 80 x 45) (host/bench/bench_views.c).
- * Writes DIR/views_VIEW.csv and DIR/views_VIEW.svg per view, the references to DIR/views_ref/. */
-int bench_views(const char *dir, const char *device, const char *views, int quick, atmo_err *e);
+ * path-traced reference at 320 x 180 (quick: 320 x 180 and 80 x 45; noise_only: no bias row,
+ * no reference) (host/bench/bench_views.c). Writes DIR/views_VIEW.csv and DIR/views_VIEW.svg
+ * per view, the references to DIR/views_ref/. */
+int bench_views(const char *dir, const char *device, const char *views, int quick, int noise_only,
+                atmo_err *e);
 /* ATMO_ERR_USAGE naming the first name of the comma-separated views that is not a thesis view
  * (NULL: all, fine). */
 int bench_views_check(const char *views, atmo_err *e);
