@@ -38,6 +38,7 @@
 #include "commands.h"
 #include "output_paths.h"
 #include "overwrite.h"
+#include "run_report.h"
 
 #define MERGE_MAX_PARTS 4096
 #define MERGE_MAX_OUTPUTS 8
@@ -143,12 +144,9 @@ static int merge_report(const char *path, const atmo_scene *scene, const char *c
                         const atmo_render_result *guides, const atmo_outputs_denoise *denoised,
                         atmo_err *e)
 {
-    cJSON *root = cJSON_CreateObject();
-    char *scene_text = atmo_scene_to_json(scene);
-    cJSON *scene_json = scene_text ? cJSON_Parse(scene_text) : NULL;
-    free(scene_text);
-    cJSON_AddStringToObject(root, "software", "atmo " ATMO_VERSION);
-    cJSON_AddItemToObject(root, "scene", scene_json ? scene_json : cJSON_CreateNull());
+    cJSON *root = run_report_new(scene);
+    if (!root)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory writing the report '%s'", path);
     cJSON *m = cJSON_AddObjectToObject(root, "merge");
     cJSON_AddNumberToObject(m, "width", merged->width);
     cJSON_AddNumberToObject(m, "height", merged->height);
@@ -171,20 +169,7 @@ static int merge_report(const char *path, const atmo_scene *scene, const char *c
     cJSON *outs = cJSON_AddArrayToObject(root, "outputs");
     for (int i = 0; i < n_out; i++)
         cJSON_AddItemToArray(outs, cJSON_CreateString(outputs[i]));
-    char *text = cJSON_Print(root);
-    cJSON_Delete(root);
-    size_t len = text ? strlen(text) : 0;
-    char *with_newline = text ? malloc(len + 2) : NULL;
-    int rc = with_newline ? ATMO_OK
-                          : atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory writing the report");
-    if (with_newline) {
-        memcpy(with_newline, text, len);
-        memcpy(with_newline + len, "\n", 2);
-        rc = atmo_write_text_file(path, with_newline, e);
-    }
-    free(with_newline);
-    free(text);
-    return rc;
+    return run_report_write(root, path, e);
 }
 
 static int merge_parts(const merge_args *a, int n, atmo_err *e)

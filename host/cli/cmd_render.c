@@ -44,6 +44,7 @@
 #include "frames.h"
 #include "output_paths.h"
 #include "render_passes.h"
+#include "run_report.h"
 #include "overwrite.h"
 #include "scene_options.h"
 #include "atmo/outputs.h"
@@ -257,12 +258,9 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
                           const atmo_flare_info *flare, const atmo_outputs_denoise *denoised,
                           atmo_err *e)
 {
-    cJSON *root = cJSON_CreateObject();
-    char *scene_text = atmo_scene_to_json(s);
-    cJSON *scene = scene_text ? cJSON_Parse(scene_text) : NULL;
-    free(scene_text);
-    cJSON_AddStringToObject(root, "software", "atmo " ATMO_VERSION);
-    cJSON_AddItemToObject(root, "scene", scene ? scene : cJSON_CreateNull());
+    cJSON *root = run_report_new(s);
+    if (!root)
+        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory writing the report '%s'", path);
     cJSON *dev = cJSON_AddObjectToObject(root, "device");
     cJSON_AddStringToObject(dev, "platform", r->platform_name);
     cJSON_AddStringToObject(dev, "name", r->device_name);
@@ -319,28 +317,9 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON *outs = cJSON_AddArrayToObject(root, "outputs");
     for (int i = 0; i < n_out; i++)
         cJSON_AddItemToArray(outs, cJSON_CreateString(outputs[i]));
-    char *text = cJSON_Print(root);
-    cJSON_Delete(root);
-    if (!text)
-        return atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory writing the report");
-    size_t len = strlen(text);
-    char *with_newline = malloc(len + 2);
-    int rc = ATMO_ERR_RUNTIME;
-    if (with_newline) {
-        memcpy(with_newline, text, len);
-        memcpy(with_newline + len, "\n", 2);
-        rc = atmo_write_text_file(path, with_newline, e);
-    }
-    free(with_newline);
-    free(text);
-    return rc;
+    return run_report_write(root, path, e);
 }
 
-
-/* Render one scene (a frame) to res (or part): plan it, then install the signal handler (*old
- * gets the handlers it replaced, *installed 1), then render. The handler stays until the files
- * are written: a signal then lets the writing finish. Returns the status; an error leaves its
- * message in e. */
 /* A camera under the terrain's surface (or the sea's) sees the ground from inside: one warning,
  * before the build and the precompute, with the camera's height and the surface's there, both
  * world Y in metres; the surface from the renderer's own heights (atmo_plan_terrain_surface_y:
@@ -376,6 +355,10 @@ static void warn_camera_under_terrain_spectral(const atmo_scene *scene, int lut_
     atmo_plan_free(&plan);
 }
 
+/* Render one scene (a frame) to res (or part): plan it, then install the signal handler (*old
+ * gets the handlers it replaced, *installed 1), then render. The handler stays until the files
+ * are written: a signal then lets the writing finish. Returns the status; an error leaves its
+ * message in e. */
 static int render_run(const render_args *a, const atmo_scene *scene, atmo_render_settings *rs,
                       int part_file, atmo_render_result *res, atmo_part *part,
                       struct sigaction old[HANDLED_SIGNALS], int *installed, atmo_err *e)
