@@ -1,4 +1,5 @@
 /* Test helpers that need a whole scene: see testscene.h. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -224,4 +225,30 @@ void test_image_free(test_image *im)
 {
     free(im->mean);
     free(im->se);
+}
+
+int test_image_agree(const char *label, const char *name_a, const test_image *a,
+                     const char *name_b, const test_image *b, double z_bound, double *z_max)
+{
+    int n = a->w * a->h, bad = 0;
+    *z_max = 0.0;
+    for (int c = 0; c < 3; c++) {
+        double sa = 0.0, sb = 0.0, va = 0.0, vb = 0.0;
+        for (int i = 0; i < n; i++) {
+            int j = 3 * i + c;
+            double var = (double)a->se[j] * a->se[j] + (double)b->se[j] * b->se[j];
+            double z = var > 0.0 ? (b->mean[j] - a->mean[j]) / sqrt(var) : 0.0;
+            *z_max = fmax(*z_max, fabs(z));
+            bad += fabs(z) >= z_bound || var <= 0.0;
+            sa += a->mean[j], sb += b->mean[j];
+            va += (double)a->se[j] * a->se[j], vb += (double)b->se[j] * b->se[j];
+        }
+        double z = (sb - sa) / sqrt(va + vb);
+        printf("%s channel %d: %s %.5f (se %.2g), %s %.5f (se %.2g), %+.2f %%, z = %+.2f\n",
+               label, c, name_a, sa / n, sqrt(va) / n, name_b, sb / n, sqrt(vb) / n,
+               100 * (sb / sa - 1), z);
+        CHECK(fabs(z) < z_bound);
+        CHECK(va > 0.0 && vb > 0.0);
+    }
+    return bad;
 }

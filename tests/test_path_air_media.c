@@ -26,7 +26,6 @@
  * The path tracer runs with path.air_collisions = 0 in case 1 and 4 in cases 2 and 3, so the
  * floor on the walk's collisions (render/path.h's path_flight) is checked with the layer (whose
  * inside thins the air's sun estimates by roulette) and on a walk that starts above the air. */
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -96,28 +95,10 @@ static void agreement(const char *name, void (*make)(atmo_scene *), int collisio
     if (path.clouds.enabled)
         test_scene_set(&path, "path.clouds=volume");
     test_image a = test_render(&ref, 0, 0), b = test_render(&path, 0, 0);
-    int n = a.w * a.h, bad = 0;
-    double z_max = 0.0;
-    for (int c = 0; c < 3; c++) {
-        double sa = 0.0, sb = 0.0, va = 0.0, vb = 0.0;
-        for (int i = 0; i < n; i++) {
-            int j = 3 * i + c;
-            double var = (double)a.se[j] * a.se[j] + (double)b.se[j] * b.se[j];
-            double z = var > 0.0 ? (b.mean[j] - a.mean[j]) / sqrt(var) : 0.0;
-            z_max = fmax(z_max, fabs(z));
-            bad += fabs(z) >= 4.4 || var <= 0.0;
-            sa += a.mean[j], sb += b.mean[j];
-            va += (double)a.se[j] * a.se[j], vb += (double)b.se[j] * b.se[j];
-        }
-        double z = (sb - sa) / sqrt(va + vb);
-        printf("%s channel %d: reference %.5f (se %.2g), path.air=medium %.5f (se %.2g), "
-               "%+.2f %%, z = %+.2f\n",
-               name, c, sa / n, sqrt(va) / n, sb / n, sqrt(vb) / n, 100 * (sb / sa - 1), z);
-        CHECK(fabs(z) < 4.4);
-        CHECK(va > 0.0 && vb > 0.0);
-    }
-    printf("%s: %d of %d pixel-channels with |z| >= 4.4 (largest |z| %.2f)\n", name, bad, 3 * n,
-           z_max);
+    double z_max;
+    int bad = test_image_agree(name, "reference", &a, "path.air=medium", &b, 4.4, &z_max);
+    printf("%s: %d of %d pixel-channels with |z| >= 4.4 (largest |z| %.2f)\n", name, bad,
+           3 * a.w * a.h, z_max);
     CHECK(bad == 0);
     test_image_free(&a);
     test_image_free(&b);

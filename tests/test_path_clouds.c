@@ -138,28 +138,10 @@ static void test_agreement(void)
     test_scene_set(&path, "path.clouds=volume");
     set(&path, "image.samples=%g", AGREE_SAMPLES);
     test_image a = test_render(&ref, 64, 0), b = test_render(&path, 64, 0);
-    int n = a.w * a.h, bad = 0;
-    double z_max = 0.0;
-    for (int c = 0; c < 3; c++) {
-        double sa = 0.0, sb = 0.0, va = 0.0, vb = 0.0;
-        for (int i = 0; i < n; i++) {
-            int j = 3 * i + c;
-            double var = (double)a.se[j] * a.se[j] + (double)b.se[j] * b.se[j];
-            double z = var > 0.0 ? (b.mean[j] - a.mean[j]) / sqrt(var) : 0.0;
-            z_max = fmax(z_max, fabs(z));
-            bad += fabs(z) >= 4.4 || var <= 0.0;
-            sa += a.mean[j], sb += b.mean[j];
-            va += (double)a.se[j] * a.se[j], vb += (double)b.se[j] * b.se[j];
-        }
-        double z = (sb - sa) / sqrt(va + vb);
-        printf("agreement channel %d: reference %.5f (se %.2g), path volume %.5f (se %.2g), "
-               "z = %+.2f\n",
-               c, sa / n, sqrt(va) / n, sb / n, sqrt(vb) / n, z);
-        CHECK(fabs(z) < 4.4);
-        CHECK(va > 0.0 && vb > 0.0);
-    }
-    printf("agreement: %d of %d pixel-channels with |z| >= 4.4 (largest |z| %.2f)\n", bad, 3 * n,
-           z_max);
+    double z_max;
+    int bad = test_image_agree("agreement", "reference", &a, "path volume", &b, 4.4, &z_max);
+    printf("agreement: %d of %d pixel-channels with |z| >= 4.4 (largest |z| %.2f)\n", bad,
+           3 * a.w * a.h, z_max);
     CHECK(bad == 0);
     test_image_free(&a);
     test_image_free(&b);

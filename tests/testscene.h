@@ -57,5 +57,12 @@ test_image test_render(const atmo_scene *s, int tile, int max_batch);
 int test_render_plan(const atmo_plan *p, int tile, int max_batch, float *mean, float *se,
                      int *samples);
 void test_image_free(test_image *im);
+/* Images a and b of one scene by two unbiased estimators (named name_a and name_b in the
+ * printed lines, which `label` begins), compared by z-tests on their standard errors: per
+ * channel the image means' difference z = (sum b - sum a) / sqrt(sum se_a^2 + sum se_b^2),
+ * printed and CHECKed below z_bound with both variances positive; and every pixel-channel's z.
+ * Returns the pixel-channels with |z| >= z_bound or no variance; *z_max the largest |z|. */
+int test_image_agree(const char *label, const char *name_a, const test_image *a,
+                     const char *name_b, const test_image *b, double z_bound, double *z_max);
 
 #endif
