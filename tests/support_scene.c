@@ -252,3 +252,28 @@ int test_image_agree(const char *label, const char *name_a, const test_image *a,
     }
     return bad;
 }
+
+int test_reference_sky(test_sky_row *rows, int max)
+{
+    const char *dir = getenv("ATMO_SOURCE_DIR");
+    char path[4096], line[1024];
+    snprintf(path, sizeof path, "%s/tests/data/reference_sky.csv", dir ? dir : "..");
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        fprintf(stderr, "cannot open %s (set ATMO_SOURCE_DIR to the source tree)\n", path);
+        exit(1);
+    }
+    int n = 0;
+    while (fgets(line, sizeof line, f) && n < max) {
+        test_sky_row *r = &rows[n];
+        double samples;
+        if (line[0] == '#' || strncmp(line, "sun_zenith", 10) == 0)
+            continue;
+        if (sscanf(line, "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &r->sun_zenith,
+                   &r->view_zenith, &r->view_azimuth, &samples, &r->L[0], &r->L[1], &r->L[2],
+                   &r->se[0], &r->se[1], &r->se[2]) == 10)
+            n++;
+    }
+    fclose(f);
+    return n;
+}

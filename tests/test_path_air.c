@@ -43,35 +43,6 @@
 
 static const double suns[N_SUNS] = {30, 60, 80};
 
-typedef struct ref_row {
-    double sun_zenith, view_zenith, view_azimuth, L[3], se[3];
-} ref_row;
-
-static int read_table(ref_row *rows)
-{
-    const char *dir = getenv("ATMO_SOURCE_DIR");
-    char path[4096], line[1024];
-    snprintf(path, sizeof path, "%s/tests/data/reference_sky.csv", dir ? dir : "..");
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        fprintf(stderr, "cannot open %s (set ATMO_SOURCE_DIR to the source tree)\n", path);
-        exit(1);
-    }
-    int n = 0;
-    while (fgets(line, sizeof line, f) && n < MAX_ROWS) {
-        ref_row *r = &rows[n];
-        double samples;
-        if (line[0] == '#' || strncmp(line, "sun_zenith", 10) == 0)
-            continue;
-        if (sscanf(line, "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &r->sun_zenith,
-                   &r->view_zenith, &r->view_azimuth, &samples, &r->L[0], &r->L[1], &r->L[2],
-                   &r->se[0], &r->se[1], &r->se[2]) == 10)
-            n++;
-    }
-    fclose(f);
-    return n;
-}
-
 static void set(atmo_scene *s, const char *fmt, double v)
 {
     char buf[128];
@@ -80,7 +51,7 @@ static void set(atmo_scene *s, const char *fmt, double v)
 }
 
 /* The angle (degrees) between the view and the sun of a row. */
-static double sun_angle(const ref_row *r)
+static double sun_angle(const test_sky_row *r)
 {
     double ts = r->sun_zenith * M_PI / 180, tv = r->view_zenith * M_PI / 180;
     double c = sin(tv) * sin(ts) * cos(r->view_azimuth * M_PI / 180) + cos(tv) * cos(ts);
@@ -88,7 +59,7 @@ static double sun_angle(const ref_row *r)
 }
 
 /* The clear-sky scene aimed at row r's view, `samples` per pixel, with its own seed. */
-static void view_scene(atmo_scene *s, const ref_row *r, int samples, int seed)
+static void view_scene(atmo_scene *s, const test_sky_row *r, int samples, int seed)
 {
     test_scene_preset(s, "sky-noon");
     test_scene_set(s, "render.mode=path");
@@ -103,13 +74,13 @@ static void view_scene(atmo_scene *s, const ref_row *r, int samples, int seed)
     test_scene_image(s, FRAME, FRAME, samples, seed);
 }
 
-static void test_against_table(const ref_row *rows, int n)
+static void test_against_table(const test_sky_row *rows, int n)
 {
     double z2 = 0.0, z_sum[3] = {0, 0, 0}, noise[MAX_ROWS] = {0};
     int tests = 0, views = 0;
     printf("sun  view      L/L_ref - 1 (%%) at 680/550/440 nm          z\n");
     for (int i = 0; i < n; i++) {
-        const ref_row *r = &rows[i];
+        const test_sky_row *r = &rows[i];
         int wanted = 0;
         for (int k = 0; k < N_SUNS; k++)
             wanted |= r->sun_zenith == suns[k];
@@ -163,7 +134,7 @@ static void test_against_table(const ref_row *rows, int n)
     }
 }
 
-static void test_determinism(const ref_row *r)
+static void test_determinism(const test_sky_row *r)
 {
     atmo_scene s;
     view_scene(&s, r, 8, 7);
@@ -193,8 +164,8 @@ int main(void)
     atmo_cl cl;
     test_cl_open(&cl); /* exits 77 without OpenCL */
     atmo_cl_close(&cl);
-    static ref_row rows[MAX_ROWS];
-    int n = read_table(rows);
+    static test_sky_row rows[MAX_ROWS];
+    int n = test_reference_sky(rows, MAX_ROWS);
     CHECK(n == 65);
     test_bad_input();
     test_determinism(&rows[20]);

@@ -33,10 +33,6 @@
 #define MAX_ROWS 128
 #define N_SUN 5
 
-typedef struct ref_row {
-    double sun_zenith, view_zenith, view_azimuth, L[3], se[3];
-} ref_row;
-
 typedef struct method_case {
     const char *method;
     double target[2];   /* accuracy target: day (sun zenith <= 80 deg), horizon (90 deg) */
@@ -53,33 +49,8 @@ static const method_case cases[] = {
 
 static const double sun_zeniths[N_SUN] = {0, 30, 60, 80, 90};
 
-static int read_table(ref_row *rows)
-{
-    const char *dir = getenv("ATMO_SOURCE_DIR");
-    char path[4096], line[1024];
-    snprintf(path, sizeof path, "%s/tests/data/reference_sky.csv", dir ? dir : "..");
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        fprintf(stderr, "cannot open %s (set ATMO_SOURCE_DIR to the source tree)\n", path);
-        exit(1);
-    }
-    int n = 0;
-    while (fgets(line, sizeof line, f) && n < MAX_ROWS) {
-        ref_row *r = &rows[n];
-        double samples;
-        if (line[0] == '#' || strncmp(line, "sun_zenith", 10) == 0)
-            continue;
-        if (sscanf(line, "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &r->sun_zenith,
-                   &r->view_zenith, &r->view_azimuth, &samples, &r->L[0], &r->L[1], &r->L[2],
-                   &r->se[0], &r->se[1], &r->se[2]) == 10)
-            n++;
-    }
-    fclose(f);
-    return n;
-}
-
 /* The ray (r, mu, mu_s, nu) of a table row, directions as atmo_sun_direction's. */
-static float4 row_ray(double r, const ref_row *row)
+static float4 row_ray(double r, const test_sky_row *row)
 {
     double ts = row->sun_zenith * M_PI / 180, tv = row->view_zenith * M_PI / 180;
     double pv = row->view_azimuth * M_PI / 180;
@@ -90,7 +61,7 @@ static float4 row_ray(double r, const ref_row *row)
 
 /* Mean and standard error of the method for the rows whose sun zenith is `sun` (all rows when
  * sun < 0), written at the rows' indices. */
-static void run_method(const method_case *m, double sun, const ref_row *rows, int n,
+static void run_method(const method_case *m, double sun, const test_sky_row *rows, int n,
                        double (*mean)[3], double (*se)[3])
 {
     atmo_scene s;
@@ -131,9 +102,9 @@ int main(void)
     atmo_cl cl;
     test_cl_open(&cl); /* exits 77 without OpenCL */
     atmo_cl_close(&cl);
-    static ref_row rows[MAX_ROWS];
+    static test_sky_row rows[MAX_ROWS];
     static double mean[MAX_ROWS][3], se[MAX_ROWS][3];
-    int n = read_table(rows);
+    int n = test_reference_sky(rows, MAX_ROWS);
     CHECK(n == 65);
 
     printf("worst relative error (signed, %%) per sun zenith at 680/550/440 nm; views 0..85 deg\n");

@@ -40,6 +40,16 @@ void test_release_luts(cl_mem luts[ATMO_PLAN_MAX_BUFFERS]);
  * clouds.enabled, which *p holds until atmo_plan_free; exits 1 when the plan has no table. */
 int test_cumulus_phase_table(atmo_plan *p, const void **rows, const void **cdf);
 
+/* One view of the Monte Carlo sky table tests/data/reference_sky.csv (camera on the ground,
+ * the sun at azimuth 0; angles in degrees): its radiance L per render wavelength and the
+ * standard error se of each. */
+typedef struct test_sky_row {
+    double sun_zenith, view_zenith, view_azimuth, L[3], se[3];
+} test_sky_row;
+/* The table's rows (under $ATMO_SOURCE_DIR, else ..), at most max; exits 1 when the file
+ * cannot be opened. */
+int test_reference_sky(test_sky_row *rows, int max);
+
 /* A rendered image: w x h pixels, per channel the mean and its standard error (linear, RGB
  * interleaved), and n the samples of pixel 0. */
 typedef struct test_image {
