@@ -16,6 +16,8 @@
 # the same numbers with the same seed; in-scattering only adds light along a ray and T only
 # falls, so for d = 1 km < 10 km < the whole ray the radiance rises and the transmittance falls
 # (test_aerial checks the values against the double and Monte Carlo references).
+# (5) Its scene without --scene is the scene defaults (clear air), as the help says: the output
+# equals that of a scene file that sets nothing, byte for byte.
 # Shape: one text line per view; the JSON parses and has its documented keys; the reference
 # method reports standard errors. Bad input: exit status 2 and one line on stderr.
 set -u
@@ -121,6 +123,13 @@ print("segments: 1 km < 10 km < the whole ray; d = 1e9 m reproduces the sky radi
 PY
 "$atmo" radiance --altitude-m 0 --sun-zenith-deg 30 --view 0,0 --view 85,180 --method single \
     --distance-m 5000 >"$tmp/seg.txt" || { echo "segment text run failed"; fail=1; }
+# without --scene the scene is the defaults alone (not the default preset of render): the same
+# output as a scene file that sets nothing
+echo '{}' >"$tmp/empty.json"
+"$atmo" radiance --altitude-m 0 --sun-zenith-deg 30 --view 0,0 --view 85,180 --method single \
+    --distance-m 5000 --scene "$tmp/empty.json" >"$tmp/seg_empty.txt" &&
+    cmp -s "$tmp/seg.txt" "$tmp/seg_empty.txt" ||
+    { echo "radiance without --scene differs from --scene {} (the defaults)"; fail=1; }
 [ "$(grep -cE '^ +[0-9.]+ +[0-9.-]+ +([0-9.e+-]+ +){3}[0-9.e+-]+( +[0-9.]+){3}$' "$tmp/seg.txt")" = 2 ] ||
     { echo "expected one text line per view with three transmittances:"; cat "$tmp/seg.txt"; fail=1; }
 
