@@ -166,10 +166,7 @@ static int merge_report(const char *path, const atmo_scene *scene, const char *c
     cJSON *dn = atmo_outputs_denoise_json(scene, denoised);
     if (dn)
         cJSON_AddItemToObject(m, "denoise", dn);
-    cJSON *outs = cJSON_AddArrayToObject(root, "outputs");
-    for (int i = 0; i < n_out; i++)
-        cJSON_AddItemToArray(outs, cJSON_CreateString(outputs[i]));
-    return run_report_write(root, path, e);
+    return run_report_write(root, outputs, n_out, path, e);
 }
 
 static int merge_parts(const merge_args *a, int n, atmo_err *e)

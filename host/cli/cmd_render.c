@@ -314,10 +314,7 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON *dn = atmo_outputs_denoise_json(s, denoised);
     if (dn)
         cJSON_AddItemToObject(ren, "denoise", dn);
-    cJSON *outs = cJSON_AddArrayToObject(root, "outputs");
-    for (int i = 0; i < n_out; i++)
-        cJSON_AddItemToArray(outs, cJSON_CreateString(outputs[i]));
-    return run_report_write(root, path, e);
+    return run_report_write(root, outputs, n_out, path, e);
 }
 
 /* A camera under the terrain's surface (or the sea's) sees the ground from inside: one warning,

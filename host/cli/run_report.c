@@ -17,8 +17,12 @@ cJSON *run_report_new(const atmo_scene *s)
     return root;
 }
 
-int run_report_write(cJSON *root, const char *path, atmo_err *e)
+int run_report_write(cJSON *root, const char *const *outputs, int n_out, const char *path,
+                     atmo_err *e)
 {
+    cJSON *list = root ? cJSON_AddArrayToObject(root, "outputs") : NULL;
+    for (int i = 0; list && i < n_out; i++)
+        cJSON_AddItemToArray(list, cJSON_CreateString(outputs[i]));
     char *text = root ? cJSON_Print(root) : NULL;
     cJSON_Delete(root);
     size_t len = text ? strlen(text) : 0;
