@@ -277,3 +277,18 @@ int test_reference_sky(test_sky_row *rows, int max)
     fclose(f);
     return n;
 }
+
+void test_scene_flat_cloud_view(atmo_scene *s)
+{
+    static const char *const keys[] = {
+        "clouds.enabled=true",          "clouds.bottom_m=1000",
+        "clouds.top_m=2000",            "clouds.fade_m=300",
+        "clouds.coverage=1",            "clouds.frequency_per_m=1e-8,1e-8,1e-8",
+        "clouds.coverage_scale_m=1e8",  "clouds.extinction_per_m=0.002",
+        "clouds.albedo=0.95",           "clouds.phase=hg",
+        "camera.position_m=0,3000,0",   "camera.pitch_deg=-50",
+        "camera.fov_deg=20",            "sun.zenith_deg=30",
+    };
+    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
+        test_scene_set(s, keys[i]);
+}

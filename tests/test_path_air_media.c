@@ -49,20 +49,7 @@ static void cloud_scene(atmo_scene *s)
 {
     test_scene_preset(s, "sky-noon");
     test_scene_set(s, "atmosphere.ground_albedo=0.3");
-    test_scene_set(s, "clouds.enabled=true");
-    test_scene_set(s, "clouds.bottom_m=1000");
-    test_scene_set(s, "clouds.top_m=2000");
-    test_scene_set(s, "clouds.fade_m=300");
-    test_scene_set(s, "clouds.coverage=1");
-    test_scene_set(s, "clouds.frequency_per_m=1e-8,1e-8,1e-8");
-    test_scene_set(s, "clouds.coverage_scale_m=1e8");
-    test_scene_set(s, "clouds.extinction_per_m=0.002");
-    test_scene_set(s, "clouds.albedo=0.95");
-    test_scene_set(s, "clouds.phase=hg");
-    test_scene_set(s, "camera.position_m=0,3000,0");
-    test_scene_set(s, "camera.pitch_deg=-50");
-    test_scene_set(s, "camera.fov_deg=20");
-    test_scene_set(s, "sun.zenith_deg=30");
+    test_scene_flat_cloud_view(s);
     test_scene_image(s, 6, 6, SAMPLES, 5);
 }
 

@@ -10,6 +10,11 @@ void test_scene_preset(atmo_scene *s, const char *preset);
 void test_scene_set(atmo_scene *s, const char *assignment);
 /* image.width, image.height, image.samples and image.seed at once */
 void test_scene_image(atmo_scene *s, int width, int height, int samples, int seed);
+/* The path tracer's cloud agreement view: a horizontally uniform fBm layer (coverage 1, noise
+ * periods of 10^8 m) from 1 to 2 km with 300 m fades, extinction 0.002 /m, albedo 0.95, HG
+ * phase, seen from 3 km looking down 50 degrees with a 20-degree field, the sun 30 degrees from
+ * the zenith. */
+void test_scene_flat_cloud_view(atmo_scene *s);
 void test_plan(const atmo_scene *s, atmo_plan *p);
 /* The plan of the sky-noon preset with `method`, the camera at altitude_m above (0, 0) and the
  * sun at sun_zenith_deg; method lut at small tables (2 orders: tests of geometry and stability,
