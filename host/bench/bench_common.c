@@ -34,6 +34,18 @@ double bench_rms_relative(const atmo_render_result *a, const atmo_render_result 
     return sqrt(sum / (double)n);
 }
 
+double bench_unbiased_error(const float *x, const atmo_render_result *ref)
+{
+    double d2 = 0.0, var = 0.0, ref2 = 0.0;
+    for (size_t i = 0; i < 3 * (size_t)ref->width * ref->height; i++) {
+        double d = (double)x[i] - (double)ref->rgb[i], se = ref->se[i], r = ref->rgb[i];
+        d2 += d * d;
+        var += se * se;
+        ref2 += r * r;
+    }
+    return sqrt(fmax(d2 - var, 0.0) / fmax(ref2, 1e-300));
+}
+
 int bench_write_csv(const char *path, const bench_row *rows, int n, const char *device,
                     atmo_err *e)
 {

@@ -8,7 +8,7 @@
  * Error: the relative RMS over pixels and channels against the converged image, estimated
  * without bias: sqrt((sum (X - R)^2 - sum se_R^2) / sum R^2), where se_R is the reference's
  * standard error per pixel and channel (the reference's own noise removed; the estimate is
- * clamped at 0). Seconds: render (kernel build and precompute left out) plus the filter
+ * clamped at 0; bench_unbiased_error). Seconds: render (kernel build and precompute left out) plus the filter
  * (device creation included). Rows: method off / fast / balanced / high, settings "N spp". */
 #include <math.h>
 #include <stdio.h>
@@ -19,18 +19,6 @@
 #include "atmo/scene.h"
 
 #define BENCH_DENOISE_MAX_ROWS 32
-
-static double unbiased_error(const float *x, const atmo_render_result *ref)
-{
-    double d2 = 0.0, var = 0.0, ref2 = 0.0;
-    for (size_t i = 0; i < 3 * (size_t)ref->width * ref->height; i++) {
-        double d = (double)x[i] - (double)ref->rgb[i], se = ref->se[i], r = ref->rgb[i];
-        d2 += d * d;
-        var += se * se;
-        ref2 += r * r;
-    }
-    return sqrt(fmax(d2 - var, 0.0) / fmax(ref2, 1e-300));
-}
 
 /* The four rows (off, fast, balanced, high) of one image into rows[]. */
 static int denoise_rows(const atmo_render_result *r, const atmo_render_result *ref, int spp,
@@ -52,7 +40,7 @@ static int denoise_rows(const atmo_render_result *r, const atmo_render_result *r
         snprintf(row->method, sizeof row->method, "%s", q < 0 ? "off" : atmo_denoise_quality_name(q));
         snprintf(row->settings, sizeof row->settings, "%d spp", spp);
         row->seconds = r->seconds_render + seconds;
-        row->error = unbiased_error(q < 0 ? r->rgb : out, ref);
+        row->error = bench_unbiased_error(q < 0 ? r->rgb : out, ref);
         fprintf(stderr, "bench denoise: %-8s %3d spp %8.3fs (filter %.3fs)  error %.3e\n",
                 row->method, spp, row->seconds, seconds, row->error);
     }

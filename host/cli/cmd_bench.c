@@ -16,7 +16,7 @@
 
 static const char *const bench_suites[] = {"sky",    "atmosphere", "mie",     "colour",
                                            "panorama", "render",   "terrain", "clouds",
-                                           "denoise",  "views",    NULL};
+                                           "denoise",  "guides",   "views",    NULL};
 
 /* The flags' destinations (bench_flags), holding the defaults before parsing. */
 typedef struct bench_args {
@@ -75,6 +75,8 @@ static const cli_command bench_cli = {
         "              octaves (clouds.ms_a, ms_b, ms_c, ms_octaves) to the reference instead\n"
         "  denoise     thesis-7 path traced at 1 to 64 spp, raw and denoised by Open Image\n"
         "              Denoise (fast, balanced, high): error against time, where denoising pays\n"
+        "  guides      4-spp path-traced sky, terrain, limb and objects at 256x144, raw and\n"
+        "              denoised on the colour alone and with the albedo and normal guides\n"
         "  views       each thesis view in the default mode: two-seed noise against time at\n"
         "              1280x720 (1-16 spp) and bias against the path-traced reference at 320x180\n"
         "              (cached in DIR/views_ref/); --quick: 320x180 and 80x45; --views to choose;\n"
@@ -87,13 +89,13 @@ static int bench_check_suite(const char *suite, atmo_err *e)
 {
     if (!suite)
         return atmo_fail(e, ATMO_ERR_USAGE, "name a suite (sky, atmosphere, mie, colour, "
-                         "panorama, render, terrain, clouds, denoise, views); atmo bench --help");
+                         "panorama, render, terrain, clouds, denoise, guides, views); atmo bench --help");
     for (const char *const *s = bench_suites; *s; s++)
         if (strcmp(suite, *s) == 0)
             return ATMO_OK;
     const char *near = atmo_suggest_among(suite, bench_suites);
     return atmo_fail(e, ATMO_ERR_USAGE, "unknown suite '%s' (%s%s%ssuites: sky, atmosphere, mie, "
-                     "colour, panorama, render, terrain, clouds, denoise, views)", suite,
+                     "colour, panorama, render, terrain, clouds, denoise, guides, views)", suite,
                      near ? "did you mean '" : "", near ? near : "", near ? "'? " : "");
 }
 
@@ -122,6 +124,7 @@ int cmd_bench(int argc, char **argv)
              : strcmp(suite, "terrain") == 0 ? bench_terrain(dir, device, quick, &e)
              : strcmp(suite, "clouds") == 0 ? bench_clouds(dir, device, quick, a.fit, &e)
              : strcmp(suite, "denoise") == 0 ? bench_denoise(dir, device, quick, &e)
+             : strcmp(suite, "guides") == 0 ? bench_guides(dir, device, quick, &e)
              : strcmp(suite, "views") == 0 ? bench_views(dir, device, a.views, quick, a.noise_only, &e)
                                          : bench_atmosphere(dir, device, a.reference, quick, &e);
     if (rc)

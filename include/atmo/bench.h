@@ -17,6 +17,12 @@ typedef struct bench_row {
 int bench_render(const atmo_scene *s, const char *device, atmo_render_result *r, atmo_err *e);
 /* RMS over pixels and channels of (a - ref) / ref. */
 double bench_rms_relative(const atmo_render_result *a, const atmo_render_result *ref);
+/* The relative RMS error over pixels and channels of the image x against the converged image,
+ * estimated from a reference independent of x with its standard errors (ref->se): for such a
+ * reference E sum (x - R)^2 = sum (x - T)^2 + sum Var(R), so
+ *     sqrt((sum (x - R)^2 - sum se_R^2) / sum R^2),
+ * clamped at 0, estimates |x - T| / |T| with the reference's own noise removed. */
+double bench_unbiased_error(const float *x, const atmo_render_result *ref);
 /* DIR/SUITE.csv: method,settings,seconds,error,device. */
 int bench_write_csv(const char *path, const bench_row *rows, int n, const char *device,
                     atmo_err *e);
@@ -92,5 +98,10 @@ int bench_views_check(const char *views, atmo_err *e);
  * Denoise (fast, balanced, high) by samples per pixel on thesis-7 (host/bench/bench_denoise.c).
  * Writes DIR/denoise.csv and DIR/denoise.svg; without the library, its load error. */
 int bench_denoise(const char *dir, const char *device, int quick, atmo_err *e);
+
+/* `atmo bench guides`: raw, colour-alone and guided denoising (quality high) of 4-spp path-traced
+ * images of the sky, terrain, limb and objects scenes at 256 x 144 (quick: 64 x 36) against a
+ * reference (host/bench/bench_guides.c). Writes DIR/guides.csv and DIR/guides.svg. */
+int bench_guides(const char *dir, const char *device, int quick, atmo_err *e);
 
 #endif
