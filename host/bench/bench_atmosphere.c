@@ -178,16 +178,10 @@ int bench_atmosphere(const char *dir, const char *device, const char *reference,
         atmo_render_result_free(&r);
         n++;
     }
-    char csv[4096], svg[4096], title[512];
-    snprintf(csv, sizeof csv, "%s/atmosphere.csv", dir);
-    snprintf(svg, sizeof svg, "%s/atmosphere.svg", dir);
-    if ((rc = bench_write_csv(csv, out, n, device_name, e)))
-        return rc;
+    char title[512];
     snprintf(title, sizeof title,
              "sky radiance vs Monte Carlo reference, sun zenith 0-80 deg; time: 512x256 panorama (%s)",
              device_name);
-    if ((rc = bench_chart(csv, svg, title, "worst relative error", out, n, e)))
-        return rc;
-    printf("wrote %s and %s\n", csv, svg);
-    return ATMO_OK;
+    return bench_write_suite(dir, "atmosphere", out, n, device_name, title,
+                             "worst relative error", e);
 }

@@ -112,3 +112,17 @@ int bench_chart(const char *csv, const char *svg, const char *title, const char 
     int rc = bench_plot_close(f, &script, svg, 800, 500, e);
     return rc;
 }
+
+int bench_write_suite(const char *dir, const char *name, const bench_row *rows, int n,
+                      const char *device, const char *title, const char *ylabel, atmo_err *e)
+{
+    char csv[4096], svg[4096];
+    int rc;
+    snprintf(csv, sizeof csv, "%s/%s.csv", dir, name);
+    snprintf(svg, sizeof svg, "%s/%s.svg", dir, name);
+    if ((rc = bench_write_csv(csv, rows, n, device, e)) ||
+        (rc = bench_chart(csv, svg, title, ylabel, rows, n, e)))
+        return rc;
+    printf("wrote %s and %s\n", csv, svg);
+    return ATMO_OK;
+}

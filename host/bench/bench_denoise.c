@@ -85,16 +85,10 @@ int bench_denoise(const char *dir, const char *device, int quick, atmo_err *e)
     atmo_render_result_free(&ref);
     if (rc)
         return rc;
-    char csv[4096], svg[4096], title[512];
-    snprintf(csv, sizeof csv, "%s/denoise.csv", dir);
-    snprintf(svg, sizeof svg, "%s/denoise.svg", dir);
-    if ((rc = bench_write_csv(csv, rows, n, device_name, e)))
-        return rc;
+    char title[512];
     snprintf(title, sizeof title, "thesis-7 path traced, %dx%d, 1-%d spp, Open Image Denoise %d.%d (%s)",
              base.image.width, base.image.height, quick ? 8 : 64, atmo_denoise_version() / 10000,
              atmo_denoise_version() / 100 % 100, device_name);
-    if ((rc = bench_chart(csv, svg, title, "relative RMS error (unbiased)", rows, n, e)))
-        return rc;
-    printf("wrote %s and %s\n", csv, svg);
-    return ATMO_OK;
+    return bench_write_suite(dir, "denoise", rows, n, device_name, title,
+                             "relative RMS error (unbiased)", e);
 }

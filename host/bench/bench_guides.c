@@ -145,18 +145,12 @@ int bench_guides(const char *dir, const char *device, int quick, atmo_err *e)
     }
     if (rc)
         return rc;
-    char csv[4096], svg[4096], title[512];
-    snprintf(csv, sizeof csv, "%s/guides.csv", dir);
-    snprintf(svg, sizeof svg, "%s/guides.svg", dir);
-    if ((rc = bench_write_csv(csv, rows, n, device_name, e)))
-        return rc;
+    char title[512];
     snprintf(title, sizeof title,
              "denoised %d spp against %d spp, %dx%d, path traced: raw, colour alone, guided "
              "(Open Image Denoise %d.%d, quality high; %s)",
              RAW_SPP, ref_spp, w, h, atmo_denoise_version() / 10000,
              atmo_denoise_version() / 100 % 100, device_name);
-    if ((rc = bench_chart(csv, svg, title, "relative RMS error (unbiased)", rows, n, e)))
-        return rc;
-    printf("wrote %s and %s\n", csv, svg);
-    return ATMO_OK;
+    return bench_write_suite(dir, "guides", rows, n, device_name, title,
+                             "relative RMS error (unbiased)", e);
 }

@@ -71,17 +71,9 @@ int bench_sky(const char *dir, const char *device, int quick, atmo_err *e)
     atmo_render_result_free(&r_ref);
     if (rc)
         return rc;
-    char csv[4096], svg[4096];
-    snprintf(csv, sizeof csv, "%s/sky.csv", dir);
-    snprintf(svg, sizeof svg, "%s/sky.svg", dir);
-    if ((rc = bench_write_csv(csv, rows, n, device_name, e)))
-        return rc;
     char title[512];
     snprintf(title, sizeof title, "single-scattering sky, 256x128 panorama, 4 spp (%s)",
              device_name);
-    if ((rc = bench_chart(csv, svg, title, "RMS relative error", rows, n, e)))
-        return rc;
-    printf("wrote %s and %s\n", csv, svg);
-    return ATMO_OK;
+    return bench_write_suite(dir, "sky", rows, n, device_name, title, "RMS relative error", e);
 }
 

@@ -36,6 +36,10 @@ int bench_plot_close(FILE *script_stream, char **script, const char *svg, int wi
 /* Log-log chart of error against seconds, one series per method, via gnuplot. */
 int bench_chart(const char *csv, const char *svg, const char *title, const char *ylabel,
                 const bench_row *rows, int n, atmo_err *e);
+/* DIR/NAME.csv (bench_write_csv) and its chart DIR/NAME.svg (bench_chart), then "wrote ..." on
+ * stdout. */
+int bench_write_suite(const char *dir, const char *name, const bench_row *rows, int n,
+                      const char *device, const char *title, const char *ylabel, atmo_err *e);
 
 /* Sums of the squared sun-transmittance errors of the shadow term (host/bench/
  * bench_clouds_shadow.c) over sample points: all of them, and those in cloud. */
