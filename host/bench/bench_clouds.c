@@ -3,8 +3,10 @@
  * reference, all orders), error against time, and the fit of the marcher's multiple-scattering
  * octaves to the reference.
  *
- * Views: four cloud scenes (thesis view 6 as it is; an overcast 2 km deck of density 0.4 seen
- * from below; the layer seen from 12 km above; thesis-6 under a sun 10 degrees high), each with
+ * Views: five cloud scenes (thesis view 6 as it is; an overcast 2 km deck of density 0.4 seen
+ * from below; the layer seen from 12 km above; thesis-6 under a sun 10 degrees high; thesis
+ * view 5's deck from 42 km, looking down away from the sun, where the antisolar point lies at
+ * 54.6 degrees below the horizon: light scattered back out of a thick deck), each with
  * six camera rays given by elevation and azimuth from the sun (sky_probe, atmo/probe.h). A
  * view's radiance is the sum over its rays of the 550 nm channel; its error is
  * sum L_march / sum L_ref - 1, and a configuration's error is the RMS of that over the views.
@@ -14,7 +16,7 @@
  * error is its relative standard error (the batches' spread, summed over the rays), charted at
  * 64, 128 and 256 paths (scaled by 1 / sqrt(paths)) with the time of that many paths. The marcher: 64
  * samples per ray (its jittered march averaged; its error is its bias), charted with the time
- * of one sample of the 24 rays (one sample is an image's pixel-sample).
+ * of one sample of the 30 rays (one sample is an image's pixel-sample).
  *
  * The fit (Wrenninge et al. 2013's octaves, cloud_march.h): the cloud light is
  *     L = L_0 + sum_{1 <= i < N} b^i G_i(a, c)
@@ -34,7 +36,7 @@
 #include "atmo/clock.h"
 #include "atmo/probe.h"
 
-#define BENCH_CLOUDS_VIEWS 4
+#define BENCH_CLOUDS_VIEWS 5
 #define BENCH_CLOUDS_RAYS 6
 #define BENCH_CLOUDS_REF_SAMPLES 256
 #define BENCH_CLOUDS_MARCH_SAMPLES 64
@@ -65,6 +67,12 @@ static const cloud_view views[BENCH_CLOUDS_VIEWS] = {
      {"sun.zenith_deg=80", NULL},
      {5, 15, 30, 5, 15, 30},
      {30, 30, 30, 150, 150, 150},
+     256},
+    {"backscatter",
+     {"camera.position_m=61950,42398,-83371", "sun.zenith_deg=35.396615", "clouds.seed=0",
+      "clouds.max_distance_m=2e5", NULL},
+     {-35, -45, -55, -35, -45, -55},
+     {180, 180, 180, 160, 160, 160},
      256},
 };
 
@@ -324,9 +332,10 @@ int bench_clouds(const char *dir, const char *device, int quick, int fit, atmo_e
             fprintf(stderr, "%s%s %+.1f %%", v ? ", " : "", views[v].name, 100.0 * errors[v]);
         fprintf(stderr, ")\n");
         if (has_map)
-            fprintf(stderr, "bench clouds:   map build %.2f s over the 4 views (%.2f s per view), "
+            fprintf(stderr, "bench clouds:   map build %.2f s over the %d views (%.2f s per view), "
                             "%.2e s per sample amortised over a 1280x720 frame\n",
-                    build, build / BENCH_CLOUDS_VIEWS, build / BENCH_CLOUDS_FRAME_SAMPLES);
+                    build, BENCH_CLOUDS_VIEWS, build / BENCH_CLOUDS_VIEWS,
+                    build / BENCH_CLOUDS_FRAME_SAMPLES);
         if (!mc->shadow)
             continue;
         bench_row *sr = &shadow_rows[n_shadow++], *sc = &shadow_rows[n_shadow++];
@@ -356,23 +365,19 @@ int bench_clouds(const char *dir, const char *device, int quick, int fit, atmo_e
         row->seconds = ref.seconds * paths;
         row->error = sqrt(sum / BENCH_CLOUDS_VIEWS) * sqrt((double)ref_samples / paths);
     }
-    char csv[4096], svg[4096];
-    snprintf(csv, sizeof csv, "%s/clouds.csv", dir);
-    snprintf(svg, sizeof svg, "%s/clouds.svg", dir);
-    if ((rc = bench_write_csv(csv, out, n, device ? device : "default", e)) ||
-        (rc = bench_chart(csv, svg,
-                          "fBm clouds: marcher knobs vs the reference (4 views x 6 rays, 550 nm); "
-                          "time per sample of the 24 rays",
-                          "RMS relative error of the views", out, n, e)))
+    if ((rc = bench_write_suite(dir, "clouds", out, n, device ? device : "default",
+                                "fBm clouds: marcher knobs vs the reference (5 views x 6 rays, "
+                                "550 nm); time per sample of the 30 rays",
+                                "RMS relative error of the views", e)))
         return rc;
-    printf("wrote %s and %s\n", csv, svg);
+    char csv[4096], svg[4096];
     snprintf(csv, sizeof csv, "%s/clouds_shadow.csv", dir);
     snprintf(svg, sizeof svg, "%s/clouds_shadow.svg", dir);
     if ((rc = bench_write_csv(csv, shadow_rows, n_shadow, device ? device : "default", e)) ||
         (rc = bench_chart(csv, svg,
                           "fBm clouds: sun transmittance of the light march and the shadow map at the "
-                          "sample points of the marcher (4 views x 6 rays); time per sample of "
-                          "the 24 rays, the build of the map spread over a 1280x720 frame",
+                          "sample points of the marcher (5 views x 6 rays); time per sample of "
+                          "the 30 rays, the build of the map spread over a 1280x720 frame",
                           "RMS error of T_sun (whole chord, 550 nm)", shadow_rows, n_shadow, e)))
         return rc;
     printf("wrote %s and %s\n", csv, svg);
