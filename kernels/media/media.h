@@ -34,9 +34,10 @@
  * path.air = medium the composition's MEDIA_VOLUME_AIR is 1 and the volume mode's free
  * flights scatter in the air as well (media_air_at, media_air_phase, media_air_direction).
  * The deterministic quadrature's pieces, one rule for the marches that call them (the
- * integrator, medium.h, and the precomputations' marches along their directions): the
- * segments of a ray growing as (i/n)^2 (medium_grid_segment) and a piece's exact integral for
- * constant coefficients with the transmittance carried past it (medium_piece_weight).
+ * integrator, medium.h, a medium's own stepping and the precomputations' marches along their
+ * directions): the segments of a ray growing as (i/n)^2 (medium_grid_segment) and a piece's
+ * exact integral for constant coefficients with the transmittance carried past it
+ * (medium_piece_weight).
  * Units: 1/m, per steradian. */
 #ifndef ATMO_MEDIA_H
 #define ATMO_MEDIA_H
