@@ -200,6 +200,16 @@ ATMO_FN float atmosphere_entry_distance(ATMO_GLOBAL const atmo_gpu_atmosphere *a
     return fmaxf(-r * mu - atmo_safe_sqrt(atmosphere_top_discriminant(a, r, mu)), 0.0f);
 }
 
+/* The length of a ray from radius r inside the atmosphere along mu to where it leaves it:
+ * to the ground where `ground` (the ray meets the ground: geometry_ray_hits_ground, or a
+ * quadrature's choice of direction), else to the top (m). */
+ATMO_FN float atmosphere_ray_length(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r, float mu,
+                                    int ground)
+{
+    return ground ? geometry_distance_to_bottom(r, mu, a->bottom_radius)
+                  : geometry_distance_to_top(r, mu, a->top_radius);
+}
+
 /* Radiance of the sun disc outside the atmosphere: E over its solid angle 2 pi (1 - cos alpha)
  * (cos_alpha = the scene's sun_direction.w). */
 ATMO_FN vec3 atmosphere_sun_disc_radiance(ATMO_GLOBAL const atmo_gpu_atmosphere *a,

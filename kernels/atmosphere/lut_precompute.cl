@@ -72,12 +72,6 @@ float3 lut_mean_extinction(__global const atmo_gpu_atmosphere *a, float h, float
            a->ozone_absorption.xyz * atmosphere_ozone_tent(a, h);
 }
 
-float lut_ray_length(__global const atmo_gpu_atmosphere *a, float r, float mu, int ground)
-{
-    return ground ? geometry_distance_to_bottom(r, mu, a->bottom_radius)
-                  : geometry_distance_to_top(r, mu, a->top_radius);
-}
-
 /* This work item's texel of a 4-D table: its index and its (r, mu, mu_s, nu, ground); 0 for
  * the padding items past the table's end. */
 int lut_this_texel(__global const atmo_gpu_atmosphere *a, __global const int *dims, int *idx,
@@ -121,7 +115,7 @@ __kernel void lut_single(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, 
         return;
     int N = LUT_TEXELS(dims), texels = n_nu * n_mu_s;
     int n = s->lut.steps;
-    float dt = lut_ray_length(a, r, mu, ground) / (float)n;
+    float dt = atmosphere_ray_length(a, r, mu, ground) / (float)n;
     float3 E = a->solar_irradiance.xyz;
     float3 beta_r = E * a->rayleigh_scattering.xyz, beta_m = E * a->mie_scattering.xyz;
     float3 T = (float3)(1.0f);
@@ -276,7 +270,7 @@ __kernel void lut_multiple(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS
         return;
     int N = LUT_TEXELS(dims), texels = n_nu * n_mu_s;
     int n = s->lut.steps;
-    float dt = lut_ray_length(a, r, mu, ground) / (float)n;
+    float dt = atmosphere_ray_length(a, r, mu, ground) / (float)n;
     __global const float4 *J = scattering_scratch + N;
     float3 T = (float3)(1.0f);
     int n_mu = dims[2], n_r = dims[3], slab = n_nu * n_mu_s;

@@ -28,11 +28,15 @@
  * mu_h = -sqrt(r^2 - R^2) / r and half below, so no band straddles the step between sky and
  * ground, each half crowding toward the horizon as the square of its index (the bands follow the
  * local vertical, not the sun: a grid in the sun's frame would cut that step diagonally). Each
- * direction is marched with n_steps segments growing as (i/n)^2 from x, each integrated exactly
- * for constant coefficients as in medium.h. LUT: x_mu = (1 + sign(mu_s) sqrt|mu_s|) / 2 along the
- * width, x_h = h / (top - bottom) along the height, texel centres at x = 0 and 1
- * (atmosphere_texcoord_from_unit); xyz = Psi (W m^-2 sr^-1 nm^-1, with the solar irradiance E
- * folded in), w = f_ms of the middle channel.
+ * direction is marched on medium.h's quadrature (ms_segment_at): n_steps segments growing as
+ * (i/n)^2 from x (media.h's medium_grid_segment), the coefficients at t = d ((i + 1/2) / n)^2
+ * in segment i, the segment integrated exactly for constant coefficients (medium_piece_weight),
+ *     G += T w J,  w = (1 - e^{-sigma_t dt}) / sigma_t,  T *= e^{-sigma_t dt}
+ * for a source J (W m^-3 sr^-1 nm^-1) at that point; the densities, T and w of a segment serve
+ * every azimuth of its band, which differ only in the sun's angle. LUT: x_mu = (1 + sign(mu_s)
+ * sqrt|mu_s|) / 2 along the width, x_h = h / (top - bottom) along the height, texel centres at
+ * x = 0 and 1 (atmosphere_texcoord_from_unit); xyz = Psi (W m^-2 sr^-1 nm^-1, with the solar
+ * irradiance E folded in), w = f_ms of the middle channel.
  *
  * March (march_trace): the medium integrator (kernels/media/medium.h: the segments, the
  * per-sample offset, the sun-disc and ground terms of method single), with, at each sample,
@@ -89,6 +93,7 @@
 #include "common/geometry.h"
 #include "common/phase.h"
 #include "atmosphere/ms_lut_source.h"
+#include "media/media.h"
 #include "media/medium.h"
 #include "atmo/gpu_types.h"
 #endif
@@ -143,6 +148,36 @@ ATMO_FN vec3 ms_moments_finish(const ms_moments *m, float4 *dev)
     return mean;
 }
 
+/* The air on one segment of a quadrature direction, at the point of the segment where its
+ * coefficients are taken. */
+typedef struct ms_segment {
+    float t, r_t, h;    /* the point's distance from x, radius and altitude (m) */
+    float rho_r, rho_m; /* the Rayleigh and aerosol densities there (relative to the ground) */
+    vec3 Tw;            /* T(x, segment start) w (m): a source constant over the segment sends
+                           Tw times itself to x */
+} ms_segment;
+
+/* Segment i of the n that cut the direction from radius r along mu, d long, on medium.h's
+ * quadrature: media.h's (i/n)^2 grid, integrated exactly for constant coefficients
+ * (medium_piece_weight, which moves *T = T(x, segment start) past it). The coefficients are
+ * taken at t = d ((i + 1/2) / n)^2, the middle of the segment in the grid's parameter
+ * sqrt(t / d), a fraction (i + 1/4) / (2i + 1) of its length from its start: the LUT has no
+ * samples to average a jitter over, and the light a segment sends to x comes more from its
+ * near part, where the transmittance from x is higher. Measured on the sky, this point leaves
+ * a third of the quadrature error that the segment's middle in t leaves (docs/notes/ms_lut.md). */
+ATMO_FN void ms_segment_at(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r, float mu, float d,
+                           int i, int n, vec3 *T, ms_segment *g)
+{
+    float dt;
+    medium_grid_segment(d, i, n, &dt);
+    g->t = d * atmo_sq(((float)i + 0.5f) / (float)n);
+    g->r_t = geometry_radius_at(r, mu, g->t);
+    g->h = geometry_altitude_at(r, mu, g->t, a->bottom_radius);
+    g->rho_r = expf(-g->h / a->rayleigh_scale_height);
+    g->rho_m = expf(-g->h / a->mie_scale_height);
+    g->Tw = medium_piece_weight(atmosphere_extinction_at(a, g->h, g->rho_r, g->rho_m), dt, T);
+}
+
 /* First pass at one texel at radius r and sun cosine mu_s: returns L_2 (xyz) and f_ms of
  * channel y (w); dev[0..4] = the anisotropy of order 2 (xyz per channel; see the file's
  * comment): D_uu, D_ss, D_us, b_u, b_s; dev[5] = 1 - f_ms (xyz per channel); dev[6] = E_1, the
@@ -179,8 +214,7 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
         float u, mu = ms_band(k, n_mu, mu_h, &u);
         int hits_ground = k < n_mu / 2;
         float sin_v = atmo_safe_sqrt(1.0f - mu * mu);
-        float d = hits_ground ? geometry_distance_to_bottom(r, mu, a->bottom_radius)
-                              : geometry_distance_to_top(r, mu, a->top_radius);
+        float d = atmosphere_ray_length(a, r, mu, hits_ground);
         for (int l = 0; l < n_phi; l++) {
             nu[l] = atmo_clamp_cos(mu * mu_s + sin_v * sin_s * cos_phi[l]);
             p_r[l] = phase_rayleigh(nu[l]);
@@ -191,31 +225,21 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
          * on the azimuth: computed once per segment, the sun's transmittance per azimuth */
         vec3 T = v3(1.0f, 1.0f, 1.0f), absorbed = zero;
         for (int i = 0; i < n_steps; i++) {
-            /* segments grow as (i/n)^2: short near x, where the density changes
-             * fastest along rays that start low (most of the light) */
-            float t0 = d * atmo_sq((float)i / (float)n_steps);
-            float t1 = d * atmo_sq((float)(i + 1) / (float)n_steps);
-            float dt = t1 - t0, t = d * atmo_sq(((float)i + 0.5f) / (float)n_steps);
-            float r_t = geometry_radius_at(r, mu, t);
-            float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
-            float rho_r = expf(-h / a->rayleigh_scale_height);
-            float rho_m = expf(-h / a->mie_scale_height);
-            vec3 sigma_t = atmosphere_extinction_at(a, h, rho_r, rho_m);
-            vec3 sigma_abs = v3_add(v3_scale(mie_absorption, rho_m),
-                                    v3_scale(ozone_absorption, atmosphere_ozone_tent(a, h)));
-            vec3 step;
-            vec3 Tw = v3_mul(T, medium_segment_step3(sigma_t, dt, &step));
-            vec3 lit_r = v3_mul(Tw, v3_scale(beta_r, rho_r));
-            vec3 lit_m = v3_mul(Tw, v3_scale(beta_m, rho_m));
-            float rmu_s = r * mu_s, inv_r_t = 1.0f / r_t;
+            ms_segment g;
+            ms_segment_at(a, r, mu, d, i, n_steps, &T, &g);
+            vec3 sigma_abs = v3_add(v3_scale(mie_absorption, g.rho_m),
+                                    v3_scale(ozone_absorption, atmosphere_ozone_tent(a, g.h)));
+            vec3 lit_r = v3_mul(g.Tw, v3_scale(beta_r, g.rho_r));
+            vec3 lit_m = v3_mul(g.Tw, v3_scale(beta_m, g.rho_m));
+            float rmu_s = r * mu_s, inv_r_t = 1.0f / g.r_t;
             for (int l = 0; l < n_phi; l++) {
-                float mu_s_t = atmo_clamp_cos((rmu_s + t * nu[l]) * inv_r_t);
-                vec3 sun_t = atmosphere_sun_transmittance(a, transmittance, tw, th, r_t, mu_s_t);
+                float mu_s_t = atmo_clamp_cos((rmu_s + g.t * nu[l]) * inv_r_t);
+                vec3 sun_t = atmosphere_sun_transmittance(a, transmittance, tw, th, g.r_t,
+                                                          mu_s_t);
                 vec3 scattered = v3_add(v3_scale(lit_r, p_r[l]), v3_scale(lit_m, p_m[l]));
                 L1[l] = v3_add(L1[l], v3_mul(scattered, sun_t));
             }
-            absorbed = v3_add(absorbed, v3_mul(Tw, sigma_abs));
-            T = v3_mul(T, step);
+            absorbed = v3_add(absorbed, v3_mul(g.Tw, sigma_abs));
         }
         for (int l = 0; l < n_phi; l++) {
             if (hits_ground) {
@@ -268,8 +292,7 @@ ATMO_FN vec3 ms_lut_gather(ATMO_GLOBAL const atmo_gpu_scene *s,
         float u, mu = ms_band(k, n_mu, mu_h, &u);
         int up = k >= n_mu / 2;
         float sin_v = atmo_safe_sqrt(1.0f - mu * mu);
-        float d = up ? geometry_distance_to_top(r, mu, a->top_radius)
-                     : geometry_distance_to_bottom(r, mu, a->bottom_radius);
+        float d = atmosphere_ray_length(a, r, mu, !up);
         for (int l = 0; l < n_phi; l++) {
             nu[l] = atmo_clamp_cos(mu * mu_s + sin_v * sin_s * cos_phi[l]);
             acc[l] = zero;
@@ -277,25 +300,16 @@ ATMO_FN vec3 ms_lut_gather(ATMO_GLOBAL const atmo_gpu_scene *s,
         /* as in ms_lut_texel: the segment's media once, the source per azimuth */
         vec3 T = v3(1.0f, 1.0f, 1.0f);
         for (int i = 0; i < n_steps; i++) {
-            float t0 = d * atmo_sq((float)i / (float)n_steps);
-            float t1 = d * atmo_sq((float)(i + 1) / (float)n_steps);
-            float dt = t1 - t0, t = d * atmo_sq(((float)i + 0.5f) / (float)n_steps);
-            float r_t = geometry_radius_at(r, mu, t);
-            float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
-            float rho_r = expf(-h / a->rayleigh_scale_height);
-            float rho_m = expf(-h / a->mie_scale_height);
-            vec3 sigma_t = atmosphere_extinction_at(a, h, rho_r, rho_m);
-            vec3 sigma_r = v3_scale(beta_r, rho_r), sigma_m = v3_scale(beta_m, rho_m);
-            vec3 step;
-            vec3 Tw = v3_mul(T, medium_segment_step3(sigma_t, dt, &step));
-            float rmu_s = r * mu_s, inv_r_t = 1.0f / r_t, mu_t = (r * mu + t) * inv_r_t;
+            ms_segment g;
+            ms_segment_at(a, r, mu, d, i, n_steps, &T, &g);
+            vec3 sigma_r = v3_scale(beta_r, g.rho_r), sigma_m = v3_scale(beta_m, g.rho_m);
+            float rmu_s = r * mu_s, inv_r_t = 1.0f / g.r_t, mu_t = (r * mu + g.t) * inv_r_t;
             for (int l = 0; l < n_phi; l++) {
-                float mu_s_t = atmo_clamp_cos((rmu_s + t * nu[l]) * inv_r_t);
-                vec3 j = ms_lut_source_planes(s, psi_src, aniso_src, width, height, r_t, mu_t,
+                float mu_s_t = atmo_clamp_cos((rmu_s + g.t * nu[l]) * inv_r_t);
+                vec3 j = ms_lut_source_planes(s, psi_src, aniso_src, width, height, g.r_t, mu_t,
                                               mu_s_t, nu[l], sigma_r, sigma_m);
-                acc[l] = v3_add(acc[l], v3_mul(Tw, j));
+                acc[l] = v3_add(acc[l], v3_mul(g.Tw, j));
             }
-            T = v3_mul(T, step);
         }
         for (int l = 0; l < n_phi; l++) {
             if (!up) { /* the ground lit by the sky: (rho / pi) E */

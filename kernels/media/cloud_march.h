@@ -9,7 +9,8 @@
  *     dt = step_m + CLOUDS_STEP_GROWTH t_c
  * (t_c the distance from the camera, so the step follows the pixel's footprint), the first one
  * shortened by the sample's jitter so successive samples cover the ray. Each step is sampled at
- * the fraction `jitter` of it and integrated exactly for constant coefficients (Hillaire 2015),
+ * the fraction `jitter` of it and integrated exactly for constant coefficients (Hillaire 2015;
+ * media.h's medium_piece_weight),
  *     L += T (1 - e^{-sigma_t dt}) / sigma_t S,   T *= e^{-sigma_t dt}
  * which conserves energy for any step length. Beyond the far plane max_distance_m, after
  * `steps` steps or once T < CLOUDS_T_MIN, the rest of the part is air only: one long step
@@ -153,9 +154,7 @@ ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, c
             ms.scattering[k] = v3(0.0f, 0.0f, 0.0f);
         ms.extinction = atmosphere_extinction(a, q.h);
     }
-    vec3 step_t;
-    vec3 w = medium_segment_step3(ms.extinction, dt, &step_t);
-    vec3 Tw = v3_mul(*T, w);
+    vec3 Tw = medium_piece_weight(ms.extinction, dt, T);
     float occluded = visibility_sun_occluders(s, ATMO_LUT_ARGS, &q);
     vec3 k_d = clouds_diffusion_exponent(c);
     float D = occluded > 0.0f ? clouds_octave_light_density(s, ATMO_LUT_ARGS, &q, k_d) : 0.0f;
@@ -214,7 +213,6 @@ ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, c
                                                       -dt)));
     }
     *L = v3_add(*L, v3_mul(Tw, S));
-    *T = v3_mul(*T, step_t);
 }
 
 /* The thesis' soft clamp f(L) per channel at the level L_clamp (the header): 0 where

@@ -19,18 +19,18 @@
  *
  * Stepping (pbrt-v4's SampleT_maj shape: one walk, one per-point evaluation that carries the
  * ray's small visibility state, visibility_ray: what the terrain's light-shaft shortcuts
- * remember from one sample to the next). The ray is first
- * moved to where it enters the atmosphere (atmosphere_enter), then [0, d] is cut into n
- * segments growing as (i/n)^2 from the start, [d (i/n)^2, d ((i+1)/n)^2]: short where the
- * density changes fastest along rays that start low (worst 0.09 % against the double-precision
+ * remember from one sample to the next). The ray is first moved to where it enters the
+ * atmosphere (atmosphere_enter), then [0, d] is cut into n segments growing as (i/n)^2 from the
+ * start, [d (i/n)^2, d ((i+1)/n)^2] (media.h's medium_grid_segment): short where the density
+ * changes fastest along rays that start low (worst 0.09 % against the double-precision
  * reference with 64 segments, tests/test_sky_single.c; measured choices:
- * docs/notes/medium.md). The media
- * add break points (media_intervals: the cloud shell's spheres): a part of the ray inside such
- * a medium is integrated with that medium's own stepping (media_interval: optical-depth steps
- * in the cloud) and the grid segments are clipped to the rest. In each segment or clipped piece
- * the coefficients are taken at one point, at the fraction `jitter` of its length (a random
- * number per sample, so averaging samples removes the banding of a fixed point), and the piece
- * is integrated exactly for constant coefficients (Hillaire 2015):
+ * docs/notes/medium.md). The media add break points (media_intervals: the cloud shell's
+ * spheres): a part of the ray inside such a medium is integrated with that medium's own
+ * stepping (media_interval: optical-depth steps in the cloud) and the grid segments are clipped
+ * to the rest. In each segment or clipped piece the coefficients are taken at one point, at the
+ * fraction `jitter` of its length (a random number per sample, so averaging samples removes the
+ * banding of a fixed point), and the piece is integrated exactly for constant coefficients
+ * (Hillaire 2015; media.h's medium_piece_weight):
  *     L_k += T w sigma_s,k E T_sun V,  w = (1 - e^{-sigma_t dt}) / sigma_t,  T *= e^{-sigma_t dt}
  * which conserves energy however long the piece. A ray that meets no break point walks exactly
  * the grid of the air alone, so a medium the ray never meets changes nothing.
@@ -103,18 +103,16 @@ ATMO_FN void medium_piece(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                         ? media_walk_volume_sun(s, ATMO_LUT_ARGS, &q)
                         : v3(1.0f, 1.0f, 1.0f);
     sun_e = v3_mul(sun_e, volume_t);
-    vec3 step;
-    vec3 w = medium_segment_step3(ms.extinction, dt, &step);
-    vec3 lit = v3_mul(v3_mul(*T, w), sun_e);
+    vec3 Tw = medium_piece_weight(ms.extinction, dt, T);
+    vec3 lit = v3_mul(Tw, sun_e);
     for (int k = 0; k < MEDIA_COMPONENTS; k++)
         out->single[k] = v3_add(out->single[k], v3_mul(lit, ms.scattering[k]));
     if (use_ms) {
         vec3 j = medium_ms_source(s, ATMO_LUT_ARGS, &q, m->nu, &ms, ground);
         j = media_sun_attenuate(s, ATMO_LUT_ARGS, &q, j);
         j = v3_mul(j, volume_t);
-        out->rest = v3_add(out->rest, v3_mul(v3_mul(*T, w), j));
+        out->rest = v3_add(out->rest, v3_mul(Tw, j));
     }
-    *T = v3_mul(*T, step);
 }
 
 /* The integral above over [t0, t1] of the ray (t1 = INFINITY: to the ground or the top) with
@@ -148,8 +146,7 @@ ATMO_FN void medium_integrate_any(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_
         return;
 
     int ground = geometry_ray_hits_ground(m.r, m.mu, a->bottom_radius);
-    float d = ground ? geometry_distance_to_bottom(m.r, m.mu, a->bottom_radius)
-                     : geometry_distance_to_top(m.r, m.mu, a->top_radius);
+    float d = atmosphere_ray_length(a, m.r, m.mu, ground);
     float t_surface = surfaces ? visibility_surface_hit(s, ATMO_LUT_ARGS, &m) : -1.0f;
     int hits_surface = t_surface >= 0.0f && t_surface <= d; /* a surface on the ground wins */
     if (hits_surface)
@@ -167,8 +164,7 @@ ATMO_FN void medium_integrate_any(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_
     vec3 T = v3(1.0f, 1.0f, 1.0f), medium_t = v3(1.0f, 1.0f, 1.0f);
     float done = 0.0f; /* the walk has integrated [0, done] */
     for (int i = 0; i < n; i++) {
-        float x0 = (float)i / (float)n, x1 = (float)(i + 1) / (float)n;
-        float ga = d * x0 * x0, dt = d * (x1 * x1 - x0 * x0), gb = ga + dt;
+        float dt, ga = medium_grid_segment(d, i, n, &dt), gb = ga + dt;
         if (next >= n_int || lo[next] >= gb) { /* the grid segment meets no interval */
             if (done <= ga) {
                 medium_piece(s, ATMO_LUT_ARGS, &m, ga + jitter * dt, dt, use_ms, ground, &vr,
