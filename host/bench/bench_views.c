@@ -9,8 +9,9 @@
  * P the pixels with Y above 1 % of the image's mean Y. Its time is the render's build,
  * precompute and render seconds with warm caches (a 16 x 9 render of the view runs first).
  * Bias: the default mode at the reduced size with many samples against the reference there
- * (render.mode path, atmosphere.method reference and path.clouds volume where the view has
- * clouds), bias = sqrt(mean over P of (Y - Y_ref)^2 / Y_ref^2) with P the reference's pixels
+ * (render.mode path, path.clouds volume where the view has clouds, and the air all orders
+ * without the default mode's approximations: atmosphere.method reference, or where the view
+ * has terrain, which that method does not trace, path.air medium), bias = sqrt(mean over P of (Y - Y_ref)^2 / Y_ref^2) with P the reference's pixels
  * above 1 % of its mean; it includes the reference's own noise, which is written beside it
  * (its per-pixel standard errors, the same RMS; "nan" where a cached reference has no error
  * file). The reference is cached in
@@ -56,9 +57,12 @@ static int view_scene(const char *name, int w, int h, int samples, int seed, int
     if ((rc = atmo_scene_apply_preset(s, name, e)))
         return rc;
     s->image.width = w, s->image.height = h, s->image.samples = samples, s->image.seed = seed;
+    /* the air of the reference: method reference's walk, or with terrain (which that method
+     * does not trace) the path tracer's own walk through the air as a medium */
+    const char *air = s->terrain.enabled ? "path.air=medium" : "atmosphere.method=reference";
     if (reference &&
         ((rc = atmo_scene_assign(s, "render.mode=path", "bench", e)) ||
-         (rc = atmo_scene_assign(s, "atmosphere.method=reference", "bench", e)) ||
+         (rc = atmo_scene_assign(s, air, "bench", e)) ||
          (s->clouds.enabled && (rc = atmo_scene_assign(s, "path.clouds=volume", "bench", e)))))
         return rc;
     return atmo_scene_validate(s, e);
