@@ -10,9 +10,10 @@
  * Rows per scene (settings = the scene): `raw`, `colour` (quality high on the colour alone) and
  * `guided` (quality high with the guide pass's albedo and normal, cleanAux: what `atmo render
  * --denoise high` does), each error the unbiased relative RMS against the converged image
- * (bench_unbiased_error: the reference's own variance removed). Seconds: the render (kernel
- * build and precompute left out) plus, for the denoised rows, the filter and, for `guided`,
- * the guide pass.
+ * (bench_unbiased_error: the reference's own variance removed), and `raw 64` (an
+ * independent MANY_SPP render, seed 3): what sixteen times the samples give without the
+ * filter. Seconds: the render (kernel build and precompute left out) plus, for the denoised
+ * rows, the filter and, for `guided`, the guide pass.
  *
  * test_denoise asserts the factors raw / guided at 48 x 32, where a handful of silhouette
  * pixels carry the error; this bench charts them where the filter has context. */
@@ -26,9 +27,11 @@
 #include "atmo/scene.h"
 
 #define RAW_SPP 4
+#define MANY_SPP 64
 #define REF_SPP 128
 #define REF_SPP_QUICK 32
 #define GUIDES_SCENES 4
+#define GUIDES_ROWS 4 /* per scene: raw, colour, guided, raw at MANY_SPP */
 
 typedef struct guides_scene {
     const char *name;
@@ -124,7 +127,7 @@ done:
 int bench_guides(const char *dir, const char *device, int quick, atmo_err *e)
 {
     int w = quick ? 64 : 256, h = quick ? 36 : 144, ref_spp = quick ? REF_SPP_QUICK : REF_SPP;
-    bench_row rows[3 * GUIDES_SCENES];
+    bench_row rows[GUIDES_ROWS * GUIDES_SCENES];
     char device_name[256] = "";
     int rc, n = 0;
     if ((rc = atmo_denoise_load(e)))
@@ -137,17 +140,27 @@ int bench_guides(const char *dir, const char *device, int quick, atmo_err *e)
             break;
         if (!(rc = guides_render(c, w, h, RAW_SPP, 2, 1, device, &raw, e))) {
             rc = guides_rows(c, &raw, &ref, rows + n, e);
-            n += 3;
             snprintf(device_name, sizeof device_name, "%s", raw.device_name);
             atmo_render_result_free(&raw);
         }
+        if (!rc && !(rc = guides_render(c, w, h, MANY_SPP, 3, 0, device, &raw, e))) {
+            bench_row *row = &rows[n + 3];
+            snprintf(row->method, sizeof row->method, "raw %d", MANY_SPP);
+            snprintf(row->settings, sizeof row->settings, "%s", c->name);
+            row->seconds = raw.seconds_render;
+            row->error = bench_unbiased_error(raw.rgb, &ref);
+            fprintf(stderr, "bench guides: %-8s %-6s %8.3fs  error %.3e\n", c->name,
+                    row->method, row->seconds, row->error);
+            atmo_render_result_free(&raw);
+        }
+        n += GUIDES_ROWS;
         atmo_render_result_free(&ref);
     }
     if (rc)
         return rc;
     char title[512];
     snprintf(title, sizeof title,
-             "denoised %d spp against %d spp, %dx%d, path traced: raw, colour alone, guided "
+             "denoised %d spp against %d spp, %dx%d, path traced: raw, colour alone, guided, raw 64 spp "
              "(Open Image Denoise %d.%d, quality high; %s)",
              RAW_SPP, ref_spp, w, h, atmo_denoise_version() / 10000,
              atmo_denoise_version() / 100 % 100, device_name);
