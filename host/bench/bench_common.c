@@ -34,13 +34,14 @@ double bench_rms_relative(const atmo_render_result *a, const atmo_render_result 
     return sqrt(sum / (double)n);
 }
 
-double bench_unbiased_error(const float *x, const atmo_render_result *ref)
+double bench_unbiased_error(const float *x, const atmo_render_result *ref_a,
+                            const atmo_render_result *ref_b)
 {
     double d2 = 0.0, var = 0.0, ref2 = 0.0;
-    for (size_t i = 0; i < 3 * (size_t)ref->width * ref->height; i++) {
-        double d = (double)x[i] - (double)ref->rgb[i], se = ref->se[i], r = ref->rgb[i];
+    for (size_t i = 0; i < 3 * (size_t)ref_a->width * ref_a->height; i++) {
+        double a = ref_a->rgb[i], b = ref_b->rgb[i], r = 0.5 * (a + b), d = (double)x[i] - r;
         d2 += d * d;
-        var += se * se;
+        var += 0.25 * (a - b) * (a - b);
         ref2 += r * r;
     }
     return sqrt(fmax(d2 - var, 0.0) / fmax(ref2, 1e-300));

@@ -6,7 +6,8 @@
  * procedural terrain from 600 m at a grazing angle under a uniform sky, the planet's limb from
  * 2000 km (preset space), and a sphere and a box on the ground under a uniform sky. Each is
  * rendered at 256 x 144 (--quick: 64 x 36) with RAW_SPP samples per pixel (seed 2) and the
- * guide pass, and, independently, at REF_SPP (--quick: REF_SPP_QUICK; seed 1) as the reference.
+ * guide pass, and, independently, twice at REF_SPP (--quick: REF_SPP_QUICK; seeds 1 and 4) as
+ * the reference pair.
  * Rows per scene (settings = the scene): `raw`, `colour` (quality high on the colour alone) and
  * `guided` (quality high with the guide pass's albedo and normal, cleanAux: what `atmo render
  * --denoise high` does), each error the unbiased relative RMS against the converged image
@@ -28,8 +29,8 @@
 
 #define RAW_SPP 4
 #define MANY_SPP 64
-#define REF_SPP 128
-#define REF_SPP_QUICK 32
+#define REF_SPP 64
+#define REF_SPP_QUICK 16
 #define GUIDES_SCENES 4
 #define GUIDES_ROWS 4 /* per scene: raw, colour, guided, raw at MANY_SPP */
 
@@ -55,8 +56,7 @@ static const guides_scene guides_scenes[GUIDES_SCENES] = {
       NULL}},
 };
 
-/* Render scene c at w x h, spp samples, seed, in path mode with its standard errors and (guides)
- * the guide pass. */
+/* Render scene c at w x h, spp samples, seed, in path mode, with (guides) the guide pass. */
 static int guides_render(const guides_scene *c, int w, int h, int spp, int seed, int guides,
                          const char *device, atmo_render_result *r, atmo_err *e)
 {
@@ -71,8 +71,6 @@ static int guides_render(const guides_scene *c, int w, int h, int spp, int seed,
         rc = atmo_scene_assign(&s, c->keys[i], "bench guides", e);
     if (!rc)
         rc = atmo_scene_assign(&s, "render.mode=path", "bench guides", e);
-    if (!rc)
-        rc = atmo_scene_assign(&s, "path.passes=true", "bench guides", e);
     if (rc)
         return rc;
     s.image.width = w;
@@ -91,7 +89,7 @@ static int guides_render(const guides_scene *c, int w, int h, int spp, int seed,
 
 /* The rows raw, colour and guided of one scene into rows[0..2]. */
 static int guides_rows(const guides_scene *c, const atmo_render_result *raw,
-                       const atmo_render_result *ref, bench_row *rows, atmo_err *e)
+                       const atmo_render_result ref[2], bench_row *rows, atmo_err *e)
 {
     int w = raw->width, h = raw->height, rc = ATMO_OK;
     float *out = malloc(sizeof(float) * 3 * (size_t)w * h), *block = NULL;
@@ -114,7 +112,7 @@ static int guides_rows(const guides_scene *c, const atmo_render_result *raw,
         snprintf(row->method, sizeof row->method, "%s", methods[k]);
         snprintf(row->settings, sizeof row->settings, "%s", c->name);
         row->seconds = raw->seconds_render + filter + (k == 2 ? raw->seconds_guides : 0.0);
-        row->error = bench_unbiased_error(k == 0 ? raw->rgb : out, ref);
+        row->error = bench_unbiased_error(k == 0 ? raw->rgb : out, &ref[0], &ref[1]);
         fprintf(stderr, "bench guides: %-8s %-6s %8.3fs  error %.3e\n", c->name, row->method,
                 row->seconds, row->error);
     }
@@ -134,12 +132,16 @@ int bench_guides(const char *dir, const char *device, int quick, atmo_err *e)
         return rc;
     for (int i = 0; i < GUIDES_SCENES && !rc; i++) {
         const guides_scene *c = &guides_scenes[i];
-        atmo_render_result ref, raw;
-        fprintf(stderr, "bench guides: %s, reference (%d spp)\n", c->name, ref_spp);
-        if ((rc = guides_render(c, w, h, ref_spp, 1, 0, device, &ref, e)))
+        atmo_render_result ref[2], raw;
+        fprintf(stderr, "bench guides: %s, references (2 x %d spp)\n", c->name, ref_spp);
+        if ((rc = guides_render(c, w, h, ref_spp, 1, 0, device, &ref[0], e)))
             break;
+        if ((rc = guides_render(c, w, h, ref_spp, 4, 0, device, &ref[1], e))) {
+            atmo_render_result_free(&ref[0]);
+            break;
+        }
         if (!(rc = guides_render(c, w, h, RAW_SPP, 2, 1, device, &raw, e))) {
-            rc = guides_rows(c, &raw, &ref, rows + n, e);
+            rc = guides_rows(c, &raw, ref, rows + n, e);
             snprintf(device_name, sizeof device_name, "%s", raw.device_name);
             atmo_render_result_free(&raw);
         }
@@ -148,19 +150,20 @@ int bench_guides(const char *dir, const char *device, int quick, atmo_err *e)
             snprintf(row->method, sizeof row->method, "raw %d", MANY_SPP);
             snprintf(row->settings, sizeof row->settings, "%s", c->name);
             row->seconds = raw.seconds_render;
-            row->error = bench_unbiased_error(raw.rgb, &ref);
+            row->error = bench_unbiased_error(raw.rgb, &ref[0], &ref[1]);
             fprintf(stderr, "bench guides: %-8s %-6s %8.3fs  error %.3e\n", c->name,
                     row->method, row->seconds, row->error);
             atmo_render_result_free(&raw);
         }
         n += GUIDES_ROWS;
-        atmo_render_result_free(&ref);
+        atmo_render_result_free(&ref[0]);
+        atmo_render_result_free(&ref[1]);
     }
     if (rc)
         return rc;
     char title[512];
     snprintf(title, sizeof title,
-             "denoised %d spp against %d spp, %dx%d, path traced: raw, colour alone, guided, raw 64 spp "
+             "denoised %d spp against 2 x %d spp, %dx%d, path traced: raw, colour alone, guided, raw 64 spp "
              "(Open Image Denoise %d.%d, quality high; %s)",
              RAW_SPP, ref_spp, w, h, atmo_denoise_version() / 10000,
              atmo_denoise_version() / 100 % 100, device_name);

@@ -17,12 +17,17 @@ typedef struct bench_row {
 int bench_render(const atmo_scene *s, const char *device, atmo_render_result *r, atmo_err *e);
 /* RMS over pixels and channels of (a - ref) / ref. */
 double bench_rms_relative(const atmo_render_result *a, const atmo_render_result *ref);
-/* The relative RMS error over pixels and channels of the image x against the converged image,
- * estimated from a reference independent of x with its standard errors (ref->se): for such a
- * reference E sum (x - R)^2 = sum (x - T)^2 + sum Var(R), so
- *     sqrt((sum (x - R)^2 - sum se_R^2) / sum R^2),
- * clamped at 0, estimates |x - T| / |T| with the reference's own noise removed. */
-double bench_unbiased_error(const float *x, const atmo_render_result *ref);
+/* The relative RMS error over pixels and channels of the image x against the converged image T,
+ * estimated from two references A and B of the same samples per pixel, independent of x and of
+ * each other (other seeds). With R = (A + B) / 2, E sum (x - R)^2 = sum (x - T)^2 + sum Var(R)
+ * and E (A - B)^2 = 2 Var(A) = 4 Var(R), so
+ *     sqrt((sum (x - R)^2 - sum (A - B)^2 / 4) / sum R^2),
+ * clamped at 0, estimates |x - T| / |T| with the references' own noise removed, whatever the
+ * sampler. (The per-pixel standard errors from the samples' spread do not do: the path
+ * tracer's camera samples are scrambled Sobol points, whose mean varies less than the spread
+ * of independent samples says, so subtracting them removes too much.) */
+double bench_unbiased_error(const float *x, const atmo_render_result *ref_a,
+                            const atmo_render_result *ref_b);
 /* DIR/SUITE.csv: method,settings,seconds,error,device. */
 int bench_write_csv(const char *path, const bench_row *rows, int n, const char *device,
                     atmo_err *e);
