@@ -14,7 +14,8 @@
 #     "Denoising Albedo", "Denoising Normal", "Denoising Depth" (their values: test_denoise);
 #     the report names the quality and the library's version (2.x). The PNG of
 #     output.denoise=auto equals the PNG of --denoise high (auto is high for PNG) and differs
-#     from --denoise off's.
+#     from --denoise off's, in path mode and in the preview alike; a PFM beside the preview's
+#     PNG stays as rendered (the --denoise off render's, byte for byte).
 set -u
 atmo=$1
 . "${ATMO_SOURCE_DIR:-$(dirname "$0")/..}/tests/support_cli.sh"
@@ -61,4 +62,13 @@ EOF
     bad "PNG renders failed"
 cmp -s auto.png high.png && ok || bad "auto PNG differs from --denoise high"
 cmp -s auto.png off.png && bad "auto PNG equals --denoise off's" || ok
+# the preview's PNG alike; its PFM beside it stays as rendered
+preview=("${small[@]}" --set render.mode=preview)
+"$atmo" render "${preview[@]}" --output pa.png --output pa.pfm &&
+    "$atmo" render "${preview[@]}" --denoise high --output ph.png &&
+    "$atmo" render "${preview[@]}" --denoise off --output po.png --output po.pfm ||
+    bad "preview PNG renders failed"
+cmp -s pa.png ph.png && ok || bad "preview: auto PNG differs from --denoise high"
+cmp -s pa.png po.png && bad "preview: auto PNG equals --denoise off's" || ok
+cmp -s pa.pfm po.pfm && ok || bad "preview: auto PFM differs from --denoise off's"
 cli_end test_denoise_cli

@@ -9,10 +9,11 @@
  * the point (terrain.h), with H0 = 1000 m high enough that the view (camera at 2500 m, 60 deg
  * down) sees no sea; the frame turns away from the origin's by at most d / R for a point
  * d metres from it (R = 6360 km), so every pixel whose guide rays all meet the terrain must
- * have a normal of unit length (1e-5: the float rounding of a mean of 64 equal unit vectors)
+ * have a normal of unit length (1e-5: the float rounding of a mean of up to 64 equal unit
+ * vectors, the path tracer's 8 x 8 pattern)
  * within d_max / R + 0.01 degrees of N (the 0.01: float rounding of the heights, 2^-24 of
  * 1000 m over a texel of 62.5 m). Oracle 2, the material: a sphere of albedo (0.7, 0.5, 0.3)
- * in front of the camera: its pixels' albedo is the material's to 2e-6 (a float sum of 64
+ * in front of the camera: its pixels' albedo is the material's to 2e-6 (a float sum of up to 64
  * equal values below 1, each addition rounded by at most half an ulp of 64, 3.8e-6 / 2, over
  * 64: 63 of those, 1.9e-6), and their normals match the sphere's closed form at the pixel's centre
  * within the angle the pixel spans on the sphere (the guide averages over the pixel); a sky
@@ -27,18 +28,20 @@
  * 500 m looking up at the sky. Each guide ray's values are (guides.cl)
  *     albedo_c = (1 - e^{-tau_c}) w_c + e^{-tau_c} a_behind,
  *     normal = e^{-tau_y} n_behind,   tau_c = sigma_c L,
- * L the ray's chord through the shell (double precision: the lengths of the ray inside the two
- * spheres before the ground), taken on the first ray of each 2 x 2 block of the 8 x 8 pattern
- * (the preview's box at the cell centres), a_behind, n_behind the ground's (0.25, its sphere's
- * normal at the hit) or the sky's (1, 0); the pixel's guide is the mean over the 64 rays. The
- * liquid water content puts tau near 1 along the vertical (0.5 to 3 over the views), where
- * the guide depends most on tau. Tolerance 5e-6: the float mean of 64 values below 1 (2e-6,
- * as above) and the float chord's rounding (the roots are formed without cancellation: a few
- * 1e-7 of 3 km, 1e-3 m, times sigma_c of about 1e-3 / m: 1e-6 in tau). */
+ * L the ray's own chord through the shell (double precision: the lengths of the ray inside the
+ * two spheres before the ground), for each ray of the preview's pattern (its box at the cell
+ * centres of ATMO_GUIDES_PREVIEW_GRID x ATMO_GUIDES_PREVIEW_GRID, gpu_enums.h), a_behind,
+ * n_behind the ground's (0.25, its sphere's normal at the hit) or the sky's (1, 0); the pixel's
+ * guide is the mean over the pattern. The liquid water content puts tau near 1 along the
+ * vertical (0.5 to 3 over the views), where the guide depends most on tau. Tolerance 5e-6: the
+ * float mean of at most 64 values below 1 (2e-6, as above) and the float chord's rounding
+ * (the roots are formed without cancellation: a few 1e-7 of 3 km, 1e-3 m, times sigma_c of
+ * about 1e-3 / m: 1e-6 in tau). */
 #include <math.h>
 #include <openexr.h>
 #include <stdlib.h>
 #include <string.h>
+#include "atmo/gpu_enums.h"
 #include "atmo/guides.h"
 #include "atmo/render.h"
 #include "testlib.h"
@@ -52,6 +55,7 @@
 #define PLANE_A 0.2
 #define PLANE_B -0.1
 #define GROUND_RADIUS_M 6360e3
+#define GRID ATMO_GUIDES_PREVIEW_GRID /* the preview's pattern: GRID x GRID rays a pixel */
 
 /* A one-channel ("Y") float scanline EXR of the plane sampled at the cells' centres. */
 static int write_plane_exr(const char *path)
@@ -278,35 +282,28 @@ static void pixel_ray(double px, double py, double pitch_deg, double d[3])
         d[k] /= sqrt(n);
 }
 
-/* One guide ray's closed form (oracle 4) at camera radius r: albedo into a[], normal into n[],
- * the cloud's transmittance from the block's ray direction db, the ray's own direction d. */
-static void shell_ray(double r, const double *db, const double *d, const float *sigma,
-                      const float *w, double *a, double *n)
+/* One guide ray's closed form (oracle 4) at camera radius r along the direction d: albedo
+ * into a[], normal into n[]. */
+static void shell_ray(double r, const double *d, const float *sigma, const float *w, double *a,
+                      double *n)
 {
     double R = GROUND_RADIUS_M, T[3];
-    for (int pass = 0; pass < 2; pass++) { /* the block's ray's chord, then the ray's surface */
-        const double *v = pass == 0 ? db : d;
-        double b = r * v[1], disc = b * b - (r - R) * (r + R);
-        double t_ground = disc >= 0.0 && -b - sqrt(disc) > 0.0 ? -b - sqrt(disc) : INFINITY;
-        if (pass == 0) {
-            double L = inside_sphere(r, v, t_ground, R + 2000.0) -
-                       inside_sphere(r, v, t_ground, R + 1000.0);
-            for (int c = 0; c < 3; c++)
-                T[c] = exp(-sigma[c] * L);
-            continue;
-        }
-        double nb[3] = {0.0, 0.0, 0.0}, ab = 1.0;
-        if (isfinite(t_ground)) {
-            double p[3] = {t_ground * d[0], r + t_ground * d[1], t_ground * d[2]};
-            double len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-            for (int k = 0; k < 3; k++)
-                nb[k] = p[k] / len;
-            ab = 0.25;
-        }
-        for (int c = 0; c < 3; c++) {
-            a[c] += (1.0 - T[c]) * w[c] + T[c] * ab;
-            n[c] += T[1] * nb[c];
-        }
+    double b = r * d[1], disc = b * b - (r - R) * (r + R);
+    double t_ground = disc >= 0.0 && -b - sqrt(disc) > 0.0 ? -b - sqrt(disc) : INFINITY;
+    double L = inside_sphere(r, d, t_ground, R + 2000.0) - inside_sphere(r, d, t_ground, R + 1000.0);
+    for (int c = 0; c < 3; c++)
+        T[c] = exp(-sigma[c] * L);
+    double nb[3] = {0.0, 0.0, 0.0}, ab = 1.0;
+    if (isfinite(t_ground)) {
+        double p[3] = {t_ground * d[0], r + t_ground * d[1], t_ground * d[2]};
+        double len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+        for (int k = 0; k < 3; k++)
+            nb[k] = p[k] / len;
+        ab = 0.25;
+    }
+    for (int c = 0; c < 3; c++) {
+        a[c] += (1.0 - T[c]) * w[c] + T[c] * ab;
+        n[c] += T[1] * nb[c];
     }
 }
 
@@ -335,13 +332,11 @@ static void check_cloud_shell(double altitude_m, double pitch_deg)
            tau_hi = 0.0;
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
-            double a[3] = {0, 0, 0}, n[3] = {0, 0, 0}, d[3], db[3];
-            for (int j = 0; j < 8; j++)
-                for (int i = 0; i < 8; i++) {
-                    pixel_ray(x + (i + 0.5) / 8, y + (j + 0.5) / 8, pitch_deg, d);
-                    pixel_ray(x + (i / 2 * 2 + 0.5) / 8, y + (j / 2 * 2 + 0.5) / 8, pitch_deg,
-                              db);
-                    shell_ray(r, db, d, sigma, w, a, n);
+            double a[3] = {0, 0, 0}, n[3] = {0, 0, 0}, d[3];
+            for (int j = 0; j < GRID; j++)
+                for (int i = 0; i < GRID; i++) {
+                    pixel_ray(x + (i + 0.5) / GRID, y + (j + 0.5) / GRID, pitch_deg, d);
+                    shell_ray(r, d, sigma, w, a, n);
                 }
             pixel_ray(x + 0.5, y + 0.5, pitch_deg, d);
             double L = inside_sphere(r, d, INFINITY, GROUND_RADIUS_M + 2000.0) -
@@ -351,8 +346,8 @@ static void check_cloud_shell(double altitude_m, double pitch_deg)
             tau_lo = fmin(tau_lo, sigma[1] * L), tau_hi = fmax(tau_hi, sigma[1] * L);
             size_t px = (size_t)y * W + x;
             for (int c = 0; c < 3; c++) {
-                worst_a = fmax(worst_a, fabs(g[3 * px + c] - a[c] / 64.0));
-                worst_n = fmax(worst_n, fabs(g[3 * pixels + 3 * px + c] - n[c] / 64.0));
+                worst_a = fmax(worst_a, fabs(g[3 * px + c] - a[c] / (GRID * GRID)));
+                worst_n = fmax(worst_n, fabs(g[3 * pixels + 3 * px + c] - n[c] / (GRID * GRID)));
             }
         }
     printf("preview, cloud shell from %g m, pitch %g deg: tau %.2f to %.2f, worst albedo error "

@@ -67,8 +67,8 @@ const cli_flag scene_option_flags[] = {
               "seconds of cloud motion with the wind (clouds.time_s)"),
     SHORTHAND("--camera", CLI_ENUM, "camera.kind", "projection (camera.kind)"),
     SHORTHAND("--denoise", CLI_ENUM, "output.denoise",
-              "Intel Open Image Denoise before tone mapping: auto (path mode's PNG\n"
-              "outputs, high, where installed), off, fast, balanced, high (every output)\n"
+              "Intel Open Image Denoise before tone mapping: auto (PNG outputs, high,\n"
+              "where installed), off, fast, balanced, high (every output)\n"
               "(output.denoise)"),
     {.type = CLI_BOOL, .name = "--blender", .offset = offsetof(scene_options, blender),
      .help = "outputs for Blender (output.blender=true): linear Rec.709\n"

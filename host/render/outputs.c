@@ -38,14 +38,14 @@ void atmo_outputs_post(const atmo_scene *scene, atmo_post *post)
     post->transfer = scene->post.transfer;
 }
 
-/* Whether output `path` gets the denoised image under output.denoise. auto: the PNGs of the
- * path tracer, whose Monte Carlo noise the denoiser is for; the preview mode's images are
- * nearly noise-free, and the filter spreads the sun's disc into a halo (docs/guide/denoise.md). */
+/* Whether output `path` gets the denoised image under output.denoise. auto: the PNGs, of every
+ * mode: the image to look at, where the filter lowers the error against the converged image
+ * (the default render's by 1.5x, its guide pass a quarter of the render's time), while the
+ * linear files stay the rendered data a measurement works from (docs/guide/denoise.md). */
 static int output_denoised(const atmo_scene *scene, const char *path)
 {
     if (scene->output.denoise == ATMO_OUTPUT_DENOISE_AUTO)
-        return atmo_image_format_from_path(path) == ATMO_IMAGE_PNG &&
-               scene->path.mode == ATMO_RENDER_PATH;
+        return atmo_image_format_from_path(path) == ATMO_IMAGE_PNG;
     return scene->output.denoise != ATMO_OUTPUT_DENOISE_OFF;
 }
 

@@ -20,6 +20,17 @@ enum { ATMO_CLOUD_PHASE_MIE = 0, ATMO_CLOUD_PHASE_HG, ATMO_CLOUD_PHASE_JENDERSIE
  * sky ambient from the atmosphere, or the thesis' constant ambient, powder and soft clamp. */
 enum { ATMO_CLOUDS_LOOK_PHYSICAL = 0, ATMO_CLOUDS_LOOK_THESIS = 1 };
 
+/* The denoiser's guide pass (kernels/render/guides.cl): its pattern of GRID x GRID rays per
+ * pixel under each mode's pixel filter (the path tracer's Gaussian, the preview's box), and the
+ * side of the blocks of that pattern whose rays share one march through the fBm cloud layer
+ * (docs/guide/denoise.md) */
+enum {
+    ATMO_GUIDES_PATH_GRID = 8,
+    ATMO_GUIDES_PATH_BLOCK = 2,
+    ATMO_GUIDES_PREVIEW_GRID = 4,
+    ATMO_GUIDES_PREVIEW_BLOCK = 2
+};
+
 /* post.tonemap and post.transfer: the display pipeline's operator and curve
  * (kernels/post/tonemap.h) */
 enum {

@@ -15,8 +15,8 @@
 #include "atmo/status.h"
 
 enum { ATMO_QUANTITY_RADIANCE = 0, ATMO_QUANTITY_LUMINANCE = 1 };
-/* output.denoise: auto denoises the PNG outputs of path-mode renders (quality high) where the
- * library is installed; off, or the named quality for every output. */
+/* output.denoise: auto denoises the PNG outputs (quality high) where the library is installed;
+ * off, or the named quality for every output. */
 enum {
     ATMO_OUTPUT_DENOISE_AUTO = 0,
     ATMO_OUTPUT_DENOISE_OFF,

@@ -31,9 +31,14 @@
  * PATH_AIR_MIN_M, which the path tracer does not march) in front of the first surface (all of
  * them for a ray that meets none), w the clouds' single-scattering albedo (the media's weighted
  * by their optical depths), a_behind and n_behind the surface's values or the sky's (1 and 0).
- * T and w are integrated on the first ray of each 2 x 2 block of the pattern and shared by the
- * block's rays (GUIDES_CLOUD_STRIDE). For a homogeneous shell of optical depth tau along the
- * ray this is the closed form (1 - e^{-tau}) w + e^{-tau} a_behind (tests/test_guides.c). Why
+ * The shell's optical depth is each ray's chord (closed form); for a homogeneous shell of
+ * optical depth tau along the ray the guide is (1 - e^{-tau}) w + e^{-tau} a_behind
+ * (tests/test_guides.c). The layer's is a march (cloud_layer.h's clouds_view_density_ends, on
+ * GUIDES_CLOUD_STEP_SCALE times the marcher's steps, at their midpoints: no random number
+ * either) along the centre ray of each GUIDES_CLOUD_STRIDE x GUIDES_CLOUD_STRIDE block of the
+ * pattern, which gives each of the block's rays the density in front of its own surface: the
+ * rays of a block differ by a fraction of a pixel across, but their surfaces' distances can
+ * differ by kilometres (a peak in front of the valley behind it). Why
  * this: OIDN documents its features as those of the first hit, noise-free and under the
  * colour's pixel filter, and warns that features seen through transparent surfaces do not help;
  * a cloud pixel's light is a blend of the cloud's and what lies behind in the proportions 1 - T
@@ -44,9 +49,7 @@
  * The cloud's own normal is 0, OIDN's "no surface": a cloud has no surface and its multiple
  * scattering follows no local normal, so the filter takes a cloud's shading from the colour as
  * it takes the sky's (a normal facing the camera did worse, docs/guide/denoise.md; the
- * density's gradient was not tried). The optical depth is the shell's chord (closed form) and
- * the layer's density integral on its marcher's steps at their midpoints (cloud_layer.h's
- * clouds_view_density): no random number either.
+ * density's gradient was not tried).
  *
  * The sun's disc: the share of the pattern's rays that meet no surface and point into the
  * disc (cos of their angle to the sun >= sun_direction.w, the cosine of its angular radius),
@@ -56,24 +59,29 @@
  * past `count` return at once; albedo[pixel] = (albedo, disc share), normal[pixel] = (normal,
  * depth). */
 
-/* 8 x 8 rays: at 4 x 4 the radial-angular grid samples the path tracer's Gaussian too coarsely
- * and the guided filter lost a tenth of its gain (docs/guide/denoise.md) */
-#define GUIDES_GRID 8
+/* The pattern and the clouds' blocks per mode (gpu_enums.h). Path: 8 x 8 rays, since at 4 x 4
+ * the radial-angular grid samples the Gaussian too coarsely and the guided filter lost a tenth
+ * of its gain. Preview: its box at 4 x 4 cell centres. Both march the layer once per 2 x 2
+ * block (docs/guide/denoise.md: the rays, the blocks and the step, measured). */
+#ifdef ATMO_PATH
+#define GUIDES_GRID ATMO_GUIDES_PATH_GRID
+#define GUIDES_CLOUD_STRIDE ATMO_GUIDES_PATH_BLOCK
+#else
+#define GUIDES_GRID ATMO_GUIDES_PREVIEW_GRID
+#define GUIDES_CLOUD_STRIDE ATMO_GUIDES_PREVIEW_BLOCK
+#endif
+#define GUIDES_BLOCK_RAYS (GUIDES_CLOUD_STRIDE * GUIDES_CLOUD_STRIDE)
+/* the layer's march takes this many times the marcher's steps: the guide needs the
+ * transmittance's shape, not the image's accuracy */
+#define GUIDES_CLOUD_STEP_SCALE 2.0f
 #define GUIDES_NO_HIT_DEPTH_M 1e10f
 /* the clouds' view optical depth is integrated to this (e^-9.2 = 1e-4 of the guide behind) */
 #define GUIDES_TAU_STOP 9.2f
-/* the clouds are integrated on the first ray of each block of 2 x 2 cells, which the block's
- * four rays share: the layer's march costs each ray about a fifth of a preview sample, and on
- * all 64 rays the pass took about two thirds as long as a 16-spp preview of thesis-8 (160 x 90),
- * on these 16 a quarter (48 x 27) */
-#define GUIDES_CLOUD_STRIDE 2
-#define GUIDES_BLOCKS (GUIDES_GRID / GUIDES_CLOUD_STRIDE)
 
-/* The camera ray of cell (i, j) of pixel (x, y) under the scene's mode's pixel filter. */
-float3 guides_ray(__global const atmo_gpu_scene *scene, int x, int y, int i, int j)
+/* The camera ray at (u1, u2) in [0, 1)^2 of pixel (x, y) under the scene's mode's pixel
+ * filter. */
+float3 guides_ray(__global const atmo_gpu_scene *scene, int x, int y, float u1, float u2)
 {
-    float u1 = ((float)i + 0.5f) / (float)GUIDES_GRID;
-    float u2 = ((float)j + 0.5f) / (float)GUIDES_GRID;
 #ifdef ATMO_PATH
     float dx, dy;
     path_filter_offset(scene->path.filter_sigma, scene->path.filter_radius, u1, u2, &dx, &dy);
@@ -105,47 +113,63 @@ path_hit guides_hit(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS, const
     return h;
 }
 
-/* The view transmittance of the ray through the clouds over [0, t_end] (per channel) and in
- * *albedo their single-scattering albedo weighted by each medium's optical depth (0 where
- * there is none). */
-float3 guides_clouds(__global const atmo_gpu_scene *scene, const medium_ray *ray, float t_end,
-                     float3 *albedo)
+/* Whether the image shows the method's media in front of a surface at t_end: not in the path
+ * tracer's uniform world (path.sky = uniform), where only a volume medium (path.clouds =
+ * volume, MEDIA_VOLUME) scatters, nor on a segment shorter than PATH_AIR_MIN_M (path.h). */
+int guides_method_media(__global const atmo_gpu_scene *scene, float t_end)
 {
-    float3 tau = (float3)(0.0f), tau_albedo = (float3)(0.0f);
-    float lo[2], hi[2];
-    /* the method's media: not in the path tracer's uniform world (path.sky = uniform), where
-     * only a volume medium (path.clouds = volume, MEDIA_VOLUME) scatters, */
-    int method_media = 1;
 #ifdef ATMO_PATH
-    /* nor on a segment shorter than PATH_AIR_MIN_M to its surface (path.h) */
-    method_media = scene->path.sky != ATMO_PATH_SKY_UNIFORM && t_end >= PATH_AIR_MIN_M;
+    return scene->path.sky != ATMO_PATH_SKY_UNIFORM && t_end >= PATH_AIR_MIN_M;
+#else
+    return 1;
 #endif
+}
+
+/* The cloud shell's view optical depth along the ray over [0, t_end] (its chord, closed form),
+ * per channel, and in *tau_albedo that depth times the shell's albedo. */
+float3 guides_shell(__global const atmo_gpu_scene *scene, const medium_ray *ray, float t_end,
+                    float3 *tau_albedo)
+{
+    float3 tau = (float3)(0.0f);
 #ifdef ATMO_CLOUD
-    float chord = 0.0f;
-    int n = method_media ? cloud_shell_intervals(scene, ray, 0.0f, t_end, lo, hi) : 0;
+    float lo[2], hi[2], chord = 0.0f;
+    int n = guides_method_media(scene, t_end)
+                ? cloud_shell_intervals(scene, ray, 0.0f, t_end, lo, hi)
+                : 0;
     for (int k = 0; k < n; k++)
         chord += hi[k] - lo[k];
-    float3 shell = scene->cloud.extinction.xyz * chord;
-    tau += shell;
-    tau_albedo += shell * scene->cloud.albedo.xyz;
+    tau = scene->cloud.extinction.xyz * chord;
+    *tau_albedo = tau * scene->cloud.albedo.xyz;
+#else
+    *tau_albedo = tau;
 #endif
+    return tau;
+}
+
+/* The cloud layer's density integral (m) in front of each of a block's n rays, in D[k]: one
+ * march along the block's ray `ray` to the farthest of the ends[] (the rays' surfaces,
+ * INFINITY for the sky, 0 for a ray whose layer the image does not show), each ray's share
+ * taken up to its own end (cloud_layer.h's clouds_view_density_ends). */
+void guides_layer(__global const atmo_gpu_scene *scene, const medium_ray *ray, int n,
+                  const float *ends, float *D)
+{
+    for (int k = 0; k < n; k++)
+        D[k] = 0.0f;
 #ifdef ATMO_CLOUDS
     __global const atmo_gpu_clouds *c = &scene->clouds;
-    /* flags of 0 or 1 joined bitwise: a composed constant in a logical operator is a warning */
-    int parts = (method_media | (MEDIA_VOLUME > 0))
-                    ? clouds_shell_parts(scene->atmosphere.bottom_radius, c->bottom_m, c->top_m,
-                                         ray->r, ray->mu, 0.0f, t_end, lo, hi)
-                    : 0;
-    float D = 0.0f;
+    float t_far = 0.0f, lo[2], hi[2];
+    for (int k = 0; k < n; k++)
+        t_far = fmax(t_far, ends[k]);
+    int parts = t_far > 0.0f ? clouds_shell_parts(scene->atmosphere.bottom_radius, c->bottom_m,
+                                                  c->top_m, ray->r, ray->mu, 0.0f, t_far, lo,
+                                                  hi)
+                             : 0;
+    float total = 0.0f;
     for (int k = 0; k < parts; k++)
-        D += clouds_view_density(scene, ray, lo[k], hi[k],
-                                 GUIDES_TAU_STOP - tau.y - D * c->extinction.y);
-    float3 layer = c->extinction.xyz * D;
-    tau += layer;
-    tau_albedo += layer * c->albedo.xyz;
+        total += clouds_view_density_ends(scene, ray, lo[k], hi[k], GUIDES_CLOUD_STEP_SCALE,
+                                          GUIDES_TAU_STOP - total * c->extinction.y, n, ends,
+                                          D);
 #endif
-    *albedo = select((float3)(0.0f), tau_albedo / tau, tau > (float3)(0.0f));
-    return exp(-tau);
 }
 
 __kernel void guide_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
@@ -161,38 +185,63 @@ __kernel void guide_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS
     float3 a = (float3)(0.0f), n = (float3)(0.0f);
     float depth = 0.0f, disc = 0.0f;
     float4 sun = scene->sun_direction;
-    /* the clouds of the current row of blocks: transmittance, albedo, whether computed */
-    float3 block_t[GUIDES_BLOCKS], block_albedo[GUIDES_BLOCKS];
-    int block_done[GUIDES_BLOCKS];
-    for (int j = 0; j < GUIDES_GRID; j++) {
-        if (j % GUIDES_CLOUD_STRIDE == 0)
-            for (int b = 0; b < GUIDES_BLOCKS; b++)
-                block_done[b] = 0;
-        for (int i = 0; i < GUIDES_GRID; i++) {
-            float3 dir = guides_ray(scene, x, y, i, j);
-            if (dot(dir, dir) == 0.0f)
-                continue;
-            medium_ray ray = medium_ray_from_camera(scene, dir);
-            path_hit h = guides_hit(scene, ATMO_LUT_ARGS, &ray);
-            int b = i / GUIDES_CLOUD_STRIDE;
-            if (!block_done[b]) {
-                block_t[b] = guides_clouds(scene, &ray, h.t, &block_albedo[b]);
-                block_done[b] = 1;
+    const float cell = 1.0f / (float)GUIDES_GRID;
+    for (int bj = 0; bj < GUIDES_GRID; bj += GUIDES_CLOUD_STRIDE)
+        for (int bi = 0; bi < GUIDES_GRID; bi += GUIDES_CLOUD_STRIDE) {
+            /* the block's rays: their surfaces, and where the layer in front of each ends */
+            path_hit hit[GUIDES_BLOCK_RAYS];
+            float3 dirs[GUIDES_BLOCK_RAYS];
+            float ends[GUIDES_BLOCK_RAYS], D[GUIDES_BLOCK_RAYS];
+            int any_ray = 0;
+            for (int k = 0; k < GUIDES_BLOCK_RAYS; k++) {
+                int i = bi + k % GUIDES_CLOUD_STRIDE, j = bj + k / GUIDES_CLOUD_STRIDE;
+                dirs[k] = guides_ray(scene, x, y, ((float)i + 0.5f) * cell,
+                                     ((float)j + 0.5f) * cell);
+                ends[k] = 0.0f;
+                if (dot(dirs[k], dirs[k]) == 0.0f)
+                    continue;
+                medium_ray ray = medium_ray_from_camera(scene, dirs[k]);
+                hit[k] = guides_hit(scene, ATMO_LUT_ARGS, &ray);
+                ends[k] = (guides_method_media(scene, hit[k].t) | (MEDIA_VOLUME > 0))
+                              ? hit[k].t
+                              : 0.0f;
+                any_ray = 1;
             }
-            float3 behind_albedo = (float3)(1.0f), behind_normal = (float3)(0.0f);
-            if (h.kind == SURFACES_NONE) {
-                depth += GUIDES_NO_HIT_DEPTH_M;
-                disc += dot(dir, sun.xyz) >= sun.w ? 1.0f : 0.0f;
-            } else {
-                behind_albedo = h.albedo;
-                behind_normal = h.normal;
-                depth += h.t;
+            /* the layer along the block's centre ray (its first ray where the centre sees
+             * nothing: a fisheye's rim) */
+            float3 centre = guides_ray(scene, x, y, ((float)bi + 0.5f * GUIDES_CLOUD_STRIDE) * cell,
+                                       ((float)bj + 0.5f * GUIDES_CLOUD_STRIDE) * cell);
+            for (int k = 0; k < GUIDES_BLOCK_RAYS && dot(centre, centre) == 0.0f; k++)
+                centre = dirs[k];
+            medium_ray shared = medium_ray_from_camera(scene, centre);
+            guides_layer(scene, &shared, any_ray ? GUIDES_BLOCK_RAYS : 0, ends, D);
+            for (int k = 0; k < GUIDES_BLOCK_RAYS; k++) {
+                if (dot(dirs[k], dirs[k]) == 0.0f)
+                    continue;
+                path_hit h = hit[k];
+                medium_ray ray = medium_ray_from_camera(scene, dirs[k]);
+                float3 tau_albedo;
+                float3 tau = guides_shell(scene, &ray, h.t, &tau_albedo);
+#ifdef ATMO_CLOUDS
+                float3 layer = scene->clouds.extinction.xyz * D[k];
+                tau += layer;
+                tau_albedo += layer * scene->clouds.albedo.xyz;
+#endif
+                float3 w = select((float3)(0.0f), tau_albedo / tau, tau > (float3)(0.0f));
+                float3 T = exp(-tau);
+                float3 behind_albedo = (float3)(1.0f), behind_normal = (float3)(0.0f);
+                if (h.kind == SURFACES_NONE) {
+                    depth += GUIDES_NO_HIT_DEPTH_M;
+                    disc += dot(dirs[k], sun.xyz) >= sun.w ? 1.0f : 0.0f;
+                } else {
+                    behind_albedo = h.albedo;
+                    behind_normal = h.normal;
+                    depth += h.t;
+                }
+                a += T * behind_albedo + ((float3)(1.0f) - T) * w;
+                n += T.y * behind_normal;
             }
-            float3 T = block_t[b];
-            a += T * behind_albedo + ((float3)(1.0f) - T) * block_albedo[b];
-            n += T.y * behind_normal;
         }
-    }
     float inv = 1.0f / (float)(GUIDES_GRID * GUIDES_GRID);
     albedo[pixel] = (float4)(clamp(a * inv, 0.0f, 1.0f), disc * inv);
     normal[pixel] = (float4)(n * inv, depth * inv);
