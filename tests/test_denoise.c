@@ -25,13 +25,13 @@
  *     scene's measured factor. At this size the issue's expectation of 3x is met on the fog
  *     alone; at 256 x 144 `atmo bench guides` measures the same scenes (docs/guide/denoise.md).
  *     The fog (a cloud shell of tau about 0.1-1 along the view over the terrain scene, the
- *     sky the atmosphere's, so the path tracer marches the shell on every segment): 5.86x with
+ *     sky the atmosphere's, so the path tracer marches the shell on every segment): 5.82x with
  *     the guides (6.28x colour alone). Its raw error is carried by a few bright pixels
  *     (fireflies of the 4-spp paths), so it varies more (with the former estimate, over raw
  *     seeds 2-5, from 7.51x down to 3.83x); FACTOR_FOG is the issue's expectation, 3.
  *   - The guides help: e(guided) <= e(colour alone) on the sky and objects scenes (measured
  *     0.86 and 0.79 of it; the ratio's estimate varies by about 8 %), and at most 1.25 of it
- *     on the terrain, the limb and the fog, where they measured 0.99, 0.77 and 1.07 (0.91 to
+ *     on the terrain, the limb and the fog, where they measured 0.99, 0.77 and 1.08 (0.91 to
  *     1.12 over the fog's four seeds with the former estimate: no worse within three of those).
  *     On the fog the clouds' share of the guides (guides.cl: transmittance-weighted) lowered
  *     the guided error to 0.84-0.90 of what guides that see through the fog gave, seed by seed.
