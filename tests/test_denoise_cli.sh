@@ -14,8 +14,9 @@
 #     "Denoising Albedo", "Denoising Normal", "Denoising Depth" (their values: test_denoise);
 #     the report names the quality and the library's version (2.x). The PNG of
 #     output.denoise=auto equals the PNG of --denoise high (auto is high for PNG) and differs
-#     from --denoise off's, in path mode and in the preview alike; a PFM beside the preview's
-#     PNG stays as rendered (the --denoise off render's, byte for byte).
+#     from --denoise off's, in path mode and in a preview with terrain alike; a PFM beside the
+#     preview's PNG stays as rendered (the --denoise off render's, byte for byte). The preview
+#     of the air alone stays raw under auto: its PNG equals --denoise off's.
 set -u
 atmo=$1
 . "${ATMO_SOURCE_DIR:-$(dirname "$0")/..}/tests/support_cli.sh"
@@ -62,8 +63,9 @@ EOF
     bad "PNG renders failed"
 cmp -s auto.png high.png && ok || bad "auto PNG differs from --denoise high"
 cmp -s auto.png off.png && bad "auto PNG equals --denoise off's" || ok
-# the preview's PNG alike; its PFM beside it stays as rendered
-preview=("${small[@]}" --set render.mode=preview)
+# a preview with terrain alike; its PFM beside it stays as rendered
+preview=("${small[@]}" --set render.mode=preview --set terrain.enabled=true
+         --set camera.position_m=0,600,0 --set camera.pitch_deg=-8)
 "$atmo" render "${preview[@]}" --output pa.png --output pa.pfm &&
     "$atmo" render "${preview[@]}" --denoise high --output ph.png &&
     "$atmo" render "${preview[@]}" --denoise off --output po.png --output po.pfm ||
@@ -71,4 +73,9 @@ preview=("${small[@]}" --set render.mode=preview)
 cmp -s pa.png ph.png && ok || bad "preview: auto PNG differs from --denoise high"
 cmp -s pa.png po.png && bad "preview: auto PNG equals --denoise off's" || ok
 cmp -s pa.pfm po.pfm && ok || bad "preview: auto PFM differs from --denoise off's"
+# the preview of the air alone: raw under auto
+sky=("${small[@]}" --set render.mode=preview)
+"$atmo" render "${sky[@]}" --output sa.png && "$atmo" render "${sky[@]}" --denoise off \
+    --output so.png || bad "sky preview PNG renders failed"
+cmp -s sa.png so.png && ok || bad "sky preview: auto PNG differs from --denoise off's"
 cli_end test_denoise_cli

@@ -68,7 +68,8 @@ const cli_flag scene_option_flags[] = {
     SHORTHAND("--camera", CLI_ENUM, "camera.kind", "projection (camera.kind)"),
     SHORTHAND("--denoise", CLI_ENUM, "output.denoise",
               "Intel Open Image Denoise before tone mapping: auto (PNG outputs, high,\n"
-              "where installed), off, fast, balanced, high (every output)\n"
+              "where installed; not the preview of the air alone), off, fast, balanced,\n"
+              "high (every output)\n"
               "(output.denoise)"),
     {.type = CLI_BOOL, .name = "--blender", .offset = offsetof(scene_options, blender),
      .help = "outputs for Blender (output.blender=true): linear Rec.709\n"

@@ -38,14 +38,27 @@ void atmo_outputs_post(const atmo_scene *scene, atmo_post *post)
     post->transfer = scene->post.transfer;
 }
 
-/* Whether output `path` gets the denoised image under output.denoise. auto: the PNGs, of every
- * mode: the image to look at, where the filter lowers the error against the converged image
- * (the default render's by 1.5x, its guide pass a quarter of the render's time), while the
- * linear files stay the rendered data a measurement works from (docs/guide/denoise.md). */
+/* Whether the scene's image carries Monte Carlo noise that the filter is for: every path-traced
+ * image, and a preview with anything beyond the air (terrain, the cloud layer or shell, objects,
+ * the observer). The preview of the air alone is smooth (its jittered segments leave about 1 %
+ * of noise), so the filter would cost seconds beside a render of a fraction of one and gain
+ * nothing (docs/guide/denoise.md). */
+static int scene_noisy(const atmo_scene *scene)
+{
+    return scene->path.mode == ATMO_RENDER_PATH || scene->terrain.enabled ||
+           scene->clouds.enabled || scene->cloud.enabled || scene->objects.count > 0 ||
+           scene->observer.enabled;
+}
+
+/* Whether output `path` gets the denoised image under output.denoise. auto: the PNGs of a
+ * noisy scene (scene_noisy): the image to look at, where the filter lowers the error against
+ * the converged image (the default render's by 1.5x, its guide pass a quarter of the render's
+ * time), while the linear files stay the rendered data a measurement works from
+ * (docs/guide/denoise.md). */
 static int output_denoised(const atmo_scene *scene, const char *path)
 {
     if (scene->output.denoise == ATMO_OUTPUT_DENOISE_AUTO)
-        return atmo_image_format_from_path(path) == ATMO_IMAGE_PNG;
+        return atmo_image_format_from_path(path) == ATMO_IMAGE_PNG && scene_noisy(scene);
     return scene->output.denoise != ATMO_OUTPUT_DENOISE_OFF;
 }
 

@@ -368,7 +368,8 @@ const atmo_param atmo_params[] = {
              "PNG encoding curve: sRGB or a pure 2.2 gamma"),
     ROW_ENUM("output.denoise", output.denoise, denoise_names, ATMO_OUTPUT_DENOISE_AUTO,
              "Intel Open Image Denoise on the final linear image, before tone mapping: auto "
-             "(PNG outputs, quality high, where the library is installed), "
+             "(PNG outputs, quality high, where the library is installed; not the preview of the "
+             "air alone), "
              "off, fast, balanced or high (every output; EXR keeps the noisy image and the "
              "guides as layers)"),
     /* a digital elevation model as the terrain (atmo/dem.h; `atmo dem info FILE`) */

@@ -5,8 +5,9 @@
  * Denoising (scene key output.denoise, atmo/denoise.h): the mean image goes through Intel Open
  * Image Denoise's "RT" filter, linear and HDR, before any post-processing, once per write for
  * every output that asks for it:
- *   auto      the PNG outputs, in every mode, at quality high, where the library is
- *             installed (without it the images stay as rendered, and
+ *   auto      the PNG outputs of a path-traced scene or of a preview with more than the air
+ *             (terrain, clouds, a cloud shell, objects, the observer), at quality high,
+ *             where the library is installed (without it the images stay as rendered, and
  *             atmo_outputs_denoise_prepare says so in one line);
  *   off       none;
  *   fast, balanced, high  every output, at that quality; missing library: a usage error.
@@ -60,8 +61,8 @@ typedef struct atmo_outputs_denoise {
  * guides, the library's version and file, seconds). NULL when out of memory. */
 cJSON *atmo_outputs_denoise_json(const atmo_scene *scene, const atmo_outputs_denoise *info);
 
-/* Before a render: with output.denoise = auto and a PNG among outputs[0..n-1], load the
- * library;
+/* Before a render: with output.denoise = auto and a PNG among outputs[0..n-1] that it
+ * denoises, load the library;
  * when it is not installed, write one warning line into warning (else warning = ""): the
  * writes then leave the images as rendered. With an explicit quality, load it: ATMO_ERR_USAGE
  * with how to install it when it is missing. A library that is found but fails:

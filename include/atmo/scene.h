@@ -15,7 +15,8 @@
 #include "atmo/status.h"
 
 enum { ATMO_QUANTITY_RADIANCE = 0, ATMO_QUANTITY_LUMINANCE = 1 };
-/* output.denoise: auto denoises the PNG outputs (quality high) where the library is installed;
+/* output.denoise: auto denoises the PNG outputs (quality high) of a path-traced scene or of a
+ * preview with more than the air, where the library is installed;
  * off, or the named quality for every output. */
 enum {
     ATMO_OUTPUT_DENOISE_AUTO = 0,
