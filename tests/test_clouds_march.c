@@ -19,11 +19,12 @@
  * The Monte Carlo reference (method_reference.h's walk through the clouds and their majorant
  * grid, cloud_majorant.h, filled on the host as its pass fills it; host build) on the same ray
  * with orders 1..1 must agree with the quadrature within 4.5 standard errors (10000 paths);
- * with all orders it must exceed it, and the marcher with the registry's default octaves
- * (a 0.05, b 0.48, c 0.9, 4 octaves, fitted by atmo bench clouds to four views with the sky's
- * light, the Mie table's phase and the light march cut at 8 km, none of which this ray has)
- * must lie within its measured bias on this ray, 41.4 % below (rounded up to FAST_BIAS_BOUND,
- * 42 %), plus 4.5 of the reference's standard errors (4.0 %) of it. */
+ * with all orders it must exceed it, and the marcher with the registry's default octaves and
+ * diffuse orders (a 0.05, b 0.65, c 0.9, 2 octaves, d 3.67, fitted by atmo bench clouds to five
+ * views with the sky's light, the Mie table's phase and the light march cut at 8 km, none of
+ * which this ray has) must lie within FAST_BIAS_BOUND, 42 %, of it plus 4.5 of the reference's
+ * standard errors (4.0 %) (measured: +6.9 %; the octaves without the diffuse orders, a 0.05,
+ * b 0.48, c 0.9, 4 octaves, read 41.4 % below, which set the bound). */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -32,8 +33,8 @@
 #include "testclouds.h"
 #include "testlib.h"
 
-/* |marcher / reference - 1| on the overcast ray with the default octaves: 0.414 measured (see
- * the top of the file), rounded up */
+/* |marcher / reference - 1| on the overcast ray: 0.414 measured with the octaves alone (see the
+ * top of the file), rounded up; the defaults read 0.069 */
 #define FAST_BIAS_BOUND 0.42
 #define LUTS lut, lut, lut, lut, lut, lut, lut, lut, cdf, grid
 
@@ -161,6 +162,7 @@ int main(void)
             c->ms_a = (float)atmo_param_find("clouds.ms_a")->def[0];
             c->ms_b = (float)atmo_param_find("clouds.ms_b")->def[0];
             c->ms_c = (float)atmo_param_find("clouds.ms_c")->def[0];
+            c->ms_d = (float)atmo_param_find("clouds.ms_d")->def[0];
             double fast = 0.0;
             for (int j = 0; j < 16; j++) {
                 medium_result r;

@@ -12,7 +12,7 @@
  * deg), the shell replaced by the layer made flat: frequencies 1e-8 1/m and coverage features
  * of 1e8 m (the noise is constant over the view), 1-m fades, one octave, no warp, the density
  * scaled so the 1000-2000 m deck has sigma = 0.02 1/m (optical depth 20); method single with
- * one octave, so the image is single scattering (its multiple scattering is the marcher's
+ * one octave and no diffuse orders, so the image is single scattering (its multiple scattering is the marcher's
  * approximation, not what is tested). 48 x 48 pixels, 2 samples. */
 #include <math.h>
 #include <stdlib.h>
@@ -44,6 +44,7 @@ static void flat_deck(atmo_scene *s, double density)
     test_scene_set(s, "clouds.top_m=2000");
     test_scene_set(s, "clouds.fade_m=1");
     test_scene_set(s, "clouds.ms_octaves=1");
+    test_scene_set(s, "clouds.ms_d=0");
     test_scene_set(s, "image.width=48");
     test_scene_set(s, "image.height=48");
     test_scene_set(s, "image.samples=2");

@@ -18,11 +18,14 @@
  * samples per ray (its jittered march averaged; its error is its bias), charted with the time
  * of one sample of the 30 rays (one sample is an image's pixel-sample).
  *
- * The fit (Wrenninge et al. 2013's octaves, cloud_march.h): the cloud light is
- *     L = L_0 + sum_{1 <= i < N} b^i G_i(a, c)
- * with G_i the light of octave i at b = 1; G_i is measured as the difference of the marcher at
- * N = i + 1 and N = i octaves (b = 1), over a grid of a and c, and b (steps of 0.01) and N
- * (1..BENCH_CLOUDS_FIT_OCTAVES) then minimise the RMS view error in closed form. The fit's
+ * The fit (Wrenninge et al. 2013's octaves and the diffuse orders, cloud_march.h): the cloud
+ * light is
+ *     L = L_0 + sum_{1 <= i < N} b^i G_i(a, c) + d G_d
+ * with G_i the light of octave i at b = 1 and G_d the diffuse orders' at d = 1; G_i is measured
+ * as the difference of the marcher at N = i + 1 and N = i octaves (b = 1, d = 0), G_d as the
+ * difference of one octave at d = 1 and d = 0 (it depends on none of a, c, N), over a grid of a
+ * and c; b (steps of 0.01) and N (1..BENCH_CLOUDS_FIT_OCTAVES) then minimise the RMS view error,
+ * d in closed form for each (least squares, steps of 0.01, 0..BENCH_CLOUDS_FIT_D_MAX). The fit's
  * values and its residual per view are printed; the grid's rows (every tenth b and each new
  * best) are written to DIR/clouds_fit.csv. Writes DIR/clouds.csv and DIR/clouds.svg, and
  * the shadow term's RMS error (bench_clouds_shadow.c) over all the marcher's sample points and
@@ -40,7 +43,8 @@
 #define BENCH_CLOUDS_RAYS 6
 #define BENCH_CLOUDS_REF_SAMPLES 256
 #define BENCH_CLOUDS_MARCH_SAMPLES 64
-#define BENCH_CLOUDS_FIT_OCTAVES 12
+#define BENCH_CLOUDS_FIT_OCTAVES 6
+#define BENCH_CLOUDS_FIT_D_MAX 20.0
 #define BENCH_CLOUDS_REF_SEED 1 /* the reference's image.seed: not the marcher's (0) */
 
 typedef struct cloud_view {
@@ -78,16 +82,20 @@ static const cloud_view views[BENCH_CLOUDS_VIEWS] = {
 
 typedef struct march_config {
     const char *settings;
-    const char *assignments[5];
+    const char *assignments[6];
     int shadow; /* 1: the shadow term's error is measured too (bench_clouds_shadow.c) */
 } march_config;
 
 static const march_config march_configs[] = {
     {"defaults", {NULL}, 1},
-    {"octaves 0.5/0.5/0.5 x4",
-     {"clouds.ms_a=0.5", "clouds.ms_b=0.5", "clouds.ms_c=0.5", "clouds.ms_octaves=4"}, 0},
-    {"octaves 0.05/0.43/0.9 x12",
-     {"clouds.ms_a=0.05", "clouds.ms_b=0.43", "clouds.ms_c=0.9", "clouds.ms_octaves=12"}, 0},
+    {"octaves 0.05/0.48/0.9 x4, no diffuse",
+     {"clouds.ms_a=0.05", "clouds.ms_b=0.48", "clouds.ms_c=0.9", "clouds.ms_octaves=4",
+      "clouds.ms_d=0"},
+     0},
+    {"octaves 0.5/0.5/0.5 x4, no diffuse",
+     {"clouds.ms_a=0.5", "clouds.ms_b=0.5", "clouds.ms_c=0.5", "clouds.ms_octaves=4",
+      "clouds.ms_d=0"},
+     0},
     {"step 300 m", {"clouds.step_m=300", NULL}, 0},
     {"step 75 m", {"clouds.step_m=75", NULL}, 0},
     {"1 light step", {"clouds.light_steps=1", NULL}, 1},
@@ -102,8 +110,9 @@ static const march_config march_configs[] = {
      {"clouds.shadow_map=true", "clouds.shadow_map_size=256", "clouds.shadow_map_levels=32",
       NULL},
      1},
+    {"no diffuse orders", {"clouds.ms_d=0", NULL}, 0},
     {"1 octave", {"clouds.ms_octaves=1", NULL}, 0},
-    {"2 octaves", {"clouds.ms_octaves=2", NULL}, 0},
+    {"4 octaves", {"clouds.ms_octaves=4", NULL}, 0},
     {"8 octaves", {"clouds.ms_octaves=8", NULL}, 0},
     {"128 steps", {"clouds.steps=128", NULL}, 0},
 };
@@ -203,79 +212,119 @@ static int march_error(const char *const *extra, const reference_result *ref, co
     return ATMO_OK;
 }
 
-/* The octaves' fit (see the top of the file); writes DIR/clouds_fit.csv. */
+/* The marcher's view radiances at b = 1 with N octaves of factors a, c and the diffuse weight d. */
+static int fit_radiances(double a, double c, int n, double d, const char *device,
+                         double L[BENCH_CLOUDS_VIEWS], atmo_err *e)
+{
+    char sa[48], sc[48], so[48], sd[48];
+    snprintf(sa, sizeof sa, "clouds.ms_a=%.3f", a);
+    snprintf(sc, sizeof sc, "clouds.ms_c=%.3f", c);
+    snprintf(so, sizeof so, "clouds.ms_octaves=%d", n);
+    snprintf(sd, sizeof sd, "clouds.ms_d=%.3f", d);
+    const char *extra[] = {sa, "clouds.ms_b=1", sc, so, sd, NULL};
+    for (int v = 0; v < BENCH_CLOUDS_VIEWS; v++) {
+        double se, t;
+        int rc = view_radiance(&views[v], "march", extra, BENCH_CLOUDS_MARCH_SAMPLES, device,
+                               &L[v], &se, &t, NULL, NULL, e);
+        if (rc)
+            return rc;
+    }
+    return ATMO_OK;
+}
+
+/* The diffuse weight (steps of 0.01 in [0, BENCH_CLOUDS_FIT_D_MAX]) that minimises the RMS of
+ * the view errors x_v + d y_v, x_v the error without it and y_v its light over the reference;
+ * the errors at it to err[], their RMS returned. */
+static double fit_diffuse(const double x[BENCH_CLOUDS_VIEWS], const double y[BENCH_CLOUDS_VIEWS],
+                          double *d, double err[BENCH_CLOUDS_VIEWS])
+{
+    double xy = 0.0, yy = 0.0, sum = 0.0;
+    for (int v = 0; v < BENCH_CLOUDS_VIEWS; v++)
+        xy += x[v] * y[v], yy += y[v] * y[v];
+    *d = yy > 0.0 ? round(fmin(fmax(-xy / yy, 0.0), BENCH_CLOUDS_FIT_D_MAX) * 100.0) / 100.0 : 0.0;
+    for (int v = 0; v < BENCH_CLOUDS_VIEWS; v++) {
+        err[v] = x[v] + *d * y[v];
+        sum += err[v] * err[v];
+    }
+    return sqrt(sum / BENCH_CLOUDS_VIEWS);
+}
+
+/* The octaves' and the diffuse term's fit (see the top of the file); writes
+ * DIR/clouds_fit.csv. */
 static int fit_octaves(const char *dir, const reference_result *ref, const char *device,
                        int quick, atmo_err *e)
 {
-    static const double a_grid[] = {0.05, 0.1, 0.2, 0.35, 0.5, 0.65, 0.8};
-    static const double c_grid[] = {0.4, 0.7, 0.9};
+    static const double a_grid[] = {0.05, 0.1, 0.2, 0.35};
+    static const double c_grid[] = {0.5, 0.7, 0.9};
     int na = quick ? 2 : (int)(sizeof a_grid / sizeof a_grid[0]);
     int nc = quick ? 1 : (int)(sizeof c_grid / sizeof c_grid[0]);
-    int N_max = quick ? 4 : BENCH_CLOUDS_FIT_OCTAVES;
-    double best = INFINITY, best_a = 0, best_b = 0, best_c = 0, best_err[BENCH_CLOUDS_VIEWS];
-    int best_n = 0;
+    int N_max = quick ? 3 : BENCH_CLOUDS_FIT_OCTAVES;
+    double best = INFINITY, best_a = 0, best_b = 0, best_c = 0, best_d = 0;
+    double best_err[BENCH_CLOUDS_VIEWS], L_single[BENCH_CLOUDS_VIEWS], G_d[BENCH_CLOUDS_VIEWS];
+    int best_n = 0, rc;
+    /* the diffuse term's light at d = 1: independent of a, c and N */
+    if ((rc = fit_radiances(a_grid[0], c_grid[0], 1, 0.0, device, L_single, e)) ||
+        (rc = fit_radiances(a_grid[0], c_grid[0], 1, 1.0, device, G_d, e)))
+        return rc;
+    for (int v = 0; v < BENCH_CLOUDS_VIEWS; v++)
+        G_d[v] -= L_single[v];
     char path[4096];
     snprintf(path, sizeof path, "%s/clouds_fit.csv", dir);
     FILE *f = fopen(path, "w");
     if (!f)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "cannot write %s", path);
-    fprintf(f, "a,c,octaves,b,rms_error");
+    fprintf(f, "a,c,octaves,b,d,rms_error");
     for (int v = 0; v < BENCH_CLOUDS_VIEWS; v++)
         fprintf(f, ",%s", views[v].name);
     fprintf(f, "\n");
     for (int ia = 0; ia < na; ia++)
         for (int ic = 0; ic < nc; ic++) {
             double a = quick ? a_grid[1 + 2 * ia] : a_grid[ia], c = c_grid[ic];
-            double G[BENCH_CLOUDS_FIT_OCTAVES][BENCH_CLOUDS_VIEWS], prev[BENCH_CLOUDS_VIEWS];
+            double G[BENCH_CLOUDS_FIT_OCTAVES][BENCH_CLOUDS_VIEWS], prev[BENCH_CLOUDS_VIEWS] = {0};
             for (int n = 1; n <= N_max; n++) {
-                char sa[48], sb[48], sc[48], so[48];
-                snprintf(sa, sizeof sa, "clouds.ms_a=%.3f", a);
-                snprintf(sb, sizeof sb, "clouds.ms_b=1");
-                snprintf(sc, sizeof sc, "clouds.ms_c=%.3f", c);
-                snprintf(so, sizeof so, "clouds.ms_octaves=%d", n);
-                const char *extra[] = {sa, sb, sc, so, NULL};
+                double L[BENCH_CLOUDS_VIEWS];
+                if (n == 1)
+                    memcpy(L, L_single, sizeof L);
+                else if ((rc = fit_radiances(a, c, n, 0.0, device, L, e))) {
+                    fclose(f);
+                    return rc;
+                }
                 for (int v = 0; v < BENCH_CLOUDS_VIEWS; v++) {
-                    double L, se, t;
-                    int rc = view_radiance(&views[v], "march", extra, BENCH_CLOUDS_MARCH_SAMPLES,
-                                           device, &L, &se, &t, NULL, NULL, e);
-                    if (rc) {
-                        fclose(f);
-                        return rc;
-                    }
-                    G[n - 1][v] = n == 1 ? L : L - prev[v];
-                    prev[v] = L;
+                    G[n - 1][v] = n == 1 ? L[v] : L[v] - prev[v];
+                    prev[v] = L[v];
                 }
             }
             for (int n = 1; n <= N_max; n++)
                 for (int ib = 0; ib <= 100; ib++) {
-                    double b = ib / 100.0, sum = 0.0, err[BENCH_CLOUDS_VIEWS];
+                    double b = ib / 100.0, d, x[BENCH_CLOUDS_VIEWS], y[BENCH_CLOUDS_VIEWS];
+                    double err[BENCH_CLOUDS_VIEWS];
                     for (int v = 0; v < BENCH_CLOUDS_VIEWS; v++) {
                         double L = 0.0, w = 1.0;
                         for (int i = 0; i < n; i++, w *= b)
                             L += w * G[i][v];
-                        err[v] = L / ref->L[v] - 1.0;
-                        sum += err[v] * err[v];
+                        x[v] = L / ref->L[v] - 1.0;
+                        y[v] = G_d[v] / ref->L[v];
                     }
-                    double rms = sqrt(sum / BENCH_CLOUDS_VIEWS);
+                    double rms = fit_diffuse(x, y, &d, err);
                     if (ib % 10 == 0 || rms < best) {
-                        fprintf(f, "%.3f,%.3f,%d,%.2f,%.5f", a, c, n, b, rms);
+                        fprintf(f, "%.3f,%.3f,%d,%.2f,%.2f,%.5f", a, c, n, b, d, rms);
                         for (int v = 0; v < BENCH_CLOUDS_VIEWS; v++)
                             fprintf(f, ",%.5f", err[v]);
                         fprintf(f, "\n");
                     }
                     if (rms < best) {
-                        best = rms, best_a = a, best_b = b, best_c = c, best_n = n;
+                        best = rms, best_a = a, best_b = b, best_c = c, best_d = d, best_n = n;
                         memcpy(best_err, err, sizeof err);
                     }
                 }
             fprintf(stderr, "bench clouds: fit a %.2f c %.2f done (best so far: a %.2f b %.2f c "
-                            "%.2f octaves %d, RMS %.1f %%)\n",
-                    a, c, best_a, best_b, best_c, best_n, 100.0 * best);
+                            "%.2f octaves %d d %.2f, RMS %.1f %%)\n",
+                    a, c, best_a, best_b, best_c, best_n, best_d, 100.0 * best);
         }
     fclose(f);
     printf("octave fit: clouds.ms_a=%.2f clouds.ms_b=%.2f clouds.ms_c=%.2f "
-           "clouds.ms_octaves=%d, RMS view error %.1f %%\n",
-           best_a, best_b, best_c, best_n, 100.0 * best);
+           "clouds.ms_octaves=%d clouds.ms_d=%.2f, RMS view error %.1f %%\n",
+           best_a, best_b, best_c, best_n, best_d, 100.0 * best);
     for (int v = 0; v < BENCH_CLOUDS_VIEWS; v++)
         printf("  %-10s residual %+6.1f %% (reference +- %.1f %%)\n", views[v].name,
                100.0 * best_err[v], 100.0 * ref->se[v] / ref->L[v]);

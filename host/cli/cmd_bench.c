@@ -35,7 +35,7 @@ static const cli_flag bench_flags[] = {
     {.type = CLI_BOOL, .name = "--quick", .offset = BENCH_FLAG(quick),
      .help = "fewer settings (for tests)"},
     {.type = CLI_BOOL, .name = "--fit", .offset = BENCH_FLAG(fit),
-     .help = "clouds: fit the multiple-scattering octaves instead"},
+     .help = "clouds: fit the multiple-scattering octaves and diffuse orders instead"},
     {.type = CLI_STRING, .name = "--views", .metavar = "LIST", .offset = BENCH_FLAG(views),
      .def = "all: thesis-1,...,thesis-9",
      .help = "views: the thesis views to measure, comma-separated"},
@@ -71,8 +71,9 @@ static const cli_command bench_cli = {
         "              optimism and steps, exact against estimated shadows, light-shaft shortcuts,\n"
         "              thesis-1's time per sample\n"
         "  clouds      the fBm clouds' marcher (steps, light steps, octaves) against the Monte\n"
-        "              Carlo reference on four cloud views; --fit fits the multiple-scattering\n"
-        "              octaves (clouds.ms_a, ms_b, ms_c, ms_octaves) to the reference instead\n"
+        "              Carlo reference on five cloud views; --fit fits the multiple-scattering\n"
+        "              octaves and diffuse orders (clouds.ms_a, ms_b, ms_c, ms_octaves, ms_d)\n"
+        "              to the reference instead\n"
         "  denoise     thesis-7 path traced at 1 to 64 spp, raw and denoised by Open Image\n"
         "              Denoise (fast, balanced, high): error against time, where denoising pays\n"
         "  guides      4-spp path-traced sky, terrain, limb and objects at 256x144, raw and\n"

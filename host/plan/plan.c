@@ -36,7 +36,7 @@ _Static_assert(offsetof(atmo_gpu_scene, sky_view) == 320, "atmo_gpu_scene layout
 _Static_assert(offsetof(atmo_gpu_scene, lut) == 336, "atmo_gpu_scene layout");
 _Static_assert(offsetof(atmo_gpu_scene, reference) == 368, "atmo_gpu_scene layout");
 _Static_assert(offsetof(atmo_gpu_scene, cloud) == 384, "atmo_gpu_scene layout");
-_Static_assert(sizeof(atmo_gpu_clouds) == 192, "atmo_gpu_clouds layout");
+_Static_assert(sizeof(atmo_gpu_clouds) == 208, "atmo_gpu_clouds layout");
 _Static_assert(offsetof(atmo_gpu_clouds, bottom_m) == 80, "atmo_gpu_clouds layout");
 _Static_assert(offsetof(atmo_gpu_clouds, majorant) == 132, "atmo_gpu_clouds layout");
 _Static_assert(offsetof(atmo_gpu_clouds, seed) == 164, "atmo_gpu_clouds layout");
@@ -46,7 +46,7 @@ _Static_assert(offsetof(atmo_gpu_object, kind) == 64, "atmo_gpu_object layout");
 _Static_assert(sizeof(atmo_gpu_path) == 80, "atmo_gpu_path layout");
 _Static_assert(offsetof(atmo_gpu_path, object_count) == 16, "atmo_gpu_path layout");
 _Static_assert(offsetof(atmo_gpu_path, filter_radius) == 52, "atmo_gpu_path layout");
-_Static_assert(offsetof(atmo_gpu_scene, path) == 672, "atmo_gpu_scene layout");
+_Static_assert(offsetof(atmo_gpu_scene, path) == 688, "atmo_gpu_scene layout");
 _Static_assert(sizeof(atmo_gpu_terrain_field) == 80, "atmo_gpu_terrain_field layout");
 _Static_assert(offsetof(atmo_gpu_terrain_field, seed) == 24, "atmo_gpu_terrain_field layout");
 _Static_assert(offsetof(atmo_gpu_terrain_field, base_rect) == 48, "atmo_gpu_terrain_field");
@@ -59,8 +59,8 @@ _Static_assert(offsetof(atmo_gpu_terrain, camera) == 80, "atmo_gpu_terrain layou
 _Static_assert(offsetof(atmo_gpu_terrain, shafts) == 132, "atmo_gpu_terrain layout");
 _Static_assert(offsetof(atmo_gpu_terrain, sun_map_size) == 140, "atmo_gpu_terrain layout");
 _Static_assert(offsetof(atmo_gpu_terrain, sun_map_axis) == 160, "atmo_gpu_terrain layout");
-_Static_assert(offsetof(atmo_gpu_scene, terrain) == 752, "atmo_gpu_scene layout");
-_Static_assert(sizeof(atmo_gpu_scene) == 928, "atmo_gpu_scene layout");
+_Static_assert(offsetof(atmo_gpu_scene, terrain) == 768, "atmo_gpu_scene layout");
+_Static_assert(sizeof(atmo_gpu_scene) == 944, "atmo_gpu_scene layout");
 
 #define DEG (M_PI / 180.0)
 

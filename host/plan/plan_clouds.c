@@ -109,6 +109,7 @@ int atmo_plan_clouds(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     g->ms_a = (float)s->clouds.ms_a;
     g->ms_b = (float)s->clouds.ms_b;
     g->ms_c = (float)s->clouds.ms_c;
+    g->ms_d = (float)s->clouds.ms_d;
     g->majorant = (float)s->clouds.density;
     g->diameter_um = (float)o.diameter_um;
     g->sun_guiding = (float)s->clouds.sun_guiding;

@@ -45,6 +45,8 @@ typedef struct atmo_gpu_clouds {
     int shadow_map_steps;  /* steps of its nodes' integrals toward the sun */
     float footprint;       /* the noise's level of detail: a pixel's footprint per metre of
                               distance from the camera (rad, times clouds.lod; 0: every octave) */
+    float ms_d;            /* weight of the diffuse orders beyond the multiple-scattering
+                              octaves (cloud_march.h) */
 } atmo_gpu_clouds;
 
 #endif

@@ -148,6 +148,7 @@ typedef struct atmo_scene {
         double lod;            /* the noise's footprint in pixels (0: every octave everywhere) */
         int ms_octaves;        /* multiple-scattering octaves (1: single scattering only) */
         double ms_a, ms_b, ms_c; /* their extinction, contribution and anisotropy factors */
+        double ms_d;           /* the weight of the diffuse orders beyond them */
         int look;              /* ATMO_CLOUDS_LOOK_* */
         double sun_guiding;    /* reference and path.clouds=volume: the same for the layer */
     } clouds;

@@ -21,24 +21,41 @@
  * sun, the occluders: planet, observer) and the density integral D toward the sun of the light
  * march or the sun shadow map (cloud_layer_medium.h's clouds_light_density; tau_sun = extinction D):
  *   air:    (sigma_R p_R + sigma_M p_M) E T_air V e^{-tau_sun}  (+ J_ms e^{-tau_sun}, use_ms)
- *   clouds: sigma_s E T_air V sum_{i<N} b^i p_i(nu) e^{-a^i tau_sun}
- * the octaves of Wrenninge, Kulla & Lundqvist 2013 ("Oz: the great and volumetric"): octave 0 is
- * single scattering with the true phase, octave i >= 1 Henyey-Greenstein with the table's g
- * times c^i; N = ms_octaves, a, b, c = ms_a, ms_b, ms_c, by default 4, 0.05, 0.48, 0.9,
- * fitted to the reference (its own seed) by `atmo bench clouds --fit` (docs/notes/clouds.md),
- * 5.1 % RMS over the bench's four views (docs/bench/README.md). With a this
- * small, octaves i >= 2 see the sun nearly unshadowed (a^2 tau_sun = tau_sun / 400): they carry
- * the light that diffuses deep into a thick deck. In an absorbing cloud (albedo w < 1) diffuse
- * light decays with depth at least as e^{-k_d tau}, the diffusion exponent
+ *   clouds: sigma_s E T_air V [sum_{i<N} b^i p_i(nu) T_i + d R(s) e^{-k_d tau_sun} / (4 pi)]
+ * the octaves of Wrenninge, Kulla & Lundqvist 2013 ("Oz: the great and volumetric") and the
+ * diffuse orders beyond them. Octave 0 is single scattering with the true phase and
+ * T_0 = e^{-tau_sun}; octave i >= 1 is Henyey-Greenstein with the table's g times c^i.
+ * N = ms_octaves, a, b, c, d = ms_a, ms_b, ms_c, ms_d, by default 2, 0.05, 0.65, 0.9, 3.67,
+ * fitted to the reference (its own seed) by `atmo bench clouds --fit`, 2.2 % RMS over the
+ * bench's five views; the fit's grid is flat within the reference's noise, and of its cells
+ * this one also holds on test_clouds_march's overcast ray, which the fit does not see
+ * (docs/notes/clouds.md).
+ *
+ * Deep decay. In an absorbing cloud (albedo w < 1) diffuse light decays with depth at least as
+ * e^{-k_d tau}, the diffusion exponent
  *     k_d = sqrt(3 (1 - w)(1 - w g))
- * (the diffusion approximation's eigenvalue; 0.16 for the thesis' w 0.9512 and g 0.86): so an
+ * (the diffusion approximation's eigenvalue; 0.16 for the thesis' w 0.9512 and g 0.86). An
  * octave i >= 1 whose a^i is below k_d keeps e^{-a^i tau_sun} within a diffusion length 1 / k_d
- * of the lit side, where the fit holds, and decays at the rate k_d beyond it,
- *     e^{-a^i tau_sun - (k_d - a^i) max(tau_sun - 1 / k_d, 0)},
- * and the light march that feeds it stops only where the last octave is opaque (not where
- * tau_sun passes CLOUDS_TAU_OPAQUE, which capped the deep octaves' tau and let a deck of any
- * depth pass about a third of the sun's light). With w = 1 (k_d = 0) the octaves are the fit's
- * alone. With use_ms (method march) the sky's light is
+ * of the lit side and decays at the rate k_d beyond it,
+ *     T_i = e^{-a^i tau_sun - (k_d - a^i) max(tau_sun - 1 / k_d, 0)},
+ * and the light march that feeds the octaves and the diffuse orders stops only where the slowest
+ * of them is opaque, so no deck passes the sun's light that does not cross it.
+ *
+ * Diffuse orders. Light that leaves a thick deck away from the sun has scattered many times (a
+ * turn from forward alone takes about 1 / (1 - g), 7 scatterings at g 0.86): its radiance is
+ * nearly isotropic. The octaves' phases stay forward (g c^i) and their weights b^i fall fast,
+ * so they miss it; the orders beyond them are one isotropic term, the diffusion
+ * approximation's fluence under the sun decaying into the cloud as e^{-k_d tau_sun}, weighted by
+ * d R(s), R the plane albedo of a semi-infinite cloud from similarity theory (van de Hulst's
+ * fit),
+ *     R = (1 - s)(1 - 0.139 s) / (1 + 1.17 s),   s = sqrt((1 - w) / (1 - w g))
+ * (0.28 for the thesis' optics; 1 without absorption, 0 for w = 0), and d fitted. It stands for
+ * the light a deck sends back out; it does not vanish in thin cloud, where it adds
+ * d R / (4 pi) of isotropic light per unit of the sun's, balanced by the fit against the broken
+ * clouds of its views. With w = 1 (k_d = 0) the deep decay is off: the octaves and the diffuse
+ * orders are the fit's alone.
+ *
+ * The sky. With use_ms (method march) the sky's light is
  * added isotropically,
  *   sigma_s E_sky(mu_s) / (4 pi) (1 + (h - bottom) / (top - bottom)) / 2
  * (E_sky the sky's irradiance on a horizontal surface from the ms LUT, halved at the layer's
@@ -94,6 +111,22 @@ ATMO_FN vec3 clouds_diffusion_exponent(ATMO_GLOBAL const atmo_gpu_clouds *c)
               sqrtf(3.0f * (1.0f - c->albedo.z) * fmaxf(1.0f - c->albedo.z * c->g.z, 0.0f)));
 }
 
+/* The plane albedo of a semi-infinite cloud per channel from similarity theory,
+ *     R = (1 - s)(1 - 0.139 s) / (1 + 1.17 s),   s = sqrt((1 - w) / (1 - w g))
+ * (van de Hulst's fit, the header): the weight the diffuse orders carry. */
+ATMO_FN float clouds_similarity_channel(float w, float g)
+{
+    float s = sqrtf((1.0f - w) / fmaxf(1.0f - w * g, 1e-6f));
+    return (1.0f - s) * (1.0f - 0.139f * s) / (1.0f + 1.17f * s);
+}
+
+ATMO_FN vec3 clouds_similarity_albedo(ATMO_GLOBAL const atmo_gpu_clouds *c)
+{
+    return v3(clouds_similarity_channel(c->albedo.x, c->g.x),
+              clouds_similarity_channel(c->albedo.y, c->g.y),
+              clouds_similarity_channel(c->albedo.z, c->g.z));
+}
+
 /* One octave's transmittance toward the sun (the header): e^{-a tau} within a diffusion length
  * 1 / k_d of the lit side, and from there on decaying at least as fast as diffuse light does,
  *     e^{-a tau - max(k_d - a, 0) max(tau - 1 / k_d, 0)}   per channel. */
@@ -109,11 +142,11 @@ ATMO_FN vec3 clouds_octave_transmittance(vec3 tau, float a, vec3 k_d)
               clouds_octave_channel(tau.z, a, k_d.z));
 }
 
-/* The density integral D toward the sun for the octaves: the light march stops only once the
- * last octave's optical depth a_N tau_sun passes CLOUDS_TAU_OPAQUE (a_N = max(a^(N-1), k_d),
- * the smallest channel's k_d), not once tau_sun does, which would cap the deep octaves' tau at
- * CLOUDS_TAU_OPAQUE and let them see the sun through any deck; the shadow map's integral has no
- * stop. */
+/* The density integral D toward the sun for the octaves and the diffuse orders: the light
+ * march stops only once the slowest of them is opaque, a_N tau_sun past CLOUDS_TAU_OPAQUE
+ * (a_N = k_d, the smallest channel's, with the diffuse orders, else max(a^(N-1), k_d)), not once
+ * tau_sun does, which would cap the deep terms' tau at CLOUDS_TAU_OPAQUE and let them see the
+ * sun through any deck; the shadow map's integral has no stop. */
 ATMO_FN float clouds_octave_light_density(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                           const medium_point *q, vec3 k_d)
 {
@@ -123,8 +156,8 @@ ATMO_FN float clouds_octave_light_density(ATMO_GLOBAL const atmo_gpu_scene *s, A
     ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
     float a_n = 1.0f;
     if (c->look != ATMO_CLOUDS_LOOK_THESIS) {
-        a_n = powf(c->ms_a, (float)(c->ms_octaves - 1));
-        a_n = fmaxf(a_n, fminf(k_d.x, fminf(k_d.y, k_d.z)));
+        float k_min = fminf(k_d.x, fminf(k_d.y, k_d.z));
+        a_n = c->ms_d > 0.0f ? k_min : fmaxf(powf(c->ms_a, (float)(c->ms_octaves - 1)), k_min);
     }
     return clouds_sun_density_steps(s, q, clouds_point_jitter(q->p, c->seed), c->light_steps,
                                     c->light_distance_m,
@@ -196,6 +229,9 @@ ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, c
                 kb *= c->ms_b;
                 kc *= c->ms_c;
             }
+            cloud = v3_add(cloud, v3_scale(v3_mul(v3_mul(sun_e, clouds_similarity_albedo(c)),
+                                                  v3_exp(v3_scale(v3_mul(k_d, tau_sun), -1.0f))),
+                                           c->ms_d / (4.0f * ATMO_PI)));
             if (use_ms) {
                 float rise = clamp((q.h - c->bottom_m) / (c->top_m - c->bottom_m), 0.0f, 1.0f);
                 vec3 sky = v3_mul(medium_ms_ground_irradiance(s, ATMO_LUT_ARGS, q.mu_s),
