@@ -98,8 +98,10 @@ r = json.load(open(sys.argv[1]))
 s = r["seconds"]
 cold = "cold" if not (r["render"].get("kernel_cache_hit") and r["render"].get("lut_cache_hit", True)) else "warm"
 dev = r["device"]["name"].replace(" ", "_")
+# the guide pass: seconds.guides, or in reports written before that key only under denoise
+guides = 0.0 if "guides" in s else r["render"].get("denoise", {}).get("guide_pass_seconds", 0.0)
 print(r["render"]["width"], r["render"]["height"], r["render"]["samples_max"],
-      "%.1f" % sum(s.values()), cold, dev)
+      "%.1f" % (sum(s.values()) + guides), cold, dev)
 EOF
         )
         cmd="atmo render --preset $preset${extra:+ $extra} --width $w --height $h --samples $spp --denoise high --output $name.png"

@@ -309,6 +309,7 @@ static int write_report(const char *path, const atmo_scene *s, const atmo_render
     cJSON_AddNumberToObject(t, "precompute", r->seconds_precompute);
     cJSON_AddNumberToObject(t, "render", r->seconds_render);
     cJSON_AddNumberToObject(t, "read_back", r->seconds_read);
+    cJSON_AddNumberToObject(t, "guides", r->seconds_guides);
     cJSON_AddNumberToObject(t, "write", seconds_write);
     report_passes_and_flare(ren, s, layers, n_layers, flare);
     cJSON *dn = atmo_outputs_denoise_json(s, denoised);
@@ -442,14 +443,14 @@ static void render_summary(const atmo_render_result *res, int n_out, int spectra
 {
     fprintf(stderr, "atmo render: wrote %d image%s (%dx%d, %d sample%s/pixel%s) in %.2fs: "
                     "%.2fs device, %.2fs build%s, %.2fs precompute%s, %.2fs render, %.2fs "
-                    "read-back, %.2fs write on %s\n",
+                    "read-back, %.2fs denoiser's guides, %.2fs write on %s\n",
             n_out, n_out == 1 ? "" : "s", res->width, res->height, res->samples_min,
             res->samples_min == 1 ? "" : "s", spectral ? ", spectral mode" : "",
             res->seconds_device + res->seconds_build + res->seconds_precompute +
-                res->seconds_render + res->seconds_read + seconds_write,
+                res->seconds_render + res->seconds_read + res->seconds_guides + seconds_write,
             res->seconds_device, res->seconds_build, res->kernel_cache_hit ? " (cached)" : "",
             res->seconds_precompute, res->lut_cache_hit ? " (cached)" : "", res->seconds_render,
-            res->seconds_read, seconds_write, res->device_name);
+            res->seconds_read, res->seconds_guides, seconds_write, res->device_name);
 }
 
 /* Render one scene (a frame) and write its files: the images, or with part_file the part's raw
