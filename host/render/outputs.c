@@ -39,13 +39,13 @@ void atmo_outputs_post(const atmo_scene *scene, atmo_post *post)
 }
 
 /* Whether the scene's image carries Monte Carlo noise that the filter is for: every path-traced
- * image, and a preview with anything beyond the air (terrain, the cloud layer or shell, objects,
- * the observer). The preview of the air alone is smooth (its jittered segments leave about 1 %
- * of noise), so the filter would cost seconds beside a render of a fraction of one and gain
- * nothing (docs/guide/denoise.md). */
+ * image, and a preview with anything beyond the air (terrain, procedural or a heightmap file,
+ * which implies it; the cloud layer or shell, objects, the observer). The preview of the air
+ * alone is smooth (its jittered segments leave about 1 % of noise), so the filter would cost
+ * seconds beside a render of a fraction of one and gain nothing (docs/guide/denoise.md). */
 static int scene_noisy(const atmo_scene *scene)
 {
-    return scene->path.mode == ATMO_RENDER_PATH || scene->terrain.enabled ||
+    return scene->path.mode == ATMO_RENDER_PATH || scene->terrain.enabled || scene->dem.file[0] ||
            scene->clouds.enabled || scene->cloud.enabled || scene->objects.count > 0 ||
            scene->observer.enabled;
 }
