@@ -167,10 +167,11 @@ ATMO_FN float clouds_octave_light_density(ATMO_GLOBAL const atmo_gpu_scene *s, A
 
 /* The light of one step of length dt sampled at distance t (coefficients constant over it),
  * added to *L, the clouds' part of it to *L_cloud instead with the thesis look; *T and *medium_t
- * advance over the step. `cloudy`: the layer is asked there. */
+ * advance over the step. `cloudy`: the layer is asked there; k_d and diffuse_albedo: the
+ * scene's clouds_diffusion_exponent and clouds_similarity_albedo, computed once per march. */
 ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, const medium_ray *m,
-                         float t, float dt, int cloudy, int use_ms, int ground, vec3 *L,
-                         vec3 *L_cloud, vec3 *T, vec3 *medium_t)
+                         float t, float dt, int cloudy, int use_ms, int ground, vec3 k_d,
+                         vec3 diffuse_albedo, vec3 *L, vec3 *L_cloud, vec3 *T, vec3 *medium_t)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
@@ -189,7 +190,6 @@ ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, c
     }
     vec3 Tw = medium_piece_weight(ms.extinction, dt, T);
     float occluded = visibility_sun_occluders(s, ATMO_LUT_ARGS, &q);
-    vec3 k_d = clouds_diffusion_exponent(c);
     float D = occluded > 0.0f ? clouds_octave_light_density(s, ATMO_LUT_ARGS, &q, k_d) : 0.0f;
     vec3 tau_sun = v3_scale(v3_from4(c->extinction), D), cloud_t = v3_exp(v3_scale(tau_sun, -1.0f));
     vec3 sun_e = v3(0.0f, 0.0f, 0.0f);
@@ -229,7 +229,7 @@ ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, c
                 kb *= c->ms_b;
                 kc *= c->ms_c;
             }
-            cloud = v3_add(cloud, v3_scale(v3_mul(v3_mul(sun_e, clouds_similarity_albedo(c)),
+            cloud = v3_add(cloud, v3_scale(v3_mul(v3_mul(sun_e, diffuse_albedo),
                                                   v3_exp(v3_scale(v3_mul(k_d, tau_sun), -1.0f))),
                                            c->ms_d / (4.0f * ATMO_PI)));
             if (use_ms) {
@@ -270,6 +270,8 @@ ATMO_FN void clouds_march(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
     float start = v3_length(m->origin); /* the camera's distance to the ray's origin */
     float far = c->max_distance_m - start;
     float t = t0;
+    /* the scene's constants of every step: the diffusion exponent and the diffuse orders' albedo */
+    vec3 k_d = clouds_diffusion_exponent(c), diffuse_albedo = clouds_similarity_albedo(c);
     for (int i = 0; i < c->steps && t < t1 && t < far && tracking_max3(*T) >= CLOUDS_T_MIN;
          i++) {
         medium_point q = medium_ray_at(m, t, s->atmosphere.bottom_radius);
@@ -278,13 +280,13 @@ ATMO_FN void clouds_march(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
         if (i == 0) /* a shorter first step: the samples' steps interleave */
             dt *= fmaxf(jitter, 1e-3f);
         dt = fminf(dt, t1 - t);
-        clouds_step(s, ATMO_LUT_ARGS, m, t + jitter * dt, dt, cloudy, use_ms, ground, L,
-                    L_cloud, T, medium_t);
+        clouds_step(s, ATMO_LUT_ARGS, m, t + jitter * dt, dt, cloudy, use_ms, ground, k_d,
+                    diffuse_albedo, L, L_cloud, T, medium_t);
         t += dt;
     }
     if (t < t1 && tracking_max3(*T) >= CLOUDS_T_MIN) /* the rest: air only */
-        clouds_step(s, ATMO_LUT_ARGS, m, t + jitter * (t1 - t), t1 - t, 0, use_ms, ground, L,
-                    L_cloud, T, medium_t);
+        clouds_step(s, ATMO_LUT_ARGS, m, t + jitter * (t1 - t), t1 - t, 0, use_ms, ground, k_d,
+                    diffuse_albedo, L, L_cloud, T, medium_t);
 }
 
 /* media_interval's part [t0, t1] of the layer: the steps, then with the thesis look the
