@@ -32,9 +32,30 @@
  * to [0, 1] the same way, then smoothstep(t - 0.05, t + 0.05, c0) with t = 1 - land_fraction.
  * The height is h = H coverage e (H = max_height_m); water covers h <= sea level.
  *
+ * Domain warp. Value noise's lattice is square and its first octave is not turned, so level
+ * sets of the elevation (the snow line, the grass line) seen from orbit, where the first
+ * octaves dominate, run along the world's axes in right angles. The fBm is therefore evaluated
+ * at a warped lattice point (after Quilez, "Domain warping", 2002):
+ *     x = x0 + A w(x0),  x0 = f (u, v),
+ *     w(x0) = sum_{o < TERRAIN_WARP_OCTAVES} 2^-o (n_a,o(F_o R_o x0), n_b,o(F_o R_o x0)),
+ * F_o = TERRAIN_WARP_FREQUENCY 2^o (a period of 2 first-octave cells, then 1), R_o = M^(o+1)
+ * (the octave rotation, so the warp's own lattices lie along neither the world's axes nor each
+ * other), A = warp (terrain.warp, in first-octave cells), each component its own value noise
+ * (seeds seed + TERRAIN_WARP_SEED + 2 o and + 1). Its Jacobian J = I + A sum_o 2^-o F_o G_o R_o
+ * (G_o the rows grad n_a,o, grad n_b,o) is exact, and the fBm's gradient in x0 is J^T times
+ * its gradient in x: terrain_fbm starts its octaves' Jacobians J_i = (2 M)^i J instead of
+ * (2 M)^i, which carries the erosion's Hessian term too (D_i sums gradients in each octave's
+ * own coordinates, so d D_i / d x0 = sum_j H_j J_j). ||J|| <= 1 + A (15/4) sqrt 2 sum_o
+ * 2^-o F_o (host/plan/plan_terrain.c's slope bound). One octave of warp bends the lattice
+ * into its own (an excess of contour normals along its turned axes at A >= 2, a deficit at the
+ * diagonals at 1.5); two octaves at A 1.25 to 1.5 leave no axis preference that
+ * tests/test_terrain_isotropy.c detects (docs/guide/terrain.md). A = 0 gives x = x0 and
+ * J = I exactly (the field bitwise as without the warp).
+ *
  * Octave i hashes with seed + i (the coverage with seed + 0x51ed27 + i), so octaves are
  * independent lattices. Coordinates: (u, v) in metres, the planar coordinates of terrain.h; octave 0 samples the
- * lattice at (u, v) times frequency_per_m. Parameters: gpu_terrain.h's field. */
+ * lattice at the warped point of (u, v) times frequency_per_m. The coverage is not warped (its
+ * 5000 km cells span a whole view from orbit). Parameters: gpu_terrain.h's field. */
 #ifndef ATMO_TERRAIN_NOISE_H
 #define ATMO_TERRAIN_NOISE_H
 #ifndef __OPENCL_VERSION__
