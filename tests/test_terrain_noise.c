@@ -159,7 +159,8 @@ int main(void)
            worst_fd, worst_h, worst_h_rel, worst_g, max_slope, L);
     CHECK(slope_fraction("terrain.seed=46", "terrain.frequency_per_m=3e-5", "terrain.warp=1.25") <
           1.0);
-    CHECK(slope_fraction("terrain.seed=46", "terrain.frequency_per_m=3e-5", "terrain.warp=0") < 1.0);
+    CHECK(slope_fraction("terrain.seed=46", "terrain.frequency_per_m=3e-5", "terrain.warp=0") <
+          1.0);
     CHECK(slope_fraction("terrain.seed=7", "terrain.frequency_per_m=1e-4", "terrain.warp=0") < 1.0);
     CHECK(slope_fraction("terrain.seed=7", "terrain.frequency_per_m=1e-4", "terrain.warp=1.25") <
           1.0);

@@ -46,10 +46,10 @@
  * its gradient in x: terrain_fbm starts its octaves' Jacobians J_i = (2 M)^i J instead of
  * (2 M)^i, which carries the erosion's Hessian term too (D_i sums gradients in each octave's
  * own coordinates, so d D_i / d x0 = sum_j H_j J_j). ||J|| <= 1 + A (15/4) sqrt 2 sum_o
- * 2^-o F_o (host/plan/plan_terrain.c's slope bound). One octave of warp bends the lattice
- * into its own (an excess of contour normals along its turned axes at A >= 2, a deficit at the
- * diagonals at 1.5); two octaves at A 1.25 to 1.5 leave no axis preference that
- * tests/test_terrain_isotropy.c detects (docs/guide/terrain.md). A = 0 gives x = x0 and
+ * 2^-o F_o (host/plan/plan_terrain.c's slope bound). One octave of warp leaves a preference
+ * of its own (contour normals scarce at the diagonals at A 1.5, at the world's axes at 2); two
+ * octaves at A 1.25 to 1.5 leave none that tests/test_terrain_isotropy.c detects, and at 2
+ * the first warp octave's lattice shows (docs/guide/terrain.md). A = 0 gives x = x0 and
  * J = I exactly (the field bitwise as without the warp).
  *
  * Octave i hashes with seed + i (the coverage with seed + 0x51ed27 + i), so octaves are
@@ -182,9 +182,9 @@ ATMO_FN void terrain_fbm_point(ATMO_GLOBAL const atmo_gpu_terrain_field *f, floa
             *x += amp * terrain_value_noise_value(s, t, sa);
             *y += amp * terrain_value_noise_value(s, t, sb);
         }
-        float nc = c * TERRAIN_ROT_C - sn * TERRAIN_ROT_S, ns = sn * TERRAIN_ROT_C + c * TERRAIN_ROT_S;
+        float nc = c * TERRAIN_ROT_C - sn * TERRAIN_ROT_S; /* the next octave turns by M */
+        sn = sn * TERRAIN_ROT_C + c * TERRAIN_ROT_S;
         c = nc;
-        sn = ns;
         amp *= 0.5f;
         fr *= 2.0f;
     }
