@@ -33,6 +33,12 @@ double test_trace_R_m;
 void test_trace_plan_at(test_trace_setup *u, const double cam[3], const char *extra1,
                         const char *extra2)
 {
+    test_trace_plan_at3(u, cam, extra1, extra2, NULL);
+}
+
+void test_trace_plan_at3(test_trace_setup *u, const double cam[3], const char *extra1,
+                         const char *extra2, const char *extra3)
+{
     char buf[160];
     test_scene_preset(&u->scene, "sky-noon");
     test_scene_set(&u->scene, "atmosphere.method=single");
@@ -44,6 +50,8 @@ void test_trace_plan_at(test_trace_setup *u, const double cam[3], const char *ex
         test_scene_set(&u->scene, extra1);
     if (extra2)
         test_scene_set(&u->scene, extra2);
+    if (extra3)
+        test_scene_set(&u->scene, extra3);
     test_plan(&u->scene, &u->plan);
     memcpy(u->cam, cam, sizeof u->cam);
     u->heightmap = NULL;

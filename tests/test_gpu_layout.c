@@ -31,7 +31,7 @@
     X(atmo_gpu_terrain_field, seed) X(atmo_gpu_terrain_field, heightmap_extent_m)                \
     X(atmo_gpu_terrain_field, base_rect) X(atmo_gpu_terrain_field, base_detail)                  \
     X(atmo_gpu_terrain_field, detail_octave0) X(atmo_gpu_terrain_field, detail_octaves)          \
-    X(atmo_gpu_terrain_field, detail_amplitude_m)                                                \
+    X(atmo_gpu_terrain_field, detail_amplitude_m) X(atmo_gpu_terrain_field, warp)                \
     X(atmo_gpu_terrain, camera) X(atmo_gpu_terrain, steps) X(atmo_gpu_terrain, shafts)          \
     X(atmo_gpu_terrain, pixel_angle) X(atmo_gpu_terrain, sun_map_size)                          \
     X(atmo_gpu_terrain, sun_map_extent_m) X(atmo_gpu_terrain, sun_map_soft_m)                    \

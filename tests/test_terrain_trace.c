@@ -101,16 +101,18 @@ int main(void)
     }
     atmo_plan_free(&u.plan);
 
-    /* the thesis presets' mountains (seed 7, first octave 1e-4 /m) at the default steps */
-    static const char *const mountains[2] = {"terrain.seed=7", "terrain.frequency_per_m=1e-4"};
+    /* the thesis presets' mountains (seed 7, first octave 1e-4 /m, no warp) at the default
+     * steps */
+    static const char *const mountains[3] = {"terrain.seed=7", "terrain.frequency_per_m=1e-4",
+                                             "terrain.warp=0"};
     double cam_m[3] = {TEST_TRACE_SITE_X, 0.0, TEST_TRACE_SITE_Z};
-    test_trace_plan_at(&u, cam_m, mountains[0], mountains[1]);
+    test_trace_plan_at3(&u, cam_m, mountains[0], mountains[1], mountains[2]);
     const atmo_gpu_terrain_field fm = u.plan.gpu.terrain.field;
     test_trace_surface_point(&fm, NULL, 0.0, TEST_TRACE_SITE_X, TEST_TRACE_SITE_Z, p, n);
     atmo_plan_free(&u.plan);
     for (int k = 0; k < 3; k++)
         cam_m[k] = p[k] + 300.0 * n[k];
-    test_trace_plan_at(&u, cam_m, mountains[0], mountains[1]);
+    test_trace_plan_at3(&u, cam_m, mountains[0], mountains[1], mountains[2]);
     u.plan.gpu.terrain.optimism = 4.0f; /* the thesis presets' */
     rng = 778u;
     test_trace_make_rays(&fm, NULL, cam_m, N_DOWN, N_GRAZE, N_SKIM, &rng, rays);

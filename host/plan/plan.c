@@ -47,20 +47,20 @@ _Static_assert(sizeof(atmo_gpu_path) == 80, "atmo_gpu_path layout");
 _Static_assert(offsetof(atmo_gpu_path, object_count) == 16, "atmo_gpu_path layout");
 _Static_assert(offsetof(atmo_gpu_path, filter_radius) == 52, "atmo_gpu_path layout");
 _Static_assert(offsetof(atmo_gpu_scene, path) == 688, "atmo_gpu_scene layout");
-_Static_assert(sizeof(atmo_gpu_terrain_field) == 80, "atmo_gpu_terrain_field layout");
+_Static_assert(sizeof(atmo_gpu_terrain_field) == 96, "atmo_gpu_terrain_field layout");
 _Static_assert(offsetof(atmo_gpu_terrain_field, seed) == 24, "atmo_gpu_terrain_field layout");
 _Static_assert(offsetof(atmo_gpu_terrain_field, base_rect) == 48, "atmo_gpu_terrain_field");
 _Static_assert(offsetof(atmo_gpu_terrain_field, base_detail) == 64, "atmo_gpu_terrain_field");
 _Static_assert(offsetof(atmo_gpu_terrain_field, detail_octave0) == 68, "atmo_gpu_terrain_field");
 _Static_assert(offsetof(atmo_gpu_terrain_field, detail_amplitude_m) == 76,
                "atmo_gpu_terrain_field");
-_Static_assert(sizeof(atmo_gpu_terrain) == 176, "atmo_gpu_terrain layout");
-_Static_assert(offsetof(atmo_gpu_terrain, camera) == 80, "atmo_gpu_terrain layout");
-_Static_assert(offsetof(atmo_gpu_terrain, shafts) == 132, "atmo_gpu_terrain layout");
-_Static_assert(offsetof(atmo_gpu_terrain, sun_map_size) == 140, "atmo_gpu_terrain layout");
-_Static_assert(offsetof(atmo_gpu_terrain, sun_map_axis) == 160, "atmo_gpu_terrain layout");
+_Static_assert(sizeof(atmo_gpu_terrain) == 192, "atmo_gpu_terrain layout");
+_Static_assert(offsetof(atmo_gpu_terrain, camera) == 96, "atmo_gpu_terrain layout");
+_Static_assert(offsetof(atmo_gpu_terrain, shafts) == 148, "atmo_gpu_terrain layout");
+_Static_assert(offsetof(atmo_gpu_terrain, sun_map_size) == 156, "atmo_gpu_terrain layout");
+_Static_assert(offsetof(atmo_gpu_terrain, sun_map_axis) == 176, "atmo_gpu_terrain layout");
 _Static_assert(offsetof(atmo_gpu_scene, terrain) == 768, "atmo_gpu_scene layout");
-_Static_assert(sizeof(atmo_gpu_scene) == 944, "atmo_gpu_scene layout");
+_Static_assert(sizeof(atmo_gpu_scene) == 960, "atmo_gpu_scene layout");
 
 #define DEG (M_PI / 180.0)
 

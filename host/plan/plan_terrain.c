@@ -25,8 +25,19 @@
  * TERRAIN_SLOPE_ENVELOPE = 6: above every sampled maximum (18 at N = 9), so L is the
  * steepest slope the field shows rather than one it cannot reach; about 1.3 for the default
  * terrain (H 4 km, f 3e-5 /m, 9 octaves, relief 1.2) and 4.3 for the thesis presets' (f 1e-4
- * /m). tests/test_terrain_noise.c samples the slopes against L (the erosion's second term
- * included); the coverage's slope, at coasts only, is left out. terrain.optimism and the tracer's back-stepping
+ * /m). The domain warp (noise.h) evaluates the fBm at x = x0 + A w(x0) with Jacobian
+ * J = I + A sum_o 2^-o F_o G_o R_o (G_o the rows grad n_a, grad n_b of warp octave o, each of
+ * norm at most 15/4; R_o a rotation; F_o = F 2^o), so the slope in x0 is at most ||J|| times
+ * the slope in x, and
+ *     ||J|| <= 1 + A sum_o 2^-o F_o ||G_o|| <= 1 + TERRAIN_WARP_OCTAVES A F (15/4) sqrt 2
+ * (||G||_2 <= its Frobenius norm, reached where both noises of an octave peak along one
+ * direction; every octave's term is A F (15/4) sqrt 2): L takes that factor, 7.6 for the
+ * default warp (A 1.25 cells, F 1/2, two octaves), 1 without one. The slopes sampled over
+ * the land stay far below it (1.8 against the warped L of 9.9 for the default terrain,
+ * tests/test_terrain_noise.c): the worst case needs all four warp noises' steepest points and
+ * the fBm's at one spot. tests/test_terrain_noise.c samples the slopes against L (the
+ * erosion's second term and the warp included); the coverage's slope, at coasts only, is left
+ * out. terrain.optimism and the tracer's back-stepping
  * answer for steps longer than L allows; tests/test_terrain_trace.c measures the misses.
  *
  * The detail below a DEM's cells (kernels/terrain/terrain_detail.h) adds
@@ -79,8 +90,10 @@ double atmo_terrain_slope_bound(const atmo_gpu_terrain_field *f)
     double detail = f->detail_octaves * (double)f->detail_amplitude_m *
                     ldexp((double)f->frequency_per_m, f->detail_octave0) * per_octave;
     double octaves = fmin(f->octaves * per_octave, TERRAIN_SLOPE_ENVELOPE * sqrt(f->octaves));
+    double warp = 1.0 + TERRAIN_WARP_OCTAVES * (double)f->warp * (double)TERRAIN_WARP_FREQUENCY *
+                            per_octave * sqrt(2.0);
     return (double)f->max_height_m * (double)f->frequency_per_m * octaves *
-               (double)TERRAIN_RELIEF / norm + detail;
+               (double)TERRAIN_RELIEF / norm * warp + detail;
 }
 
 /* The scene's DEM (p->dem, read by the plan) as the heightmap's base: resampled bicubically
@@ -125,6 +138,7 @@ int atmo_plan_terrain(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     t->field.frequency_per_m = (float)s->terrain.frequency_per_m;
     t->field.coverage_frequency_per_m = (float)s->terrain.coverage_frequency_per_m;
     t->field.land_fraction = (float)s->terrain.land_fraction;
+    t->field.warp = (float)s->terrain.warp;
     t->field.octaves = s->terrain.octaves;
     t->field.coverage_octaves = s->terrain.coverage_octaves;
     t->field.seed = (uint)s->terrain.seed;

@@ -274,6 +274,11 @@ const atmo_param atmo_params[] = {
     ROW_FLOAT("terrain.land_fraction", terrain.land_fraction, "", 0, 1, 0.6,
               "land/sea threshold: 1 all land, 0 all sea (the land's share rises steeply "
               "between 0.3 and 0.45)"),
+    ROW_FLOAT("terrain.warp", terrain.warp, "", 0, 4, 1.25,
+              "domain warp of the height fBm, in its first octave's cells: bends the value "
+              "noise's square lattice so snow lines and valleys from orbit are not axis-aligned "
+              "(0: none; the sphere tracer's slope bound grows by a factor 1 + 5.3 warp; the "
+              "thesis presets set 0)"),
     ROW_INT("terrain.octaves", terrain.octaves, "", 1, 16, 9, "octaves of the height fBm"),
     ROW_INT("terrain.coverage_octaves", terrain.coverage_octaves, "", 1, 12, 6,
             "octaves of the land/sea field"),

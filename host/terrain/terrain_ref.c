@@ -2,7 +2,8 @@
  * (atmo/terrain_ref.h), the host reference of kernels/terrain/noise.h and terrain.h.
  *
  * The same integer hash and lattice values as the kernels (exact in both precisions), the same
- * quintic value noise, eroded fBm with the octave rotation and the exact gradient, coverage
+ * quintic value noise, eroded fBm with the octave rotation, the domain warp of its first
+ * octave's lattice point and the exact gradient (the warp's Jacobian by the chain rule), coverage
  * field and planar placement u = R x / r, v = R z / r, the detail below a DEM's cells
  * (terrain_detail.h: plain octaves i0 .. i0 + K - 1 of the same lattices) and the heightmap's
  * bilinear lookup of its float texels, all in double. A ray hit is brute force:
@@ -63,10 +64,38 @@ static void next_octave(double *x, double *y, double j[4])
     j[0] = n00, j[1] = n01, j[2] = n10, j[3] = n11;
 }
 
-static double fbm(double x, double y, int octaves, unsigned seed, double *ex, double *ey)
+/* the warped first-octave point of lattice point (x, y) and its Jacobian (noise.h's
+ * terrain_fbm_point: octave o of the warp at frequency F 2^o, turned by M^(o+1), amplitude
+ * A 2^-o, seeds seed + TERRAIN_WARP_SEED + 2 o and + 1) */
+static void warp(const atmo_gpu_terrain_field *f, double *x, double *y, double j[4])
+{
+    double A = (double)f->warp, F = (double)TERRAIN_WARP_FREQUENCY;
+    double x0 = *x, y0 = *y;
+    double amp = A, fr = F, c = ROT_C, sn = ROT_S;
+    unsigned seed = f->seed + TERRAIN_WARP_SEED;
+    for (int o = 0; o < TERRAIN_WARP_OCTAVES; o++) {
+        double s = fr * (c * x0 - sn * y0), t = fr * (sn * x0 + c * y0), wa[6], wb[6];
+        noise(s, t, seed + 2u * o, wa);
+        noise(s, t, seed + 2u * o + 1u, wb);
+        *x += amp * wa[0];
+        *y += amp * wb[0];
+        j[0] += amp * fr * (c * wa[1] + sn * wa[2]);
+        j[1] += amp * fr * (c * wa[2] - sn * wa[1]);
+        j[2] += amp * fr * (c * wb[1] + sn * wb[2]);
+        j[3] += amp * fr * (c * wb[2] - sn * wb[1]);
+        double nc = c * ROT_C - sn * ROT_S, ns = sn * ROT_C + c * ROT_S; /* turn by M again */
+        c = nc, sn = ns;
+        amp *= 0.5, fr *= 2;
+    }
+}
+
+static double fbm(const atmo_gpu_terrain_field *f, double x, double y, double *ex, double *ey)
 {
     double a = 0, ax = 0, ay = 0, b = 1, norm = 0, dx = 0, dy = 0;
     double s[4] = {0, 0, 0, 0}, j[4] = {1, 0, 0, 1};
+    int octaves = f->octaves;
+    unsigned seed = f->seed;
+    warp(f, &x, &y, j);
     for (int i = 0; i < octaves; i++) {
         double n[6];
         noise(x, y, seed + (unsigned)i, n);
@@ -123,7 +152,7 @@ double terrain_ref_height(const atmo_gpu_terrain_field *f, double u, double v, d
     double cu, cv, ex = 0, ey = 0, e = 0, fr = (double)f->frequency_per_m;
     double c = coverage(f, u, v, &cu, &cv);
     if (c > 0)
-        e = fbm(u * fr, v * fr, f->octaves, f->seed, &ex, &ey);
+        e = fbm(f, u * fr, v * fr, &ex, &ey);
     double H = (double)f->max_height_m;
     if (grad) {
         grad[0] = c > 0 ? H * (cu * e + c * ex * fr) : 0;

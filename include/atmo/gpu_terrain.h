@@ -35,6 +35,9 @@ typedef struct atmo_gpu_terrain_field {
     int detail_octave0;             /* first fBm octave of the detail below a DEM's cells */
     int detail_octaves;             /* its octaves, 0: none (terrain_detail.h) */
     float detail_amplitude_m;       /* the first detail octave's amplitude, m */
+    float warp;                     /* the fBm's domain warp, first-octave cells (noise.h);
+                                       0: none */
+    int pad0, pad1, pad2;
 } atmo_gpu_terrain_field;
 
 typedef struct atmo_gpu_terrain {

@@ -195,6 +195,7 @@ typedef struct atmo_scene {
         double frequency_per_m;          /* first octave of the height fBm */
         double coverage_frequency_per_m; /* first octave of the land/sea field */
         double land_fraction;  /* land/sea threshold: 1 all land, 0 all sea */
+        double warp;           /* the height fBm's domain warp, first-octave cells */
         int octaves, coverage_octaves;
         int seed;
         int heightmap_size;    /* texels per side; 0: direct evaluation */

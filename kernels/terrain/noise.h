@@ -32,9 +32,30 @@
  * to [0, 1] the same way, then smoothstep(t - 0.05, t + 0.05, c0) with t = 1 - land_fraction.
  * The height is h = H coverage e (H = max_height_m); water covers h <= sea level.
  *
+ * Domain warp. Value noise's lattice is square and its first octave is not turned, so level
+ * sets of the elevation (the snow line, the grass line) seen from orbit, where the first
+ * octaves dominate, run along the world's axes in right angles. The fBm is therefore evaluated
+ * at a warped lattice point (after Quilez, "Domain warping", 2002):
+ *     x = x0 + A w(x0),  x0 = f (u, v),
+ *     w(x0) = sum_{o < TERRAIN_WARP_OCTAVES} 2^-o (n_a,o(F_o R_o x0), n_b,o(F_o R_o x0)),
+ * F_o = TERRAIN_WARP_FREQUENCY 2^o (a period of 2 first-octave cells, then 1), R_o = M^(o+1)
+ * (the octave rotation, so the warp's own lattices lie along neither the world's axes nor each
+ * other), A = warp (terrain.warp, in first-octave cells), each component its own value noise
+ * (seeds seed + TERRAIN_WARP_SEED + 2 o and + 1). Its Jacobian J = I + A sum_o 2^-o F_o G_o R_o
+ * (G_o the rows grad n_a,o, grad n_b,o) is exact, and the fBm's gradient in x0 is J^T times
+ * its gradient in x: terrain_fbm starts its octaves' Jacobians J_i = (2 M)^i J instead of
+ * (2 M)^i, which carries the erosion's Hessian term too (D_i sums gradients in each octave's
+ * own coordinates, so d D_i / d x0 = sum_j H_j J_j). ||J|| <= 1 + A (15/4) sqrt 2 sum_o
+ * 2^-o F_o (host/plan/plan_terrain.c's slope bound). One octave of warp leaves a preference
+ * of its own (contour normals scarce at the diagonals at A 1.5, at the world's axes at 2); two
+ * octaves at A 1.25 to 1.5 leave none that tests/test_terrain_isotropy.c detects, and at 2
+ * the first warp octave's lattice shows (docs/guide/terrain.md). A = 0 gives x = x0 and
+ * J = I exactly (the field bitwise as without the warp).
+ *
  * Octave i hashes with seed + i (the coverage with seed + 0x51ed27 + i), so octaves are
  * independent lattices. Coordinates: (u, v) in metres, the planar coordinates of terrain.h; octave 0 samples the
- * lattice at (u, v) times frequency_per_m. Parameters: gpu_terrain.h's field. */
+ * lattice at the warped point of (u, v) times frequency_per_m. The coverage is not warped (its
+ * 5000 km cells span a whole view from orbit). Parameters: gpu_terrain.h's field. */
 #ifndef ATMO_TERRAIN_NOISE_H
 #define ATMO_TERRAIN_NOISE_H
 #ifndef __OPENCL_VERSION__
@@ -48,6 +69,9 @@
 #define TERRAIN_RELIEF 1.2f
 #define TERRAIN_BOUND_OCTAVE_A 4
 #define TERRAIN_BOUND_OCTAVE_B 7
+#define TERRAIN_WARP_FREQUENCY 0.5f
+#define TERRAIN_WARP_OCTAVES 2
+#define TERRAIN_WARP_SEED 0xa3c59ac3u
 
 /* Value noise at a point and its derivatives (see the top of the file). */
 typedef struct terrain_noise {
@@ -111,13 +135,70 @@ ATMO_FN void terrain_octave_next(float *x, float *y)
     *y = ny;
 }
 
-/* The eroded fBm's elevation e in [0, 1] at lattice point (x, y) and its gradient in (x, y). */
-ATMO_FN float terrain_fbm(float x, float y, int octaves, uint seed, float *ex, float *ey)
+/* Value noise's value alone (terrain_value_noise's n). */
+ATMO_FN float terrain_value_noise_value(float x, float y, uint seed)
+{
+    float fx0 = floorf(x), fy0 = floorf(y);
+    int ix = (int)fx0, iy = (int)fy0;
+    float fx = x - fx0, fy = y - fy0;
+    float qx = fx * fx * fx * (fx * (fx * 6.0f - 15.0f) + 10.0f);
+    float qy = fy * fy * fy * (fy * (fy * 6.0f - 15.0f) + 10.0f);
+    float a = terrain_lattice(ix, iy, seed), b = terrain_lattice(ix + 1, iy, seed);
+    float c = terrain_lattice(ix, iy + 1, seed), d = terrain_lattice(ix + 1, iy + 1, seed);
+    float k1 = b - a, k2 = c - a, k3 = a - b - c + d;
+    return a + k1 * qx + k2 * qy + k3 * qx * qy;
+}
+
+/* The fBm's first-octave lattice point of (u, v) metres, x = x0 + A w(x0) with x0 = f (u, v)
+ * (the domain warp, top of the file), and with jac non-NULL its Jacobian d x / d x0 in lattice
+ * units, row-major: jac[0] = dx/dx0, jac[1] = dx/dy0, jac[2] = dy/dx0, jac[3] = dy/dy0.
+ * With warp 0 the point is x0 and the Jacobian the identity, exactly. */
+ATMO_FN void terrain_fbm_point(ATMO_GLOBAL const atmo_gpu_terrain_field *f, float u, float v,
+                               float *x, float *y, float *jac)
+{
+    float x0 = u * f->frequency_per_m, y0 = v * f->frequency_per_m;
+    *x = x0;
+    *y = y0;
+    if (jac)
+        jac[0] = 1.0f, jac[1] = 0.0f, jac[2] = 0.0f, jac[3] = 1.0f;
+    if (f->warp == 0.0f)
+        return;
+    float amp = f->warp, fr = TERRAIN_WARP_FREQUENCY, c = TERRAIN_ROT_C, sn = TERRAIN_ROT_S;
+    uint seed = f->seed + TERRAIN_WARP_SEED;
+    for (int o = 0; o < TERRAIN_WARP_OCTAVES; o++) {
+        float s = fr * (c * x0 - sn * y0), t = fr * (sn * x0 + c * y0);
+        uint sa = seed + 2u * (uint)o, sb = sa + 1u;
+        if (jac) {
+            terrain_noise wa = terrain_value_noise(s, t, sa), wb = terrain_value_noise(s, t, sb);
+            float k = amp * fr;
+            *x += amp * wa.v;
+            *y += amp * wb.v;
+            /* d w / d x0 = F grad_(s,t) w R, R the octave's rotation [[c, -s], [s, c]] */
+            jac[0] += k * (c * wa.dx + sn * wa.dy);
+            jac[1] += k * (c * wa.dy - sn * wa.dx);
+            jac[2] += k * (c * wb.dx + sn * wb.dy);
+            jac[3] += k * (c * wb.dy - sn * wb.dx);
+        } else {
+            *x += amp * terrain_value_noise_value(s, t, sa);
+            *y += amp * terrain_value_noise_value(s, t, sb);
+        }
+        float nc = c * TERRAIN_ROT_C - sn * TERRAIN_ROT_S; /* the next octave turns by M */
+        sn = sn * TERRAIN_ROT_C + c * TERRAIN_ROT_S;
+        c = nc;
+        amp *= 0.5f;
+        fr *= 2.0f;
+    }
+}
+
+/* The eroded fBm's elevation e in [0, 1] at lattice point (x, y) and its gradient in the
+ * unwarped lattice coordinates (x0, y0), jac = d(x, y)/d(x0, y0) (terrain_fbm_point). */
+ATMO_FN float terrain_fbm(float x, float y, const float *jac, int octaves, uint seed, float *ex,
+                          float *ey)
 {
     float a = 0.0f, ax = 0.0f, ay = 0.0f, b = 1.0f, norm = 0.0f;
     float dx = 0.0f, dy = 0.0f;                             /* D_i */
     float sxx = 0.0f, sxy = 0.0f, syx = 0.0f, syy = 0.0f;   /* sum_j J_j^T H_j, row-major */
-    float j00 = 1.0f, j01 = 0.0f, j10 = 0.0f, j11 = 1.0f;   /* J_i = (2M)^i */
+    float j00 = jac[0], j01 = jac[1], j10 = jac[2], j11 = jac[3]; /* J_i = (2M)^i J_w */
     for (int i = 0; i < octaves; i++) {
         terrain_noise n = terrain_value_noise(x, y, seed + (uint)i);
         dx += n.dx;
@@ -270,8 +351,9 @@ ATMO_FN float terrain_height_direct_value(ATMO_GLOBAL const atmo_gpu_terrain_fie
     float c = terrain_coverage_value(f, u, v);
     if (c <= 0.0f)
         return 0.0f;
-    return f->max_height_m * c *
-           terrain_fbm_value(u * f->frequency_per_m, v * f->frequency_per_m, f->octaves, f->seed);
+    float x, y;
+    terrain_fbm_point(f, u, v, &x, &y, 0);
+    return f->max_height_m * c * terrain_fbm_value(x, y, f->octaves, f->seed);
 }
 
 /* An upper bound on the height at (u, v), cheaper than the height where it is well below
@@ -283,8 +365,9 @@ ATMO_FN float terrain_height_direct_capped(ATMO_GLOBAL const atmo_gpu_terrain_fi
 {
     float H = f->max_height_m;
     if (cap_m < H && cap_m > 0.0f) {
-        float e = terrain_fbm_value_capped(u * f->frequency_per_m, v * f->frequency_per_m,
-                                           f->octaves, f->seed, cap_m / H, bound);
+        float x, y;
+        terrain_fbm_point(f, u, v, &x, &y, 0);
+        float e = terrain_fbm_value_capped(x, y, f->octaves, f->seed, cap_m / H, bound);
         if (*bound)
             return H * e;
     }
@@ -303,8 +386,9 @@ ATMO_FN terrain_height terrain_height_direct(ATMO_GLOBAL const atmo_gpu_terrain_
         r.h = 0.0f, r.du = 0.0f, r.dv = 0.0f;
         return r;
     }
-    float e = terrain_fbm(u * f->frequency_per_m, v * f->frequency_per_m, f->octaves, f->seed,
-                          &ex, &ey);
+    float x, y, jac[4];
+    terrain_fbm_point(f, u, v, &x, &y, jac);
+    float e = terrain_fbm(x, y, jac, f->octaves, f->seed, &ex, &ey);
     float H = f->max_height_m;
     r.h = H * c * e;
     r.du = H * (cu * e + c * ex * f->frequency_per_m);
