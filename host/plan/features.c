@@ -94,8 +94,8 @@ static int plan_atmosphere(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 /* The headers every kernel is compiled with: the shared GPU structs (each feature's in its own
  * header, before the scene struct that holds them), math, the atmosphere, the camera, the
  * camera-relative ray that the media and the integrator take, the media's contract and the
- * air, the planet as the first occluder of the sun, and the free-flight and ratio-tracking
- * steps of the Monte Carlo walks. */
+ * air, the planet as the first occluder of the sun, the free-flight and ratio-tracking steps
+ * of the Monte Carlo walks and the deterministic quadrature's walk. */
 static const char *const atmosphere_fragments[] = {
     "kernels/common/compat.h",        "include/atmo/gpu_enums.h",
     "include/atmo/gpu_atmosphere.h",  "include/atmo/gpu_ms_lut.h",
@@ -109,8 +109,8 @@ static const char *const atmosphere_fragments[] = {
     "kernels/common/camera.h",
     "kernels/atmosphere/sky_method.h", "kernels/media/ray.h",
     "kernels/media/tracking.h",       "kernels/media/majorant_walk.h",
-    "kernels/media/media.h",          "kernels/media/planet.h",
-    "kernels/atmosphere/transmittance.cl", NULL};
+    "kernels/media/media.h",          "kernels/media/quadrature_walk.h",
+    "kernels/media/planet.h",         "kernels/atmosphere/transmittance.cl", NULL};
 static const atmo_slots atmosphere_slots = {.sun_occluder = "planet_sun_visibility",
                                             .surface_occluder = 1};
 static const atmo_gpu_field atmosphere_params[] = {ATMO_GPU_FIELD(atmosphere),
@@ -131,7 +131,7 @@ static const char *const visibility_fragments[] = {"kernels/media/visibility.h",
 static const char *const medium_fragments[] = {"kernels/media/medium.h", NULL};
 #define MEDIUM_SOURCES                                                                             \
     "kernels/media/ray.h", "kernels/media/tracking.h", "kernels/media/media.h",                    \
-        "kernels/media/visibility.h",                                                              \
+        "kernels/media/quadrature_walk.h", "kernels/media/visibility.h",                           \
         "kernels/media/observer.h", "kernels/media/medium.h"
 
 /* Psi_ms: its lookups (the source of march and fast) before the media's composition, its
