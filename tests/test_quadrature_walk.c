@@ -26,7 +26,10 @@
  *     relative 1e-5 (float roundings over <= 70 pieces, each ~1e-7).
  *  4. quadrature_grid_next(t, d, n) is the least break d (k/n)^2, k = 1..n, above t (the float
  *     breaks quadrature_grid_segment gives, searched one by one), at 10^4 points t over
- *     [0, d) and at every break itself. */
+ *     [0, d) and at every break itself.
+ *  5. Equal segments (quadrature_begin_equal; 49 lengths of 100 m to 1e6 m, 1 to 199
+ *     segments): exactly n pieces, piece i from i d/n (2 ulp(d)), d/n long (1 ulp), sampled at
+ *     its middle (i + 1/2) d/n (2 ulp). */
 #include <math.h>
 #include <stdio.h>
 #include "testlib.h"
@@ -154,6 +157,25 @@ int main(void)
     };
     for (size_t k = 0; k < sizeof rays / sizeof rays[0]; k++)
         check_ray(rays[k].name, d, n, 0.37f, rays[k].lo, rays[k].hi, rays[k].count);
+
+    /* 5: equal segments */
+    int equal_wrong = 0;
+    for (int k = 0; k <= 48; k++)
+        for (int n_eq = 1; n_eq <= 200; n_eq += 33) {
+            float d_eq = (float)(100.0 * pow(10.0, k / 12.0));
+            quadrature_walk q = quadrature_begin_equal(d_eq, n_eq);
+            int i = 0;
+            double len = (double)d_eq / n_eq;
+            for (int e; (e = quadrature_next(&q)) != QUADRATURE_END && i <= n_eq; i++) {
+                double t = (i + 0.5) * len, start = i * len;
+                equal_wrong += e != QUADRATURE_PIECE || fabs((double)q.t - t) > 2.0 * ulp(t) ||
+                               fabs((double)q.start - start) > 2.0 * ulp(d_eq) ||
+                               fabs((double)q.dt - len) > ulp(len);
+            }
+            equal_wrong += i != n_eq;
+        }
+    CHECK(equal_wrong == 0);
+    printf("equal segments: %d of 343 rays off\n", equal_wrong);
 
     /* 4: the next break */
     float breaks[17];

@@ -46,6 +46,7 @@
 #include "common/frame.h"
 #include "common/phase.h"
 #include "media/ray.h"
+#include "media/quadrature_walk.h"
 #include "media/tracking.h"
 #include "atmo/gpu_types.h"
 #endif
@@ -58,7 +59,7 @@
  * other media's components after them. */
 #define MEDIA_RAYLEIGH 0
 #define MEDIA_MIE 1
-#define MEDIA_MAX_INTERVALS 2 /* parts of one ray with their own stepping */
+#define MEDIA_MAX_INTERVALS QUADRATURE_MAX_PARTS /* parts of one ray with their own stepping */
 
 /* The modes of the one majorant walk (media_walk.h) and of the composed majorant. */
 #define MEDIA_WALK_MEDIA 0  /* the scene's media with the air (method reference's rays) */

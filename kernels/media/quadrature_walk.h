@@ -2,8 +2,9 @@
  * [0, d] that a quadrature samples once each, handed one at a time to the caller, which
  * evaluates each one (an iterator with the shape of majorant_walk.h's: OpenCL C has no function
  * pointers, so the per-piece evaluation is the caller's loop body). The medium integrator
- * (medium.h: single, march, fast's and lut's segments) and the multiple-scattering LUT's
- * directions (ms_lut.h) walk it.
+ * (medium.h: single, march, fast's and lut's segments), the multiple-scattering LUT's
+ * directions (ms_lut.h), method lut's precompute (lut_precompute.cl) and the transmittance LUT
+ * (atmosphere.h's atmosphere_optical_depth_to_top) walk it.
  *
  *     quadrature_walk q = quadrature_begin(d, n, jitter);
  *     q.parts = media_intervals(..., q.lo, q.hi);            (optional: break points)
@@ -12,10 +13,12 @@
  *         else { ... a piece [q.start, q.start + q.dt], coefficients at q.t ... }
  *     }
  *
- * Grid. [0, d] is cut into n segments growing as (i/n)^2 from the ray's start,
+ * Grids. quadrature_begin cuts [0, d] into n segments growing as (i/n)^2 from the ray's start,
  *     [d (i/n)^2, d ((i+1)/n)^2]   (quadrature_grid_segment),
- * short where the density changes fastest along rays that start low (medium.h says how well).
- * Parts. The caller may give up to MEDIA_MAX_INTERVALS parts [lo, hi] (sorted, disjoint: a
+ * short where the density changes fastest along rays that start low (medium.h says how well);
+ * quadrature_begin_equal into n equal ones, [i d/n, (i+1) d/n], each sampled at its middle
+ * t = (i + 1/2) d/n (the midpoint rule of the LUTs that integrate each segment's mean density).
+ * Parts. The caller may give up to QUADRATURE_MAX_PARTS parts [lo, hi] (sorted, disjoint: a
  * medium's own stepping, media.h's media_intervals) after quadrature_begin; the walk hands each
  * one out once (QUADRATURE_PART), where the grid reaches it, and clips the grid's segments to
  * the rest, so a grid segment that meets no part is handed out whole and a ray without parts
@@ -31,14 +34,15 @@
  * the middle of the segment in the grid's parameter sqrt(t / d), a fraction (i + 1/4) / (2i + 1)
  * of its length from its start (the LUT's directions: no samples to average a jitter over, and
  * the light a segment sends to the ray's start comes more from its near part;
- * docs/notes/ms_lut.md). The caller integrates each piece exactly for constant coefficients
- * (media.h's medium_piece_weight). Units: metres. */
+ * docs/notes/ms_lut.md). The caller integrates each piece (media.h's medium_piece_weight, exact
+ * for constant coefficients; the LUTs' own rules for their mean densities). Units: metres. */
 #ifndef ATMO_MEDIA_QUADRATURE_WALK_H
 #define ATMO_MEDIA_QUADRATURE_WALK_H
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
-#include "media/media.h"
 #endif
+
+#define QUADRATURE_MAX_PARTS 2 /* parts of one ray (media.h's MEDIA_MAX_INTERVALS) */
 
 /* quadrature_next's events */
 #define QUADRATURE_END 0   /* past the ray's end */
@@ -51,8 +55,10 @@ typedef struct quadrature_walk {
     float d;                       /* the ray's end, m */
     int n;                         /* grid segments */
     float jitter;                  /* the sample's fraction of a piece, or QUADRATURE_GRID_MIDDLE */
-    float lo[MEDIA_MAX_INTERVALS]; /* the caller's parts [lo, hi], m (sorted, disjoint) */
-    float hi[MEDIA_MAX_INTERVALS];
+    int equal;                     /* equal segments (quadrature_begin_equal) */
+    float step;                    /* their length, m */
+    float lo[QUADRATURE_MAX_PARTS]; /* the caller's parts [lo, hi], m (sorted, disjoint) */
+    float hi[QUADRATURE_MAX_PARTS];
     unsigned parts;                /* how many (0 after quadrature_begin) */
     int i;                         /* the next grid segment */
     unsigned next;                 /* the next part */
@@ -93,6 +99,8 @@ ATMO_FN quadrature_walk quadrature_begin(float d, int n, float jitter)
     q.d = d;
     q.n = n;
     q.jitter = jitter;
+    q.equal = 0;
+    q.step = 0.0f;
     q.parts = 0u;
     q.i = 0;
     q.next = 0u;
@@ -105,8 +113,18 @@ ATMO_FN quadrature_walk quadrature_begin(float d, int n, float jitter)
     q.dt = 0.0f;
     q.t = 0.0f;
     q.end = 0.0f;
-    for (int k = 0; k < MEDIA_MAX_INTERVALS; k++)
+    for (int k = 0; k < QUADRATURE_MAX_PARTS; k++)
         q.lo[k] = q.hi[k] = 0.0f;
+    return q;
+}
+
+/* The walk over [0, d] on n equal segments, each sampled at its middle (the midpoint rule);
+ * no parts. */
+ATMO_FN quadrature_walk quadrature_begin_equal(float d, int n)
+{
+    quadrature_walk q = quadrature_begin(d, n, QUADRATURE_GRID_MIDDLE);
+    q.equal = 1;
+    q.step = d / (float)n;
     return q;
 }
 
@@ -126,6 +144,13 @@ ATMO_FN int quadrature_next(quadrature_walk *q)
         if (!q->clipping) { /* at the start of grid segment i */
             if (q->i >= q->n)
                 return QUADRATURE_END;
+            if (q->equal) { /* segment i of equal ones, at its middle */
+                q->start = (float)q->i * q->step;
+                q->dt = q->step;
+                q->t = ((float)q->i + 0.5f) * q->step;
+                q->i++;
+                return QUADRATURE_PIECE;
+            }
             float dt, ga = quadrature_grid_segment(q->d, q->i, q->n, &dt), gb = ga + dt;
             if ((q->next >= q->parts || q->lo[q->next] >= gb) &&
                 (q->done <= ga || q->jitter == QUADRATURE_GRID_MIDDLE)) {
