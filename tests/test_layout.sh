@@ -161,7 +161,8 @@ fi
 # integrator, so the generic files name no feature and test no feature's flag.
 generic_files="kernels/media/media.h kernels/media/medium.h kernels/media/visibility.h
     kernels/media/ray.h
-    kernels/media/tracking.h kernels/media/majorant_walk.h kernels/media/media_walk.h"
+    kernels/media/tracking.h kernels/media/majorant_walk.h kernels/media/media_walk.h
+    kernels/media/quadrature_walk.h"
 # the registry's feature flags (its -D strings) and the features' identifier prefixes
 flags=$(grep -oE '"-D[A-Z_ =0-9-]*"' host/plan/features.c | tr -d '"' | tr ' ' '\n' |
     sed -n 's/^-D\([A-Z_0-9]*\).*/\1/p' | sort -u | paste -sd'|')

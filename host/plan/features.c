@@ -92,7 +92,8 @@ static int plan_atmosphere(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 }
 
 /* The headers every kernel is compiled with: the shared GPU structs (each feature's in its own
- * header, before the scene struct that holds them), math, the atmosphere, the camera, the
+ * header, before the scene struct that holds them), math, the deterministic quadrature's walk
+ * (the atmosphere's transmittance integral walks it), the atmosphere, the camera, the
  * camera-relative ray that the media and the integrator take, the media's contract and the
  * air, the planet as the first occluder of the sun, and the free-flight and ratio-tracking
  * steps of the Monte Carlo walks. */
@@ -105,8 +106,8 @@ static const char *const atmosphere_fragments[] = {
     "include/atmo/gpu_terrain.h",
     "include/atmo/gpu_types.h",       "kernels/common/rng.h",
     "kernels/common/geometry.h",      "kernels/common/frame.h",
-    "kernels/common/phase.h",         "kernels/atmosphere/atmosphere.h",
-    "kernels/common/camera.h",
+    "kernels/common/phase.h",         "kernels/media/quadrature_walk.h",
+    "kernels/atmosphere/atmosphere.h", "kernels/common/camera.h",
     "kernels/atmosphere/sky_method.h", "kernels/media/ray.h",
     "kernels/media/tracking.h",       "kernels/media/majorant_walk.h",
     "kernels/media/media.h",          "kernels/media/planet.h",
@@ -120,8 +121,8 @@ static const atmo_gpu_field atmosphere_params[] = {ATMO_GPU_FIELD(atmosphere),
 static const char *const atmosphere_sources[] = {
     "kernels/common/compat.h",       "include/atmo/gpu_enums.h",
     "include/atmo/gpu_atmosphere.h", "include/atmo/gpu_types.h",
-    "kernels/common/geometry.h",     "kernels/atmosphere/atmosphere.h",
-    "kernels/atmosphere/transmittance.cl", NULL};
+    "kernels/common/geometry.h",     "kernels/media/quadrature_walk.h",
+    "kernels/atmosphere/atmosphere.h", "kernels/atmosphere/transmittance.cl", NULL};
 
 /* The sun's visibility over the composed occluders and media; the one medium integrator over
  * the composed media, visibility and intervals. */
@@ -131,7 +132,7 @@ static const char *const visibility_fragments[] = {"kernels/media/visibility.h",
 static const char *const medium_fragments[] = {"kernels/media/medium.h", NULL};
 #define MEDIUM_SOURCES                                                                             \
     "kernels/media/ray.h", "kernels/media/tracking.h", "kernels/media/media.h",                    \
-        "kernels/media/visibility.h",                                                              \
+        "kernels/media/quadrature_walk.h", "kernels/media/visibility.h",                           \
         "kernels/media/observer.h", "kernels/media/medium.h"
 
 /* Psi_ms: its lookups (the source of march and fast) before the media's composition, its

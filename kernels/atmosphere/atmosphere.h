@@ -22,6 +22,7 @@
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
 #include "common/geometry.h"
+#include "media/quadrature_walk.h"
 #include "atmo/gpu_types.h"
 #endif
 
@@ -218,20 +219,20 @@ ATMO_FN vec3 atmosphere_sun_disc_radiance(ATMO_GLOBAL const atmo_gpu_atmosphere 
     return v3_scale(v3_from4(a->solar_irradiance), 1.0f / (2.0f * ATMO_PI * (1.0f - cos_alpha)));
 }
 
-/* Optical depth from radius r to the top along mu by the midpoint rule with n segments
- * (used to fill the LUT; the integrand is smooth, so the error falls as 1/n^2). */
+/* Optical depth from radius r to the top along mu by the midpoint rule with n segments, the
+ * quadrature walk's equal ones (quadrature_walk.h; used to fill the LUT; the integrand is
+ * smooth, so the error falls as 1/n^2). */
 ATMO_FN vec3 atmosphere_optical_depth_to_top(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r,
                                              float mu, int n)
 {
     float d = geometry_distance_to_top(r, mu, a->top_radius);
-    float dt = d / (float)n;
+    quadrature_walk q = quadrature_begin_equal(d, n);
     vec3 tau = v3(0.0f, 0.0f, 0.0f);
-    for (int i = 0; i < n; i++) {
-        float t = ((float)i + 0.5f) * dt;
-        float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
+    while (quadrature_next(&q) != QUADRATURE_END) {
+        float h = geometry_altitude_at(r, mu, q.t, a->bottom_radius);
         tau = v3_add(tau, atmosphere_extinction(a, h));
     }
-    return v3_scale(tau, dt);
+    return v3_scale(tau, q.step);
 }
 
 #endif

@@ -6,7 +6,8 @@
  * the top:
  *     S_R = E int_0^d T(0,t) beta_R e^{-h/H_R} T_sun(t) dt,  S_M likewise with beta_M,s, H_M,
  * phase functions left out (applied at lookup with the exact nu, so the forward Mie peak is never
- * interpolated). The ray is cut into `steps` equal segments; each takes the mean of each
+ * interpolated). The ray is cut into `steps` equal segments (quadrature_walk.h's
+ * quadrature_begin_equal, walked LUT_CHUNK pieces at a time); each takes the mean of each
  * exponential density over the segment (exact where the altitude is linear along it,
  * lut_mean_density) and the sun's transmittance at its midpoint, and is integrated exactly for
  * constant coefficients,
@@ -115,16 +116,18 @@ __kernel void lut_single(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, 
         return;
     int N = LUT_TEXELS(dims), texels = n_nu * n_mu_s;
     int n = s->lut.steps;
-    float dt = atmosphere_ray_length(a, r, mu, ground) / (float)n;
+    quadrature_walk q = quadrature_begin_equal(atmosphere_ray_length(a, r, mu, ground), n);
+    float dt = q.step;
     float3 E = a->solar_irradiance.xyz;
     float3 beta_r = E * a->rayleigh_scattering.xyz, beta_m = E * a->mie_scattering.xyz;
     float3 T = (float3)(1.0f);
     float ts[LUT_CHUNK], rs[LUT_CHUNK];
     float3 lit_r[LUT_CHUNK], lit_m[LUT_CHUNK];
-    for (int c0 = 0; c0 < n; c0 += LUT_CHUNK) {
-        int m = n - c0 < LUT_CHUNK ? n - c0 : LUT_CHUNK;
-        for (int i = 0; i < m; i++) {
-            float t = ((float)(c0 + i) + 0.5f) * dt;
+    for (int c0 = 0;; c0 += LUT_CHUNK) {
+        int m = 0;
+        for (; m < LUT_CHUNK && quadrature_next(&q) != QUADRATURE_END; m++) {
+            int i = m;
+            float t = q.t;
             float r_t = geometry_radius_at(r, mu, t);
             float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
             float mu_t = atmo_clamp_cos((r * mu + t) / r_t);
@@ -140,6 +143,8 @@ __kernel void lut_single(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, 
             lit_m[i] = tw * mie * beta_m;
             T *= e;
         }
+        if (m == 0) /* the walk has ended */
+            break;
         for (int x = 0; x < texels; x++) {
             float mu_s = lut_mu_s_at(a, (float)(x % n_mu_s), n_mu_s);
             float nu = lut_nu_at((float)(x / n_mu_s), n_nu, mu, mu_s);
@@ -270,7 +275,8 @@ __kernel void lut_multiple(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS
         return;
     int N = LUT_TEXELS(dims), texels = n_nu * n_mu_s;
     int n = s->lut.steps;
-    float dt = atmosphere_ray_length(a, r, mu, ground) / (float)n;
+    quadrature_walk q = quadrature_begin_equal(atmosphere_ray_length(a, r, mu, ground), n);
+    float dt = q.step;
     __global const float4 *J = scattering_scratch + N;
     float3 T = (float3)(1.0f);
     int n_mu = dims[2], n_r = dims[3], slab = n_nu * n_mu_s;
@@ -280,10 +286,11 @@ __kernel void lut_multiple(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS
      * with its sums regrouped): their first index and weight */
     int rows[LUT_CHUNK][4];
     float w_rm[LUT_CHUNK][4];
-    for (int c0 = 0; c0 < n; c0 += LUT_CHUNK) {
-        int m = n - c0 < LUT_CHUNK ? n - c0 : LUT_CHUNK;
-        for (int i = 0; i < m; i++) {
-            float t = ((float)(c0 + i) + 0.5f) * dt;
+    for (int c0 = 0;; c0 += LUT_CHUNK) {
+        int m = 0;
+        for (; m < LUT_CHUNK && quadrature_next(&q) != QUADRATURE_END; m++) {
+            int i = m;
+            float t = q.t;
             float r_t = geometry_radius_at(r, mu, t);
             float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
             float mu_t = atmo_clamp_cos((r * mu + t) / r_t);
@@ -304,6 +311,8 @@ __kernel void lut_multiple(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS
             tw[i] = T * lut_weights(sigma_t, dt, e);
             T *= e;
         }
+        if (m == 0) /* the walk has ended */
+            break;
         for (int x = 0; x < texels; x++) {
             float mu_s = lut_mu_s_at(a, (float)(x % n_mu_s), n_mu_s);
             float nu = lut_nu_at((float)(x / n_mu_s), n_nu, mu, mu_s);

@@ -28,9 +28,10 @@
  * mu_h = -sqrt(r^2 - R^2) / r and half below, so no band straddles the step between sky and
  * ground, each half crowding toward the horizon as the square of its index (the bands follow the
  * local vertical, not the sun: a grid in the sun's frame would cut that step diagonally). Each
- * direction is marched on medium.h's quadrature (ms_segment_at): n_steps segments growing as
- * (i/n)^2 from x (media.h's medium_grid_segment), the coefficients at t = d ((i + 1/2) / n)^2
- * in segment i, the segment integrated exactly for constant coefficients (medium_piece_weight),
+ * direction is walked by the integrator's quadrature (quadrature_walk.h, ms_segment_at): n_steps
+ * segments growing as (i/n)^2 from x, the coefficients at t = d ((i + 1/2) / n)^2 in segment i
+ * (QUADRATURE_GRID_MIDDLE), the segment integrated exactly for constant coefficients
+ * (media.h's medium_piece_weight),
  *     G += T w J,  w = (1 - e^{-sigma_t dt}) / sigma_t,  T *= e^{-sigma_t dt}
  * for a source J (W m^-3 sr^-1 nm^-1) at that point; the densities, T and w of a segment serve
  * every azimuth of its band, which differ only in the sun's angle. LUT: x_mu = (1 + sign(mu_s)
@@ -95,6 +96,7 @@
 #include "atmosphere/ms_lut_source.h"
 #include "media/media.h"
 #include "media/medium.h"
+#include "media/quadrature_walk.h"
 #include "atmo/gpu_types.h"
 #endif
 
@@ -157,25 +159,20 @@ typedef struct ms_segment {
                            Tw times itself to x */
 } ms_segment;
 
-/* Segment i of the n that cut the direction from radius r along mu, d long, on medium.h's
- * quadrature: media.h's (i/n)^2 grid, integrated exactly for constant coefficients
- * (medium_piece_weight, which moves *T = T(x, segment start) past it). The coefficients are
- * taken at t = d ((i + 1/2) / n)^2, the middle of the segment in the grid's parameter
- * sqrt(t / d), a fraction (i + 1/4) / (2i + 1) of its length from its start: the LUT has no
- * samples to average a jitter over, and the light a segment sends to x comes more from its
- * near part, where the transmittance from x is higher. Measured on the sky, this point leaves
- * a third of the quadrature error that the segment's middle in t leaves (docs/notes/ms_lut.md). */
-ATMO_FN void ms_segment_at(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r, float mu, float d,
-                           int i, int n, vec3 *T, ms_segment *g)
+/* The air on the quadrature walk's current piece along the direction from radius r along mu
+ * (quadrature_walk.h, sampled at the middle of each grid segment in the grid's parameter:
+ * QUADRATURE_GRID_MIDDLE), integrated exactly for constant coefficients (medium_piece_weight,
+ * which moves *T = T(x, piece start) past it). Measured on the sky, that point leaves a third
+ * of the quadrature error that the segment's middle in t leaves (docs/notes/ms_lut.md). */
+ATMO_FN void ms_segment_at(ATMO_GLOBAL const atmo_gpu_atmosphere *a, float r, float mu,
+                           const quadrature_walk *q, vec3 *T, ms_segment *g)
 {
-    float dt;
-    medium_grid_segment(d, i, n, &dt);
-    g->t = d * atmo_sq(((float)i + 0.5f) / (float)n);
+    g->t = q->t;
     g->r_t = geometry_radius_at(r, mu, g->t);
     g->h = geometry_altitude_at(r, mu, g->t, a->bottom_radius);
     g->rho_r = expf(-g->h / a->rayleigh_scale_height);
     g->rho_m = expf(-g->h / a->mie_scale_height);
-    g->Tw = medium_piece_weight(atmosphere_extinction_at(a, g->h, g->rho_r, g->rho_m), dt, T);
+    g->Tw = medium_piece_weight(atmosphere_extinction_at(a, g->h, g->rho_r, g->rho_m), q->dt, T);
 }
 
 /* First pass at one texel at radius r and sun cosine mu_s: returns L_2 (xyz) and f_ms of
@@ -224,9 +221,10 @@ ATMO_FN float4 ms_lut_texel(ATMO_GLOBAL const atmo_gpu_scene *s,
         /* the densities, extinction and segment weights along the band's rays do not depend
          * on the azimuth: computed once per segment, the sun's transmittance per azimuth */
         vec3 T = v3(1.0f, 1.0f, 1.0f), absorbed = zero;
-        for (int i = 0; i < n_steps; i++) {
+        quadrature_walk q = quadrature_begin(d, n_steps, QUADRATURE_GRID_MIDDLE);
+        while (quadrature_next(&q) != QUADRATURE_END) {
             ms_segment g;
-            ms_segment_at(a, r, mu, d, i, n_steps, &T, &g);
+            ms_segment_at(a, r, mu, &q, &T, &g);
             vec3 sigma_abs = v3_add(v3_scale(mie_absorption, g.rho_m),
                                     v3_scale(ozone_absorption, atmosphere_ozone_tent(a, g.h)));
             vec3 lit_r = v3_mul(g.Tw, v3_scale(beta_r, g.rho_r));
@@ -299,9 +297,10 @@ ATMO_FN vec3 ms_lut_gather(ATMO_GLOBAL const atmo_gpu_scene *s,
         }
         /* as in ms_lut_texel: the segment's media once, the source per azimuth */
         vec3 T = v3(1.0f, 1.0f, 1.0f);
-        for (int i = 0; i < n_steps; i++) {
+        quadrature_walk q = quadrature_begin(d, n_steps, QUADRATURE_GRID_MIDDLE);
+        while (quadrature_next(&q) != QUADRATURE_END) {
             ms_segment g;
-            ms_segment_at(a, r, mu, d, i, n_steps, &T, &g);
+            ms_segment_at(a, r, mu, &q, &T, &g);
             vec3 sigma_r = v3_scale(beta_r, g.rho_r), sigma_m = v3_scale(beta_m, g.rho_m);
             float rmu_s = r * mu_s, inv_r_t = 1.0f / g.r_t, mu_t = (r * mu + g.t) * inv_r_t;
             for (int l = 0; l < n_phi; l++) {

@@ -15,6 +15,7 @@
 #include "media/cloud_shell.h"
 #include "media/visibility.h"
 #include "media/medium_air.h"
+#include "media/quadrature_walk.h"
 #include "atmo/gpu_types.h"
 #endif
 
@@ -25,16 +26,6 @@ ATMO_FN float cloud_shell_chord_at(ATMO_GLOBAL const atmo_gpu_scene *s, const me
     float R = s->atmosphere.bottom_radius;
     medium_point q = medium_ray_at(m, t, R);
     return cloud_shell_chord(R, cloud_shell_base(s), cloud_shell_top(s), q.h, q.r, q.mu_s);
-}
-
-/* The end of the air grid's segment that holds t: the grid's break points are
- * grid_d (i / grid_n)^2 (medium_integrate), the first one beyond t. */
-ATMO_FN float cloud_grid_next(float t, float grid_d, int grid_n)
-{
-    float x = (float)grid_n * sqrtf(fmaxf(t, 0.0f) / grid_d);
-    int i = (int)x + 1;
-    float g = grid_d * ((float)i / (float)grid_n) * ((float)i / (float)grid_n);
-    return g > t ? g : grid_d * ((float)(i + 1) / (float)grid_n) * ((float)(i + 1) / (float)grid_n);
 }
 
 /* One step [ta, ta + dt] of an interval, coefficients taken at the fraction `jitter` of it:
@@ -78,7 +69,7 @@ ATMO_FN void cloud_shell_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
 
 /* One interval [t0, t1] inside the shell. Its steps end at the cloud's break points, equal in
  * optical depth (channel y) up to the cut, and at the air grid's (grid_d, grid_n: those of
- * medium_integrate), so the air inside the shell is resolved at least as finely as the grid
+ * medium_integrate's quadrature walk, quadrature_grid_next), so the air inside the shell is resolved at least as finely as the grid
  * resolves it outside: a shell of negligible depth leaves the sky as the air alone makes it.
  * Adds the light to *L with the running view transmittance *T, and multiplies *shell_t by the
  * shell's own transmittance over the interval. */
@@ -102,7 +93,7 @@ ATMO_FN void cloud_shell_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_
     /* each step ends at a cloud or a grid break point: at most n + grid_n + 1 of them */
     for (int k = 0; k < n + grid_n + 1 && t < cut; k++) {
         float tc = j < n ? t0 + (float)j * dt_cloud : cut;
-        float tb = fminf(fminf(tc, cloud_grid_next(t, grid_d, grid_n)), cut);
+        float tb = fminf(fminf(tc, quadrature_grid_next(t, grid_d, grid_n)), cut);
         float chord1 = cloud_shell_chord_at(s, m, tb);
         cloud_shell_step(s, ATMO_LUT_ARGS, m, phase, t, tb - t, jitter, chord0, chord1, use_ms,
                          ground, L, T);

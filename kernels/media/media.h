@@ -33,11 +33,10 @@
  * (MEDIA_WALK_VOLUME), the walk's mode, which the composed majorant reads too. With
  * path.air = medium the composition's MEDIA_VOLUME_AIR is 1 and the volume mode's free
  * flights scatter in the air as well (media_air_at, media_air_phase, media_air_direction).
- * The deterministic quadrature's pieces, one rule for the marches that call them (the
- * integrator, medium.h, a medium's own stepping and the precomputations' marches along their
- * directions): the segments of a ray growing as (i/n)^2 (medium_grid_segment) and a piece's
- * exact integral for constant coefficients with the transmittance carried past it
- * (medium_piece_weight).
+ * The deterministic quadrature's piece rule, one for the marches that call it (the pieces of
+ * quadrature_walk.h's walk in the integrator, medium.h, and the multiple-scattering LUT's
+ * directions, and a medium's own steps): a piece's exact integral for constant coefficients
+ * with the transmittance carried past it (medium_piece_weight).
  * Units: 1/m, per steradian. */
 #ifndef ATMO_MEDIA_H
 #define ATMO_MEDIA_H
@@ -47,6 +46,7 @@
 #include "common/frame.h"
 #include "common/phase.h"
 #include "media/ray.h"
+#include "media/quadrature_walk.h"
 #include "media/tracking.h"
 #include "atmo/gpu_types.h"
 #endif
@@ -59,7 +59,7 @@
  * other media's components after them. */
 #define MEDIA_RAYLEIGH 0
 #define MEDIA_MIE 1
-#define MEDIA_MAX_INTERVALS 2 /* parts of one ray with their own stepping */
+#define MEDIA_MAX_INTERVALS QUADRATURE_MAX_PARTS /* parts of one ray with their own stepping */
 
 /* The modes of the one majorant walk (media_walk.h) and of the composed majorant. */
 #define MEDIA_WALK_MEDIA 0  /* the scene's media with the air (method reference's rays) */
@@ -184,16 +184,6 @@ ATMO_FN vec3 medium_piece_weight(vec3 sigma_t, float dt, vec3 *T)
     vec3 Tw = v3_mul(*T, medium_segment_step3(sigma_t, dt, &step));
     *T = v3_mul(*T, step);
     return Tw;
-}
-
-/* Segment i of the n that cut [0, d] of a ray, growing as (i/n)^2 from its start:
- * [d (i/n)^2, d ((i+1)/n)^2], short where the density changes fastest along rays that start
- * low. Returns where it starts (m); *dt = its length (m). */
-ATMO_FN float medium_grid_segment(float d, int i, int n, float *dt)
-{
-    float x0 = (float)i / (float)n, x1 = (float)(i + 1) / (float)n;
-    *dt = d * (x1 * x1 - x0 * x0);
-    return d * x0 * x0;
 }
 
 #endif

@@ -20,17 +20,17 @@
  * Stepping (pbrt-v4's SampleT_maj shape: one walk, one per-point evaluation that carries the
  * ray's small visibility state, visibility_ray: what the terrain's light-shaft shortcuts
  * remember from one sample to the next). The ray is first moved to where it enters the
- * atmosphere (atmosphere_enter), then [0, d] is cut into n segments growing as (i/n)^2 from the
- * start, [d (i/n)^2, d ((i+1)/n)^2] (media.h's medium_grid_segment): short where the density
- * changes fastest along rays that start low (worst 0.09 % against the double-precision
- * reference with 64 segments, tests/test_sky_single.c; measured choices:
- * docs/notes/medium.md). The media add break points (media_intervals: the cloud shell's
- * spheres): a part of the ray inside such a medium is integrated with that medium's own
- * stepping (media_interval: optical-depth steps in the cloud) and the grid segments are clipped
- * to the rest. In each segment or clipped piece the coefficients are taken at one point, at the
- * fraction `jitter` of its length (a random number per sample, so averaging samples removes the
- * banding of a fixed point), and the piece is integrated exactly for constant coefficients
- * (Hillaire 2015; media.h's medium_piece_weight):
+ * atmosphere (atmosphere_enter), then [0, d] is walked by the deterministic methods' one
+ * stepping loop, quadrature_walk.h: n segments growing as (i/n)^2 from the start,
+ * [d (i/n)^2, d ((i+1)/n)^2], short where the density changes fastest along rays that start
+ * low (worst 0.09 % against the double-precision reference with 64 segments,
+ * tests/test_sky_single.c; measured choices: docs/notes/medium.md). The media add break points
+ * (media_intervals: the cloud shell's spheres), the walk's parts: a part of the ray inside such
+ * a medium is integrated with that medium's own stepping (media_interval: optical-depth steps in
+ * the cloud) and the grid segments are clipped to the rest. In each segment or clipped piece the
+ * coefficients are taken at one point, at the fraction `jitter` of its length (a random number
+ * per sample, so averaging samples removes the banding of a fixed point), and the piece is
+ * integrated exactly for constant coefficients (Hillaire 2015; media.h's medium_piece_weight):
  *     L_k += T w sigma_s,k E T_sun V,  w = (1 - e^{-sigma_t dt}) / sigma_t,  T *= e^{-sigma_t dt}
  * which conserves energy however long the piece. A ray that meets no break point walks exactly
  * the grid of the air alone, so a medium the ray never meets changes nothing.
@@ -54,6 +54,7 @@
 #include "atmosphere/sky_method.h"
 #include "media/ray.h"
 #include "media/media.h"
+#include "media/quadrature_walk.h"
 #include "media/visibility.h"
 #include "media/media_walk.h"
 #include "atmo/gpu_types.h"
@@ -159,34 +160,15 @@ ATMO_FN void medium_integrate_any(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_
     visibility_ray vr;
     visibility_ray_begin(s, &m, d, hits_surface ? d : -1.0f, &vr);
 
-    float lo[MEDIA_MAX_INTERVALS], hi[MEDIA_MAX_INTERVALS];
-    int n_int = media_intervals(s, &m, 0.0f, d, lo, hi), next = 0;
+    quadrature_walk q = quadrature_begin(d, n, jitter);
+    q.parts = media_intervals(s, &m, 0.0f, d, q.lo, q.hi);
     vec3 T = v3(1.0f, 1.0f, 1.0f), medium_t = v3(1.0f, 1.0f, 1.0f);
-    float done = 0.0f; /* the walk has integrated [0, done] */
-    for (int i = 0; i < n; i++) {
-        float dt, ga = medium_grid_segment(d, i, n, &dt), gb = ga + dt;
-        if (next >= n_int || lo[next] >= gb) { /* the grid segment meets no interval */
-            if (done <= ga) {
-                medium_piece(s, ATMO_LUT_ARGS, &m, ga + jitter * dt, dt, use_ms, ground, &vr,
-                             out, &T);
-                done = gb;
-                continue;
-            }
-        }
-        float pos = fmaxf(ga, done);
-        while (next < n_int && lo[next] < gb) {
-            if (lo[next] > pos)
-                medium_piece(s, ATMO_LUT_ARGS, &m, pos + jitter * (lo[next] - pos),
-                             lo[next] - pos, use_ms, ground, &vr, out, &T);
-            media_interval(s, ATMO_LUT_ARGS, &m, lo[next], hi[next], jitter, use_ms, ground, d,
-                           n, &out->rest, &T, &medium_t);
-            pos = fmaxf(pos, hi[next]);
-            next++;
-        }
-        if (pos < gb)
-            medium_piece(s, ATMO_LUT_ARGS, &m, pos + jitter * (gb - pos), gb - pos, use_ms,
-                         ground, &vr, out, &T);
-        done = fmaxf(pos, gb);
+    for (int ev; (ev = quadrature_next(&q)) != QUADRATURE_END;) {
+        if (ev == QUADRATURE_PART)
+            media_interval(s, ATMO_LUT_ARGS, &m, q.start, q.end, jitter, use_ms, ground, d, n,
+                           &out->rest, &T, &medium_t);
+        else
+            medium_piece(s, ATMO_LUT_ARGS, &m, q.t, q.dt, use_ms, ground, &vr, out, &T);
     }
 
     if (hits_surface) {
