@@ -3,20 +3,24 @@
  * reference, all orders), error against time, and the fit of the marcher's multiple-scattering
  * octaves to the reference.
  *
- * Views: five cloud scenes (thesis view 6 as it is; an overcast 2 km deck of density 0.4 seen
+ * Views: six cloud scenes (thesis view 6 as it is; an overcast 2 km deck of density 0.4 seen
  * from below; the layer seen from 12 km above; thesis-6 under a sun 10 degrees high; thesis
  * view 5's deck from 42 km, looking down away from the sun, where the antisolar point lies at
- * 54.6 degrees below the horizon: light scattered back out of a thick deck), each with
+ * 54.6 degrees below the horizon: light scattered back out of a thick deck; thesis view 9's
+ * sunset without its terrain: the cloud field (seed 5) from 37 km under a sun 2.5 degrees high,
+ * looking 10-16 degrees down toward the sun and 15 degrees beside it onto clouds lit from
+ * behind, scattering angles of 8-20 degrees, where no other view looks), each with
  * six camera rays given by elevation and azimuth from the sun (sky_probe, atmo/probe.h). A
  * view's radiance is the sum over its rays of the 550 nm channel; its error is
  * sum L_march / sum L_ref - 1, and a configuration's error is the RMS of that over the views.
- * The reference: 256 paths per ray (4096 on the cheap overcast view; 64 with --quick), drawn
+ * The reference: 256 paths per ray (4096 on the cheap overcast view, 2048 on the sunset, whose
+ * forward-peaked light is noisier; 64 with --quick), drawn
  * with its own seed (image.seed = BENCH_CLOUDS_REF_SEED; the marcher keeps the scene's 0), so
  * its noise is independent of the marcher's jitter and a fit cannot follow it; its own
  * error is its relative standard error (the batches' spread, summed over the rays), charted at
  * 64, 128 and 256 paths (scaled by 1 / sqrt(paths)) with the time of that many paths. The marcher: 64
  * samples per ray (its jittered march averaged; its error is its bias), charted with the time
- * of one sample of the 30 rays (one sample is an image's pixel-sample).
+ * of one sample of the 36 rays (one sample is an image's pixel-sample).
  *
  * The fit (Wrenninge et al. 2013's octaves and the diffuse orders, cloud_march.h): the cloud
  * light is
@@ -39,7 +43,7 @@
 #include "atmo/clock.h"
 #include "atmo/probe.h"
 
-#define BENCH_CLOUDS_VIEWS 5
+#define BENCH_CLOUDS_VIEWS 6
 #define BENCH_CLOUDS_RAYS 6
 #define BENCH_CLOUDS_REF_SAMPLES 256
 #define BENCH_CLOUDS_MARCH_SAMPLES 64
@@ -78,6 +82,12 @@ static const cloud_view views[BENCH_CLOUDS_VIEWS] = {
      {-35, -45, -55, -35, -45, -55},
      {180, 180, 180, 160, 160, 160},
      256},
+    {"sunset",
+     {"camera.position_m=18181,37415,3431", "sun.zenith_deg=87.476967",
+      "sun.azimuth_deg=-150.985019", "clouds.seed=5", "clouds.max_distance_m=4e5", NULL},
+     {-10, -12, -14, -10, -14, -16},
+     {0, 0, 0, 15, 15, 15},
+     2048},
 };
 
 typedef struct march_config {
@@ -415,8 +425,8 @@ int bench_clouds(const char *dir, const char *device, int quick, int fit, atmo_e
         row->error = sqrt(sum / BENCH_CLOUDS_VIEWS) * sqrt((double)ref_samples / paths);
     }
     if ((rc = bench_write_suite(dir, "clouds", out, n, device ? device : "default",
-                                "fBm clouds: marcher knobs vs the reference (5 views x 6 rays, "
-                                "550 nm); time per sample of the 30 rays",
+                                "fBm clouds: marcher knobs vs the reference (6 views x 6 rays, "
+                                "550 nm); time per sample of the 36 rays",
                                 "RMS relative error of the views", e)))
         return rc;
     char csv[4096], svg[4096];
@@ -425,8 +435,8 @@ int bench_clouds(const char *dir, const char *device, int quick, int fit, atmo_e
     if ((rc = bench_write_csv(csv, shadow_rows, n_shadow, device ? device : "default", e)) ||
         (rc = bench_chart(csv, svg,
                           "fBm clouds: sun transmittance of the light march and the shadow map at the "
-                          "sample points of the marcher (5 views x 6 rays); time per sample of "
-                          "the 30 rays, the build of the map spread over a 1280x720 frame",
+                          "sample points of the marcher (6 views x 6 rays); time per sample of "
+                          "the 36 rays, the build of the map spread over a 1280x720 frame",
                           "RMS error of T_sun (whole chord, 550 nm)", shadow_rows, n_shadow, e)))
         return rc;
     printf("wrote %s and %s\n", csv, svg);

@@ -71,7 +71,7 @@ static const cli_command bench_cli = {
         "              optimism and steps, exact against estimated shadows, light-shaft shortcuts,\n"
         "              thesis-1's time per sample\n"
         "  clouds      the fBm clouds' marcher (steps, light steps, octaves) against the Monte\n"
-        "              Carlo reference on five cloud views; --fit fits the multiple-scattering\n"
+        "              Carlo reference on six cloud views; --fit fits the multiple-scattering\n"
         "              octaves and diffuse orders (clouds.ms_a, ms_b, ms_c, ms_octaves, ms_d)\n"
         "              to the reference instead\n"
         "  denoise     thesis-7 path traced at 1 to 64 spp, raw and denoised by Open Image\n"

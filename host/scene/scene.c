@@ -236,19 +236,19 @@ const atmo_param atmo_params[] = {
               "level of detail: octaves of the cloud noise finer than this many pixels' footprint "
               "at their distance are replaced by their mean and spread (0: every octave, "
               "point-sampled; kernels/media/cloud_layer.h)"),
-    ROW_INT("clouds.ms_octaves", clouds.ms_octaves, "", 1, 16, 2,
+    ROW_INT("clouds.ms_octaves", clouds.ms_octaves, "", 1, 16, 6,
             "multiple-scattering octaves of the marcher (1: single scattering and the diffuse "
-            "orders only; 2 fitted to the reference by atmo bench clouds --fit)"),
+            "orders only; 6 fitted to the reference by atmo bench clouds --fit)"),
     ROW_FLOAT("clouds.ms_a", clouds.ms_a, "", 0, 1, 0.05,
               "per octave: factor on the optical depth toward the sun (fitted: 0.05)"),
-    ROW_FLOAT("clouds.ms_b", clouds.ms_b, "", 0, 1, 0.65,
-              "per octave: factor on the contribution (fitted: 0.65)"),
-    ROW_FLOAT("clouds.ms_c", clouds.ms_c, "", 0, 1, 0.9,
-              "per octave: factor on the phase function's anisotropy (fitted: 0.9)"),
-    ROW_FLOAT("clouds.ms_d", clouds.ms_d, "", 0, 100, 3.67,
+    ROW_FLOAT("clouds.ms_b", clouds.ms_b, "", 0, 1, 0.39,
+              "per octave: factor on the contribution (fitted: 0.39)"),
+    ROW_FLOAT("clouds.ms_c", clouds.ms_c, "", 0, 1, 0.5,
+              "per octave: factor on the phase function's anisotropy (fitted: 0.5)"),
+    ROW_FLOAT("clouds.ms_d", clouds.ms_d, "", 0, 100, 2.8,
               "weight of the diffuse orders beyond the octaves: isotropic light times this and "
               "the similarity albedo of a semi-infinite cloud, decaying into it at the diffusion "
-              "exponent (kernels/media/cloud_march.h; 0: none; fitted: 3.67)"),
+              "exponent (kernels/media/cloud_march.h; 0: none; fitted: 2.8)"),
     ROW_ENUM("clouds.look", clouds.look, clouds_look_names, ATMO_CLOUDS_LOOK_PHYSICAL,
              "physical (octaves, sky ambient) or thesis (constant ambient, powder, soft clamp)"),
     ROW_BOOL("observer.enabled", observer.enabled, 0,

@@ -25,11 +25,13 @@
  * the octaves of Wrenninge, Kulla & Lundqvist 2013 ("Oz: the great and volumetric") and the
  * diffuse orders beyond them. Octave 0 is single scattering with the true phase and
  * T_0 = e^{-tau_sun}; octave i >= 1 is Henyey-Greenstein with the table's g times c^i.
- * N = ms_octaves, a, b, c, d = ms_a, ms_b, ms_c, ms_d, by default 2, 0.05, 0.65, 0.9, 3.67,
- * fitted to the reference (its own seed) by `atmo bench clouds --fit`, 2.2 % RMS over the
- * bench's five views; the fit's grid is flat within the reference's noise, and of its cells
- * this one also holds on test_clouds_march's overcast ray, which the fit does not see
- * (docs/notes/clouds.md).
+ * N = ms_octaves, a, b, c, d = ms_a, ms_b, ms_c, ms_d, by default 6, 0.05, 0.39, 0.5, 2.8,
+ * fitted to the reference (its own seed) by `atmo bench clouds --fit`, 2.4 % RMS over the
+ * bench's six views. The sixth, a sunset looking toward the sun (scattering angles of 8-20
+ * degrees), sets c: Henyey-Greenstein with g near the droplets' (c 0.9: 0.77) has 2.6 times
+ * the Mie phase at 10 degrees, whose diffraction peak keeps that light within a few degrees,
+ * and the octaves at c 0.9 read +75 % there; the five views that look 25 degrees and more
+ * from the sun cannot tell c 0.5 from 0.9 (docs/bench/README.md).
  *
  * Deep decay. In an absorbing cloud (albedo w < 1) diffuse light decays with depth at least as
  * e^{-k_d tau}, the diffusion exponent
