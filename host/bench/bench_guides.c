@@ -37,15 +37,15 @@
 typedef struct guides_scene {
     const char *name;
     const char *preset;
-    const char *keys[8];
+    const char *keys[10];
 } guides_scene;
 
 static const guides_scene guides_scenes[GUIDES_SCENES] = {
     {"sky", "sky-noon", {"sun.zenith_deg=60", "camera.pitch_deg=-5", NULL}},
     {"terrain", "sky-noon",
-     {"terrain.enabled=true", "camera.position_m=0,600,0", "camera.pitch_deg=-8",
-      "sun.zenith_deg=60", "path.sky=uniform", "path.uniform_sky=0.05,0.08,0.12",
-      "path.bounces=2", NULL}},
+     {"terrain.enabled=true", "terrain.warp=0", "camera.position_m=0,600,0",
+      "camera.pitch_deg=-8", "sun.zenith_deg=60", "path.sky=uniform",
+      "path.uniform_sky=0.05,0.08,0.12", "path.bounces=2", NULL}},
     {"limb", "space", {NULL}},
     {"objects", "sky-noon",
      {"sun.zenith_deg=50", "path.sky=uniform", "path.uniform_sky=0.1,0.2,0.3",

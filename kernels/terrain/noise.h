@@ -100,27 +100,41 @@ ATMO_FN float terrain_lattice(int ix, int iy, uint seed)
     return (float)(terrain_hash(ix, iy, seed) >> 8) * (1.0f / 8388608.0f) - 1.0f;
 }
 
-ATMO_FN terrain_noise terrain_value_noise(float x, float y, uint seed)
+/* The cell of (x, y): its fractions, their fades and the corner terms k of the top of the
+ * file, shared by the noise with its derivatives and by its value alone. */
+typedef struct terrain_cell {
+    float fx, fy, qx, qy, a, k1, k2, k3;
+} terrain_cell;
+
+ATMO_FN terrain_cell terrain_cell_at(float x, float y, uint seed)
 {
+    terrain_cell c;
     float fx0 = floorf(x), fy0 = floorf(y);
     int ix = (int)fx0, iy = (int)fy0;
-    float fx = x - fx0, fy = y - fy0;
-    float qx = fx * fx * fx * (fx * (fx * 6.0f - 15.0f) + 10.0f);
-    float qy = fy * fy * fy * (fy * (fy * 6.0f - 15.0f) + 10.0f);
+    c.fx = x - fx0, c.fy = y - fy0;
+    c.qx = c.fx * c.fx * c.fx * (c.fx * (c.fx * 6.0f - 15.0f) + 10.0f);
+    c.qy = c.fy * c.fy * c.fy * (c.fy * (c.fy * 6.0f - 15.0f) + 10.0f);
+    float a = terrain_lattice(ix, iy, seed), b = terrain_lattice(ix + 1, iy, seed);
+    float cc = terrain_lattice(ix, iy + 1, seed), d = terrain_lattice(ix + 1, iy + 1, seed);
+    c.a = a, c.k1 = b - a, c.k2 = cc - a, c.k3 = a - b - cc + d;
+    return c;
+}
+
+ATMO_FN terrain_noise terrain_value_noise(float x, float y, uint seed)
+{
+    terrain_cell c = terrain_cell_at(x, y, seed);
+    float fx = c.fx, fy = c.fy;
     float dqx = 30.0f * fx * fx * (fx - 1.0f) * (fx - 1.0f);
     float dqy = 30.0f * fy * fy * (fy - 1.0f) * (fy - 1.0f);
     float ddqx = 60.0f * fx * (fx - 1.0f) * (2.0f * fx - 1.0f);
     float ddqy = 60.0f * fy * (fy - 1.0f) * (2.0f * fy - 1.0f);
-    float a = terrain_lattice(ix, iy, seed), b = terrain_lattice(ix + 1, iy, seed);
-    float c = terrain_lattice(ix, iy + 1, seed), d = terrain_lattice(ix + 1, iy + 1, seed);
-    float k1 = b - a, k2 = c - a, k3 = a - b - c + d;
     terrain_noise n;
-    n.v = a + k1 * qx + k2 * qy + k3 * qx * qy;
-    n.dx = dqx * (k1 + k3 * qy);
-    n.dy = dqy * (k2 + k3 * qx);
-    n.dxx = ddqx * (k1 + k3 * qy);
-    n.dyy = ddqy * (k2 + k3 * qx);
-    n.dxy = k3 * dqx * dqy;
+    n.v = c.a + c.k1 * c.qx + c.k2 * c.qy + c.k3 * c.qx * c.qy;
+    n.dx = dqx * (c.k1 + c.k3 * c.qy);
+    n.dy = dqy * (c.k2 + c.k3 * c.qx);
+    n.dxx = ddqx * (c.k1 + c.k3 * c.qy);
+    n.dyy = ddqy * (c.k2 + c.k3 * c.qx);
+    n.dxy = c.k3 * dqx * dqy;
     return n;
 }
 
@@ -138,15 +152,8 @@ ATMO_FN void terrain_octave_next(float *x, float *y)
 /* Value noise's value alone (terrain_value_noise's n). */
 ATMO_FN float terrain_value_noise_value(float x, float y, uint seed)
 {
-    float fx0 = floorf(x), fy0 = floorf(y);
-    int ix = (int)fx0, iy = (int)fy0;
-    float fx = x - fx0, fy = y - fy0;
-    float qx = fx * fx * fx * (fx * (fx * 6.0f - 15.0f) + 10.0f);
-    float qy = fy * fy * fy * (fy * (fy * 6.0f - 15.0f) + 10.0f);
-    float a = terrain_lattice(ix, iy, seed), b = terrain_lattice(ix + 1, iy, seed);
-    float c = terrain_lattice(ix, iy + 1, seed), d = terrain_lattice(ix + 1, iy + 1, seed);
-    float k1 = b - a, k2 = c - a, k3 = a - b - c + d;
-    return a + k1 * qx + k2 * qy + k3 * qx * qy;
+    terrain_cell c = terrain_cell_at(x, y, seed);
+    return c.a + c.k1 * c.qx + c.k2 * c.qy + c.k3 * c.qx * c.qy;
 }
 
 /* The fBm's first-octave lattice point of (u, v) metres, x = x0 + A w(x0) with x0 = f (u, v)
