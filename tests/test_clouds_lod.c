@@ -49,8 +49,8 @@
 #define MEAN_BOUND 0.02
 #define RMS_BOUND 0.10
 
-/* The 550 nm channel of the preset at w x h with the assignment `set` (NULL: none) and the seed,
- * downsampled by k x k into an array of (w / k) x (h / k). */
+/* The 550 nm channel of the preset at w x h with the assignment `extra` (NULL: none) and the
+ * seed, downsampled by k x k into an array of (w / k) x (h / k). */
 static double *render(const char *preset, int w, int h, int k, const char *extra, int seed)
 {
     atmo_scene s;

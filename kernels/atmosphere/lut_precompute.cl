@@ -126,7 +126,6 @@ __kernel void lut_single(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, 
     for (int c0 = 0;; c0 += LUT_CHUNK) {
         int m = 0;
         for (; m < LUT_CHUNK && quadrature_next(&q) != QUADRATURE_END; m++) {
-            int i = m;
             float t = q.t;
             float r_t = geometry_radius_at(r, mu, t);
             float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
@@ -137,10 +136,10 @@ __kernel void lut_single(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS, 
                              a->ozone_absorption.xyz * atmosphere_ozone_tent(a, h);
             float3 e = exp(-sigma_t * dt);
             float3 tw = T * lut_weights(sigma_t, dt, e);
-            ts[i] = t;
-            rs[i] = r_t;
-            lit_r[i] = tw * rayleigh * beta_r;
-            lit_m[i] = tw * mie * beta_m;
+            ts[m] = t;
+            rs[m] = r_t;
+            lit_r[m] = tw * rayleigh * beta_r;
+            lit_m[m] = tw * mie * beta_m;
             T *= e;
         }
         if (m == 0) /* the walk has ended */
@@ -289,15 +288,14 @@ __kernel void lut_multiple(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS
     for (int c0 = 0;; c0 += LUT_CHUNK) {
         int m = 0;
         for (; m < LUT_CHUNK && quadrature_next(&q) != QUADRATURE_END; m++) {
-            int i = m;
             float t = q.t;
             float r_t = geometry_radius_at(r, mu, t);
             float h = geometry_altitude_at(r, mu, t, a->bottom_radius);
             float mu_t = atmo_clamp_cos((r * mu + t) / r_t);
             float3 sigma_t = lut_mean_extinction(a, h, mu_t, dt);
             float3 e = exp(-sigma_t * dt);
-            ts[i] = t;
-            inv_r[i] = 1.0f / r_t;
+            ts[m] = t;
+            inv_r[m] = 1.0f / r_t;
             float f_mu, f_r;
             int upper = !ground; /* the ray stays on its side of the horizon */
             int i_mu = lut_cell(lut_mu_position(a, r_t, mu_t, ground, n_mu),
@@ -305,10 +303,10 @@ __kernel void lut_multiple(__global const atmo_gpu_scene *s, ATMO_LUT_OUT_PARAMS
             int i_r = lut_cell(lut_r_position(a, r_t, n_r), 0, n_r - 1, &f_r);
             for (int c = 0; c < 4; c++) {
                 int b_mu = c & 1, b_r = c >> 1;
-                rows[i][c] = ((i_r + b_r) * n_mu + i_mu + b_mu) * slab;
-                w_rm[i][c] = (b_mu ? f_mu : 1.0f - f_mu) * (b_r ? f_r : 1.0f - f_r);
+                rows[m][c] = ((i_r + b_r) * n_mu + i_mu + b_mu) * slab;
+                w_rm[m][c] = (b_mu ? f_mu : 1.0f - f_mu) * (b_r ? f_r : 1.0f - f_r);
             }
-            tw[i] = T * lut_weights(sigma_t, dt, e);
+            tw[m] = T * lut_weights(sigma_t, dt, e);
             T *= e;
         }
         if (m == 0) /* the walk has ended */

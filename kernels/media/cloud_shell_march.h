@@ -69,8 +69,8 @@ ATMO_FN void cloud_shell_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
 
 /* One interval [t0, t1] inside the shell. Its steps end at the cloud's break points, equal in
  * optical depth (channel y) up to the cut, and at the air grid's (grid_d, grid_n: those of
- * medium_integrate's quadrature walk, quadrature_grid_next), so the air inside the shell is resolved at least as finely as the grid
- * resolves it outside: a shell of negligible depth leaves the sky as the air alone makes it.
+ * medium_integrate's quadrature walk, quadrature_grid_next), so the air inside the shell is
+ * resolved at least as finely as the grid resolves it outside: a shell of negligible depth leaves the sky as the air alone makes it.
  * Adds the light to *L with the running view transmittance *T, and multiplies *shell_t by the
  * shell's own transmittance over the interval. */
 ATMO_FN void cloud_shell_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
