@@ -25,7 +25,7 @@
  * clouds' cover or brightness shows side by side), RMS_BOUND 10 % of the mean (the edges).
  * Measured (4 samples, the clouds' six-view fit): thesis-4 mean +0.57 % (standard error
  * 0.45 %), rms 0.413 with noise 0.325; thesis-5 +0.18 % (0.06 %), rms 0.033 with noise 0.022;
- * space -2.29 % (0.24 %), rms 0.168 with noise 0.176. space's small render is darker than its
+ * space -1.84 % (0.24 %), rms 0.167 with noise 0.172. space's small render is darker than its
  * truth by more than the noise, within the bound: the tracer's hit tolerance (half a pixel's
  * footprint, eps = 19 km at 2500 km and this size) ends a ray that far above the ground, and
  * the air below the hit is left out of its aerial perspective (with a tolerance 20 times

@@ -35,7 +35,8 @@
     X(atmo_gpu_terrain, camera) X(atmo_gpu_terrain, steps) X(atmo_gpu_terrain, shafts)          \
     X(atmo_gpu_terrain, pixel_angle) X(atmo_gpu_terrain, sun_map_size)                          \
     X(atmo_gpu_terrain, sun_map_extent_m) X(atmo_gpu_terrain, sun_map_soft_m)                    \
-    X(atmo_gpu_terrain, sun_map_axis)
+    X(atmo_gpu_terrain, sun_map_axis) X(atmo_gpu_terrain, stretch_slope)                       \
+    X(atmo_gpu_terrain, slope_growth_per_m)
 
 #define HOST_OFFSET(type, field) (uint)offsetof(type, field),
 #define DEVICE_OFFSET(type, field) "out[n++] = (uint)__builtin_offsetof(" #type ", " #field ");\n"

@@ -52,7 +52,7 @@ int main(void)
         double dv = fabs((double)hv - (double)full.h);
         worst_value = fmax(worst_value, dv);
         bad_value += dv > 1e-6 * H;
-        float hb = terrain_height_direct_capped(f, (float)u, (float)v, cap, &bound);
+        float hb = terrain_height_direct_capped(f, (float)u, (float)v, cap, &bound, NULL);
         double ref = terrain_ref_height(f, u, v, NULL, NULL);
         double tol = 4.0 * (L * N * ldexp(1.0, -24) * fmax(fmax(fabs(u), fabs(v)), 1000.0) +
                             N * ldexp(1.0, -24) * H);

@@ -35,6 +35,15 @@
  *     one, and the thesis presets' mountains (seed 7, first octave 1e-4 /m, no warp, as the
  *     presets set; and with the default warp); the largest measured is printed as a fraction
  *     of L.
+ *  7. The tracer's local bound under the domain warp (plan_terrain.c): at every one of 2^16
+ *     land points of the same square the double reference's slope at most stretch_slope times
+ *     the warp's stretch ||J|| there (terrain_ref_warp_stretch), and between 2^16 pairs of
+ *     points up to 4 km apart the stretch changing by at most the closed-form rate
+ *     slope_growth / (2 stretch_slope) per metre (value noise's Hessian bound; | ||A|| - ||B|| |
+ *     <= ||A - B||); the largest measured fractions are printed. The kernels' float stretch
+ *     (terrain_height_direct_capped's) against the double one: the float lattice point is off
+ *     by about 4 |x0| 2^-24 cells, which moves the stretch by the rate times that, plus 1e-5
+ *     for the Jacobian's own rounding.
  * The field of 1 to 5 is the default one, so it has the domain warp (noise.h): its derivatives
  * (the warp's Jacobian by the chain rule) against the differences, and its float evaluation
  * against the double one. */
@@ -116,6 +125,56 @@ static double slope_fraction(const char *seed, const char *frequency, const char
     return worst / L;
 }
 
+/* 7: the local bound under the warp on the default field (seed 46, 3e-5 /m, warp A) */
+static void check_local_bound(const char *warp)
+{
+    atmo_scene s;
+    atmo_plan p;
+    test_scene_preset(&s, "sky-noon");
+    test_scene_set(&s, "atmosphere.method=single");
+    test_scene_set(&s, "terrain.enabled=true");
+    test_scene_set(&s, "terrain.seed=46");
+    test_scene_set(&s, warp);
+    test_plan(&s, &p);
+    const atmo_gpu_terrain_field *f = &p.gpu.terrain.field;
+    double Ls = atmo_terrain_stretch_slope(f), growth = atmo_terrain_slope_growth(f);
+    double rate = growth / (2.0 * Ls), fr = (double)f->frequency_per_m; /* stretch per metre */
+    double worst_slope = 0.0, worst_rate = 0.0, worst_float = 0.0, worst_float_m = 0.0;
+    unsigned rng = 777u;
+    CHECK(Ls > 0.0 && growth > 0.0);
+    for (int i = 0; i < 65536; i++) {
+        double u = 23796.0 + (2 * urand(&rng) - 1) * 60000.0;
+        double v = 16636.0 + (2 * urand(&rng) - 1) * 60000.0, g[2], c;
+        double stretch = terrain_ref_warp_stretch(f, u, v);
+        terrain_ref_height(f, u, v, g, &c);
+        if (c > 0.0)
+            worst_slope = fmax(worst_slope, hypot(g[0], g[1]) / (Ls * stretch));
+        double delta = 4000.0 * urand(&rng), phi = 2.0 * M_PI * urand(&rng);
+        double moved = terrain_ref_warp_stretch(f, u + delta * cos(phi), v + delta * sin(phi));
+        if (delta > 0.0)
+            worst_rate = fmax(worst_rate, fabs(moved - stretch) / (rate * delta));
+        /* the float stretch at the float point, far out too */
+        double reach = i % 2 ? 3e6 : 6e4;
+        double uf = (double)(float)((2 * urand(&rng) - 1) * reach);
+        double vf = (double)(float)((2 * urand(&rng) - 1) * reach);
+        int bound;
+        float sf;
+        terrain_height_direct_capped(f, (float)uf, (float)vf, -1.0f, &bound, &sf);
+        double ref = terrain_ref_warp_stretch(f, uf, vf);
+        double tol = rate / fr * 4.0 * fmax(fmax(fabs(uf), fabs(vf)) * fr, 1.0) * ldexp(1.0, -24) +
+                     1e-5;
+        worst_float = fmax(worst_float, fabs((double)sf - ref) / tol);
+        worst_float_m = fmax(worst_float_m, fabs((double)sf - ref));
+    }
+    printf("%s: slope over stretch_slope ||J||: largest %.3f; stretch's change over its bound "
+           "%.3g per m: largest %.3f; float stretch off the double by %.3g (%.3f of its bound)\n",
+           warp, worst_slope, rate, worst_rate, worst_float_m, worst_float);
+    CHECK(worst_slope < 1.0);
+    CHECK(worst_rate <= 1.0);
+    CHECK(worst_float <= 1.0);
+    atmo_plan_free(&p);
+}
+
 int main(void)
 {
     atmo_plan plan;
@@ -164,6 +223,8 @@ int main(void)
     CHECK(slope_fraction("terrain.seed=7", "terrain.frequency_per_m=1e-4", "terrain.warp=0") < 1.0);
     CHECK(slope_fraction("terrain.seed=7", "terrain.frequency_per_m=1e-4", "terrain.warp=1.25") <
           1.0);
+    check_local_bound("terrain.warp=1.25");
+    check_local_bound("terrain.warp=4");
 
     /* 3 and 4: the heightmap pass in both formats */
     test_require_opencl();

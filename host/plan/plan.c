@@ -54,13 +54,14 @@ _Static_assert(offsetof(atmo_gpu_terrain_field, base_detail) == 64, "atmo_gpu_te
 _Static_assert(offsetof(atmo_gpu_terrain_field, detail_octave0) == 68, "atmo_gpu_terrain_field");
 _Static_assert(offsetof(atmo_gpu_terrain_field, detail_amplitude_m) == 76,
                "atmo_gpu_terrain_field");
-_Static_assert(sizeof(atmo_gpu_terrain) == 192, "atmo_gpu_terrain layout");
+_Static_assert(sizeof(atmo_gpu_terrain) == 208, "atmo_gpu_terrain layout");
+_Static_assert(offsetof(atmo_gpu_terrain, stretch_slope) == 192, "atmo_gpu_terrain layout");
 _Static_assert(offsetof(atmo_gpu_terrain, camera) == 96, "atmo_gpu_terrain layout");
 _Static_assert(offsetof(atmo_gpu_terrain, shafts) == 148, "atmo_gpu_terrain layout");
 _Static_assert(offsetof(atmo_gpu_terrain, sun_map_size) == 156, "atmo_gpu_terrain layout");
 _Static_assert(offsetof(atmo_gpu_terrain, sun_map_axis) == 176, "atmo_gpu_terrain layout");
 _Static_assert(offsetof(atmo_gpu_scene, terrain) == 768, "atmo_gpu_scene layout");
-_Static_assert(sizeof(atmo_gpu_scene) == 960, "atmo_gpu_scene layout");
+_Static_assert(sizeof(atmo_gpu_scene) == 976, "atmo_gpu_scene layout");
 
 #define DEG (M_PI / 180.0)
 

@@ -40,6 +40,23 @@
  * out. terrain.optimism and the tracer's back-stepping
  * answer for steps longer than L allows; tests/test_terrain_trace.c measures the misses.
  *
+ * Local bound under the warp. Over the direct fBm the tracer knows ||J(x0)|| at each step's
+ * start (the warp's Jacobian comes with the warped point), so its slope there is at most
+ * L_F ||J(x0)||, L_F = L without the warp's factor (stretch_slope). Along the step ||J|| can
+ * grow only as fast as the warp's gradients turn: value noise's Hessian has spectral norm at most
+ * C = 225/16 (lattice units; linear in the corner values, so largest at +-1; over the 16 sign
+ * patterns and a 601^2 grid of the cell the largest is (15/8)^2 4, at the centre with corners
+ * -1, 1, 1, -1, where n_xy = k3 q'x q'y alone), so each row of G_o moves by at most C F_o per
+ * lattice unit of x0, G_o by sqrt 2 C F_o (Frobenius), and
+ *     ||J(x0')|| <= ||J(x0)|| + A sqrt 2 C sum_o 2^-o F_o^2 |x0' - x0|
+ *                 = ||J(x0)|| + A sqrt 2 C F^2 (2^O - 1) |x0' - x0|   (O warp octaves).
+ * A ray's foot (u, v) = R (X, Z) / r moves at most 2 m per metre along it (R / r <= 1 in the
+ * terrain's shell; the change of R / r adds at most |(X, Z)| / r <= 1), and x0 = f (u, v), so
+ * the slope bound grows along the ray by at most
+ *     slope_growth = L_F 2 A sqrt 2 C F^2 (2^O - 1) f   per metre
+ * (4.7e-4 for the default terrain: the bound at the start of a 1 km step rises by at most 0.47
+ * over it), and never past L. The tracer sizes its steps by that (kernels/terrain/terrain.h).
+ *
  * The detail below a DEM's cells (kernels/terrain/terrain_detail.h) adds
  *     L_d = K A_i0 2^i0 f (15/4)
  * (K octaves, A_i 2^i constant), about 1.1 for the default terrain whatever the cell size
@@ -83,17 +100,40 @@
 #define TERRAIN_DETAIL_STEPS_FACTOR 2
 /* the eroded fBm's slope envelope in units of H f relief / sum b, times sqrt(octaves) (above) */
 #define TERRAIN_SLOPE_ENVELOPE 6.0
+/* value noise's largest gradient norm and Hessian spectral norm, lattice units (above) */
+#define TERRAIN_NOISE_SLOPE (15.0 / 4.0)
+#define TERRAIN_NOISE_CURVATURE (225.0 / 16.0)
+
+/* L_F: the eroded fBm's slope bound in metres per metre of its lattice point (above) */
+static double terrain_fbm_slope(const atmo_gpu_terrain_field *f)
+{
+    double norm = 2.0 * (1.0 - pow(0.5, f->octaves));
+    double octaves = fmin(f->octaves * TERRAIN_NOISE_SLOPE,
+                          TERRAIN_SLOPE_ENVELOPE * sqrt(f->octaves));
+    return (double)f->max_height_m * (double)f->frequency_per_m * octaves *
+           (double)TERRAIN_RELIEF / norm;
+}
 
 double atmo_terrain_slope_bound(const atmo_gpu_terrain_field *f)
 {
-    double norm = 2.0 * (1.0 - pow(0.5, f->octaves)), per_octave = 15.0 / 4.0;
     double detail = f->detail_octaves * (double)f->detail_amplitude_m *
-                    ldexp((double)f->frequency_per_m, f->detail_octave0) * per_octave;
-    double octaves = fmin(f->octaves * per_octave, TERRAIN_SLOPE_ENVELOPE * sqrt(f->octaves));
+                    ldexp((double)f->frequency_per_m, f->detail_octave0) * TERRAIN_NOISE_SLOPE;
     double warp = 1.0 + TERRAIN_WARP_OCTAVES * (double)f->warp * (double)TERRAIN_WARP_FREQUENCY *
-                            per_octave * sqrt(2.0);
-    return (double)f->max_height_m * (double)f->frequency_per_m * octaves *
-               (double)TERRAIN_RELIEF / norm * warp + detail;
+                            TERRAIN_NOISE_SLOPE * sqrt(2.0);
+    return terrain_fbm_slope(f) * warp + detail;
+}
+
+double atmo_terrain_stretch_slope(const atmo_gpu_terrain_field *f)
+{
+    return f->warp > 0.0f ? terrain_fbm_slope(f) : 0.0;
+}
+
+double atmo_terrain_slope_growth(const atmo_gpu_terrain_field *f)
+{
+    double F = (double)TERRAIN_WARP_FREQUENCY;
+    double stretch_rate = (double)f->warp * sqrt(2.0) * TERRAIN_NOISE_CURVATURE * F * F *
+                          (ldexp(1.0, TERRAIN_WARP_OCTAVES) - 1.0) * (double)f->frequency_per_m;
+    return atmo_terrain_stretch_slope(f) * 2.0 * stretch_rate;
 }
 
 /* The scene's DEM (p->dem, read by the plan) as the heightmap's base: resampled bicubically
@@ -163,6 +203,8 @@ int atmo_plan_terrain(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     t->camera.w = (float)(r - R);
     t->sea_level_m = (float)s->terrain.sea_level_m;
     t->slope_bound = (float)atmo_terrain_slope_bound(&t->field);
+    t->stretch_slope = (float)atmo_terrain_stretch_slope(&t->field);
+    t->slope_growth_per_m = (float)atmo_terrain_slope_growth(&t->field);
     t->optimism = (float)s->terrain.optimism;
     double pixel = 2.0 * tan(0.5 * s->camera.fov_deg * M_PI / 180.0) / s->image.height;
     if (s->camera.kind == ATMO_CAMERA_PANORAMA)

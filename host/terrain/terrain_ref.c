@@ -163,6 +163,14 @@ double terrain_ref_height(const atmo_gpu_terrain_field *f, double u, double v, d
     return H * c * e;
 }
 
+double terrain_ref_warp_stretch(const atmo_gpu_terrain_field *f, double u, double v)
+{
+    double fr = (double)f->frequency_per_m, x = u * fr, y = v * fr, j[4] = {1, 0, 0, 1};
+    warp(f, &x, &y, j);
+    /* the largest singular value (noise.h's terrain_warp_stretch) */
+    return 0.5 * (hypot(j[0] + j[3], j[2] - j[1]) + hypot(j[0] - j[3], j[1] + j[2]));
+}
+
 double terrain_ref_detail(const atmo_gpu_terrain_field *f, double u, double v, double grad[2])
 {
     double fr = (double)f->frequency_per_m, x = u * fr, y = v * fr, j[4] = {fr, 0, 0, fr};

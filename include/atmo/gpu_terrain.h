@@ -63,6 +63,11 @@ typedef struct atmo_gpu_terrain {
     int pad3;
     float4 sun_map_axis;  /* xyz: the sun's horizontal direction at the camera (the map's
                              rows); w: tan of the sun's elevation there */
+    float stretch_slope;  /* under the domain warp: the bound on |grad h| per unit of the warp's
+                             stretch ||J|| over the direct fBm (the tracer's local bound);
+                             0 without a warp */
+    float slope_growth_per_m; /* how fast that local bound can grow per metre along a ray */
+    int pad4, pad5;
 } atmo_gpu_terrain;
 
 #endif

@@ -51,4 +51,9 @@ double atmo_plan_terrain_surface_y(const atmo_plan *p, double R, double x, doubl
  * (plan_terrain.c). */
 double atmo_terrain_slope_bound(const atmo_gpu_terrain_field *f);
 
+/* Under the domain warp, the fBm's slope bound per unit of the warp's stretch ||J|| (L_F), and
+ * how fast L_F ||J|| can grow per metre along a ray; both 0 without a warp (plan_terrain.c). */
+double atmo_terrain_stretch_slope(const atmo_gpu_terrain_field *f);
+double atmo_terrain_slope_growth(const atmo_gpu_terrain_field *f);
+
 #endif

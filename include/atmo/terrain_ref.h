@@ -9,6 +9,11 @@
 double terrain_ref_height(const atmo_gpu_terrain_field *f, double u, double v, double grad[2],
                           double *coverage);
 
+/* The domain warp's stretch at planar (u, v) metres: the spectral norm of the Jacobian of the
+ * fBm's warped lattice point in the unwarped one (kernels/terrain/noise.h's
+ * terrain_warp_stretch); 1 without a warp. */
+double terrain_ref_warp_stretch(const atmo_gpu_terrain_field *f, double u, double v);
+
 /* The detail below a DEM's cells (kernels/terrain/terrain_detail.h) at (u, v) and its gradient
  * in grad[2] (may be NULL); 0 where the field has none. */
 double terrain_ref_detail(const atmo_gpu_terrain_field *f, double u, double v, double grad[2]);

@@ -363,23 +363,38 @@ ATMO_FN float terrain_height_direct_value(ATMO_GLOBAL const atmo_gpu_terrain_fie
     return f->max_height_m * c * terrain_fbm_value(x, y, f->octaves, f->seed);
 }
 
+/* The warp's stretch at a point: the spectral norm of its Jacobian jac = [[a, b], [c, d]]
+ * (terrain_fbm_point's, row-major), its largest singular value
+ *     (sqrt((a + d)^2 + (c - b)^2) + sqrt((a - d)^2 + (b + c)^2)) / 2
+ * (J as a rotation-scaling plus a reflection-scaling, whose scales add; sums of squares, so
+ * free of the cancellation of sqrt((T + sqrt(T^2 - 4 det^2)) / 2) where J is near conformal).
+ * The slope in (u, v) is at most the stretch times the fBm's slope at the warped point. */
+ATMO_FN float terrain_warp_stretch(const float *jac)
+{
+    float p = jac[0] + jac[3], q = jac[2] - jac[1], r = jac[0] - jac[3], w = jac[1] + jac[2];
+    return 0.5f * (sqrtf(p * p + q * q) + sqrtf(r * r + w * w));
+}
+
 /* An upper bound on the height at (u, v), cheaper than the height where it is well below
  * cap_m: the coverage bounded by 1 and the fBm stopped early (terrain_fbm_value_capped), when
  * that bound is below cap_m with room to spare; else the height itself.
- * *bound: 1 for a bound, 0 for the height. */
+ * *bound: 1 for a bound, 0 for the height. stretch (may be NULL): gets the warp's stretch at
+ * (u, v) (terrain_warp_stretch), from the warped point's own Jacobian. */
 ATMO_FN float terrain_height_direct_capped(ATMO_GLOBAL const atmo_gpu_terrain_field *f, float u,
-                                           float v, float cap_m, int *bound)
+                                           float v, float cap_m, int *bound, float *stretch)
 {
-    float H = f->max_height_m;
+    float H = f->max_height_m, x, y, jac[4];
+    terrain_fbm_point(f, u, v, &x, &y, stretch ? jac : 0);
+    if (stretch)
+        *stretch = terrain_warp_stretch(jac);
     if (cap_m < H && cap_m > 0.0f) {
-        float x, y;
-        terrain_fbm_point(f, u, v, &x, &y, 0);
         float e = terrain_fbm_value_capped(x, y, f->octaves, f->seed, cap_m / H, bound);
         if (*bound)
             return H * e;
     }
     *bound = 0;
-    return terrain_height_direct_value(f, u, v);
+    float c = terrain_coverage_value(f, u, v);
+    return c <= 0.0f ? 0.0f : H * c * terrain_fbm_value(x, y, f->octaves, f->seed);
 }
 
 /* The height field h = H coverage e at (u, v) metres, evaluated directly. */

@@ -29,7 +29,14 @@
  * Sphere tracing (Hart 1996; over-relaxation after Keinert et al. 2014). Along a ray of local
  * cosine mu to the vertical, the clearance falls at most at the rate L sqrt(1 - mu^2) - mu with
  * L = slope_bound, so a step of dt = omega g / max(L sqrt(1 - mu^2) - mu, 0.05) with omega = 1
- * cannot pass the surface while L bounds |grad h|; omega = optimism > 1 takes longer steps. A
+ * cannot pass the surface while L bounds |grad h|; omega = optimism > 1 takes longer steps.
+ * Under the domain warp L is the worst case of its stretch (7.6 times the unwarped field's for
+ * the default warp), far above the slopes most points have; over the direct fBm each step
+ * instead starts from the local bound L_0 = stretch_slope ||J|| at its start (the warp's
+ * stretch there, noise.h) and lets it grow by slope_growth_per_m per metre (G, host/plan/
+ * plan_terrain.c), capped at L: the clearance then falls at most as
+ * a + G sqrt(1 - mu^2) s after s metres, a = max(L_0 sqrt(1 - mu^2) - mu, 0.05), and the safe
+ * step is the root of g = a s + G sqrt(1 - mu^2) s^2 / 2 (terrain_step_clearance). A
  * step that lands below the surface steps back to the last point above it and goes on with
  * omega = 1 (back-stepping); below it again, the bracket is bisected (24 halvings or to 1e-6 of
  * t). A point within the distance-dependent tolerance eps(t) = 0.01 m + tolerance t above the
@@ -184,20 +191,29 @@ ATMO_FN float terrain_surface(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL c
 }
 
 /* A lower bound on the clearance at a camera-relative point, exact wherever the bound would be
- * below floor_m (the tracer's hit tolerance there) or the point lies over the heightmap: above
- * the procedural fBm, the clearance over terrain_height_direct_capped's upper bound on the
- * height, which skips the coverage and the fine octaves far above the surface. */
+ * below floor_m (the tracer's hit tolerance there; INFINITY: always exact) or the point lies
+ * over the heightmap: above the procedural fBm, the clearance over
+ * terrain_height_direct_capped's upper bound on the height, which skips the coverage and the
+ * fine octaves far above the surface. *slope: a bound on |grad h| at the point's foot, under the
+ * domain warp over the direct fBm stretch_slope times the warp's stretch there, else
+ * slope_bound. */
 ATMO_FN float terrain_clearance_bounded(ATMO_GLOBAL const atmo_gpu_scene *s,
-                                        ATMO_GLOBAL const float *hm, vec3 p, float floor_m)
+                                        ATMO_GLOBAL const float *hm, vec3 p, float floor_m,
+                                        float *slope)
 {
-    ATMO_GLOBAL const atmo_gpu_terrain_field *f = &s->terrain.field;
+    ATMO_GLOBAL const atmo_gpu_terrain *tr = &s->terrain;
+    ATMO_GLOBAL const atmo_gpu_terrain_field *f = &tr->field;
     terrain_site q = terrain_locate(s, p);
-    float gx, gy;
+    float gx, gy, stretch;
+    *slope = tr->slope_bound;
     if (terrain_in_heightmap(f, q.u, q.v, &gx, &gy))
         return q.alt - terrain_surface(s, hm, q);
-    int bound;
-    float h = terrain_height_direct_capped(f, q.u, q.v, q.alt - floor_m, &bound);
-    return q.alt - fmaxf(h, s->terrain.sea_level_m);
+    int bound, warped = tr->slope_growth_per_m > 0.0f;
+    float h = terrain_height_direct_capped(f, q.u, q.v, q.alt - floor_m, &bound,
+                                           warped ? &stretch : 0);
+    if (warped)
+        *slope = fminf(tr->stretch_slope * stretch, tr->slope_bound);
+    return q.alt - fmaxf(h, tr->sea_level_m);
 }
 
 /* The clearance g above the surface at a camera-relative point. */
@@ -267,6 +283,22 @@ ATMO_FN float terrain_bisect(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL co
     return 0.5f * (a + b);
 }
 
+/* The clearance the step from a point of clearance g may count on, in units of the global
+ * rate: the tracer steps omega times it over `rate`, the clearance's fastest fall under
+ * slope_bound (a ray of cosine mu to the vertical, sin_t its sine). Without the warp's local
+ * bound that is g; with it (the top of the file: `slope` the bound at the point, growing by
+ * slope_growth_per_m per metre) the safe step is the root s of g = a s + b s^2 / 2,
+ * a = max(slope sin_t - mu, 0.05), b = slope_growth_per_m sin_t, taken as
+ * 2 g / (a + sqrt(a^2 + 2 b g)) (no cancellation), times rate, and never below g. */
+ATMO_FN float terrain_step_clearance(ATMO_GLOBAL const atmo_gpu_terrain *tr, float g, float slope,
+                                     float sin_t, float mu, float rate)
+{
+    if (tr->slope_growth_per_m <= 0.0f)
+        return g;
+    float a = fmaxf(slope * sin_t - mu, 0.05f), b = tr->slope_growth_per_m * sin_t;
+    return fmaxf(rate * (2.0f * g / (a + sqrtf(a * a + 2.0f * b * g))), g);
+}
+
 /* The first hit of the ray o + t d (camera-relative, d unit) with t0 <= t <= t1: 1 and *t_hit,
  * or 0. steps: the sphere-tracing budget; *used (may be NULL) gets the steps taken, fallback
  * included. */
@@ -284,9 +316,9 @@ ATMO_FN int terrain_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const
     ends_low = ends_low && t_out <= t1;
     if (t > t_end)
         return 0;
-    float R = s->atmosphere.bottom_radius;
+    float R = s->atmosphere.bottom_radius, slope, slope_prev;
     float r_o = R + terrain_locate(s, o).alt, mu_o = v3_dot(terrain_vertical(s, o), d);
-    float g = terrain_clearance(s, hm, v3_add(o, v3_scale(d, t)));
+    float g = terrain_clearance_bounded(s, hm, v3_add(o, v3_scale(d, t)), INFINITY, &slope);
     if (g <= 0.0f) { /* starts inside the terrain */
         *t_hit = t;
         return 1;
@@ -294,8 +326,8 @@ ATMO_FN int terrain_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const
     float omega = tr->optimism, t_prev = t, g_prev = g, min_step = 0.0f, uniform = 0.0f;
     int total = steps + TERRAIN_FALLBACK_STEPS, hit = 0;
     for (n = 0; n < total; n++) {
-        float mu = terrain_ray_cosine(r_o, mu_o, t);
-        float rate = fmaxf(tr->slope_bound * atmo_safe_sqrt(1.0f - mu * mu) - mu, 0.05f);
+        float mu = terrain_ray_cosine(r_o, mu_o, t), sin_t = atmo_safe_sqrt(1.0f - mu * mu);
+        float rate = fmaxf(tr->slope_bound * sin_t - mu, 0.05f);
         if (n == steps) { /* the fallback: from the safe step up to a 256th of the rest */
             min_step = (g + TERRAIN_EPS_M + tr->tolerance * t) / rate;
             uniform = (t_end - t) / 256.0f;
@@ -306,17 +338,18 @@ ATMO_FN int terrain_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const
             hit = 1;
             break;
         }
-        float dt = fmaxf(omega * g / rate, min_step);
-        t_prev = t, g_prev = g;
+        float reach = terrain_step_clearance(tr, g, slope, sin_t, mu, rate);
+        float dt = fmaxf(omega * reach / rate, min_step);
+        t_prev = t, g_prev = g, slope_prev = slope;
         t = fminf(t + dt, t_end);
         /* a lower bound suffices while it clears the hit tolerance at t: no hit, no overshoot,
          * and a step no longer than the exact clearance allows */
         g = terrain_clearance_bounded(s, hm, v3_add(o, v3_scale(d, t)),
-                                      TERRAIN_EPS_M + tr->tolerance * t);
+                                      TERRAIN_EPS_M + tr->tolerance * t, &slope);
         if (g <= 0.0f) {
             if (omega > 1.0f) { /* back-step, then go on within the bound */
                 omega = 1.0f;
-                t = t_prev, g = g_prev;
+                t = t_prev, g = g_prev, slope = slope_prev;
                 continue;
             }
             t = terrain_bisect(s, hm, o, d, t_prev, t);
