@@ -182,8 +182,9 @@ ATMO_FN int clouds_shell_parts(float R, float base, float top, float r, float mu
 }
 
 /* The density integral D (m) from the point q toward the sun over the layer: the part of the
- * ray in the shell cut to `distance` from where it enters, in n steps growing as (i/n)^2 with
- * the sample offset `jitter` in [0, 1), stopping once the optical depth passes tau_stop. */
+ * ray in the shell cut to `distance` from where it enters, in n steps growing as (i/n)^2 (the
+ * quadrature walk's grid, quadrature_grid_segment) with the sample offset `jitter` in [0, 1),
+ * stopping once the optical depth passes tau_stop. */
 ATMO_FN float clouds_sun_density_steps(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_point *q,
                                        float jitter, int n, float distance, float tau_stop)
 {
@@ -196,8 +197,7 @@ ATMO_FN float clouds_sun_density_steps(ATMO_GLOBAL const atmo_gpu_scene *s, cons
     vec3 sun = v3_from4(s->sun_direction);
     float D = 0.0f;
     for (int i = 0; i < n; i++) {
-        float x0 = (float)i / (float)n, x1 = (float)(i + 1) / (float)n;
-        float dt = len * (x1 * x1 - x0 * x0), t = a + len * x0 * x0 + jitter * dt;
+        float dt, t = a + quadrature_grid_segment(len, i, n, &dt) + jitter * dt;
         float h = geometry_altitude_at(q->r, q->mu_s, t, R);
         D += clouds_density(c, v3_add(q->p, v3_scale(sun, t)), h) * dt;
         if (D * c->extinction.y > tau_stop)
