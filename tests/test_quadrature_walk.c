@@ -29,9 +29,23 @@
  *     [0, d) and at every break itself.
  *  5. Equal segments (quadrature_begin_equal; 49 lengths of 100 m to 1e6 m, 1 to 199
  *     segments): exactly n pieces, piece i from i d/n (2 ulp(d)), d/n long (1 ulp), sampled at
- *     its middle (i + 1/2) d/n (2 ulp). */
+ *     its middle (i + 1/2) d/n (2 ulp).
+ *  6. Sized pieces (quadrature_begin_sized over [t0, t1], at most n pieces, jitter 0.37): the
+ *     first piece starts at t0 and each next one exactly where the one before ended (start +
+ *     dt, the same float: no gap, no overlap); each is sampled at start + jitter dt (ulp).
+ *     (f) constant length 64 m over [1024, 1696] m (every value exact in float): 11 pieces,
+ *     piece k at 1024 + 64 k, the last cut to 32 m, ending at t1 exactly; (g) the same with
+ *     n = 4: 4 pieces, stopped by the count at 1280 m; (h) lengths growing as a + b start
+ *     (a = 50 m, b = 0.02, the marcher's rule) over [2000, 30000] m: piece k starts at the
+ *     closed form (t0 + a/b)(1 + b)^k - a/b (relative 4 (k + 1) ulp: a few roundings per
+ *     step, carried on), as many pieces as the closed form has starts below t1, the last
+ *     ending at t1 (4 ulp); (i) pieces ending at the next of two sets of break points
+ *     (quadrature_step_to, the shell's rule: t0 + j (t1 - t0)/7 and the grid's breaks of
+ *     d = 12000 m on 16 segments) over [500, 9000] m: the pieces end exactly at the sorted
+ *     union of the breaks inside (t0, t1), then at t1; (j) t0 = t1: no piece. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include "testlib.h"
 #include "kernels_composed.h"
 
@@ -125,6 +139,110 @@ static int check_ray(const char *name, float d, int n, float jitter, const float
     return pieces;
 }
 
+/* The pieces of the sized walk over [t0, t1] (at most n, jitter 0.37) with lengths
+ * a + b start (want_end 0) or ending at the next of the breaks t0 + j (t1 - t0) / 7 and the
+ * grid's of grid_d on grid_n segments (want_end 1); checks oracle 6's tiling and sample points
+ * and returns how many pieces, their starts in start[], the walk's end in *done. */
+static int sized_walk(float t0, float t1, int n, float a, float b, int want_end, float grid_d,
+                      int grid_n, float *start, float *done)
+{
+    const float jitter = 0.37f, A = (t1 - t0) / 7.0f;
+    quadrature_walk q = quadrature_begin_sized(t0, t1, n, jitter);
+    int m = 0, j = 1;
+    float end = t0;
+    while (quadrature_more(&q) && m < MAX_EVENTS) {
+        if (want_end) {
+            float tc = j < 7 ? t0 + (float)j * A : t1;
+            quadrature_step_to(&q, fminf(tc, quadrature_grid_next(q.done, grid_d, grid_n)));
+            j += q.done >= tc;
+        } else {
+            quadrature_step(&q, a + b * q.done);
+        }
+        CHECK(q.start == end); /* where the piece before ended */
+        double want_t = (double)q.start + (double)jitter * q.dt;
+        CHECK_ABS(q.t, want_t, ulp(want_t));
+        CHECK(q.dt > 0.0f);
+        end = q.start + q.dt;
+        CHECK(q.done == end);
+        start[m++] = q.start;
+    }
+    CHECK(m < MAX_EVENTS);
+    *done = q.done;
+    return m;
+}
+
+static int float_less(const void *x, const void *y)
+{
+    float a = *(const float *)x, b = *(const float *)y;
+    return (a > b) - (a < b);
+}
+
+/* Oracle 6: the sized walk's cases (f) to (j). */
+static void check_sized(void)
+{
+    float start[MAX_EVENTS], done;
+    /* (f), (g): constant length */
+    int m = sized_walk(1024.0f, 1696.0f, 100, 64.0f, 0.0f, 0, 0.0f, 0, start, &done);
+    int off = m != 11 || done != 1696.0f;
+    for (int k = 0; k < m; k++)
+        off += start[k] != 1024.0f + 64.0f * (float)k;
+    CHECK(off == 0);
+    printf("(f) constant 64 m:         %2d pieces (exact 11), end %.1f m (exact 1696)\n", m,
+           (double)done);
+    m = sized_walk(1024.0f, 1696.0f, 4, 64.0f, 0.0f, 0, 0.0f, 0, start, &done);
+    CHECK(m == 4 && done == 1280.0f);
+    printf("(g) the same, n = 4:       %2d pieces (exact 4), end %.1f m (exact 1280)\n", m,
+           (double)done);
+
+    /* (h): growing lengths, against the closed form */
+    const double a = 50.0, b = 0.02, t0 = 2000.0, t1 = 30000.0;
+    m = sized_walk((float)t0, (float)t1, 1000, (float)a, (float)b, 0, 0.0f, 0, start, &done);
+    int want = 0;
+    double worst = 0.0;
+    while ((t0 + a / b) * pow(1.0 + b, want) - a / b < t1)
+        want++;
+    for (int k = 0; k < m; k++) {
+        double exact = (t0 + a / b) * pow(1.0 + b, k) - a / b;
+        CHECK_ABS(start[k], exact, 4.0 * (k + 1) * ulp(exact));
+        worst = fmax(worst, fabs((double)start[k] - exact) / ulp(exact));
+    }
+    CHECK(m == want);
+    CHECK_ABS(done, t1, 4.0 * ulp(t1));
+    printf("(h) growing a + b t:       %2d pieces (closed form %d), starts within %.1f ulp, "
+           "end %.3f m\n", m, want, worst, (double)done);
+
+    /* (i): the next of two sets of break points */
+    const float lo = 500.0f, hi = 9000.0f, grid_d = 12000.0f, A = (hi - lo) / 7.0f;
+    const int grid_n = 16;
+    m = sized_walk(lo, hi, 7 + grid_n + 1, 0.0f, 0.0f, 1, grid_d, grid_n, start, &done);
+    float breaks[32];
+    int nb = 0;
+    for (int j = 1; j < 7; j++)
+        breaks[nb++] = lo + (float)j * A;
+    for (int k = 1; k <= grid_n; k++) {
+        float dt, g = quadrature_grid_segment(grid_d, k, grid_n, &dt);
+        if (g > lo && g < hi)
+            breaks[nb++] = g;
+    }
+    qsort(breaks, nb, sizeof breaks[0], float_less);
+    int uniq = 0;
+    for (int k = 0; k < nb; k++)
+        if (uniq == 0 || breaks[k] != breaks[uniq - 1])
+            breaks[uniq++] = breaks[k];
+    breaks[uniq++] = hi;
+    off = m != uniq || done != hi;
+    for (int k = 1; k < m && k < uniq; k++)
+        off += start[k] != breaks[k - 1];
+    CHECK(off == 0);
+    printf("(i) to the next break:     %2d pieces (the union of the breaks: %d), end %.1f m\n", m,
+           uniq, (double)done);
+
+    /* (j): an empty walk */
+    m = sized_walk(700.0f, 700.0f, 10, 64.0f, 0.0f, 0, 0.0f, 0, start, &done);
+    CHECK(m == 0 && done == 700.0f);
+    printf("(j) t0 = t1:               %2d pieces\n", m);
+}
+
 int main(void)
 {
     check_ray("no parts, jitter 0.37", 1.2e5f, 64, 0.37f, NULL, NULL, 0);
@@ -198,5 +316,7 @@ int main(void)
     CHECK(wrong == 0);
     printf("quadrature_grid_next: %d of %d points off the least break above them\n", wrong,
            10000 + n);
+
+    check_sized();
     return test_finish();
 }

@@ -63,6 +63,7 @@
 #include "common/phase.h"
 #include "common/rng.h"
 #include "media/ray.h"
+#include "media/quadrature_walk.h"
 #include "media/cloud_noise.h"
 #include "media/phase_table.h"
 #include "atmo/gpu_types.h"
@@ -181,8 +182,9 @@ ATMO_FN int clouds_shell_parts(float R, float base, float top, float r, float mu
 }
 
 /* The density integral D (m) from the point q toward the sun over the layer: the part of the
- * ray in the shell cut to `distance` from where it enters, in n steps growing as (i/n)^2 with
- * the sample offset `jitter` in [0, 1), stopping once the optical depth passes tau_stop. */
+ * ray in the shell cut to `distance` from where it enters, in n steps growing as (i/n)^2 (the
+ * quadrature walk's grid, quadrature_grid_segment) with the sample offset `jitter` in [0, 1),
+ * stopping once the optical depth passes tau_stop. */
 ATMO_FN float clouds_sun_density_steps(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_point *q,
                                        float jitter, int n, float distance, float tau_stop)
 {
@@ -195,8 +197,7 @@ ATMO_FN float clouds_sun_density_steps(ATMO_GLOBAL const atmo_gpu_scene *s, cons
     vec3 sun = v3_from4(s->sun_direction);
     float D = 0.0f;
     for (int i = 0; i < n; i++) {
-        float x0 = (float)i / (float)n, x1 = (float)(i + 1) / (float)n;
-        float dt = len * (x1 * x1 - x0 * x0), t = a + len * x0 * x0 + jitter * dt;
+        float dt, t = a + quadrature_grid_segment(len, i, n, &dt) + jitter * dt;
         float h = geometry_altitude_at(q->r, q->mu_s, t, R);
         D += clouds_density(c, v3_add(q->p, v3_scale(sun, t)), h) * dt;
         if (D * c->extinction.y > tau_stop)
@@ -216,33 +217,33 @@ ATMO_FN float clouds_march_step(ATMO_GLOBAL const atmo_gpu_clouds *c, float t_c,
 
 /* The density integrals (m) along the view ray m over [t0, t1], a part of the ray inside the
  * layer's shell, on the marcher's steps (clouds_march_step: the same lengths and coverage test,
- * up to the far plane max_distance_m and `steps` steps) times step_scale, each sampled at its
- * midpoint (no jitter: the result is a function of the ray alone), stopping once the optical
- * depth (channel y) passes tau_stop. Returns the integral over the whole part, and adds to
- * D[k] the integral over [t0, min(t1, ends[k])] for each of the n end distances (the density of
- * a step times the length of the step before ends[k]). The denoiser's guides take the view
- * transmittance through the layer, exp(-extinction D), from it for a block of rays that share
- * the march and end at their own surfaces (render/guides.cl). */
+ * up to the far plane max_distance_m and `steps` steps, a sized quadrature walk) times
+ * step_scale, each sampled at its midpoint (no jitter: the result is a function of the ray
+ * alone), stopping once the optical depth (channel y) passes tau_stop. Returns the integral
+ * over the whole part, and adds to D[k] the integral over [t0, min(t1, ends[k])] for each of
+ * the n end distances (the density of a step times the length of the step before ends[k]).
+ * The denoiser's guides take the view transmittance through the layer, exp(-extinction D),
+ * from it for a block of rays that share the march and end at their own surfaces
+ * (render/guides.cl). */
 ATMO_FN float clouds_view_density_ends(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m,
                                        float t0, float t1, float step_scale, float tau_stop, int n,
                                        const float *ends, float *D)
 {
     ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
     float start = v3_length(m->origin); /* the camera's distance to the ray's origin */
-    float far = c->max_distance_m - start, t = t0, total = 0.0f;
-    for (int i = 0; i < c->steps && t < t1 && t < far && total * c->extinction.y <= tau_stop;
-         i++) {
-        medium_point q = medium_ray_at(m, t, s->atmosphere.bottom_radius);
+    float far = c->max_distance_m - start, total = 0.0f;
+    quadrature_walk w = quadrature_begin_sized(t0, t1, c->steps, 0.5f);
+    while (quadrature_more(&w) && w.done < far && total * c->extinction.y <= tau_stop) {
+        medium_point q = medium_ray_at(m, w.done, s->atmosphere.bottom_radius);
         int cloudy = clouds_coverage(c, q.p) > 0.0f;
-        float dt = fminf(step_scale * clouds_march_step(c, start + t, cloudy), t1 - t);
+        quadrature_step(&w, step_scale * clouds_march_step(c, start + w.done, cloudy));
         if (cloudy) {
-            medium_point x = medium_ray_at(m, t + 0.5f * dt, s->atmosphere.bottom_radius);
+            medium_point x = medium_ray_at(m, w.t, s->atmosphere.bottom_radius);
             float d = clouds_density(c, x.p, x.h);
-            total += d * dt;
+            total += d * w.dt;
             for (int k = 0; k < n; k++)
-                D[k] += d * clamp(ends[k] - t, 0.0f, dt);
+                D[k] += d * clamp(ends[k] - w.start, 0.0f, w.dt);
         }
-        t += dt;
     }
     return total;
 }

@@ -8,8 +8,9 @@
  * step rarely cuts into a cloud): in clear air the step is CLOUDS_CLEAR_STRIDE times longer, in cloud it is
  *     dt = step_m + CLOUDS_STEP_GROWTH t_c
  * (t_c the distance from the camera, so the step follows the pixel's footprint), the first one
- * shortened by the sample's jitter so successive samples cover the ray. Each step is sampled at
- * the fraction `jitter` of it and integrated exactly for constant coefficients (Hillaire 2015;
+ * shortened by the sample's jitter so successive samples cover the ray. The steps are the
+ * pieces of a sized quadrature walk (quadrature_walk.h) over the part; each is sampled at the
+ * fraction `jitter` of it and integrated exactly for constant coefficients (Hillaire 2015;
  * media.h's medium_piece_weight),
  *     L += T (1 - e^{-sigma_t dt}) / sigma_t S,   T *= e^{-sigma_t dt}
  * which conserves energy for any step length. Beyond the far plane max_distance_m, after
@@ -92,6 +93,7 @@
 #include "common/phase.h"
 #include "media/ray.h"
 #include "media/media.h"
+#include "media/quadrature_walk.h"
 #include "media/visibility.h"
 #include "media/cloud_layer_medium.h"
 #include "media/tracking.h"
@@ -271,24 +273,24 @@ ATMO_FN void clouds_march(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
     ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
     float start = v3_length(m->origin); /* the camera's distance to the ray's origin */
     float far = c->max_distance_m - start;
-    float t = t0;
     /* the scene's constants of every step: the diffusion exponent and the diffuse orders' albedo */
     vec3 k_d = clouds_diffusion_exponent(c), diffuse_albedo = clouds_similarity_albedo(c);
-    for (int i = 0; i < c->steps && t < t1 && t < far && tracking_max3(*T) >= CLOUDS_T_MIN;
-         i++) {
-        medium_point q = medium_ray_at(m, t, s->atmosphere.bottom_radius);
+    quadrature_walk w = quadrature_begin_sized(t0, t1, c->steps, jitter);
+    while (quadrature_more(&w) && w.done < far && tracking_max3(*T) >= CLOUDS_T_MIN) {
+        medium_point q = medium_ray_at(m, w.done, s->atmosphere.bottom_radius);
         int cloudy = clouds_coverage(c, q.p) > 0.0f;
-        float dt = clouds_march_step(c, start + t, cloudy);
-        if (i == 0) /* a shorter first step: the samples' steps interleave */
+        float dt = clouds_march_step(c, start + w.done, cloudy);
+        if (w.i == 0) /* a shorter first step: the samples' steps interleave */
             dt *= fmaxf(jitter, 1e-3f);
-        dt = fminf(dt, t1 - t);
-        clouds_step(s, ATMO_LUT_ARGS, m, t + jitter * dt, dt, cloudy, use_ms, ground, k_d,
-                    diffuse_albedo, L, L_cloud, T, medium_t);
-        t += dt;
+        quadrature_step(&w, dt);
+        clouds_step(s, ATMO_LUT_ARGS, m, w.t, w.dt, cloudy, use_ms, ground, k_d, diffuse_albedo,
+                    L, L_cloud, T, medium_t);
     }
-    if (t < t1 && tracking_max3(*T) >= CLOUDS_T_MIN) /* the rest: air only */
-        clouds_step(s, ATMO_LUT_ARGS, m, t + jitter * (t1 - t), t1 - t, 0, use_ms, ground, k_d,
-                    diffuse_albedo, L, L_cloud, T, medium_t);
+    if (w.done < t1 && tracking_max3(*T) >= CLOUDS_T_MIN) { /* the rest: air only */
+        quadrature_step_to(&w, t1);
+        clouds_step(s, ATMO_LUT_ARGS, m, w.t, w.dt, 0, use_ms, ground, k_d, diffuse_albedo, L,
+                    L_cloud, T, medium_t);
+    }
 }
 
 /* media_interval's part [t0, t1] of the layer: the steps, then with the thesis look the

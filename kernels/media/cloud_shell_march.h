@@ -28,20 +28,20 @@ ATMO_FN float cloud_shell_chord_at(ATMO_GLOBAL const atmo_gpu_scene *s, const me
     return cloud_shell_chord(R, cloud_shell_base(s), cloud_shell_top(s), q.h, q.r, q.mu_s);
 }
 
-/* One step [ta, ta + dt] of an interval, coefficients taken at the fraction `jitter` of it:
- * the cloud's octaves (their phases in phase[]) and the air's light (its single scattering
+/* One step of length dt of an interval, coefficients taken at its sample point t: the cloud's
+ * octaves (their phases in phase[]) and the air's light (its single scattering
  * and, with use_ms, the method's multiple-scattering source: medium_air_source), each
  * attenuated toward the sun by the shell's chord (linear in t from chord0 to chord1) and
  * toward the viewer by the cloud and the air at the sample. Adds the light to *L with the
  * running view transmittance *T, which it advances over the step. */
 ATMO_FN void cloud_shell_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                              const medium_ray *m, const vec3 *phase, float ta, float dt,
-                              float jitter, float chord0, float chord1, int use_ms, int ground,
-                              vec3 *L, vec3 *T)
+                              const medium_ray *m, const vec3 *phase, float t, float dt,
+                              float chord0, float chord1, int use_ms, int ground, vec3 *L,
+                              vec3 *T)
 {
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     vec3 sigma = v3_from4(s->cloud.extinction);
-    medium_point q = medium_ray_at(m, ta + jitter * dt, a->bottom_radius);
+    medium_point q = medium_ray_at(m, t, a->bottom_radius);
     vec3 sigma_v = v3_add(sigma, atmosphere_extinction(a, q.h));
     /* the occluders' shadows are sharp: asked at the jittered point */
     vec3 sun_e = v3_scale(v3_mul(v3_from4(a->solar_irradiance),
@@ -67,12 +67,13 @@ ATMO_FN void cloud_shell_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
     *T = v3_mul(*T, v3_exp(v3_scale(sigma_v, -dt)));
 }
 
-/* One interval [t0, t1] inside the shell. Its steps end at the cloud's break points, equal in
- * optical depth (channel y) up to the cut, and at the air grid's (grid_d, grid_n: those of
- * medium_integrate's quadrature walk, quadrature_grid_next), so the air inside the shell is
- * resolved at least as finely as the grid resolves it outside: a shell of negligible depth leaves the sky as the air alone makes it.
- * Adds the light to *L with the running view transmittance *T, and multiplies *shell_t by the
- * shell's own transmittance over the interval. */
+/* One interval [t0, t1] inside the shell, walked up to the cut in sized quadrature pieces
+ * (quadrature_walk.h). Its steps end at the cloud's break points, equal in optical depth
+ * (channel y) up to the cut, and at the air grid's (grid_d, grid_n: those of medium_integrate's
+ * quadrature walk, quadrature_grid_next), so the air inside the shell is resolved at least as
+ * finely as the grid resolves it outside: a shell of negligible depth leaves the sky as the air
+ * alone makes it. Adds the light to *L with the running view transmittance *T, and multiplies
+ * *shell_t by the shell's own transmittance over the interval. */
 ATMO_FN void cloud_shell_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                   const medium_ray *m, float t0, float t1, float jitter,
                                   int use_ms, int ground, float grid_d, int grid_n, vec3 *L,
@@ -89,17 +90,17 @@ ATMO_FN void cloud_shell_interval(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_
     }
     float len = fminf(t1 - t0, CLOUD_TAU_CUT / sigma.y), cut = t0 + len;
     int n = s->cloud.steps, j = 1;
-    float dt_cloud = len / (float)n, t = t0, chord0 = cloud_shell_chord_at(s, m, t0);
+    float dt_cloud = len / (float)n, chord0 = cloud_shell_chord_at(s, m, t0);
     /* each step ends at a cloud or a grid break point: at most n + grid_n + 1 of them */
-    for (int k = 0; k < n + grid_n + 1 && t < cut; k++) {
+    quadrature_walk w = quadrature_begin_sized(t0, cut, n + grid_n + 1, jitter);
+    while (quadrature_more(&w)) {
         float tc = j < n ? t0 + (float)j * dt_cloud : cut;
-        float tb = fminf(fminf(tc, quadrature_grid_next(t, grid_d, grid_n)), cut);
-        float chord1 = cloud_shell_chord_at(s, m, tb);
-        cloud_shell_step(s, ATMO_LUT_ARGS, m, phase, t, tb - t, jitter, chord0, chord1, use_ms,
-                         ground, L, T);
-        if (tb >= tc)
+        quadrature_step_to(&w, fminf(tc, quadrature_grid_next(w.done, grid_d, grid_n)));
+        float chord1 = cloud_shell_chord_at(s, m, w.done);
+        cloud_shell_step(s, ATMO_LUT_ARGS, m, phase, w.t, w.dt, chord0, chord1, use_ms, ground,
+                         L, T);
+        if (w.done >= tc)
             j++;
-        t = tb;
         chord0 = chord1;
     }
     /* what lies beyond the optical-depth cut */

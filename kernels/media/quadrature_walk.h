@@ -4,7 +4,9 @@
  * pointers, so the per-piece evaluation is the caller's loop body). The medium integrator
  * (medium.h: single, march, fast's and lut's segments), the multiple-scattering LUT's
  * directions (ms_lut.h), method lut's precompute (lut_precompute.cl) and the transmittance LUT
- * (atmosphere.h's atmosphere_optical_depth_to_top) walk it.
+ * (atmosphere.h's atmosphere_optical_depth_to_top) walk it on its grids; the media's own
+ * stepping in their parts (cloud_march.h's clouds_march, cloud_shell_march.h's
+ * cloud_shell_interval, cloud_layer.h's clouds_view_density_ends) walks it in sized pieces.
  *
  *     quadrature_walk q = quadrature_begin(d, n, jitter);
  *     q.parts = media_intervals(..., q.lo, q.hi);            (optional: break points)
@@ -35,7 +37,19 @@
  * of its length from its start (the LUT's directions: no samples to average a jitter over, and
  * the light a segment sends to the ray's start comes more from its near part;
  * docs/notes/ms_lut.md). The caller integrates each piece (media.h's medium_piece_weight, exact
- * for constant coefficients; the LUTs' own rules for their mean densities). Units: metres. */
+ * for constant coefficients; the LUTs' own rules for their mean densities).
+ * Sized pieces. quadrature_begin_sized walks [t0, t1] in pieces whose size the caller picks
+ * one at a time, by a length (quadrature_step: the piece [done, done + dt]) or by its end
+ * (quadrature_step_to: [done, b]), both cut at t1; each is sampled at t = start + jitter dt
+ * like the grid's. quadrature_more says whether a piece is left: fewer than n handed out and
+ * some of [t0, t1] not yet walked (a length cut at t1 can end a rounding short of it, and the
+ * sliver is walked too). The caller adds its own stop conditions to the loop:
+ *     quadrature_walk q = quadrature_begin_sized(t0, t1, n, jitter);
+ *     while (quadrature_more(&q) && ...) {
+ *         quadrature_step(&q, rule(q.done));
+ *         ... the piece [q.start, q.start + q.dt], coefficients at q.t ...
+ *     }
+ * Units: metres. */
 #ifndef ATMO_MEDIA_QUADRATURE_WALK_H
 #define ATMO_MEDIA_QUADRATURE_WALK_H
 #ifndef __OPENCL_VERSION__
@@ -52,21 +66,21 @@
 #define QUADRATURE_GRID_MIDDLE (-1.0f)
 
 typedef struct quadrature_walk {
-    float d;                       /* the ray's end, m */
-    int n;                         /* grid segments */
+    float d;                       /* the ray's end (a sized walk's t1), m */
+    int n;                         /* grid segments (a sized walk's most pieces) */
     float jitter;                  /* the sample's fraction of a piece, or QUADRATURE_GRID_MIDDLE */
     int equal;                     /* equal segments (quadrature_begin_equal) */
     float step;                    /* their length, m */
     float lo[QUADRATURE_MAX_PARTS]; /* the caller's parts [lo, hi], m (sorted, disjoint) */
     float hi[QUADRATURE_MAX_PARTS];
     unsigned parts;                /* how many (0 after quadrature_begin) */
-    int i;                         /* the next grid segment */
+    int i;                         /* the next grid segment (a sized walk: pieces so far) */
     unsigned next;                 /* the next part */
     int clipping;                  /* the current grid segment is being cut at parts */
     int gap_given;                 /* the piece before part `next` has been handed out */
     float seg_end;                 /* the current grid segment's end, m */
     float pos;                     /* the current grid segment is walked up to pos, m */
-    float done;                    /* the walk has handed out [0, done], m */
+    float done;                    /* the walk has handed out [0 or t0, done], m */
     float start, dt, t;            /* the piece: its start, length and sample point, m */
     float end;                     /* a part's end, m (a part starts at start) */
 } quadrature_walk;
@@ -135,6 +149,41 @@ ATMO_FN int quadrature_piece(quadrature_walk *q, float start, float dt)
     q->dt = dt;
     q->t = start + q->jitter * dt;
     return QUADRATURE_PIECE;
+}
+
+/* The walk over [t0, t1] in at most n pieces that the caller sizes (quadrature_step,
+ * quadrature_step_to), each sampled at the fraction jitter of it. */
+ATMO_FN quadrature_walk quadrature_begin_sized(float t0, float t1, int n, float jitter)
+{
+    quadrature_walk q = quadrature_begin(t1, n, jitter);
+    q.done = t0;
+    q.start = t0;
+    return q;
+}
+
+/* Whether a sized walk has a piece left: fewer than n handed out, and [done, d] not empty. */
+ATMO_FN int quadrature_more(const quadrature_walk *q)
+{
+    return q->i < q->n && q->done < q->d;
+}
+
+/* A sized walk's next piece: dt long (m), cut at the walk's end. */
+ATMO_FN void quadrature_step(quadrature_walk *q, float dt)
+{
+    float start = q->done;
+    dt = fminf(dt, q->d - start);
+    q->done = start + dt;
+    q->i++;
+    quadrature_piece(q, start, dt);
+}
+
+/* A sized walk's next piece: up to b (m), cut at the walk's end. */
+ATMO_FN void quadrature_step_to(quadrature_walk *q, float b)
+{
+    float start = q->done;
+    q->done = fminf(b, q->d);
+    q->i++;
+    quadrature_piece(q, start, q->done - start);
 }
 
 /* The next event (see the top of the file). */
