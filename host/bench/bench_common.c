@@ -47,6 +47,55 @@ double bench_unbiased_error(const float *x, const atmo_render_result *ref_a,
     return sqrt(fmax(d2 - var, 0.0) / fmax(ref2, 1e-300));
 }
 
+/* The means of B x B block (bx, by) of the four images into m[4]; 0 if a pixel is skipped. */
+static int bench_block_means(const double *const img[4], const unsigned char *skip, int w, int bx,
+                             int by, int B, double m[4])
+{
+    for (int k = 0; k < 4; k++)
+        m[k] = 0.0;
+    for (int y = by * B; y < (by + 1) * B; y++)
+        for (int x = bx * B; x < (bx + 1) * B; x++) {
+            size_t i = (size_t)y * w + x;
+            if (skip && skip[i])
+                return 0;
+            for (int k = 0; k < 4; k++)
+                m[k] += img[k][i] / (double)(B * B);
+        }
+    return 1;
+}
+
+double bench_block_bias(const double *x1, const double *x2, const double *a, const double *b,
+                        const unsigned char *skip, int w, int h, int B, double bright, double *se,
+                        double *mean_bias, int *blocks)
+{
+    const double *const img[4] = {x1, x2, a, b};
+    double ref_mean = 0.0, sum_x = 0.0, sum_r = 0.0, sum_t = 0.0, sum_t2 = 0.0, m[4];
+    size_t used = 0;
+    for (size_t i = 0; i < (size_t)w * h; i++)
+        if (!skip || !skip[i])
+            ref_mean += 0.5 * (a[i] + b[i]), used++;
+    ref_mean /= used ? (double)used : 1.0;
+    int k = 0;
+    for (int by = 0; by < h / B; by++)
+        for (int bx = 0; bx < w / B; bx++) {
+            if (!bench_block_means(img, skip, w, bx, by, B, m))
+                continue;
+            double X = 0.5 * (m[0] + m[1]), R = 0.5 * (m[2] + m[3]);
+            if (!(R > bright * ref_mean))
+                continue;
+            double D = X - R, dr = m[2] - m[3];
+            double t = (D * D - 0.25 * (m[0] - m[1]) * (m[0] - m[1]) - 0.25 * dr * dr) / (R * R) -
+                       D * dr * dr / (R * R * R);
+            sum_t += t, sum_t2 += t * t, sum_x += X, sum_r += R, k++;
+        }
+    *blocks = k;
+    *mean_bias = sum_r > 0.0 ? sum_x / sum_r - 1.0 : 0.0;
+    double mean = k ? sum_t / k : 0.0;
+    double se_mean = k > 1 ? sqrt(fmax(sum_t2 / k - mean * mean, 0.0) / (k - 1)) : (double)INFINITY;
+    *se = mean > se_mean ? se_mean / (2.0 * sqrt(mean)) : sqrt(se_mean);
+    return sqrt(fmax(mean, 0.0));
+}
+
 int bench_write_csv(const char *path, const bench_row *rows, int n, const char *device,
                     atmo_err *e)
 {

@@ -11,14 +11,20 @@
  * Bias: the default mode at the reduced size with many samples against the reference there
  * (render.mode path, path.clouds volume where the view has clouds, and the air all orders
  * without the default mode's approximations: atmosphere.method reference, or where the view
- * has terrain, which that method does not trace, path.air medium), bias = sqrt(mean over P of (Y - Y_ref)^2 / Y_ref^2) with P the reference's pixels
- * above 1 % of its mean; it includes the reference's own noise, which is written beside it
- * (its per-pixel standard errors, the same RMS; "nan" where a cached reference has no error
- * file). The reference is cached in
- * DIR/views_ref/VIEW_WxH_Nspp.pfm (its standard errors in ..._se.pfm): delete the files to
- * render it anew after a change to the renderer.
+ * has terrain, which that method does not trace, path.air medium), each rendered with seeds 1
+ * and 2, the pixels that see the sun's disc left out with VIEWS_DISC_MARGIN around them (the
+ * default render's disc guide: the direct beam, not the transport the two methods differ in,
+ * and in the path tracer a firefly wherever its pixel filter reaches the disc). The bias is bench_block_bias's
+ * (atmo/bench.h): the relative RMS of the difference over 4 x 4 blocks of pixels, with both
+ * images' noise taken out by the two seeds, and its standard error; the mean bias (the ratio
+ * of the images' means over those blocks, minus 1) and the reference's own two-seed noise per
+ * pixel are printed beside it. The per-pixel ratio with a noisy reference in its denominator
+ * would not do: a 32-sample path-traced sunset has 30 % noise per pixel, and that ratio read
+ * 135 % for a view whose means differ by 13 %. The references are cached in
+ * DIR/views_ref/VIEW_WxH_Nspp_seedS.pfm: delete the files to render them anew after a change
+ * to the renderer.
  * Sizes: 1280 x 720 at 1, 2, 4, 8, 16 samples, bias at 320 x 180 (default mode and reference
- * 64 samples each); --quick: 320 x 180 at 1, 2, bias at 80 x 45 (16 and 32 samples).
+ * 64 samples each, twice); --quick: 320 x 180 at 1, 2, bias at 80 x 45 (16 and 32 samples).
  * --noise-only: the noise rows alone, no reference (which takes minutes to hours a view).
  * Writes DIR/views_VIEW.csv and the chart DIR/views_VIEW.svg (noise and bias against seconds,
  * with the goal lines: 2 % noise, 5 % bias, 120 s). */
@@ -37,6 +43,8 @@
 #define VIEWS_BIAS_GOAL 0.05
 #define VIEWS_TIME_GOAL_S 120.0
 #define VIEWS_BRIGHT 0.01 /* pixels above this fraction of the mean luminance count */
+#define VIEWS_BIAS_BLOCK 4 /* the bias's blocks of pixels, per side */
+#define VIEWS_DISC_MARGIN 2 /* pixels around the sun's disc left out of the bias */
 
 typedef struct views_sizes {
     int w, h, ref_w, ref_h, ref_samples, converged_samples, n_samples;
@@ -68,9 +76,9 @@ static int view_scene(const char *name, int w, int h, int samples, int seed, int
     return atmo_scene_validate(s, e);
 }
 
-/* Renders s; *seconds: its build, precompute and render seconds. with_se: the per-pixel
- * standard errors too (a noise target no tile reaches, so every sample is rendered). */
-static int views_render(const atmo_scene *s, const char *device, int with_se,
+/* Renders s; *seconds: its build, precompute and render seconds. guides: the denoiser's
+ * guides too (r->guides; their pass is not counted in *seconds). */
+static int views_render(const atmo_scene *s, const char *device, int guides,
                         atmo_render_result *r, double *seconds, atmo_err *e)
 {
     atmo_plan plan;
@@ -80,8 +88,7 @@ static int views_render(const atmo_scene *s, const char *device, int with_se,
         return rc;
     atmo_render_settings_default(&rs);
     rs.device = device;
-    if (with_se)
-        rs.noise_target = 1e-12;
+    rs.guides = guides;
     rc = atmo_render(&plan, &rs, r, e);
     atmo_plan_free(&plan);
     if (!rc)
@@ -117,109 +124,134 @@ static double views_noise(const double *Ya, const double *Yb, size_t n)
     return used ? sqrt(sum / (double)used) : 0.0;
 }
 
-/* RMS over the reference's bright pixels of (Y - Y_ref) / Y_ref. */
-static double views_bias(const double *Y, const double *Yref, double ref_mean, size_t n)
+/* The cached reference of the view rendered with `seed` (the top of the file): its radiance,
+ * rendered and written when the file is missing; *seconds its render's seconds (0 when read). */
+static int views_reference(const char *dir, const char *name, const views_sizes *z, int seed,
+                           const char *device, float **rgb, double *seconds, atmo_err *e)
 {
-    double sum = 0.0;
-    size_t used = 0;
-    for (size_t i = 0; i < n; i++)
-        if (Yref[i] > VIEWS_BRIGHT * ref_mean) {
-            double d = (Y[i] - Yref[i]) / Yref[i];
-            sum += d * d, used++;
-        }
-    return used ? sqrt(sum / (double)used) : 0.0;
-}
-
-/* The cached reference of the view (the top of the file): its radiance and standard errors,
- * rendered and written when the files are missing; *seconds its render's seconds (0 when
- * read). */
-static int views_reference(const char *dir, const char *name, const views_sizes *z,
-                           const char *device, float **rgb, float **se, double *seconds,
-                           atmo_err *e)
-{
-    char path[4096], path_se[4096];
+    char path[4096];
     snprintf(path, sizeof path, "%s/views_ref", dir);
     if (mkdir(path, 0755) != 0 && errno != EEXIST)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "mkdir %s: %s", path, strerror(errno));
-    snprintf(path, sizeof path, "%s/views_ref/%s_%dx%d_%dspp.pfm", dir, name, z->ref_w, z->ref_h,
-             z->ref_samples);
-    snprintf(path_se, sizeof path_se, "%s/views_ref/%s_%dx%d_%dspp_se.pfm", dir, name, z->ref_w,
-             z->ref_h, z->ref_samples);
-    atmo_image a = {0}, b = {0};
+    snprintf(path, sizeof path, "%s/views_ref/%s_%dx%d_%dspp_seed%d.pfm", dir, name, z->ref_w,
+             z->ref_h, z->ref_samples, seed);
+    atmo_image a = {0};
     atmo_err ignored = {{0}};
     *seconds = 0.0;
     if (atmo_image_read_pfm(path, &a, &ignored) == ATMO_OK && a.width == z->ref_w &&
         a.height == z->ref_h) {
-        *rgb = a.rgb, *se = NULL; /* the errors are optional: without them, noise unknown */
-        if (atmo_image_read_pfm(path_se, &b, &ignored) == ATMO_OK && b.width == z->ref_w &&
-            b.height == z->ref_h)
-            *se = b.rgb;
-        else
-            atmo_image_free(&b);
+        *rgb = a.rgb;
         return ATMO_OK;
     }
     atmo_image_free(&a);
-    atmo_image_free(&b);
     atmo_scene s;
     atmo_render_result r;
-    int rc = view_scene(name, z->ref_w, z->ref_h, z->ref_samples, 1, 1, &s, e);
-    if (rc || (rc = views_render(&s, device, 1, &r, seconds, e)))
+    int rc = view_scene(name, z->ref_w, z->ref_h, z->ref_samples, seed, 1, &s, e);
+    if (rc || (rc = views_render(&s, device, 0, &r, seconds, e)))
         return rc;
-    fprintf(stderr, "bench views: %s reference (path traced, %d spp, %dx%d) in %.1f s\n", name,
-            z->ref_samples, z->ref_w, z->ref_h, *seconds);
-    atmo_image img = {z->ref_w, z->ref_h, r.rgb, NULL, 0}, img_se = {z->ref_w, z->ref_h, r.se,
-                                                                     NULL, 0};
-    if ((rc = atmo_image_write_pfm(path, &img, e)) ||
-        (rc = atmo_image_write_pfm(path_se, &img_se, e))) {
+    fprintf(stderr, "bench views: %s reference (path traced, %d spp, %dx%d, seed %d) in %.1f s\n",
+            name, z->ref_samples, z->ref_w, z->ref_h, seed, *seconds);
+    atmo_image img = {z->ref_w, z->ref_h, r.rgb, NULL, 0};
+    if ((rc = atmo_image_write_pfm(path, &img, e))) {
         atmo_render_result_free(&r);
         return rc;
     }
-    *rgb = r.rgb, *se = r.se;
-    r.rgb = r.se = NULL;
+    *rgb = r.rgb;
+    r.rgb = NULL;
     atmo_render_result_free(&r);
     return ATMO_OK;
 }
 
-/* The bias row: the default mode converged at the reference's size against the reference;
- * *ref_noise the reference's own relative noise (its standard errors, RMS over its bright
- * pixels). */
+/* The pixels within VIEWS_DISC_MARGIN of one whose disc guide (w x h) sees the sun's disc:
+ * the disc's own pixels and those the pixel filters of the two renders spread it to (the
+ * path tracer's reaches the next pixel; the guide's 4 x 4 rays can miss a disc that covers
+ * part of a pixel). */
+static void views_disc_mask(const float *guide, int w, int h, unsigned char *mask)
+{
+    memset(mask, 0, (size_t)w * h);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            if (!(guide[(size_t)y * w + x] > 0.0f))
+                continue;
+            for (int v = y - VIEWS_DISC_MARGIN; v <= y + VIEWS_DISC_MARGIN; v++)
+                for (int u = x - VIEWS_DISC_MARGIN; u <= x + VIEWS_DISC_MARGIN; u++)
+                    if (u >= 0 && v >= 0 && u < w && v < h)
+                        mask[(size_t)v * w + u] = 1;
+        }
+}
+
+/* The luminances of the view at the reference's size, seeds 1 and 2, into Y[0], Y[1]: the
+ * references (reference 1) or the default mode converged, whose pixels that see the sun's disc
+ * (its guide) are marked in disc; *seconds the default mode's mean render seconds. */
+static int views_pair(const char *dir, const char *name, const views_sizes *z, int reference,
+                      const char *device, double *Y[2], unsigned char *disc, double *seconds,
+                      atmo_err *e)
+{
+    size_t n = (size_t)z->ref_w * z->ref_h;
+    *seconds = 0.0;
+    for (int k = 0; k < 2; k++) {
+        atmo_scene s;
+        atmo_render_result r = {0};
+        float *ref = NULL;
+        double t = 0.0;
+        int rc = view_scene(name, z->ref_w, z->ref_h,
+                            reference ? z->ref_samples : z->converged_samples, k + 1, reference,
+                            &s, e);
+        if (!rc && reference)
+            rc = views_reference(dir, name, z, k + 1, device, &ref, &t, e);
+        else if (!rc)
+            rc = views_render(&s, device, k == 0, &r, &t, e);
+        if (rc)
+            return rc;
+        views_luminance(&s, reference ? ref : r.rgb, n, Y[k]);
+        if (!reference && k == 0)
+            views_disc_mask(r.guides + 7 * n, z->ref_w, z->ref_h, disc); /* after albedo,
+                                                                         normal, depth */
+        if (!reference)
+            *seconds += 0.5 * t;
+        free(ref);
+        atmo_render_result_free(&r);
+    }
+    return ATMO_OK;
+}
+
+/* The bias row: the default mode converged at the reference's size against the reference,
+ * both twice (the top of the file); *ref_noise the reference's own two-seed noise per pixel. */
 static int views_bias_row(const char *dir, const char *name, const views_sizes *z,
                           const char *device, bench_row *row, double *ref_noise, atmo_err *e)
 {
-    float *ref = NULL, *ref_se = NULL;
     size_t n = (size_t)z->ref_w * z->ref_h;
-    double ref_seconds, seconds, *Y = malloc(n * sizeof *Y), *Yref = malloc(n * sizeof *Y),
-                                 *Yse = malloc(n * sizeof *Y);
-    atmo_scene s;
-    atmo_render_result r = {0};
-    int rc = !Y || !Yref || !Yse ? atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory") : ATMO_OK;
-    if (rc || (rc = views_reference(dir, name, z, device, &ref, &ref_se, &ref_seconds, e)) ||
-        (rc = view_scene(name, z->ref_w, z->ref_h, z->converged_samples, 1, 0, &s, e)) ||
-        (rc = views_render(&s, device, 0, &r, &seconds, e)))
+    double *Y[2] = {malloc(n * sizeof(double)), malloc(n * sizeof(double))};
+    double *Yref[2] = {malloc(n * sizeof(double)), malloc(n * sizeof(double))};
+    unsigned char *disc = calloc(n, 1);
+    double seconds, ref_seconds, se, mean_bias;
+    int blocks, rc = !Y[0] || !Y[1] || !Yref[0] || !Yref[1] || !disc
+                         ? atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory")
+                         : ATMO_OK;
+    if (rc || (rc = views_pair(dir, name, z, 1, device, Yref, NULL, &ref_seconds, e)) ||
+        (rc = views_pair(dir, name, z, 0, device, Y, disc, &seconds, e)))
         goto cleanup;
-    double ref_mean = views_luminance(&s, ref, n, Yref), sum = 0.0;
-    views_luminance(&s, r.rgb, n, Y);
-    size_t used = 0;
-    *ref_noise = NAN;
-    if (ref_se) {
-        views_luminance(&s, ref_se, n, Yse);
-        for (size_t i = 0; i < n; i++)
-            if (Yref[i] > VIEWS_BRIGHT * ref_mean)
-                sum += (Yse[i] / Yref[i]) * (Yse[i] / Yref[i]), used++;
-        *ref_noise = used ? sqrt(sum / (double)used) : 0.0;
-    }
+    size_t sun = 0;
+    for (size_t i = 0; i < n; i++)
+        sun += disc[i];
+    *ref_noise = views_noise(Yref[0], Yref[1], n);
     snprintf(row->method, sizeof row->method, "bias");
     snprintf(row->settings, sizeof row->settings, "%d spp %dx%d vs path traced %d spp",
              z->converged_samples, z->ref_w, z->ref_h, z->ref_samples);
     row->seconds = seconds;
-    row->error = views_bias(Y, Yref, ref_mean, n);
+    row->error = bench_block_bias(Y[0], Y[1], Yref[0], Yref[1], disc, z->ref_w, z->ref_h,
+                                  VIEWS_BIAS_BLOCK, VIEWS_BRIGHT, &se, &mean_bias, &blocks);
+    fprintf(stderr, "bench views: %s bias %.2f %% (standard error %.2f %%) over %d blocks of %d x "
+                    "%d pixels, %zu pixels at the sun's disc left out; mean %+.2f %%; the "
+                    "reference's own noise %.2f %% per pixel\n",
+            name, 100.0 * row->error, 100.0 * se, blocks, VIEWS_BIAS_BLOCK, VIEWS_BIAS_BLOCK, sun,
+            100.0 * mean_bias, 100.0 * *ref_noise);
 cleanup:
-    atmo_render_result_free(&r);
-    free(ref);
-    free(ref_se);
-    free(Y);
-    free(Yref);
-    free(Yse);
+    free(Y[0]);
+    free(Y[1]);
+    free(Yref[0]);
+    free(Yref[1]);
+    free(disc);
     return rc;
 }
 
@@ -306,11 +338,8 @@ static int views_one(const char *dir, const char *name, const views_sizes *z, co
                 rows[n].seconds, 100.0 * rows[n].error);
         n++;
     }
-    if (!rc && !noise_only && !(rc = views_bias_row(dir, name, z, device, &rows[n], &ref_noise, e))) {
-        fprintf(stderr, "bench views: %s bias %.2f %% (the reference's own noise %.2f %%)\n",
-                name, 100.0 * rows[n].error, 100.0 * ref_noise);
+    if (!rc && !noise_only && !(rc = views_bias_row(dir, name, z, device, &rows[n], &ref_noise, e)))
         n++;
-    }
     if (rc)
         return rc;
     char csv[4096], svg[4096], device_note[512], what[160];

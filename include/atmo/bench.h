@@ -28,6 +28,25 @@ double bench_rms_relative(const atmo_render_result *a, const atmo_render_result 
  * of independent samples says, so subtracting them removes too much.) */
 double bench_unbiased_error(const float *x, const atmo_render_result *ref_a,
                             const atmo_render_result *ref_b);
+/* The relative RMS bias of an image against a reference, each rendered twice with other seeds
+ * (luminances x1, x2 and a, b of w x h pixels), over the B x B blocks of pixels none of which
+ * is marked in skip (may be NULL). Per block k, with X, R the blocks' means of (x1 + x2) / 2
+ * and (a + b) / 2, D = X - R, and since E D^2 = bias^2 + Var X + Var R and
+ * E (x1 - x2)^2 = 4 Var X (the same for a, b), (D^2 - (x1 - x2)^2 / 4 - (a - b)^2 / 4) / R^2
+ * estimates the squared relative bias beta^2 but for the noise of R in the denominator: with
+ * R = T (1 + e), the expansion of 1 / R^2 meets D's own -T e and adds 4 beta Var e, which
+ * (a - b)^2 / (4 R^2) estimates (a - b is independent of a + b for symmetric noise), so
+ *     t_k = (D^2 - (x1 - x2)^2 / 4 - (a - b)^2 / 4) / R^2 - D (a - b)^2 / R^3
+ * is the block's estimate, whatever the samplers (no per-pixel standard errors, which
+ * scrambled Sobol samples overstate), to terms of the fourth order in the blocks' noise; the
+ * blocks count where R is above `bright` times the mean R over the unskipped pixels. Returns sqrt(max(mean t, 0)); *se its standard
+ * error from the spread of t (se of the mean t over 2 sqrt(mean t), or sqrt(se of the mean t)
+ * where the mean is not above its own error); *mean_bias sum X / sum R - 1 over those blocks;
+ * *blocks their count. Blocks average the noise down, so the estimate stays finite where a
+ * pixel's reference is noisy (the mean of 1 / R^2 of a noisy R grows without bound). */
+double bench_block_bias(const double *x1, const double *x2, const double *a, const double *b,
+                        const unsigned char *skip, int w, int h, int B, double bright, double *se,
+                        double *mean_bias, int *blocks);
 /* DIR/SUITE.csv: method,settings,seconds,error,device. */
 int bench_write_csv(const char *path, const bench_row *rows, int n, const char *device,
                     atmo_err *e);
