@@ -263,9 +263,9 @@ static int compose_intervals(text *t, const atmo_feature *const *f, int n)
     return twice ? -1 : 0;
 }
 
-/* The occluders' product (visibility.h): all of them, or (surfaces) those that also shadow the
- * path tracer's surfaces; each asked only while the sun is still visible, as a ray's state
- * must see the same samples however many occluders come before it. */
+/* The occluders' product (visibility.h): all of them, or (surfaces) those that also shadow
+ * surface points (visibility_sun_surface); each asked only while the sun is still visible, as
+ * a ray's state must see the same samples however many occluders come before it. */
 static void compose_occluders(text *t, const atmo_feature *const *f, int n, int surfaces)
 {
     put(t, "    float v = 1.0f;\n");
@@ -305,7 +305,7 @@ static void compose_sun(text *t, const atmo_feature *const *f, int n)
     compose_occluders(t, f, n, 0);
     put(t, HEAD "const medium_point *q)\n{\n", "float", "visibility_sun_occluders");
     put(t, "    return visibility_sun_occluders_on_ray(s, ATMO_LUT_ARGS, q, 0);\n}\n\n");
-    put(t, "/* The occluders that also shadow the path tracer's surface points. */\n");
+    put(t, "/* The occluders that also shadow surface points. */\n");
     put(t, HEAD "const medium_point *q)\n{\n", "float", "visibility_surface_occluders");
     compose_occluders(t, f, n, 1);
 }

@@ -295,9 +295,11 @@ static const char *const reference_fragments[] = {"kernels/atmosphere/method_ref
 static const char *const render_fragments[] = {"kernels/atmosphere/sky_cosines.h",
                                                "kernels/render/sky.cl", NULL};
 static const char *const objects_fragments[] = {"kernels/render/objects.h", NULL};
-/* the preview's objects: sun occluders and surfaces lit by the sun and the sky */
+/* the preview's objects: sun occluders (of the air and of the terrain's surface) and surfaces
+ * lit by the sun and the sky */
 static const char *const objects_preview_fragments[] = {"kernels/render/objects_light.h", NULL};
 static const atmo_slots objects_preview_slots = {.sun_occluder = "objects_sun_visibility",
+                                                 .surface_occluder = 1,
                                                  .surface_hit = "objects_surface_hit",
                                                  .surface_radiance = "objects_light_radiance"};
 /* the air as a volume medium of the path tracer's walk (render/volume_stage.h) */

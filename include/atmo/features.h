@@ -59,7 +59,8 @@ typedef struct atmo_gpu_field {
  *                         its free flights scatter in it (MEDIA_VOLUME_AIR, media_walk.h)
  *   sun_occluder          float (s, ATMO_LUT_PARAMS, const medium_point *q): 1 where it leaves
  *                         the sun visible from q, 0 in its shadow
- *   surface_occluder      1: that occluder also shadows the path tracer's surface points
+ *   surface_occluder      1: that occluder also shadows surface points (the path tracer's, the
+ *                         preview's terrain: visibility_sun_surface)
  *   ray_occluder          float (s, ATMO_LUT_PARAMS, const medium_point *q, float t, STATE *st):
  *                         an occluder with a state along the integrator's ray (st 0: no ray);
  *   ray_state, ray_begin  the state's type STATE and void (s, const medium_ray *m, float end,

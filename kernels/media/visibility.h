@@ -11,10 +11,11 @@
  *     visibility_sun_occluders(_on_ray)      the product of the occluders' visibility of the
  *                                            sun (0 or 1: a point sun, binary shadows), at a
  *                                            point or at a sample of a ray with state vr
- *     visibility_surface_occluders           the same for the occluders that also shadow the
- *                                            path tracer's surface points (the planet, the
- *                                            observer; the terrain's shadow there is traced
- *                                            toward a point of the sun's disc, surfaces.h)
+ *     visibility_surface_occluders           the same for the occluders that also shadow
+ *                                            surface points (the planet, the observer, the
+ *                                            preview's objects; a surface's own shadow is its
+ *                                            own: the terrain's is traced toward the sun's disc,
+ *                                            terrain.h, surfaces.h)
  * and, after the surfaces' own light,
  *     visibility_surface_hit                 the distance to the nearest opaque surface other
  *                                            than the ground along a ray, or -1
@@ -59,7 +60,8 @@ ATMO_FN vec3 visibility_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS
     return visibility_sun_on_ray(s, ATMO_LUT_ARGS, q, 0);
 }
 
-/* The path tracer's sun visibility at a surface point: the surface occluders and the media. */
+/* The sun's visibility at a surface point (the path tracer's, the preview's terrain): the
+ * surface occluders and the media, per wavelength. */
 ATMO_FN vec3 visibility_sun_surface(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                     const medium_point *q)
 {

@@ -10,13 +10,15 @@
 #include "atmosphere/sky_method.h"
 #include "media/ray.h"
 #include "render/objects.h"
+#include "media/visibility.h"
 #include "atmo/gpu_types.h"
 #endif
 
 /* The preview's light from an object at distance t along the ray, or -1 in x when the surface
  * there is not an object: albedo / pi (E T_sun V max(0, n . s) + E_sky (1 + n . up) / 2), the
  * sun with binary shadows from the occluders (the point offset along the normal so it does not
- * shadow itself), the sky's irradiance E_sky that of the ground at the point's sun cosine from
+ * shadow itself) times the shadowing media's transmittance (visibility_sun: a cloud shell or
+ * layer, per wavelength), the sky's irradiance E_sky that of the ground at the point's sun cosine from
  * the method's tables, weighted by the fraction of the sky a tilted surface sees (1 + n . up)/2
  * (an isotropic sky; zero for method single, which has no sky irradiance). */
 ATMO_FN vec3 objects_light_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
@@ -37,12 +39,13 @@ ATMO_FN vec3 objects_light_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LU
     vec3 sun = v3_from4(s->sun_direction), up_q = v3_normalize(v3_add(v3_scale(m->up, m->r_c), q.p));
     float cos_sun = fmaxf(v3_dot(n, sun), 0.0f);
     vec3 e = v3(0.0f, 0.0f, 0.0f);
-    if (cos_sun > 0.0f && visibility_sun_occluders(s, ATMO_LUT_ARGS, &q) > 0.0f)
-        e = v3_scale(v3_mul(v3_from4(a->solar_irradiance),
-                            atmosphere_transmittance_to_top(a, transmittance_lut,
-                                                            s->transmittance_width,
-                                                            s->transmittance_height, q.r,
-                                                            q.mu_s)),
+    if (cos_sun > 0.0f)
+        e = v3_scale(v3_mul(v3_mul(v3_from4(a->solar_irradiance),
+                                   atmosphere_transmittance_to_top(a, transmittance_lut,
+                                                                   s->transmittance_width,
+                                                                   s->transmittance_height, q.r,
+                                                                   q.mu_s)),
+                            visibility_sun(s, ATMO_LUT_ARGS, &q)),
                      cos_sun);
     vec3 sky = medium_ms_ground_irradiance(s, ATMO_LUT_ARGS, q.mu_s);
     e = v3_add(e, v3_scale(sky, 0.5f * (1.0f + v3_dot(n, up_q))));

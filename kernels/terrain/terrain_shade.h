@@ -4,7 +4,9 @@
  *
  * Light (Lambertian, BRDF albedo / pi): with E the solar irradiance, T_sun the atmosphere's
  * transmittance toward the sun at the point, V the visible fraction of the sun disc (the
- * terrain's soft shadow, terrain.h, times the planet's), E_sky the method's sky irradiance on
+ * terrain's soft shadow, terrain.h, times the planet's, times the other occluders' and the
+ * shadowing media's, visibility_sun_surface: the preview's objects, an observer, a cloud
+ * shell or layer, per wavelength), E_sky the method's sky irradiance on
  * level ground (medium_ms_ground_irradiance, the plan's composition before this file: zero for
  * method single, as its ground has) scaled
  * by the part of the sky a tilted surface sees, (1 + N . n) / 2,
@@ -28,6 +30,7 @@
 #include "terrain/terrain.h"
 #include "terrain/water.h"
 #include "terrain/terrain_material.h"
+#include "media/visibility.h"
 #include "atmo/gpu_types.h"
 #endif
 
@@ -48,10 +51,16 @@ ATMO_FN vec3 terrain_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
     vec3 sun_e = v3(0.0f, 0.0f, 0.0f);
     if (!geometry_ray_hits_ground(r, mu_s, a->bottom_radius)) {
         float lift = TERRAIN_SHADOW_OFFSET_M + 2.0f * s->terrain.tolerance * distance;
-        float v = terrain_sun_visible(s, heightmap, v3_add(p, v3_scale(sp.normal, lift)), 0.0f);
+        vec3 lifted = v3_add(p, v3_scale(sp.normal, lift));
+        float v = terrain_sun_visible(s, heightmap, lifted, 0.0f);
         vec3 to_sun = atmosphere_transmittance_to_top(a, transmittance_lut, s->transmittance_width,
                                                       s->transmittance_height, r, mu_s);
         sun_e = v3_scale(v3_mul(v3_from4(a->solar_irradiance), to_sun), v);
+        if (v > 0.0f) { /* the other occluders and the shadowing media */
+            medium_point q = medium_ray_at(m, t, a->bottom_radius);
+            q.p = lifted;
+            sun_e = v3_mul(sun_e, visibility_sun_surface(s, ATMO_LUT_ARGS, &q));
+        }
     }
     vec3 sky_e = medium_ms_ground_irradiance(s, ATMO_LUT_ARGS, mu_s);
     vec3 view = v3_scale(m->dir, -1.0f);
