@@ -176,6 +176,39 @@ void test_release_luts(cl_mem luts[ATMO_PLAN_MAX_BUFFERS])
     atmo_release_buffers(luts);
 }
 
+void test_plan_points(const atmo_plan *p, const char *extra, const char *name, const void *in,
+                      size_t in_size, void *out, size_t out_size, int n)
+{
+    atmo_cl cl;
+    cl_int err;
+    test_cl_open(&cl);
+    cl_program prog = test_plan_program(&cl, p, extra);
+    cl_mem scene = clCreateBuffer(cl.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                  sizeof p->gpu, (void *)&p->gpu, &err);
+    CHECK(err == CL_SUCCESS);
+    cl_mem luts[ATMO_PLAN_MAX_BUFFERS];
+    test_precompute(&cl, prog, scene, p, luts);
+    cl_mem bi = test_cl_buffer(&cl, in_size * (size_t)n, in);
+    cl_mem bo = test_cl_buffer(&cl, out_size * (size_t)n, NULL);
+    cl_kernel k = clCreateKernel(prog, name, &err);
+    CHECK(err == CL_SUCCESS);
+    clSetKernelArg(k, 0, sizeof scene, &scene);
+    int a = test_bind_buffers(k, luts);
+    cl_uint nn = (cl_uint)n;
+    clSetKernelArg(k, a++, sizeof bi, &bi);
+    clSetKernelArg(k, a++, sizeof bo, &bo);
+    clSetKernelArg(k, a++, sizeof nn, &nn);
+    test_cl_run_1d(&cl, k, (size_t)n);
+    test_cl_read(&cl, bo, out_size * (size_t)n, out);
+    clReleaseKernel(k);
+    clReleaseMemObject(bo);
+    clReleaseMemObject(bi);
+    test_release_luts(luts);
+    clReleaseMemObject(scene);
+    clReleaseProgram(prog);
+    atmo_cl_close(&cl);
+}
+
 test_image test_render(const atmo_scene *s, int tile, int max_batch)
 {
     atmo_plan p;

@@ -64,34 +64,7 @@ static void expect_error(const char *json, const char *needle)
 /* The device's terrain_clearance at n camera-relative points of plan p. */
 static void device_clearance(const atmo_plan *p, const float4 *pts, int count, float *out)
 {
-    atmo_cl cl;
-    test_cl_open(&cl);
-    cl_program prog = test_plan_program(&cl, p, probe_src);
-    cl_int err;
-    cl_mem scene = clCreateBuffer(cl.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                                  sizeof p->gpu, (void *)&p->gpu, &err);
-    CHECK(err == CL_SUCCESS);
-    cl_mem luts[ATMO_PLAN_MAX_BUFFERS];
-    test_precompute(&cl, prog, scene, p, luts);
-    cl_mem bp = test_cl_buffer(&cl, sizeof(float4) * (size_t)count, (void *)pts);
-    cl_mem bo = test_cl_buffer(&cl, sizeof(float) * (size_t)count, NULL);
-    cl_kernel k = clCreateKernel(prog, "clearance", &err);
-    CHECK(err == CL_SUCCESS);
-    clSetKernelArg(k, 0, sizeof scene, &scene);
-    int a = test_bind_buffers(k, luts);
-    cl_uint nn = (cl_uint)count;
-    clSetKernelArg(k, a++, sizeof bp, &bp);
-    clSetKernelArg(k, a++, sizeof bo, &bo);
-    clSetKernelArg(k, a++, sizeof nn, &nn);
-    test_cl_run_1d(&cl, k, (size_t)count);
-    test_cl_read(&cl, bo, sizeof(float) * (size_t)count, out);
-    clReleaseKernel(k);
-    clReleaseMemObject(bo);
-    clReleaseMemObject(bp);
-    test_release_luts(luts);
-    clReleaseMemObject(scene);
-    clReleaseProgram(prog);
-    atmo_cl_close(&cl);
+    test_plan_points(p, probe_src, "clearance", pts, sizeof *pts, out, sizeof *out, count);
 }
 
 /* The anchors of the plan's objects (a sphere's lowest point, a box's base centre). */

@@ -85,39 +85,12 @@ static void probe(int shell, const char *objects, const char *kernel, const floa
 {
     atmo_scene s;
     atmo_plan p;
-    atmo_cl cl;
-    cl_int err;
     scene_of(&s, shell, objects);
     test_plan(&s, &p);
     if (ext)
         ext[0] = p.gpu.cloud.extinction.x, ext[1] = p.gpu.cloud.extinction.y,
         ext[2] = p.gpu.cloud.extinction.z;
-    test_cl_open(&cl);
-    cl_program prog = test_plan_program(&cl, &p, probe_src);
-    cl_mem scene = clCreateBuffer(cl.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                                  sizeof p.gpu, (void *)&p.gpu, &err);
-    CHECK(err == CL_SUCCESS);
-    cl_mem luts[ATMO_PLAN_MAX_BUFFERS];
-    test_precompute(&cl, prog, scene, &p, luts);
-    cl_mem bp = test_cl_buffer(&cl, sizeof(float4) * (size_t)n, (void *)pts);
-    cl_mem bo = test_cl_buffer(&cl, sizeof(float4) * (size_t)n, NULL);
-    cl_kernel k = clCreateKernel(prog, kernel, &err);
-    CHECK(err == CL_SUCCESS);
-    clSetKernelArg(k, 0, sizeof scene, &scene);
-    int a = test_bind_buffers(k, luts);
-    cl_uint nn = (cl_uint)n;
-    clSetKernelArg(k, a++, sizeof bp, &bp);
-    clSetKernelArg(k, a++, sizeof bo, &bo);
-    clSetKernelArg(k, a++, sizeof nn, &nn);
-    test_cl_run_1d(&cl, k, (size_t)n);
-    test_cl_read(&cl, bo, sizeof(float4) * (size_t)n, out);
-    clReleaseKernel(k);
-    clReleaseMemObject(bo);
-    clReleaseMemObject(bp);
-    test_release_luts(luts);
-    clReleaseMemObject(scene);
-    clReleaseProgram(prog);
-    atmo_cl_close(&cl);
+    test_plan_points(&p, probe_src, kernel, pts, sizeof *pts, out, sizeof *out, n);
     atmo_plan_free(&p);
 }
 

@@ -40,6 +40,12 @@ void test_run_walks(atmo_cl *cl, cl_program prog, cl_mem scene, cl_mem luts[ATMO
 /* The plan's buffer `name` in luts[] (exits 1 when the plan has none). */
 cl_mem test_plan_buffer(const atmo_plan *p, cl_mem luts[ATMO_PLAN_MAX_BUFFERS], const char *name);
 void test_release_luts(cl_mem luts[ATMO_PLAN_MAX_BUFFERS]);
+/* Runs kernel `name` of plan p's program with the probe source `extra` (its own device, opened
+ * and closed here) over n work-items: its arguments the scene, the plan's buffers
+ * (test_bind_buffers), an input buffer of n elements of in_size bytes from in, an output
+ * buffer of n elements of out_size bytes read into out, and n (uint). */
+void test_plan_points(const atmo_plan *p, const char *extra, const char *name, const void *in,
+                      size_t in_size, void *out, size_t out_size, int n);
 /* The default cloud layer's phase table in the sampleable format (phase_table.h: *rows the
  * table's rows, *cdf its CDF, return value its size n) from the plan of sky-noon with
  * clouds.enabled, which *p holds until atmo_plan_free; exits 1 when the plan has no table. */
