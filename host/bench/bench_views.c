@@ -14,13 +14,14 @@
  * has terrain, which that method does not trace, path.air medium), each rendered with seeds 1
  * and 2, the pixels that see the sun's disc left out with VIEWS_DISC_MARGIN around them (the
  * default render's disc guide: the direct beam, not the transport the two methods differ in,
- * and in the path tracer a firefly wherever its pixel filter reaches the disc). The bias is bench_block_bias's
- * (atmo/bench.h): the relative RMS of the difference over 4 x 4 blocks of pixels, with both
- * images' noise taken out by the two seeds, and its standard error; the mean bias (the ratio
- * of the images' means over those blocks, minus 1) and the reference's own two-seed noise per
- * pixel are printed beside it. The per-pixel ratio with a noisy reference in its denominator
- * would not do: a 32-sample path-traced sunset has 30 % noise per pixel, and that ratio read
- * 135 % for a view whose means differ by 13 %. The references are cached in
+ * and in the path tracer a firefly wherever its pixel filter reaches the disc). The bias is
+ * bench_block_bias's (atmo/bench.h): the relative RMS of the difference over 4 x 4 blocks of
+ * pixels, with both images' noise taken out by the two seeds, and its standard error; the
+ * mean bias (the ratio of the images' means over those blocks, minus 1) and the reference's
+ * own two-seed noise per pixel are printed beside it. The per-pixel ratio with a noisy
+ * reference in its denominator would not do: a 32-sample path-traced sunset has 30 % noise per
+ * pixel, and that ratio read 135 % for a view whose means differ by 16 %. The references are
+ * cached in
  * DIR/views_ref/VIEW_WxH_Nspp_seedS.pfm: delete the files to render them anew after a change
  * to the renderer.
  * Sizes: 1280 x 720 at 1, 2, 4, 8, 16 samples, bias at 320 x 180 (default mode and reference
