@@ -2,7 +2,7 @@
  * occluders and of the shadowing media (kernels/terrain/terrain_shade.h's terrain_radiance,
  * kernels/render/objects_light.h's objects_light_radiance: visibility_sun_surface and
  * visibility_sun, media/visibility.h).
- * labels: kernel
+ * labels: kernel slow
  *
  * Scene: the sun at the zenith, method march, a nearly flat terrain (heights 0..2 m, all
  * land), a sphere of radius 8 m centred 30 m up over the camera's foot; variants with a
