@@ -1,6 +1,6 @@
 /* test_path_cloud_shadow — cloud shadows in the path tracer: the direct sunlight a ground point
  * receives (kernels/render/path.h's path_sunlight: visibility_sun_surface, the layer's
- * clouds_media_sun, cloud_layer_medium.h) is cut by the cloud layer's transmittance toward the
+ * clouds_media_sun_surface, cloud_layer_medium.h) is cut by the cloud layer's transmittance toward the
  * sun.
  * labels: render kernel slow
  *

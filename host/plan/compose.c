@@ -80,6 +80,15 @@ static void compose_media_at(text *t, const atmo_feature *const *f, int n)
         if (SLOT(f[i], media_sun))
             put(t, "    x = v3_mul(x, %s(s, ATMO_LUT_ARGS, q));\n", f[i]->slots->media_sun);
     put(t, "    return x;\n}\n\n");
+
+    put(t, "/* The same at a surface point (each medium's media_sun_surface where it has one). */\n");
+    put(t, HEAD "const medium_point *q, vec3 x)\n{\n", "vec3", "media_sun_surface_attenuate");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], media_sun))
+            put(t, "    x = v3_mul(x, %s(s, ATMO_LUT_ARGS, q));\n",
+                SLOT(f[i], media_sun_surface) ? f[i]->slots->media_sun_surface
+                                              : f[i]->slots->media_sun);
+    put(t, "    return x;\n}\n\n");
 }
 
 /* The condition under which a walk in mode `mode` (media.h's MEDIA_WALK_*) includes medium f's

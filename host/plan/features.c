@@ -215,6 +215,7 @@ static const atmo_slots clouds_slots = {.component = "CLOUDS",
                                         .media_add = "clouds_media_add",
                                         .media_phase = "clouds_media_phase",
                                         .media_sun = "clouds_media_sun",
+                                        .media_sun_surface = "clouds_media_sun_surface",
                                         .media_intervals = "clouds_media_intervals",
                                         .media_interval = "clouds_media_interval"};
 /* the layer as the path tracer's volume medium in the one walk, over its majorant grid: the

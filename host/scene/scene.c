@@ -218,7 +218,8 @@ const atmo_param atmo_params[] = {
             "steps of the light march toward the sun (4: within the reference's noise of 8 and "
             "16 with the fitted octaves, atmo bench clouds)"),
     ROW_FLOAT("clouds.light_distance_m", clouds.light_distance_m, "m", 1, 1e6, 8000,
-              "length of the light march toward the sun"),
+              "length of the light march toward the sun from the medium's samples (a surface "
+              "point's march takes the whole chord through the layer, in at least 32 steps)"),
     ROW_BOOL("clouds.shadow_map", clouds.shadow_map, 0,
              "the sun shadow map: the density toward the sun precomputed per view on a grid "
              "around the camera (methods single and march; the reference keeps ratio "

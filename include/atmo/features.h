@@ -38,6 +38,8 @@ typedef struct atmo_gpu_field {
  *   media_phase           vec3 (s, ATMO_LUT_PARAMS, float nu): its component's phase function
  *   media_sun             vec3 (s, ATMO_LUT_PARAMS, const medium_point *q): the sun's
  *                         transmittance through it to q (a medium that shadows)
+ *   media_sun_surface     the same at a surface point (one per camera ray, so it may cost
+ *                         more: the fBm layer's whole chord toward the sun); NULL: media_sun
  *   media_intervals       int (s, const medium_ray *m, float t_start, float t_end, float *lo,
  *                         float *hi): the parts of the ray it steps itself (at most one medium)
  *   media_interval        void (s, ATMO_LUT_PARAMS, const medium_ray *m, float t0, float t1,
@@ -90,7 +92,7 @@ typedef struct atmo_gpu_field {
  * occluders and surfaces. */
 typedef struct atmo_slots {
     const char *component;
-    const char *media_add, *media_phase, *media_sun;
+    const char *media_add, *media_phase, *media_sun, *media_sun_surface;
     const char *media_intervals, *media_interval;
     const char *ms_source, *ms_ground_irradiance;
     const char *volume_at;

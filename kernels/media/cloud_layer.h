@@ -44,7 +44,9 @@
  * for the same point on every run; it stops once the optical depth passes CLOUDS_TAU_OPAQUE.
  * exp(-D) of a jittered estimate of the optical depth
  * over-estimates the transmittance on average (Jensen's inequality; tests/test_clouds_tracking.c
- * measures how much); the Monte Carlo reference uses ratio tracking instead.
+ * measures how much); the Monte Carlo reference uses ratio tracking instead. A surface point
+ * (the terrain, an object) marches the whole chord instead, uncut
+ * (cloud_layer_medium.h's clouds_media_sun_surface).
  *
  * Parameters (scene keys clouds.*, `atmo params`): bottom_m 1000, top_m 8000, fade_m 2000,
  * coverage 0.25, density 5, sharpness 1.05, frequency_per_m (8, 16, 8) 1e-5, coverage_scale_m
@@ -73,6 +75,7 @@
 #define CLOUDS_COVERAGE_CONTRAST 3.0f
 #define CLOUDS_WARP_FREQUENCY 0.25f /* of the warp noise, relative to the shape's */
 #define CLOUDS_TAU_OPAQUE 16.0f     /* the light march stops there: e^-16 = 1e-7 */
+#define CLOUDS_SURFACE_LIGHT_STEPS 32 /* the march toward the sun from a surface point */
 /* the marcher's steps (cloud_march.h), which the shadow bench (host/bench) samples too */
 #define CLOUDS_CLEAR_STRIDE 4.0f
 #define CLOUDS_STEP_GROWTH 0.002f

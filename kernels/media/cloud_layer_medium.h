@@ -54,6 +54,28 @@ ATMO_FN vec3 clouds_media_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
     return v3_exp(v3_scale(v3_from4(s->clouds.extinction), -D));
 }
 
+/* The sun's transmittance through the layer to a surface point q (the terrain, an object):
+ * the shadow map's where there is one, else the light march over the whole chord toward the
+ * sun through the layer, not cut at light_distance_m, in CLOUDS_SURFACE_LIGHT_STEPS steps or
+ * the light march's own light_steps where they are more. A
+ * surface is asked once per camera ray, where the medium's samples ask many times; and under
+ * a low sun the clouds that shade the ground lie tens of kilometres along that chord (with the
+ * sun 10 degrees high a 7 km layer's chord is 40 km), past the cut that bounds the march's
+ * cost per sample. */
+ATMO_FN vec3 clouds_media_sun_surface(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                      const medium_point *q)
+{
+#ifdef ATMO_CLOUDS_SHADOW_MAP
+    float D = clouds_light_density(s, ATMO_LUT_ARGS, q);
+#else
+    int n = s->clouds.light_steps > CLOUDS_SURFACE_LIGHT_STEPS ? s->clouds.light_steps
+                                                                : CLOUDS_SURFACE_LIGHT_STEPS;
+    float D = clouds_sun_density_steps(s, q, clouds_point_jitter(q->p, s->clouds.seed), n,
+                                       INFINITY, CLOUDS_TAU_OPAQUE);
+#endif
+    return v3_exp(v3_scale(v3_from4(s->clouds.extinction), -D));
+}
+
 /* The parts of [t_start, t_end] of the ray inside the layer's shell, in order. */
 ATMO_FN int clouds_media_intervals(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m,
                                    float t_start, float t_end, float *lo, float *hi)

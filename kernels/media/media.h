@@ -14,6 +14,7 @@
  * after the media's own fragments,
  *     media_at, media_phase       the sum over the media, the phase of component k
  *     media_sun_attenuate         times the sun's transmittance through the shadowing media
+ *     media_sun_surface_attenuate the same to a surface point (a medium's media_sun_surface)
  *     medium_ms_source,           the method's multiple-scattering source and the sky's
  *     medium_ms_ground_irradiance   irradiance on the ground (zero for method single)
  *     media_intervals,            the parts of a ray that a medium integrates with its own

@@ -61,12 +61,14 @@ ATMO_FN vec3 visibility_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS
 }
 
 /* The sun's visibility at a surface point (the path tracer's, the preview's terrain): the
- * surface occluders and the media, per wavelength. */
+ * surface occluders and the media's transmittance at a surface (media_sun_surface_attenuate),
+ * per wavelength. */
 ATMO_FN vec3 visibility_sun_surface(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                     const medium_point *q)
 {
-    return visibility_media_sun(s, ATMO_LUT_ARGS, q,
-                                visibility_surface_occluders(s, ATMO_LUT_ARGS, q));
+    float v = visibility_surface_occluders(s, ATMO_LUT_ARGS, q);
+    vec3 vis = v3(v, v, v);
+    return v > 0.0f ? media_sun_surface_attenuate(s, ATMO_LUT_ARGS, q, vis) : vis;
 }
 
 #endif
