@@ -57,11 +57,10 @@ ATMO_FN vec3 clouds_media_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
 /* The sun's transmittance through the layer to a surface point q (the terrain, an object):
  * the shadow map's where there is one, else the light march over the whole chord toward the
  * sun through the layer, not cut at light_distance_m, in CLOUDS_SURFACE_LIGHT_STEPS steps or
- * the light march's own light_steps where they are more. A
- * surface is asked once per camera ray, where the medium's samples ask many times; and under
- * a low sun the clouds that shade the ground lie tens of kilometres along that chord (with the
- * sun 10 degrees high a 7 km layer's chord is 40 km), past the cut that bounds the march's
- * cost per sample. */
+ * the light march's own light_steps where they are more. A surface is asked once per camera
+ * ray, where the medium's samples ask many times; and under a low sun the clouds that shade
+ * the ground lie tens of kilometres along that chord (with the sun 10 degrees high a 7 km
+ * layer's chord is 40 km), past the cut that bounds the march's cost per sample. */
 ATMO_FN vec3 clouds_media_sun_surface(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                       const medium_point *q)
 {

@@ -60,15 +60,31 @@ ATMO_FN vec3 visibility_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS
     return visibility_sun_on_ray(s, ATMO_LUT_ARGS, q, 0);
 }
 
-/* The sun's visibility at a surface point (the path tracer's, the preview's terrain): the
- * surface occluders and the media's transmittance at a surface (media_sun_surface_attenuate),
- * per wavelength. */
+/* v, the occluders' visibility of the sun from a surface point q, times the media's
+ * transmittance toward the sun at a surface (media_sun_surface_attenuate, per wavelength). */
+ATMO_FN vec3 visibility_media_sun_surface(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                          const medium_point *q, float v)
+{
+    vec3 vis = v3(v, v, v);
+    return v > 0.0f ? media_sun_surface_attenuate(s, ATMO_LUT_ARGS, q, vis) : vis;
+}
+
+/* The sun's visibility at a surface point with its own shadow (the path tracer's, the
+ * preview's terrain): the surface occluders and the media, per wavelength. */
 ATMO_FN vec3 visibility_sun_surface(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                     const medium_point *q)
 {
-    float v = visibility_surface_occluders(s, ATMO_LUT_ARGS, q);
-    vec3 vis = v3(v, v, v);
-    return v > 0.0f ? media_sun_surface_attenuate(s, ATMO_LUT_ARGS, q, vis) : vis;
+    return visibility_media_sun_surface(s, ATMO_LUT_ARGS, q,
+                                        visibility_surface_occluders(s, ATMO_LUT_ARGS, q));
+}
+
+/* The same at a surface point that every occluder shades (the preview's objects,
+ * objects_light.h, on which the terrain casts its shadow as a ray occluder). */
+ATMO_FN vec3 visibility_sun_surface_all(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                        const medium_point *q)
+{
+    return visibility_media_sun_surface(s, ATMO_LUT_ARGS, q,
+                                        visibility_sun_occluders_on_ray(s, ATMO_LUT_ARGS, q, 0));
 }
 
 #endif

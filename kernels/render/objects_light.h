@@ -17,10 +17,11 @@
 /* The preview's light from an object at distance t along the ray, or -1 in x when the surface
  * there is not an object: albedo / pi (E T_sun V max(0, n . s) + E_sky (1 + n . up) / 2), the
  * sun with binary shadows from the occluders (the point offset along the normal so it does not
- * shadow itself) times the shadowing media's transmittance (visibility_sun: a cloud shell or
- * layer, per wavelength), the sky's irradiance E_sky that of the ground at the point's sun cosine from
- * the method's tables, weighted by the fraction of the sky a tilted surface sees (1 + n . up)/2
- * (an isotropic sky; zero for method single, which has no sky irradiance). */
+ * shadow itself) times the shadowing media's transmittance at a surface
+ * (visibility_sun_surface_all: a cloud shell or layer, per wavelength), the sky's irradiance
+ * E_sky that of the ground at the point's sun cosine from the method's tables, weighted by the
+ * fraction of the sky a tilted surface sees (1 + n . up)/2 (an isotropic sky; zero for method
+ * single, which has no sky irradiance). */
 ATMO_FN vec3 objects_light_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                     const medium_ray *m, float t)
 {
@@ -45,7 +46,7 @@ ATMO_FN vec3 objects_light_radiance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LU
                                                                    s->transmittance_width,
                                                                    s->transmittance_height, q.r,
                                                                    q.mu_s)),
-                            visibility_sun(s, ATMO_LUT_ARGS, &q)),
+                            visibility_sun_surface_all(s, ATMO_LUT_ARGS, &q)),
                      cos_sun);
     vec3 sky = medium_ms_ground_irradiance(s, ATMO_LUT_ARGS, q.mu_s);
     e = v3_add(e, v3_scale(sky, 0.5f * (1.0f + v3_dot(n, up_q))));
