@@ -1,25 +1,31 @@
 /* test_clouds_surface_shadow — the fBm cloud layer's shadow on a surface point (the terrain's,
- * an object's: visibility_sun_surface, media_sun_surface_attenuate, cloud_layer_medium.h's
- * clouds_media_sun_surface) takes the whole chord toward the sun through the layer, where the
- * medium's own samples (media_sun_attenuate, the light march) stop at clouds.light_distance_m.
+ * an object's: visibility_sun_surface, media_sun_surface_attenuate) and on the air outside the
+ * clouds (media_sun_attenuate, cloud_march.h's samples in clear air) takes the whole chord
+ * toward the sun through the layer (cloud_layer_medium.h's clouds_chord_density), where the
+ * samples inside clouds stop their light march at clouds.light_distance_m.
  * Scene: thesis-8 (the sun 9.8 degrees high: a 7 km layer's chord is 40 km) without its terrain,
- * method march, the light march's default 8 km.
+ * method march, the light march's default 8 km and 4 steps.
  * labels: kernel stat
  *
  * Oracle: D_fine, a double-precision midpoint quadrature of the density integral toward the
  * sun over the whole chord through the layer (cloud_layer.h's clouds_density, host build,
  * bitwise the device's: test_cloud_noise), FINE_STEPS uniform steps, the points' altitudes in
  * double; its error |D_fine - D_half| / 3 (the midpoint rule's error falls 4 times per halving).
- * The device's march samples each of its CLOUDS_SURFACE_LIGHT_STEPS steps at an offset hashed
- * from the point (uniform in [0, 1)): stratified sampling, an unbiased estimate of D over many
- * points. At POINTS random points in and below the layer within 30 km of the camera, with
- * extinction x D_fine below TAU_MAX (so the march's stop at optical depth 16 does not cut):
- *   - surface: the mean of D_surface - D_fine lies within 4 standard errors (the differences'
+ * The device's marches sample each of their steps at an offset hashed from the point (uniform
+ * in [0, 1)): stratified sampling, an unbiased estimate of D over many points. At POINTS
+ * random points in and below the layer within 30 km of the camera, with extinction x D_fine
+ * below TAU_MAX (so the marches' stop at optical depth 16 seldom cuts):
+ *   - surface: the mean of D_surface - D_fine (D_surface from the slot's transmittance, in
+ *     CLOUDS_SURFACE_LIGHT_STEPS steps) lies within 4 standard errors (the differences'
  *     spread / sqrt(n)) plus the mean of D_fine's error;
- *   - power: the medium's light march, cut at 8 km, misses the clouds beyond: its mean
- *     D_medium - D_fine is negative by more than 4 of its standard errors over the points
- *     whose chord is longer than light_distance_m (the surface's shadow before this function).
- * The per-point spread of the surface's estimate is printed (the 32-step march's noise). */
+ *   - air: the same for the air's D_air (light_steps steps over the whole chord), and the
+ *     air's slot media_sun_attenuate gives exp(-extinction D_air) of that same estimate (the
+ *     same hashed offsets: to float rounding);
+ *   - power: the light march of the samples inside clouds, cut at 8 km (clouds_sun_density),
+ *     misses the clouds beyond: its mean D_cut - D_fine is negative by more than 4 of its
+ *     standard errors over the points whose chord is longer than light_distance_m (the air's
+ *     and the surfaces' shadow before the whole chord).
+ * The per-point spreads are printed (the marches' noise). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -45,7 +51,9 @@ static const char probe_src[] =
     "  vec3 one = (vec3)(1.0f, 1.0f, 1.0f);\n"
     "  vec3 a = media_sun_surface_attenuate(s, ATMO_LUT_ARGS, &q, one);\n"
     "  vec3 b = media_sun_attenuate(s, ATMO_LUT_ARGS, &q, one);\n"
-    "  out[i] = (float4)(a.y, b.y, q.h, 0.0f);\n"
+    "  float d_air = clouds_chord_density(s, ATMO_LUT_ARGS, &q, s->clouds.light_steps);\n"
+    "  float d_cut = clouds_sun_density(s, &q, clouds_point_jitter(q.p, s->clouds.seed));\n"
+    "  out[i] = (float4)(a.y, b.y, d_air, d_cut);\n"
     "}\n";
 
 /* The altitude of p + t sun (mu_s the sun's cosine to the vertical at p, radius r). */
@@ -78,6 +86,27 @@ static double fine_depth(const atmo_gpu_scene *s, const double p[3], double h, d
     }
     *chord = t1 - t0;
     return D;
+}
+
+/* The mean, its standard error and the spread of a sample of differences. */
+typedef struct stat {
+    int n;
+    double sum, sum2;
+} stat;
+
+static void stat_add(stat *a, double x) { a->n++, a->sum += x, a->sum2 += x * x; }
+static double stat_mean(const stat *a) { return a->sum / a->n; }
+static double stat_spread(const stat *a)
+{
+    double m = stat_mean(a);
+    return sqrt(fmax(a->sum2 / a->n - m * m, 0.0) * a->n / (a->n - 1));
+}
+static double stat_se(const stat *a) { return stat_spread(a) / sqrt((double)a->n); }
+static void stat_print(const char *what, const stat *a)
+{
+    printf("  %s: D - D_fine mean %.3g m (standard error %.3g m), spread %.3g m per point, %d "
+           "points\n",
+           what, stat_mean(a), stat_se(a), stat_spread(a), a->n);
 }
 
 int main(void)
@@ -116,8 +145,8 @@ int main(void)
     }
     test_plan_points(&p, probe_src, "shade", pts, sizeof *pts, out, sizeof *out, POINTS);
 
-    double sum_s = 0.0, sum2_s = 0.0, sum_err = 0.0, sum_m = 0.0, sum2_m = 0.0;
-    int n_s = 0, n_m = 0;
+    stat surface = {0}, air = {0}, cut = {0};
+    double sum_err = 0.0, worst_slot = 0.0;
     const float *sun = &s->sun_direction.x;
     for (int i = 0; i < POINTS; i++) {
         /* recompute the point's altitude and sun cosine in double from its float position */
@@ -130,25 +159,31 @@ int main(void)
         double h = r - R, chord, half_chord;
         double D = fine_depth(s, q, h, mu_s, FINE_STEPS, &chord);
         double D_half = fine_depth(s, q, h, mu_s, FINE_STEPS / 2, &half_chord);
-        if (k * D >= TAU_MAX || out[i].x <= 0.0f || out[i].y <= 0.0f)
+        if (k * D >= TAU_MAX || out[i].x <= 0.0f)
             continue;
-        double d_s = -log(out[i].x) / k - D, d_m = -log(out[i].y) / k - D;
-        sum_s += d_s, sum2_s += d_s * d_s, sum_err += fabs(D - D_half) / 3.0, n_s++;
+        stat_add(&surface, -log(out[i].x) / k - D);
+        stat_add(&air, out[i].z - D);
+        sum_err += fabs(D - D_half) / 3.0;
+        /* the air's slot: exp(-k D_air) of the same estimate (float exp and product) */
+        double slot = exp(-k * out[i].z);
+        worst_slot = fmax(worst_slot, fabs(out[i].y - slot) / fmax(slot, 1e-30) *
+                                          (slot > 1e-30 ? 1.0 : 0.0));
         if (chord > s->clouds.light_distance_m)
-            sum_m += d_m, sum2_m += d_m * d_m, n_m++;
+            stat_add(&cut, out[i].w - D);
     }
-    double mean_s = sum_s / n_s, se_s = sqrt((sum2_s / n_s - mean_s * mean_s) / (n_s - 1));
-    double mean_m = sum_m / n_m, se_m = sqrt((sum2_m / n_m - mean_m * mean_m) / (n_m - 1));
-    printf("%d of %d points below optical depth %.0f: surface D - D_fine mean %.3g m (standard "
-           "error %.3g m, D_fine's error %.3g m), spread %.3g m per point\n",
-           n_s, POINTS, TAU_MAX, mean_s, se_s, sum_err / n_s, se_s * sqrt(n_s));
-    printf("%d with a chord over %.0f m: the medium's light march D - D_fine mean %.3g m "
-           "(standard error %.3g m)\n",
-           n_m, s->clouds.light_distance_m, mean_m, se_m);
-    CHECK(n_s >= POINTS / 4);
-    CHECK(fabs(mean_s) <= 4.0 * se_s + sum_err / n_s);
-    CHECK(n_m >= POINTS / 8);
-    CHECK(mean_m < -4.0 * se_m);
+    double err = sum_err / surface.n;
+    printf("%d of %d points below optical depth %.0f (D_fine's error %.3g m):\n", surface.n,
+           POINTS, TAU_MAX, err);
+    stat_print("surface (32 steps, whole chord)", &surface);
+    stat_print("air (light_steps, whole chord)", &air);
+    stat_print("the cut march, chords over light_distance_m", &cut);
+    printf("the air's slot against exp(-k D_air): worst relative difference %.3g\n", worst_slot);
+    CHECK(surface.n >= POINTS / 4);
+    CHECK(fabs(stat_mean(&surface)) <= 4.0 * stat_se(&surface) + err);
+    CHECK(fabs(stat_mean(&air)) <= 4.0 * stat_se(&air) + err);
+    CHECK(worst_slot < 1e-5);
+    CHECK(cut.n >= POINTS / 8);
+    CHECK(stat_mean(&cut) < -4.0 * stat_se(&cut));
     atmo_plan_free(&p);
     return test_finish();
 }

@@ -1,6 +1,7 @@
 /* bench_clouds_shadow.c — the sun-transmittance error of the fBm layer's shadow term for
  * `atmo bench clouds` (bench_clouds.c): the light march (cloud_layer.h's clouds_sun_density,
- * light_steps steps cut to light_distance_m, jittered by the point's hash) or the sun shadow map
+ * light_steps steps cut to light_distance_m in cloud and over the whole chord in clear air,
+ * jittered by the point's hash) or the sun shadow map
  * (cloud_shadow_map.h's lookup of nodes as its pass computes them) against a double-precision
  * midpoint quadrature of the whole chord toward the sun (BENCH_SHADOW_FINE_STEPS uniform steps;
  * the reference's ratio tracking does not cut the chord either), T = exp(-extinction D) at
@@ -47,12 +48,18 @@ static double fine_depth(const atmo_gpu_scene *s, const medium_point *q)
 }
 
 /* D at q as the configuration computes it; map: the scene's map with its nodes filled lazily
- * (NAN where not yet computed). */
+ * (NAN where not yet computed). Without the map, the marcher's rule (cloud_march.h): a point
+ * in cloud marches light_steps cut at light_distance_m, a point in clear air the whole chord
+ * in as many steps. */
 static double config_depth(const atmo_gpu_scene *s, float *map, const clouds_grid_frame *f,
                            const medium_point *q)
 {
+    float jitter = clouds_point_jitter(q->p, s->clouds.seed);
+    if (!map && clouds_density(&s->clouds, q->p, q->h) > 0.0f)
+        return (double)clouds_sun_density(s, q, jitter);
     if (!map)
-        return (double)clouds_sun_density(s, q, clouds_point_jitter(q->p, s->clouds.seed));
+        return (double)clouds_sun_density_steps(s, q, jitter, s->clouds.light_steps, INFINITY,
+                                                CLOUDS_TAU_OPAQUE);
     int n = s->clouds.shadow_map_size, i, j, k;
     vec3 t;
     if (clouds_shadow_map_cell(s, f, q->p, q->h, &i, &j, &k, &t))

@@ -218,8 +218,9 @@ const atmo_param atmo_params[] = {
             "steps of the light march toward the sun (4: within the reference's noise of 8 and "
             "16 with the fitted octaves, atmo bench clouds)"),
     ROW_FLOAT("clouds.light_distance_m", clouds.light_distance_m, "m", 1, 1e6, 8000,
-              "length of the light march toward the sun from the medium's samples (a surface "
-              "point's march takes the whole chord through the layer, in at least 32 steps)"),
+              "length of the light march toward the sun from the samples inside clouds (one "
+              "in clear air or on a surface spreads its steps over the whole chord through the "
+              "layer, a surface in at least 32)"),
     ROW_BOOL("clouds.shadow_map", clouds.shadow_map, 0,
              "the sun shadow map: the density toward the sun precomputed per view on a grid "
              "around the camera (methods single and march; the reference keeps ratio "

@@ -44,9 +44,10 @@
  * for the same point on every run; it stops once the optical depth passes CLOUDS_TAU_OPAQUE.
  * exp(-D) of a jittered estimate of the optical depth
  * over-estimates the transmittance on average (Jensen's inequality; tests/test_clouds_tracking.c
- * measures how much); the Monte Carlo reference uses ratio tracking instead. A surface point
- * (the terrain, an object) marches the whole chord instead, uncut
- * (cloud_layer_medium.h's clouds_media_sun_surface).
+ * measures how much); the Monte Carlo reference uses ratio tracking instead. The cut is the
+ * march of the samples inside clouds (cloud_march.h); a point in clear air or on a surface
+ * (the terrain, an object) spreads its steps over the whole chord instead, uncut, a surface in
+ * at least CLOUDS_SURFACE_LIGHT_STEPS (cloud_layer_medium.h's clouds_chord_density).
  *
  * Parameters (scene keys clouds.*, `atmo params`): bottom_m 1000, top_m 8000, fade_m 2000,
  * coverage 0.25, density 5, sharpness 1.05, frequency_per_m (8, 16, 8) 1e-5, coverage_scale_m

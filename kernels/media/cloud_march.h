@@ -19,8 +19,11 @@
  * step, so aerial perspective lies between the cloud segments, not only in front of the first.
  *
  * Source S at a point with the sun's light E T_air V (the atmosphere's transmittance toward the
- * sun, the occluders: planet, observer) and the density integral D toward the sun of the light
- * march or the sun shadow map (cloud_layer_medium.h's clouds_light_density; tau_sun = extinction D):
+ * sun, the occluders: planet, observer) and the density integral D toward the sun (tau_sun =
+ * extinction D) of the sun shadow map or the light march: at a sample in cloud the march cut at
+ * light_distance_m (clouds_octave_light_density below, with which the octaves were fitted), at
+ * a sample in clear air the whole chord in as many steps (cloud_layer_medium.h's
+ * clouds_chord_density: the clouds that shade the air under a low sun lie far along it):
  *   air:    (sigma_R p_R + sigma_M p_M) E T_air V e^{-tau_sun}  (+ J_ms e^{-tau_sun}, use_ms)
  *   clouds: sigma_s E T_air V [sum_{i<N} b^i p_i(nu) T_i + d R(s) e^{-k_d tau_sun} / (4 pi)]
  * the octaves of Wrenninge, Kulla & Lundqvist 2013 ("Oz: the great and volumetric") and the
@@ -155,7 +158,8 @@ ATMO_FN float clouds_octave_light_density(ATMO_GLOBAL const atmo_gpu_scene *s, A
                                           const medium_point *q, vec3 k_d)
 {
 #ifdef ATMO_CLOUDS_SHADOW_MAP
-    return clouds_light_density(s, ATMO_LUT_ARGS, q);
+    (void)k_d;
+    return clouds_chord_density(s, ATMO_LUT_ARGS, q, s->clouds.light_steps);
 #else
     ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
     float a_n = 1.0f;
@@ -194,7 +198,11 @@ ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, c
     }
     vec3 Tw = medium_piece_weight(ms.extinction, dt, T);
     float occluded = visibility_sun_occluders(s, ATMO_LUT_ARGS, &q);
-    float D = occluded > 0.0f ? clouds_octave_light_density(s, ATMO_LUT_ARGS, &q, k_d) : 0.0f;
+    vec3 sigma_c = ms.scattering[MEDIA_CLOUDS];
+    int in_cloud = cloudy && sigma_c.y > 0.0f;
+    float D = occluded <= 0.0f ? 0.0f
+              : in_cloud       ? clouds_octave_light_density(s, ATMO_LUT_ARGS, &q, k_d)
+                               : clouds_chord_density(s, ATMO_LUT_ARGS, &q, c->light_steps);
     vec3 tau_sun = v3_scale(v3_from4(c->extinction), D), cloud_t = v3_exp(v3_scale(tau_sun, -1.0f));
     vec3 sun_e = v3(0.0f, 0.0f, 0.0f);
     if (occluded > 0.0f)
@@ -211,8 +219,7 @@ ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, c
     vec3 S = v3_mul(v3_mul(air, sun_e), cloud_t);
     if (use_ms)
         S = v3_add(S, v3_mul(medium_ms_source(s, ATMO_LUT_ARGS, &q, m->nu, &ms, ground), cloud_t));
-    vec3 sigma_c = ms.scattering[MEDIA_CLOUDS];
-    if (cloudy && sigma_c.y > 0.0f) {
+    if (in_cloud) {
         vec3 cloud = v3(0.0f, 0.0f, 0.0f);
         vec3 p0 = media_phase(s, ATMO_LUT_ARGS, MEDIA_CLOUDS, m->nu);
         if (c->look == ATMO_CLOUDS_LOOK_THESIS) {
