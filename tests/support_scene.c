@@ -230,6 +230,21 @@ test_image test_render(const atmo_scene *s, int tile, int max_batch)
     return im;
 }
 
+void test_render_whole(const atmo_plan *p, const atmo_render_settings *rs, atmo_render_result *r)
+{
+    atmo_render_settings defaults;
+    atmo_err e;
+    if (!rs) {
+        atmo_render_settings_default(&defaults);
+        rs = &defaults;
+    }
+    if (atmo_render(p, rs, r, &e)) {
+        fprintf(stderr, "render failed: %s\n", e.msg);
+        exit(1);
+    }
+    CHECK(r->nonfinite == 0);
+}
+
 int test_render_plan(const atmo_plan *p, int tile, int max_batch, float *mean, float *se,
                      int *samples)
 {

@@ -68,15 +68,8 @@ static double *render(const char *preset, int w, int h, int k, const char *extra
     if (extra)
         test_scene_set(&s, extra);
     test_plan(&s, &p);
-    atmo_render_settings rs;
     atmo_render_result r;
-    atmo_err e;
-    atmo_render_settings_default(&rs);
-    if (atmo_render(&p, &rs, &r, &e)) {
-        fprintf(stderr, "render failed: %s\n", e.msg);
-        exit(1);
-    }
-    CHECK(r.nonfinite == 0);
+    test_render_whole(&p, NULL, &r);
     int ws = w / k, hs = h / k;
     double *out = calloc((size_t)ws * hs, sizeof *out);
     if (!out)

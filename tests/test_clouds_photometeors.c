@@ -70,15 +70,8 @@ int main(void)
     flat_deck(&s, 0.02 / (d1 * sigma_unit));
     test_plan(&s, &p);
 
-    atmo_render_settings rs;
     atmo_render_result r;
-    atmo_err e;
-    atmo_render_settings_default(&rs);
-    if (atmo_render(&p, &rs, &r, &e)) {
-        fprintf(stderr, "render failed: %s\n", e.msg);
-        return 1;
-    }
-    CHECK(r.nonfinite == 0);
+    test_render_whole(&p, NULL, &r);
 
     /* the radiance (550 nm) in 1-degree bins of the scattering angle */
     enum { BINS = 181 };

@@ -262,14 +262,8 @@ static float *render_space(const atmo_scene *s, int seed, const char *assignment
     atmo_plan p;
     test_plan(&t, &p);
     p.cache_luts = 2;
-    atmo_render_settings rs;
     atmo_render_result r;
-    atmo_err e;
-    atmo_render_settings_default(&rs);
-    if (atmo_render(&p, &rs, &r, &e)) {
-        fprintf(stderr, "render failed: %s\n", e.msg);
-        exit(1);
-    }
+    test_render_whole(&p, NULL, &r);
     float *rgb = r.rgb;
     r.rgb = NULL;
     atmo_render_result_free(&r);

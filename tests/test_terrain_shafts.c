@@ -71,13 +71,9 @@ static shaft_image render(int air_shadows, int seed, int guides)
     p.cache_luts = 2;
     atmo_render_settings rs;
     atmo_render_result r;
-    atmo_err e;
     atmo_render_settings_default(&rs);
     rs.guides = guides;
-    if (atmo_render(&p, &rs, &r, &e)) {
-        fprintf(stderr, "render failed: %s\n", e.msg);
-        exit(1);
-    }
+    test_render_whole(&p, &rs, &r);
     shaft_image img = {r.rgb, NULL};
     r.rgb = NULL;
     if (guides) {

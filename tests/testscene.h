@@ -3,6 +3,7 @@
 #ifndef ATMO_TESTSCENE_H
 #define ATMO_TESTSCENE_H
 #include "atmo/plan.h"
+#include "atmo/render.h"
 #include "atmo/scene.h"
 #include "testcl.h"
 
@@ -78,6 +79,10 @@ test_image test_render(const atmo_scene *s, int tile, int max_batch);
 int test_render_plan(const atmo_plan *p, int tile, int max_batch, float *mean, float *se,
                      int *samples);
 void test_image_free(test_image *im);
+/* Plan p rendered whole by atmo_render with settings rs (NULL: the defaults) into *r (freed by
+ * the caller, atmo_render_result_free); exits 1 (the error printed) where it fails, and CHECKs
+ * that no pixel is NaN/Inf. */
+void test_render_whole(const atmo_plan *p, const atmo_render_settings *rs, atmo_render_result *r);
 /* Images a and b of one scene by two unbiased estimators (named name_a and name_b in the
  * printed lines, which `label` begins), compared by z-tests on their standard errors: per
  * channel the image means' difference z = (sum b - sum a) / sqrt(sum se_a^2 + sum se_b^2),
