@@ -39,7 +39,7 @@ typedef struct atmo_gpu_field {
  *   media_sun             vec3 (s, ATMO_LUT_PARAMS, const medium_point *q): the sun's
  *                         transmittance through it to q (a medium that shadows)
  *   media_sun_surface     the same at a surface point (one per camera ray, so it may cost
- *                         more: the fBm layer's whole chord toward the sun); NULL: media_sun
+ *                         more: the fBm layer's march in more steps); NULL: media_sun
  *   media_intervals       int (s, const medium_ray *m, float t_start, float t_end, float *lo,
  *                         float *hi): the parts of the ray it steps itself (at most one medium)
  *   media_interval        void (s, ATMO_LUT_PARAMS, const medium_ray *m, float t0, float t1,
