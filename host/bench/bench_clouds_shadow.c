@@ -58,8 +58,7 @@ static double config_depth(const atmo_gpu_scene *s, float *map, const clouds_gri
     if (!map && clouds_density(&s->clouds, q->p, q->h) > 0.0f)
         return (double)clouds_sun_density(s, q, jitter);
     if (!map)
-        return (double)clouds_sun_density_steps(s, q, jitter, s->clouds.light_steps, INFINITY,
-                                                CLOUDS_TAU_OPAQUE);
+        return (double)clouds_sun_density_chord(s, q, jitter, s->clouds.light_steps);
     int n = s->clouds.shadow_map_size, i, j, k;
     vec3 t;
     if (clouds_shadow_map_cell(s, f, q->p, q->h, &i, &j, &k, &t))

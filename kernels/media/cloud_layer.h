@@ -252,6 +252,15 @@ ATMO_FN float clouds_view_density_ends(ATMO_GLOBAL const atmo_gpu_scene *s, cons
     return total;
 }
 
+/* The light march over the whole chord from q toward the sun through the layer, uncut, in n
+ * steps with the sample offset `jitter` in [0, 1): D (m), for a point in clear air or on a
+ * surface (the header). */
+ATMO_FN float clouds_sun_density_chord(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_point *q,
+                                       float jitter, int n)
+{
+    return clouds_sun_density_steps(s, q, jitter, n, INFINITY, CLOUDS_TAU_OPAQUE);
+}
+
 /* The light march from the point q toward the sun: the density integral D (m) over the layer,
  * with the steps' sample offset `jitter` in [0, 1). */
 ATMO_FN float clouds_sun_density(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_point *q,

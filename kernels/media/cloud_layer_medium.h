@@ -50,8 +50,7 @@ ATMO_FN float clouds_chord_density(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT
     (void)n;
     return clouds_shadow_map_density(s, clouds_shadow_map, q);
 #else
-    return clouds_sun_density_steps(s, q, clouds_point_jitter(q->p, s->clouds.seed), n, INFINITY,
-                                    CLOUDS_TAU_OPAQUE);
+    return clouds_sun_density_chord(s, q, clouds_point_jitter(q->p, s->clouds.seed), n);
 #endif
 }
 

@@ -84,7 +84,7 @@ ATMO_FN vec3 visibility_sun_surface_all(ATMO_GLOBAL const atmo_gpu_scene *s, ATM
                                         const medium_point *q)
 {
     return visibility_media_sun_surface(s, ATMO_LUT_ARGS, q,
-                                        visibility_sun_occluders_on_ray(s, ATMO_LUT_ARGS, q, 0));
+                                        visibility_sun_occluders(s, ATMO_LUT_ARGS, q));
 }
 
 #endif
