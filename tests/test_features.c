@@ -24,7 +24,16 @@
  *     volume functions are the empty medium's and the majorant has no mode test; two volume
  *     media are refused. The media group of the largest composition (the air, the volume
  *     medium, the tracked layer, the layer's medium, the cloud shell, Psi_ms) must fit the
- *     plan's 8192-byte buffer (its size printed). */
+ *     plan's 8192-byte buffer (its size printed).
+ *  6. the render stages take the features through their slots: the path tracer's surfaces
+ *     (the terrain's and the objects' hits and shadow-ray tests in registry order, the ground
+ *     sphere a surface unless the terrain replaces it), the preview's camera stages (the
+ *     objects' before the terrain's, the method's sky_trace last; fast's terrain stage
+ *     integrates the tables, single's only adds the water), the guides' pattern and media (the
+ *     path tracer's 8 x 8 filtered rays and segments, the preview's 4 x 4 box; the shell's
+ *     chord per ray, the layer's march per block); each composed fragment stands after the
+ *     rows whose functions it calls and before its callers, and a plan's -D flags hold no
+ *     flag that only a render stage used to test. */
 #include <stdlib.h>
 #include <string.h>
 #include "atmo/cl_runtime.h"
@@ -248,11 +257,73 @@ static void test_compose_volume(void)
     printf("the largest media composition: %zu of %zu bytes\n", strlen(big), sizeof big);
 }
 
+/* The render stages' compositions (6 above). */
+static void test_compose_stages(void)
+{
+    static char text[8192];
+    const atmo_feature *terrain = atmo_feature_find("terrain_path");
+    const atmo_feature *objects = atmo_feature_find("objects_path");
+    const atmo_feature *both[] = {terrain, objects};
+    CHECK(atmo_compose(both, 2, ATMO_COMPOSE_PATH_SURFACES, text, sizeof text) == 0);
+    CHECK(strstr(text, "#define SURFACES_GROUND_SPHERE 0") != NULL);
+    const char *t = strstr(text, "terrain_path_hit(s, ATMO_LUT_ARGS, m, h);");
+    CHECK(t && strstr(t, "objects_path_hit(s, ATMO_LUT_ARGS, m, h);") != NULL);
+    CHECK(strstr(text, "if (terrain_path_occluded(s, ATMO_LUT_ARGS, o, d))") != NULL);
+    CHECK(atmo_compose(&objects, 1, ATMO_COMPOSE_PATH_SURFACES, text, sizeof text) == 0);
+    CHECK(strstr(text, "#define SURFACES_GROUND_SPHERE 1") != NULL &&
+          strstr(text, "terrain") == NULL);
+
+    const atmo_feature *stages[] = {atmo_feature_find("march"), atmo_feature_find("objects_stage"),
+                                    atmo_feature_find("terrain_stage")};
+    CHECK(atmo_compose(stages, 3, ATMO_COMPOSE_CAMERA, text, sizeof text) == 0);
+    t = strstr(text, "if (objects_stage_trace(");
+    CHECK(t && (t = strstr(t, "if (terrain_stage_trace_tables(")) != NULL &&
+          strstr(t, "sky_trace(s, ATMO_LUT_ARGS, ray, INFINITY, g, sky, sun, view_t);") != NULL);
+    CHECK(atmo_compose(stages, 1, ATMO_COMPOSE_CAMERA, text, sizeof text) == 0);
+    CHECK(strstr(text, "_stage_trace") == NULL && strstr(text, "sky_trace(") != NULL);
+
+    const atmo_feature *path_guides[] = {atmo_feature_find("cloud"), atmo_feature_find("clouds"),
+                                         atmo_feature_find("path")};
+    CHECK(atmo_compose(path_guides, 3, ATMO_COMPOSE_GUIDES, text, sizeof text) == 0);
+    CHECK(strstr(text, "#define GUIDES_GRID 8") != NULL);
+    CHECK(strstr(text, "return path_camera_pixel_ray(s, x, y, u1, u2);") != NULL);
+    CHECK(strstr(text, "return path_media_shown(s, t_end);") != NULL);
+    CHECK(strstr(text, "d = cloud_shell_guide_depth(s, m, t_end, &w);") != NULL);
+    CHECK(strstr(text, "clouds_guide_block(s, m, n, ends, step_scale, tau_stop, tau,") != NULL);
+    CHECK(atmo_compose(path_guides, 0, ATMO_COMPOSE_GUIDES, text, sizeof text) == 0);
+    CHECK(strstr(text, "#define GUIDES_GRID 4") != NULL && strstr(text, "path_") == NULL &&
+          strstr(text, "cloud") == NULL);
+
+    /* the fragments in order: the features' functions, their composition, its callers */
+    atmo_scene s;
+    atmo_plan p;
+    test_scene_preset(&s, "sky-noon");
+    test_scene_set(&s, "terrain.enabled=true");
+    test_scene_set(&s, "atmosphere.method=fast");
+    test_scene_set(&s, "render.mode=path");
+    test_plan(&s, &p);
+    CHECK(fragment_at(&p, "kernels/terrain/terrain_path.h") >= 0 &&
+          fragment_at(&p, "kernels/terrain/terrain_path.h") < fragment_at(&p, "plan/path_surfaces"));
+    CHECK(fragment_at(&p, "plan/path_surfaces") < fragment_at(&p, "kernels/render/surfaces.h"));
+    CHECK(fragment_at(&p, "kernels/render/surfaces.h") < fragment_at(&p, "kernels/render/path.h"));
+    CHECK(fragment_at(&p, "kernels/render/path.h") < fragment_at(&p, "plan/guides"));
+    CHECK(fragment_at(&p, "plan/guides") < fragment_at(&p, "kernels/render/guides.cl"));
+    CHECK(strstr(p.defines, "ATMO_TERRAIN_STAGE_TABLES") == NULL);
+    atmo_plan_free(&p);
+    test_scene_set(&s, "render.mode=preview");
+    test_plan(&s, &p);
+    CHECK(fragment_at(&p, "kernels/terrain/terrain_stage.h") < fragment_at(&p, "plan/camera") &&
+          fragment_at(&p, "plan/camera") < fragment_at(&p, "kernels/render/sky.cl"));
+    CHECK(p.gpu.path.ground == 1); /* the preview's guides have the ground sphere */
+    atmo_plan_free(&p);
+}
+
 int main(void)
 {
     test_registry_files();
     test_compose_single_slots();
     test_compose_volume();
+    test_compose_stages();
     test_methods();
     test_cloud();
     return test_finish();

@@ -272,6 +272,19 @@ if [ -n "$found" ]; then
     echo "$found" | sed 's/^/    /' >&2
 else ok; fi
 
+# The render stages (the preview's camera rays, the path tracer, the guides) and the methods
+# take the features through the plan's composition too: no feature #if in kernels/render,
+# kernels/atmosphere or kernels/common; a feature's own files (kernels/terrain, the objects'
+# render/objects*) may test their own flags, and the host-only block of a header (its
+# #if !defined(__OPENCL_VERSION__) lines: the host tests' buffer lists) is not kernel code.
+stage_files=$(find kernels/render kernels/atmosphere kernels/common -name '*.h' -o -name '*.cl' |
+    grep -v '^kernels/render/objects' | sort)
+found=$(feature_ifs $stage_files | grep -v '!defined(__OPENCL_VERSION__)')
+if [ -n "$found" ]; then
+    bad "feature #if in a render stage or method (give the feature a slot of the composition):"
+    echo "$found" | sed 's/^/    /' >&2
+else ok; fi
+
 # The path tracer's volume stage runs on the one majorant walk over the composed volume medium:
 # no #if and no feature's name in it.
 found=$( (stage_ifs kernels/render/volume_stage.h; feature_identifiers kernels/render/volume_stage.h) )

@@ -1,5 +1,5 @@
 /* test_terrain_water — the sea reflects the method's sky in the mirror direction
- * (kernels/render/terrain_stage.h, terrain_stage_water_sky).
+ * (kernels/terrain/terrain_stage.h, terrain_stage_water_sky).
  * labels: kernel
  *
  * Scene: a planet covered by sea (terrain.land_fraction=0), the camera 0.5 m above it, the sun

@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "atmo/features.h"
+#include "atmo/gpu_enums.h"
 
 /* A growing text: appends stop at the first overflow, which finish reports. */
 typedef struct text {
@@ -340,6 +341,105 @@ static void compose_surfaces(text *t, const atmo_feature *const *f, int n)
     put(t, "    return v3(0.0f, 0.0f, 0.0f);\n}\n");
 }
 
+/* The path tracer's surfaces (kernels/render/surfaces.h): whether the ground sphere is one,
+ * and the features' hits and shadow-ray tests in registry order (each hit replaces the record
+ * only where it is nearer, so the order does not change which surface is found). */
+static void compose_path_surfaces(text *t, const atmo_feature *const *f, int n)
+{
+    int ground = 1;
+    for (int i = 0; i < n; i++)
+        if (f[i]->slots && f[i]->slots->path_replaces_ground)
+            ground = 0;
+    put(t, "/* Whether the planet's ground sphere is a surface (no feature's replaces it). */\n");
+    put(t, "#define SURFACES_GROUND_SPHERE %d\n\n", ground);
+    put(t, "/* The features' surfaces along m, each replacing h where it is nearer. */\n");
+    put(t, HEAD "const medium_ray *m, path_hit *h)\n{\n", "void", "surfaces_features_hit");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], path_hit))
+            put(t, "    %s(s, ATMO_LUT_ARGS, m, h);\n", f[i]->slots->path_hit);
+    put(t, "}\n\n");
+    put(t, "/* 1 where a feature's surface blocks the shadow ray from o along d. */\n");
+    put(t, HEAD "vec3 o, vec3 d)\n{\n", "int", "surfaces_features_occluded");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], path_occluded))
+            put(t, "    if (%s(s, ATMO_LUT_ARGS, o, d))\n        return 1;\n",
+                f[i]->slots->path_occluded);
+    put(t, "    return 0;\n}\n");
+}
+
+/* The preview's camera ray (kernels/render/sky.cl): the features' stages in registry order,
+ * the first that takes the ray tracing it, else the method's sky_trace over its whole length
+ * (nothing without a method: a host test's composition of media alone). */
+static void compose_camera(text *t, const atmo_feature *const *f, int n)
+{
+    int method = 0;
+    for (int i = 0; i < n; i++)
+        method |= f[i]->method >= 0;
+    if (!method)
+        return;
+    put(t, "/* The preview's camera ray through the features' stages, else the method. */\n");
+    put(t, HEAD "const medium_ray *ray, rng_stream *g,\n"
+           "                                  vec3 *sky, vec3 *sun, vec3 *view_t)\n{\n",
+        "void", "render_camera_trace");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], camera_stage))
+            put(t, "    if (%s(s, ATMO_LUT_ARGS, ray, g, sky, sun, view_t))\n        return;\n",
+                f[i]->slots->camera_stage);
+    put(t, "    sky_trace(s, ATMO_LUT_ARGS, ray, INFINITY, g, sky, sun, view_t);\n}\n");
+}
+
+/* The denoiser's guides (kernels/render/guides.cl): the mode's pattern and pixel filter, and
+ * the media's optical depth in front of a ray and of a block of rays. */
+static void compose_guides(text *t, const atmo_feature *const *f, int n)
+{
+    int grid = ATMO_GUIDES_PREVIEW_GRID;
+    const char *ray = NULL, *shown = NULL;
+    for (int i = 0; i < n; i++) {
+        const atmo_slots *sl = f[i]->slots;
+        if (sl && sl->guides_grid)
+            grid = sl->guides_grid;
+        ray = SLOT(f[i], pixel_ray) ? sl->pixel_ray : ray;
+        shown = SLOT(f[i], media_shown) ? sl->media_shown : shown;
+    }
+    put(t, "/* The guides' rays per pixel side (gpu_enums.h). */\n#define GUIDES_GRID %d\n\n",
+        grid);
+    put(t, "/* The mode's camera ray at (u1, u2) in [0, 1)^2 of pixel (x, y). */\n");
+    put(t, "ATMO_FN vec3 guides_pixel_ray(ATMO_GLOBAL const atmo_gpu_scene *s, int x, int y, "
+           "float u1,\n                              float u2)\n{\n");
+    if (ray)
+        put(t, "    return %s(s, x, y, u1, u2);\n}\n\n", ray);
+    else
+        put(t, "    return camera_ray(&s->camera, (float)x + u1, (float)y + u2);\n}\n\n");
+    put(t, "/* Whether the image shows the method's media in front of a surface at t_end. */\n");
+    put(t, "ATMO_FN int guides_media_shown(ATMO_GLOBAL const atmo_gpu_scene *s, float t_end)\n{\n");
+    if (shown)
+        put(t, "    return %s(s, t_end);\n}\n\n", shown);
+    else
+        put(t, "    (void)s;\n    (void)t_end;\n    return 1;\n}\n\n");
+    put(t, "/* The media's optical depth along m over [0, t_end] added to *tau, times their\n"
+           " * albedo to *tau_albedo. */\n");
+    put(t, "ATMO_FN void guides_media_ray(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m,"
+           "\n                             float t_end, vec3 *tau, vec3 *tau_albedo)\n{\n"
+           "    vec3 d, w;\n");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], guide_depth))
+            put(t, "    d = %s(s, m, t_end, &w);\n    *tau = v3_add(*tau, d);\n"
+                   "    *tau_albedo = v3_add(*tau_albedo, v3_mul(d, w));\n",
+                f[i]->slots->guide_depth);
+    put(t, "    (void)s;\n    (void)m;\n    (void)t_end;\n    (void)d;\n    (void)w;\n}\n\n");
+    put(t, "/* The same for a block of n rays ending at ends[k], from one march along m. */\n");
+    put(t, "ATMO_FN void guides_media_block(ATMO_GLOBAL const atmo_gpu_scene *s, "
+           "const medium_ray *m, int n,\n                               const float *ends, "
+           "float step_scale, float tau_stop,\n                               vec3 *tau, "
+           "vec3 *tau_albedo)\n{\n");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], guide_block))
+            put(t, "    %s(s, m, n, ends, step_scale, tau_stop, tau, tau_albedo);\n",
+                f[i]->slots->guide_block);
+    put(t, "    (void)s;\n    (void)m;\n    (void)n;\n    (void)ends;\n    (void)step_scale;\n"
+           "    (void)tau_stop;\n    (void)tau;\n    (void)tau_albedo;\n}\n");
+}
+
 int atmo_compose(const atmo_feature *const *f, int n, int group, char *out, size_t size)
 {
     text t = {out, size, 0, 0};
@@ -369,6 +469,12 @@ int atmo_compose(const atmo_feature *const *f, int n, int group, char *out, size
         compose_surfaces(&t, f, n);
     } else if (group == ATMO_COMPOSE_INTERVALS) {
         rc = compose_intervals(&t, f, n);
+    } else if (group == ATMO_COMPOSE_PATH_SURFACES) {
+        compose_path_surfaces(&t, f, n);
+    } else if (group == ATMO_COMPOSE_CAMERA) {
+        compose_camera(&t, f, n);
+    } else if (group == ATMO_COMPOSE_GUIDES) {
+        compose_guides(&t, f, n);
     } else {
         rc = -1;
     }
@@ -392,6 +498,8 @@ int atmo_compose_components(const atmo_feature *const *f, int n, char *out, size
 const char *atmo_compose_name(int group)
 {
     static const char *const names[ATMO_COMPOSE_GROUPS] = {"", "plan/media", "plan/sun",
-                                                           "plan/surfaces", "plan/intervals"};
+                                                           "plan/surfaces", "plan/intervals",
+                                                           "plan/path_surfaces", "plan/camera",
+                                                           "plan/guides"};
     return group > 0 && group < ATMO_COMPOSE_GROUPS ? names[group] : "";
 }

@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "atmo/features.h"
+#include "atmo/gpu_enums.h"
 #include "atmo/plan_cloud.h"
 #include "atmo/plan_clouds.h"
 #include "atmo/plan_fast.h"
@@ -59,7 +60,6 @@ static int terrain_sun_map(const atmo_scene *s)
     return terrain_air_shadows(s) && !path_mode(s) &&
            s->terrain.sun_visibility == ATMO_TERRAIN_SUN_BY_MAP;
 }
-static int path_water(const atmo_scene *s) { return path_mode(s) && has_terrain(s); }
 static int terrain_stage(const atmo_scene *s)
 {
     return has_terrain(s) && (s->atmosphere.method == ATMO_METHOD_FAST ||
@@ -94,9 +94,10 @@ static int plan_atmosphere(const atmo_scene *s, atmo_plan *p, atmo_err *e)
 /* The headers every kernel is compiled with: the shared GPU structs (each feature's in its own
  * header, before the scene struct that holds them), math, the deterministic quadrature's walk
  * (the atmosphere's transmittance integral walks it), the atmosphere, the camera, the
- * camera-relative ray that the media and the integrator take, the media's contract and the
- * air, the planet as the first occluder of the sun, and the free-flight and ratio-tracking
- * steps of the Monte Carlo walks. */
+ * camera-relative ray that the media and the integrator take, the hit record that the
+ * surfaces' slots fill (render/path_hit.h), the media's contract and the air, the planet as
+ * the first occluder of the sun, and the free-flight and ratio-tracking steps of the Monte
+ * Carlo walks. */
 static const char *const atmosphere_fragments[] = {
     "kernels/common/compat.h",        "include/atmo/gpu_enums.h",
     "include/atmo/gpu_atmosphere.h",  "include/atmo/gpu_ms_lut.h",
@@ -109,7 +110,8 @@ static const char *const atmosphere_fragments[] = {
     "kernels/common/phase.h",         "kernels/media/quadrature_walk.h",
     "kernels/atmosphere/atmosphere.h", "kernels/common/camera.h",
     "kernels/atmosphere/sky_method.h", "kernels/media/ray.h",
-    "kernels/media/tracking.h",       "kernels/media/majorant_walk.h",
+    "kernels/render/path_hit.h",      "kernels/media/tracking.h",
+    "kernels/media/majorant_walk.h",
     "kernels/media/media.h",          "kernels/media/planet.h",
     "kernels/atmosphere/transmittance.cl", NULL};
 static const atmo_slots atmosphere_slots = {.sun_occluder = "planet_sun_visibility",
@@ -195,12 +197,15 @@ static const atmo_slots cloud_slots = {.component = "CLOUD",
                                        .majorant_segment = "cloud_shell_majorant_segment",
                                        .sun_exact = 1,
                                        .media_direction = "cloud_shell_media_direction",
-                                       .roulette_gain = "cloud_shell_roulette_gain"};
+                                       .roulette_gain = "cloud_shell_roulette_gain",
+                                       .guide_depth = "cloud_shell_guide_depth"};
 /* the shell's own stepping, after the visibility it asks */
 static const char *const cloud_march_fragments[] = {"kernels/media/cloud_shell_march.h", NULL};
 static const char *const clouds_fragments[] = {"kernels/media/cloud_noise.h",
                                                "kernels/media/phase_table.h",
                                                "kernels/media/cloud_layer.h", NULL};
+/* the layer in the denoiser's guides, in every mode */
+static const atmo_slots clouds_guides_slots = {.guide_block = "clouds_guide_block"};
 /* the grid and the layer's majorant over it, the layer in the one walk (cloud_track.h: the
  * slots below) */
 static const char *const clouds_majorant_fragments[] = {"kernels/media/cloud_majorant.h",
@@ -285,9 +290,12 @@ static const char *const terrain_sun_map_sources[] = {
     "kernels/terrain/terrain_sun_map.h", "kernels/terrain/terrain_sun_map.cl",
     NULL};
 static const char *const needs_heightmap[] = {"terrain", NULL};
-/* methods fast and lut read whole rays from tables that know no terrain: a render stage finds
- * the hit first and asks the method for the air in front of it */
-static const char *const terrain_stage_fragments[] = {"kernels/render/terrain_stage.h", NULL};
+/* the terrain's stage of the preview's camera rays: methods fast and lut read whole rays from
+ * tables that know no terrain, so it finds the hit first and asks the method's integrator for
+ * the air in front of it; every method gets the water's mirror ray from it */
+static const char *const terrain_stage_fragments[] = {"kernels/terrain/terrain_stage.h", NULL};
+static const atmo_slots terrain_stage_slots = {.camera_stage = "terrain_stage_trace_tables"};
+static const atmo_slots terrain_water_stage_slots = {.camera_stage = "terrain_stage_trace"};
 static const char *const single_fragments[] = {"kernels/atmosphere/method_single.h", NULL};
 static const char *const march_fragments[] = {"kernels/atmosphere/method_march.h", NULL};
 static const char *const fast_fragments[] = {"kernels/atmosphere/method_fast.h",
@@ -299,22 +307,39 @@ static const char *const objects_fragments[] = {"kernels/render/objects.h", NULL
 /* the preview's objects: sun occluders (of the air and of the terrain's surface) and surfaces
  * lit by the sun and the sky */
 static const char *const objects_preview_fragments[] = {"kernels/render/objects_light.h", NULL};
+/* the preview's camera rays that see an object: the air in front and the object's light */
+static const char *const objects_stage_fragments[] = {"kernels/render/objects_stage.h", NULL};
+static const atmo_slots objects_stage_slots = {.camera_stage = "objects_stage_trace"};
 static const atmo_slots objects_preview_slots = {.sun_occluder = "objects_sun_visibility",
                                                  .surface_occluder = 1,
                                                  .surface_hit = "objects_surface_hit",
                                                  .surface_radiance = "objects_light_radiance"};
 /* the air as a volume medium of the path tracer's walk (render/volume_stage.h) */
 static const atmo_slots path_air_slots = {.volume_air = 1};
-static const char *const path_water_fragments[] = {"kernels/render/bsdf_water.h", NULL};
+/* the sea's BSDF, over the water's optics (a path vertex is the sea where the terrain's hit
+ * says so, render/path_hit.h's SURFACES_WATER) */
+static const char *const path_water_fragments[] = {"kernels/terrain/water.h",
+                                                   "kernels/render/bsdf_water.h", NULL};
 static const char *const path_fragments[] = {
-    "kernels/render/path_camera.h", "kernels/render/surfaces.h", "kernels/render/bsdf.h",
-    "kernels/render/light_sun.h",   "kernels/render/light_sky.h",
-    "kernels/render/volume_stage.h", "kernels/render/path.h",     "kernels/render/path.cl",
-    NULL};
-/* the denoiser's guides, noise-free, in every mode: the first surface of fixed rays per pixel
- * (render/guides.cl; surfaces.h is the path tracer's own where it is assembled) */
-static const char *const guides_fragments[] = {"kernels/render/surfaces.h",
-                                               "kernels/render/guides.cl", NULL};
+    "kernels/render/path_camera.h",  "kernels/render/bsdf.h",  "kernels/render/light_sun.h",
+    "kernels/render/light_sky.h",    "kernels/render/volume_stage.h", "kernels/render/path.h",
+    "kernels/render/path.cl",        NULL};
+/* the surfaces of the path tracer and the guides: the features' surfaces (composed after
+ * them), the queries over the ground sphere and the composition */
+static const char *const terrain_path_fragments[] = {"kernels/terrain/terrain_path.h", NULL};
+static const atmo_slots terrain_path_slots = {.path_hit = "terrain_path_hit",
+                                              .path_occluded = "terrain_path_occluded",
+                                              .path_replaces_ground = 1};
+static const char *const objects_path_fragments[] = {"kernels/render/objects_path.h", NULL};
+static const atmo_slots objects_path_slots = {.path_hit = "objects_path_hit",
+                                              .path_occluded = "objects_path_occluded"};
+static const char *const surfaces_fragments[] = {"kernels/render/surfaces.h", NULL};
+/* the path tracer's pattern, pixel filter and media in the guides */
+static const atmo_slots path_slots = {.pixel_ray = "path_camera_pixel_ray",
+                                      .media_shown = "path_media_shown",
+                                      .guides_grid = ATMO_GUIDES_PATH_GRID};
+/* the denoiser's guides, noise-free, in every mode: the first surface of fixed rays per pixel */
+static const char *const guides_fragments[] = {"kernels/render/guides.cl", NULL};
 
 const atmo_feature atmo_features[] = {
     {"atmosphere", -1, always, atmosphere_fragments, "", atmosphere_params, atmosphere_sources,
@@ -324,7 +349,7 @@ const atmo_feature atmo_features[] = {
      atmo_plan_cloud, 0, &cloud_slots, 0},
     /* the fBm cloud layer: its density, optics and light march */
     {"clouds", -1, has_clouds, clouds_fragments, "-DATMO_CLOUDS", NULL, NULL, NULL,
-     atmo_plan_clouds, 0, NULL, 0},
+     atmo_plan_clouds, 0, &clouds_guides_slots, 0},
     /* the layer's majorant grid for the reference's walk and the volume stage's; it follows the
      * view (never cached) */
     {"clouds_majorant", -1, cloud_grid, clouds_majorant_fragments, "", NULL, NULL, NULL,
@@ -399,17 +424,30 @@ const atmo_feature atmo_features[] = {
      NULL, 0},
     {"reference", ATMO_METHOD_REFERENCE, is_reference, reference_fragments, "", NULL, NULL, NULL,
      atmo_plan_reference, 0, NULL, 0},
-    {"terrain_stage", -1, terrain_stage, terrain_stage_fragments,
-     "-DATMO_TERRAIN_STAGE -DATMO_TERRAIN_STAGE_TABLES", NULL, NULL, NULL, NULL, 0, NULL, 0},
+    /* the stages of the preview's camera rays, asked in this order, and their composition */
+    {"objects_stage", -1, objects_preview, objects_stage_fragments, "", NULL, NULL, NULL, NULL, 0,
+     &objects_stage_slots, 0},
+    {"terrain_stage", -1, terrain_stage, terrain_stage_fragments, "-DATMO_TERRAIN_STAGE", NULL,
+     NULL, NULL, NULL, 0, &terrain_stage_slots, 0},
     {"terrain_water_stage", -1, terrain_water_stage, terrain_stage_fragments,
-     "-DATMO_TERRAIN_STAGE", NULL, NULL, NULL, NULL, 0, NULL, 0},
+     "-DATMO_TERRAIN_STAGE", NULL, NULL, NULL, NULL, 0, &terrain_water_stage_slots, 0},
+    {"compose_camera", -1, always, NULL, "", NULL, NULL, NULL, NULL, 0, NULL, ATMO_COMPOSE_CAMERA},
     /* the kernels that render with whichever method was assembled */
     {"render", -1, always, render_fragments, "", NULL, NULL, NULL, NULL, 0, NULL, 0},
+    /* the surfaces of the path tracer and of the guides (every mode) */
+    {"terrain_path", -1, has_terrain, terrain_path_fragments, "", NULL, NULL, NULL, NULL, 0,
+     &terrain_path_slots, 0},
+    {"objects_path", -1, has_objects, objects_path_fragments, "", NULL, NULL, NULL, NULL, 0,
+     &objects_path_slots, 0},
+    {"compose_path_surfaces", -1, always, NULL, "", NULL, NULL, NULL, NULL, 0, NULL,
+     ATMO_COMPOSE_PATH_SURFACES},
+    {"surfaces", -1, always, surfaces_fragments, "", NULL, NULL, NULL, NULL, 0, NULL, 0},
     /* the sea's BSDF in the path tracer (over terrain/water.h) */
-    {"path_water", -1, path_water, path_water_fragments, "", NULL, NULL, NULL, NULL, 0, NULL, 0},
+    {"path_water", -1, path_mode, path_water_fragments, "", NULL, NULL, NULL, NULL, 0, NULL, 0},
     /* the path tracer's stages and its kernel path_render, over whichever method was assembled */
     {"path", -1, path_mode, path_fragments, "-DATMO_PATH", NULL, NULL, NULL, atmo_plan_path, 0,
-     NULL, 0},
+     &path_slots, 0},
+    {"compose_guides", -1, always, NULL, "", NULL, NULL, NULL, NULL, 0, NULL, ATMO_COMPOSE_GUIDES},
     {"guides", -1, always, guides_fragments, "", NULL, NULL, NULL, NULL, 0, NULL, 0},
 };
 const int atmo_feature_count = (int)(sizeof atmo_features / sizeof atmo_features[0]);

@@ -393,6 +393,9 @@ static int plan_features(const atmo_scene *s, atmo_plan *p, atmo_err *e)
     g->transmittance_width = s->render.transmittance_width;
     g->transmittance_height = s->render.transmittance_height;
     g->seed = (uint)s->image.seed;
+    /* the ground sphere is a surface of render/surfaces.h's rays (the denoiser's guides) in the
+     * preview, whose methods all have it; in path mode atmo_plan_path sets the scene's */
+    g->path.ground = 1;
 
     const atmo_feature *m = atmo_feature_method(s->atmosphere.method);
     if (!m)

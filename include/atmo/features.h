@@ -72,6 +72,30 @@ typedef struct atmo_gpu_field {
  *   surface_radiance      vec3 (s, ATMO_LUT_PARAMS, const medium_ray *m, float t): the light
  *                         of its surface at distance t toward the ray's origin, x < 0 where the
  *                         surface there is not its own (the last surface asked may assume it is)
+ * A surface of the path tracer and the denoiser's guides (kernels/render/surfaces.h):
+ *   path_hit              void (s, ATMO_LUT_PARAMS, const medium_ray *m, path_hit *h): replaces
+ *                         the hit record h (render/path_hit.h) where its surface is nearer
+ *   path_occluded         int (s, ATMO_LUT_PARAMS, vec3 o, vec3 d): 1 where its surface blocks
+ *                         the shadow ray from o along d
+ *   path_replaces_ground  1: its surface replaces the planet's ground sphere (the terrain)
+ * The denoiser's guides (kernels/render/guides.cl):
+ *   guide_depth           vec3 (s, const medium_ray *m, float t_end, vec3 *albedo): a
+ *                         medium's optical depth along m over [0, t_end], its single-
+ *                         scattering albedo in *albedo
+ *   guide_block           void (s, const medium_ray *m, int n, const float *ends,
+ *                         float step_scale, float tau_stop, vec3 *tau, vec3 *tau_albedo): the
+ *                         same for a block of n rays ending at ends[k] from one march along m,
+ *                         added to tau[k] and (times the albedo) to tau_albedo[k]
+ *   pixel_ray             vec3 (s, int x, int y, float u1, float u2): the mode's camera ray at
+ *                         (u1, u2) of pixel (x, y) (NULL: the preview's box)
+ *   media_shown           int (s, float t_end): whether the image shows the method's media in
+ *                         front of a surface at t_end (NULL: always)
+ *   guides_grid           the mode's rays per pixel side (0: ATMO_GUIDES_PREVIEW_GRID)
+ * A stage of the preview's camera rays (kernels/render/sky.cl's render_camera_trace):
+ *   camera_stage          int (s, ATMO_LUT_PARAMS, const medium_ray *ray, rng_stream *g,
+ *                         vec3 *sky, vec3 *sun, vec3 *view_t): 1 where it traced the ray (its
+ *                         sky light, sun disc and view transmittance), 0 to leave it to the
+ *                         next stage and in the end to the method's sky_trace
  * A medium in the Monte Carlo walk (kernels/media/majorant_walk.h, media_walk.h):
  *   majorant_state        the type STATE of its majorant along one ray
  *   majorant_begin        void (s, ATMO_LUT_PARAMS, vec3 origin, vec3 dir, float r, float mu,
@@ -101,6 +125,11 @@ typedef struct atmo_slots {
     int surface_occluder;
     const char *ray_occluder, *ray_state, *ray_begin;
     const char *surface_hit, *surface_radiance;
+    const char *path_hit, *path_occluded;
+    int path_replaces_ground;
+    const char *camera_stage;
+    const char *guide_depth, *guide_block, *pixel_ray, *media_shown;
+    int guides_grid;
     const char *majorant_state, *majorant_begin, *majorant_segment;
     int sun_exact;
     const char *walk_component, *media_direction, *roulette_gain;
@@ -124,6 +153,11 @@ enum {
                                visibility_sun_occluders_on_ray, visibility_surface_occluders */
     ATMO_COMPOSE_SURFACES,  /* visibility_surface_hit, visibility_surface_radiance */
     ATMO_COMPOSE_INTERVALS, /* media_intervals, media_interval */
+    ATMO_COMPOSE_PATH_SURFACES, /* SURFACES_GROUND_SPHERE, surfaces_features_hit,
+                                   surfaces_features_occluded (render/surfaces.h) */
+    ATMO_COMPOSE_CAMERA,    /* render_camera_trace (render/sky.cl) */
+    ATMO_COMPOSE_GUIDES,    /* GUIDES_GRID, guides_pixel_ray, guides_media_shown,
+                               guides_media_ray, guides_media_block (render/guides.cl) */
     ATMO_COMPOSE_GROUPS
 };
 

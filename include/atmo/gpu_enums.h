@@ -26,9 +26,9 @@ enum { ATMO_CLOUDS_LOOK_PHYSICAL = 0, ATMO_CLOUDS_LOOK_THESIS = 1 };
  * (docs/guide/denoise.md) */
 enum {
     ATMO_GUIDES_PATH_GRID = 8,
-    ATMO_GUIDES_PATH_BLOCK = 2,
     ATMO_GUIDES_PREVIEW_GRID = 4,
-    ATMO_GUIDES_PREVIEW_BLOCK = 2
+    ATMO_GUIDES_BLOCK = 2,                                     /* in both modes */
+    ATMO_GUIDES_BLOCK_RAYS = ATMO_GUIDES_BLOCK * ATMO_GUIDES_BLOCK
 };
 
 /* post.tonemap and post.transfer: the display pipeline's operator and curve

@@ -30,7 +30,7 @@
 #define ATMO_PLAN_MAX_BUFFERS 12
 #define ATMO_PLAN_MAX_FEATURES 32
 #define ATMO_PLAN_MAX_OWNED 4
-#define ATMO_PLAN_COMPOSE_GROUPS 5 /* ATMO_COMPOSE_GROUPS of atmo/features.h */
+#define ATMO_PLAN_COMPOSE_GROUPS 8 /* ATMO_COMPOSE_GROUPS of atmo/features.h */
 
 /* A named device buffer. bytes == 0: the feature declares it but this scene needs no data in it
  * (e.g. the sky-view LUT of a camera above the atmosphere); a 16-byte placeholder is bound,

@@ -271,4 +271,34 @@ ATMO_FN float clouds_sun_density(ATMO_GLOBAL const atmo_gpu_scene *s, const medi
                                     CLOUDS_TAU_OPAQUE);
 }
 
+/* The layer's optical depth per channel in front of each of a block of n view rays that end
+ * at ends[k] (their surfaces, INFINITY for the sky, 0 for a ray whose layer the image does not
+ * show), added to tau[k], and its single-scattering albedo times that depth added to
+ * tau_albedo[k]: one march along the block's ray m (clouds_view_density_ends, on step_scale
+ * times the marcher's steps, to the optical depth tau_stop), each ray's share taken up to its
+ * own end. The denoiser's guides (render/guides.cl; the slot `guide_block`). */
+ATMO_FN void clouds_guide_block(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m, int n,
+                                const float *ends, float step_scale, float tau_stop, vec3 *tau,
+                                vec3 *tau_albedo)
+{
+    ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
+    float D[ATMO_GUIDES_BLOCK_RAYS], t_far = 0.0f, lo[2], hi[2];
+    for (int k = 0; k < n; k++) {
+        D[k] = 0.0f;
+        t_far = fmaxf(t_far, ends[k]);
+    }
+    int parts = t_far > 0.0f ? clouds_shell_parts(s->atmosphere.bottom_radius, c->bottom_m,
+                                                  c->top_m, m->r, m->mu, 0.0f, t_far, lo, hi)
+                             : 0;
+    float total = 0.0f;
+    for (int k = 0; k < parts; k++)
+        total += clouds_view_density_ends(s, m, lo[k], hi[k], step_scale,
+                                          tau_stop - total * c->extinction.y, n, ends, D);
+    for (int k = 0; k < n; k++) {
+        vec3 layer = v3_scale(v3_from4(c->extinction), D[k]);
+        tau[k] = v3_add(tau[k], layer);
+        tau_albedo[k] = v3_add(tau_albedo[k], v3_mul(layer, v3_from4(c->albedo)));
+    }
+}
+
 #endif

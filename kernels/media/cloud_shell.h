@@ -155,6 +155,20 @@ ATMO_FN int cloud_shell_intervals(ATMO_GLOBAL const atmo_gpu_scene *s, const med
     return n;
 }
 
+/* The shell's optical depth along the view ray m over [0, t_end] per channel, its chord
+ * through the shell times its extinction (closed form), and its single-scattering albedo in
+ * *albedo: the denoiser's guides (render/guides.cl; the slot `guide_depth`). */
+ATMO_FN vec3 cloud_shell_guide_depth(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m,
+                                     float t_end, vec3 *albedo)
+{
+    float lo[2], hi[2], chord = 0.0f;
+    int n = cloud_shell_intervals(s, m, 0.0f, t_end, lo, hi);
+    for (int k = 0; k < n; k++)
+        chord += hi[k] - lo[k];
+    *albedo = v3_from4(s->cloud.albedo);
+    return v3_scale(v3_from4(s->cloud.extinction), chord);
+}
+
 /* The shell as a medium of the plan's composition (media.h): its coefficients added at a
  * point, its phase function (component MEDIA_CLOUD) and the sun's transmittance through it. */
 ATMO_FN void cloud_shell_media_add(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,

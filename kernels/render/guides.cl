@@ -22,7 +22,8 @@
  * tile size or launch, and a 4-spp image gets the guides of the converged image. A fisheye's
  * corners outside its circle (no ray) get albedo 0 and normal 0, as their image is black.
  *
- * Volumes (the cloud shell, -DATMO_CLOUD; the fBm cloud layer, -DATMO_CLOUDS; in every mode
+ * Volumes (the media's slots `guide_depth` and `guide_block`, composed by the plan into
+ * guides_media_ray and guides_media_block: the cloud shell, the fBm cloud layer; in every mode
  * and for path.clouds = march and volume alike): a transmittance-weighted average, not the
  * first scattering. A ray's values are
  *     albedo = (1 - T) w + T a_behind,   normal = T_y n_behind
@@ -59,118 +60,19 @@
  * past `count` return at once; albedo[pixel] = (albedo, disc share), normal[pixel] = (normal,
  * depth). */
 
-/* The pattern and the clouds' blocks per mode (gpu_enums.h). Path: 8 x 8 rays, since at 4 x 4
- * the radial-angular grid samples the Gaussian too coarsely and the guided filter lost a tenth
- * of its gain. Preview: its box at 4 x 4 cell centres. Both march the layer once per 2 x 2
- * block (docs/guide/denoise.md: the rays, the blocks and the step, measured). */
-#ifdef ATMO_PATH
-#define GUIDES_GRID ATMO_GUIDES_PATH_GRID
-#define GUIDES_CLOUD_STRIDE ATMO_GUIDES_PATH_BLOCK
-#else
-#define GUIDES_GRID ATMO_GUIDES_PREVIEW_GRID
-#define GUIDES_CLOUD_STRIDE ATMO_GUIDES_PREVIEW_BLOCK
-#endif
-#define GUIDES_BLOCK_RAYS (GUIDES_CLOUD_STRIDE * GUIDES_CLOUD_STRIDE)
+/* The pattern per mode (GUIDES_GRID, composed by the plan from gpu_enums.h): path 8 x 8 rays,
+ * since at 4 x 4 the radial-angular grid samples the Gaussian too coarsely and the guided
+ * filter lost a tenth of its gain; preview its box at 4 x 4 cell centres. Both march the
+ * clouds once per 2 x 2 block (docs/guide/denoise.md: the rays, the blocks and the step,
+ * measured). */
+#define GUIDES_CLOUD_STRIDE ATMO_GUIDES_BLOCK
+#define GUIDES_BLOCK_RAYS ATMO_GUIDES_BLOCK_RAYS
 /* the layer's march takes this many times the marcher's steps: the guide needs the
  * transmittance's shape, not the image's accuracy */
 #define GUIDES_CLOUD_STEP_SCALE 2.0f
 #define GUIDES_NO_HIT_DEPTH_M 1e10f
 /* the clouds' view optical depth is integrated to this (e^-9.2 = 1e-4 of the guide behind) */
 #define GUIDES_TAU_STOP 9.2f
-
-/* The camera ray at (u1, u2) in [0, 1)^2 of pixel (x, y) under the scene's mode's pixel
- * filter. */
-float3 guides_ray(__global const atmo_gpu_scene *scene, int x, int y, float u1, float u2)
-{
-#ifdef ATMO_PATH
-    float dx, dy;
-    path_filter_offset(scene->path.filter_sigma, scene->path.filter_radius, u1, u2, &dx, &dy);
-    return camera_ray(&scene->camera, (float)x + 0.5f + dx, (float)y + 0.5f + dy);
-#else
-    return camera_ray(&scene->camera, (float)x + u1, (float)y + u2);
-#endif
-}
-
-/* The first surface along the ray: surfaces.h's, and in the preview without terrain the ground
- * sphere, which the preview's methods always have (surfaces.h asks path.ground, a path-mode
- * key). */
-path_hit guides_hit(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS, const medium_ray *ray)
-{
-    path_hit h = surfaces_hit(scene, ATMO_LUT_ARGS, ray, INFINITY);
-#if !defined(ATMO_PATH) && !defined(ATMO_TERRAIN)
-    float R = scene->atmosphere.bottom_radius;
-    if (geometry_ray_hits_ground(ray->r, ray->mu, R)) {
-        float t = geometry_distance_to_bottom(ray->r, ray->mu, R);
-        if (t < h.t) {
-            vec3 p = v3_add(ray->origin, v3_scale(ray->dir, t));
-            h.t = t;
-            h.kind = SURFACES_GROUND;
-            h.normal = v3_normalize(v3_add(v3_scale(ray->up, ray->r_c), p));
-            h.albedo = v3_from4(scene->atmosphere.ground_albedo);
-        }
-    }
-#endif
-    return h;
-}
-
-/* Whether the image shows the method's media in front of a surface at t_end: not in the path
- * tracer's uniform world (path.sky = uniform), where only a volume medium (path.clouds =
- * volume, MEDIA_VOLUME) scatters, nor on a segment shorter than PATH_AIR_MIN_M (path.h). */
-int guides_method_media(__global const atmo_gpu_scene *scene, float t_end)
-{
-#ifdef ATMO_PATH
-    return scene->path.sky != ATMO_PATH_SKY_UNIFORM && t_end >= PATH_AIR_MIN_M;
-#else
-    return 1;
-#endif
-}
-
-/* The cloud shell's view optical depth along the ray over [0, t_end] (its chord, closed form),
- * per channel, and in *tau_albedo that depth times the shell's albedo. */
-float3 guides_shell(__global const atmo_gpu_scene *scene, const medium_ray *ray, float t_end,
-                    float3 *tau_albedo)
-{
-    float3 tau = (float3)(0.0f);
-#ifdef ATMO_CLOUD
-    float lo[2], hi[2], chord = 0.0f;
-    int n = guides_method_media(scene, t_end)
-                ? cloud_shell_intervals(scene, ray, 0.0f, t_end, lo, hi)
-                : 0;
-    for (int k = 0; k < n; k++)
-        chord += hi[k] - lo[k];
-    tau = scene->cloud.extinction.xyz * chord;
-    *tau_albedo = tau * scene->cloud.albedo.xyz;
-#else
-    *tau_albedo = tau;
-#endif
-    return tau;
-}
-
-/* The cloud layer's density integral (m) in front of each of a block's n rays, in D[k]: one
- * march along the block's ray `ray` to the farthest of the ends[] (the rays' surfaces,
- * INFINITY for the sky, 0 for a ray whose layer the image does not show), each ray's share
- * taken up to its own end (cloud_layer.h's clouds_view_density_ends). */
-void guides_layer(__global const atmo_gpu_scene *scene, const medium_ray *ray, int n,
-                  const float *ends, float *D)
-{
-    for (int k = 0; k < n; k++)
-        D[k] = 0.0f;
-#ifdef ATMO_CLOUDS
-    __global const atmo_gpu_clouds *c = &scene->clouds;
-    float t_far = 0.0f, lo[2], hi[2];
-    for (int k = 0; k < n; k++)
-        t_far = fmax(t_far, ends[k]);
-    int parts = t_far > 0.0f ? clouds_shell_parts(scene->atmosphere.bottom_radius, c->bottom_m,
-                                                  c->top_m, ray->r, ray->mu, 0.0f, t_far, lo,
-                                                  hi)
-                             : 0;
-    float total = 0.0f;
-    for (int k = 0; k < parts; k++)
-        total += clouds_view_density_ends(scene, ray, lo[k], hi[k], GUIDES_CLOUD_STEP_SCALE,
-                                          GUIDES_TAU_STOP - total * c->extinction.y, n, ends,
-                                          D);
-#endif
-}
 
 __kernel void guide_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
                            __global float4 *albedo, __global float4 *normal, uint first,
@@ -191,42 +93,46 @@ __kernel void guide_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS
             /* the block's rays: their surfaces, and where the layer in front of each ends */
             path_hit hit[GUIDES_BLOCK_RAYS];
             float3 dirs[GUIDES_BLOCK_RAYS];
-            float ends[GUIDES_BLOCK_RAYS], D[GUIDES_BLOCK_RAYS];
+            float ends[GUIDES_BLOCK_RAYS];
+            float3 block_tau[GUIDES_BLOCK_RAYS], block_tau_albedo[GUIDES_BLOCK_RAYS];
             int any_ray = 0;
             for (int k = 0; k < GUIDES_BLOCK_RAYS; k++) {
                 int i = bi + k % GUIDES_CLOUD_STRIDE, j = bj + k / GUIDES_CLOUD_STRIDE;
-                dirs[k] = guides_ray(scene, x, y, ((float)i + 0.5f) * cell,
-                                     ((float)j + 0.5f) * cell);
+                dirs[k] = guides_pixel_ray(scene, x, y, ((float)i + 0.5f) * cell,
+                                           ((float)j + 0.5f) * cell);
                 ends[k] = 0.0f;
                 if (dot(dirs[k], dirs[k]) == 0.0f)
                     continue;
                 medium_ray ray = medium_ray_from_camera(scene, dirs[k]);
-                hit[k] = guides_hit(scene, ATMO_LUT_ARGS, &ray);
-                ends[k] = (guides_method_media(scene, hit[k].t) | (MEDIA_VOLUME > 0))
+                hit[k] = surfaces_hit(scene, ATMO_LUT_ARGS, &ray, INFINITY);
+                ends[k] = (guides_media_shown(scene, hit[k].t) | (MEDIA_VOLUME > 0))
                               ? hit[k].t
                               : 0.0f;
                 any_ray = 1;
             }
             /* the layer along the block's centre ray (its first ray where the centre sees
              * nothing: a fisheye's rim) */
-            float3 centre = guides_ray(scene, x, y, ((float)bi + 0.5f * GUIDES_CLOUD_STRIDE) * cell,
-                                       ((float)bj + 0.5f * GUIDES_CLOUD_STRIDE) * cell);
+            float3 centre = guides_pixel_ray(scene, x, y,
+                                             ((float)bi + 0.5f * GUIDES_CLOUD_STRIDE) * cell,
+                                             ((float)bj + 0.5f * GUIDES_CLOUD_STRIDE) * cell);
             for (int k = 0; k < GUIDES_BLOCK_RAYS && dot(centre, centre) == 0.0f; k++)
                 centre = dirs[k];
             medium_ray shared = medium_ray_from_camera(scene, centre);
-            guides_layer(scene, &shared, any_ray ? GUIDES_BLOCK_RAYS : 0, ends, D);
+            for (int k = 0; k < GUIDES_BLOCK_RAYS; k++)
+                block_tau[k] = block_tau_albedo[k] = (float3)(0.0f);
+            guides_media_block(scene, &shared, any_ray ? GUIDES_BLOCK_RAYS : 0, ends,
+                               GUIDES_CLOUD_STEP_SCALE, GUIDES_TAU_STOP, block_tau,
+                               block_tau_albedo);
             for (int k = 0; k < GUIDES_BLOCK_RAYS; k++) {
                 if (dot(dirs[k], dirs[k]) == 0.0f)
                     continue;
                 path_hit h = hit[k];
                 medium_ray ray = medium_ray_from_camera(scene, dirs[k]);
-                float3 tau_albedo;
-                float3 tau = guides_shell(scene, &ray, h.t, &tau_albedo);
-#ifdef ATMO_CLOUDS
-                float3 layer = scene->clouds.extinction.xyz * D[k];
-                tau += layer;
-                tau_albedo += layer * scene->clouds.albedo.xyz;
-#endif
+                float3 tau = (float3)(0.0f), tau_albedo = (float3)(0.0f);
+                if (guides_media_shown(scene, h.t))
+                    guides_media_ray(scene, &ray, h.t, &tau, &tau_albedo);
+                tau += block_tau[k];
+                tau_albedo += block_tau_albedo[k];
                 float3 w = select((float3)(0.0f), tau_albedo / tau, tau > (float3)(0.0f));
                 float3 T = exp(-tau);
                 float3 behind_albedo = (float3)(1.0f), behind_normal = (float3)(0.0f);

@@ -18,7 +18,7 @@
  *     sky: beta a/pi S(w_l) cos / p_l * w_l           (light_sky.h, MIS weight w_l)
  *     continuation: w_b ~ cos / pi (bsdf.h), beta *= a; its segment's light S(w_b) counts with
  *     the MIS weight w_b, then the next vertex (emission counted there with weight 1).
- *   at a sea vertex (SURFACES_WATER, under -DATMO_TERRAIN; bsdf_water.h): the sun term is
+ *   at a sea vertex (SURFACES_WATER, the terrain's; bsdf_water.h): the sun term is
  *     beta E T_sun V (glint + (1 - F) a_w / pi max(0, n . w_sun)); the sky's sample weighs the
  *     body (1 - F) a_w / pi against its density (1 - P_m) cos / pi; the continuation is the
  *     mirror with probability P_m (beta *= F / P_m, its segment with MIS weight 1, the sun's
@@ -96,9 +96,7 @@
 #include "render/light_sun.h"
 #include "render/light_sky.h"
 #include "render/volume_stage.h"
-#ifdef ATMO_TERRAIN
 #include "render/bsdf_water.h"
-#endif
 #endif
 
 /* The light passes (render passes, path.passes): a partition of a sample's radiance by where the
@@ -143,6 +141,14 @@ ATMO_FN void path_add(path_parts *parts, int pass, vec3 L)
  * path-traced pixel, while the method's march over it costs as much as over a long one: the
  * bounces inside an open box are all this short. */
 #define PATH_AIR_MIN_M 10.0f
+
+/* Whether the image shows the method's media in front of a surface at t_end (the denoiser's
+ * guides: the slot `media_shown`): not in the uniform test world (path.sky = uniform), where
+ * only a volume medium scatters, nor on a segment shorter than PATH_AIR_MIN_M. */
+ATMO_FN int path_media_shown(ATMO_GLOBAL const atmo_gpu_scene *s, float t_end)
+{
+    return s->path.sky != ATMO_PATH_SKY_UNIFORM && t_end >= PATH_AIR_MIN_M;
+}
 
 /* The sun's disc seen along m where it leaves the atmosphere without meeting the ground:
  * its radiance outside the atmosphere (atmosphere.h) inside the disc, zero elsewhere. */
@@ -319,10 +325,8 @@ ATMO_FN path_vertex path_vertex_at(ATMO_GLOBAL const atmo_gpu_scene *s, const me
     v.component = MEDIA_WALK_VOLUME_MEDIUM;
     v.water = h->kind == SURFACES_WATER;
     v.fresnel = 0.0f;
-#ifdef ATMO_TERRAIN
     if (v.water)
         v.fresnel = water_fresnel(-v3_dot(v.n, v.dir), WATER_INDEX);
-#endif
     return v;
 }
 
@@ -354,10 +358,8 @@ ATMO_FN int path_volume_pass(const path_vertex *v, int air_pass)
 /* The probability that v's continuation takes its cosine lobe (the sea's body; 1 elsewhere). */
 ATMO_FN float path_cosine_probability(const path_vertex *v)
 {
-#ifdef ATMO_TERRAIN
     if (v->water)
         return 1.0f - bsdf_water_mirror_probability(v->fresnel, v->albedo);
-#endif
     return 1.0f;
 }
 
@@ -388,13 +390,11 @@ ATMO_FN vec3 path_direct_sun(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAM
     if (c <= 0.0f)
         return v3(0.0f, 0.0f, 0.0f);
     vec3 e = path_shadow(s, ATMO_LUT_ARGS, &v->q, v->p, w, g);
-#ifdef ATMO_TERRAIN
     if (v->water)
         return v3_mul(v3_mul(bsdf_water_sun(v->n, v3_scale(v->dir, -1.0f), w, v->fresnel,
                                             v->albedo),
                              e),
                       v3_from4(s->sky_factor));
-#endif
     return v3_mul(v3_scale(v3_mul(v->albedo, e), c / ATMO_PI), v3_from4(s->sky_factor));
 }
 

@@ -90,6 +90,16 @@ ATMO_FN void path_filter_offset(float sigma, float radius, float u1, float u2, f
     *dy = r * sinf(phi);
 }
 
+/* The pinhole's ray at (u1, u2) in [0, 1)^2 of pixel (x, y) under the pixel filter, the
+ * samples' own mapping (the denoiser's guides: the slot `pixel_ray`). */
+ATMO_FN vec3 path_camera_pixel_ray(ATMO_GLOBAL const atmo_gpu_scene *s, int x, int y, float u1,
+                                   float u2)
+{
+    float dx, dy;
+    path_filter_offset(s->path.filter_sigma, s->path.filter_radius, u1, u2, &dx, &dy);
+    return camera_ray(&s->camera, (float)x + 0.5f + dx, (float)y + 0.5f + dy);
+}
+
 /* The primary ray of a sample: camera-relative origin and unit direction (zero where the camera
  * sees nothing). The pixel position comes from the sequence, the lens from the stream g. */
 ATMO_FN vec3 path_camera_sample(ATMO_GLOBAL const atmo_gpu_scene *s, int x, int y, uint pixel,

@@ -10,10 +10,10 @@
  * size and any split of samples into launches. A non-finite sample (which should never happen)
  * is dropped and counted in `nonfinite`. The sample's stage-0 random stream (rng.h) places it
  * in the pixel (the camera's CAMERA_RNG_DIMS numbers) and goes on to the method's sky_trace
- * along the camera-relative ray (with terrain under fast or lut, through terrain_stage.h).
- *
- * Objects (-DATMO_OBJECTS, the preview) end a pixel's ray at the object: the air in front plus
- * the object's light (sky_object_distance below).
+ * along the camera-relative ray, through the features' camera stages that the plan composes
+ * (render_camera_trace: the preview's objects, render/objects_stage.h, end a pixel's ray at the
+ * object; the terrain, terrain/terrain_stage.h, adds the water's mirror and, under fast or
+ * lut, integrates the air in front of it), or the method's sky_trace where no stage takes it.
  *
  * sky_probe: the mean of `samples` samples of sky_radiance (sky_cosines.h) for a list of rays
  * given as (r, mu, mu_s, nu), for `atmo radiance` and the tests; ray i uses pixel index i.
@@ -22,31 +22,6 @@
  * sky_probe_sun: the sun's visibility at each ray's origin, visibility_sun (visibility.h: the
  * occluders and the shadowing media toward the sun, per wavelength; the atmosphere's own
  * transmittance not included), the query every kernel's sunlight goes through. */
-
-/* The preview's objects (objects_light.h, -DATMO_OBJECTS_PREVIEW): every method's pixel that
- * sees one gets the air in front from sky_trace, stopped this fraction of the distance short of
- * the object so a method that ends its own segments at surfaces (single, march) does not count
- * it twice, plus the object's light times the view transmittance. */
-#define SKY_OBJECT_SHORTEN 0.99999f
-
-/* The distance to the object a camera ray sees before the ground, or -1. */
-float sky_object_distance(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
-                          const medium_ray *ray)
-{
-#ifdef ATMO_OBJECTS_PREVIEW
-    float t;
-    if (objects_hit(objects, scene->path.object_count, ray->origin, ray->dir, 0.0f, INFINITY,
-                    &t) < 0)
-        return -1.0f;
-    float R = scene->atmosphere.bottom_radius;
-    if (geometry_ray_hits_ground(ray->r, ray->mu, R) &&
-        geometry_distance_to_bottom(ray->r, ray->mu, R) < t)
-        return -1.0f;
-    return t;
-#else
-    return -1.0f;
-#endif
-}
 
 __kernel void sky_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
                          __global float4 *accum, __global float4 *accum_sq,
@@ -69,19 +44,7 @@ __kernel void sky_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
         if (dot(dir, dir) > 0.0f) {
             medium_ray ray = medium_ray_from_camera(scene, dir);
             float3 sky, sun, view_t;
-            float t_obj = sky_object_distance(scene, ATMO_LUT_ARGS, &ray);
-            if (t_obj > 0.0f) {
-                sky_trace(scene, ATMO_LUT_ARGS, &ray, t_obj * SKY_OBJECT_SHORTEN, &g, &sky, &sun,
-                          &view_t);
-                sky += view_t * visibility_surface_radiance(scene, ATMO_LUT_ARGS, &ray, t_obj);
-                sun = (float3)(0.0f);
-            } else {
-#ifdef ATMO_TERRAIN_STAGE
-                terrain_stage_trace(scene, ATMO_LUT_ARGS, &ray, &g, &sky, &sun, &view_t);
-#else
-                sky_trace(scene, ATMO_LUT_ARGS, &ray, INFINITY, &g, &sky, &sun, &view_t);
-#endif
-            }
+            render_camera_trace(scene, ATMO_LUT_ARGS, &ray, &g, &sky, &sun, &view_t);
             L = sky * scene->sky_factor.xyz + sun * scene->sun_factor.xyz;
         }
         if (any(isnan(L)) || any(isinf(L))) {

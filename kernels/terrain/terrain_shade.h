@@ -16,7 +16,7 @@
  * transmits:
  *     L = F L_sky + E T_sun V glint + (1 - F) albedo_w / pi (E T_sun V mu_s + E_sky),
  * with L_sky the method's sky along the mirror ray, which the render stage adds
- * (render/terrain_stage.h, -DATMO_TERRAIN_STAGE: every camera ray of single, march, fast and
+ * (terrain/terrain_stage.h, -DATMO_TERRAIN_STAGE: every camera ray of single, march, fast and
  * lut); elsewhere (a ray of no stage) the sky is taken as uniform, L_sky = E_sky / pi.
  * The air between the camera and the surface is the integrator's (aerial perspective). */
 #ifndef ATMO_TERRAIN_SHADE_H
