@@ -1,5 +1,5 @@
 /* bench_clouds.c — `atmo bench clouds`: the fBm cloud layer's marcher (method march,
- * kernels/media/cloud_march.h) and its knobs against the Monte Carlo reference (method
+ * kernels/clouds/cloud_march.h) and its knobs against the Monte Carlo reference (method
  * reference, all orders), error against time, and the fit of the marcher's multiple-scattering
  * octaves to the reference.
  *
@@ -341,104 +341,139 @@ static int fit_octaves(const char *dir, const reference_result *ref, const char 
     return ATMO_OK;
 }
 
-int bench_clouds(const char *dir, const char *device, int quick, int fit, atmo_err *e)
+/* The Monte Carlo reference of every view (ref_samples paths each; 64 with quick). */
+static int measure_reference(const char *device, int quick, reference_result *ref, atmo_err *e)
 {
-    int rc, ref_samples = quick ? 64 : BENCH_CLOUDS_REF_SAMPLES;
-    reference_result ref;
     char seed[48];
     snprintf(seed, sizeof seed, "image.seed=%d", BENCH_CLOUDS_REF_SEED);
     const char *ref_extra[] = {seed, NULL};
-    ref.seconds = 0.0;
+    ref->seconds = 0.0;
     for (int v = 0; v < BENCH_CLOUDS_VIEWS; v++) {
         double t;
-        if ((rc = view_radiance(&views[v], "reference", ref_extra,
-                                quick ? 64 : views[v].ref_samples,
-                                device, &ref.L[v], &ref.se[v], &t, NULL, NULL, e)))
+        int rc = view_radiance(&views[v], "reference", ref_extra,
+                               quick ? 64 : views[v].ref_samples, device, &ref->L[v], &ref->se[v],
+                               &t, NULL, NULL, e);
+        if (rc)
             return rc;
-        ref.seconds += t;
+        ref->seconds += t;
         fprintf(stderr, "bench clouds: reference %-10s %.5e +- %.1f %% (%.3f s per sample)\n",
-                views[v].name, ref.L[v], 100.0 * ref.se[v] / ref.L[v], t);
+                views[v].name, ref->L[v], 100.0 * ref->se[v] / ref->L[v], t);
     }
-    if (fit)
-        return fit_octaves(dir, &ref, device, quick, e);
-    enum { N_CONFIGS = sizeof march_configs / sizeof march_configs[0] };
-    bench_row out[N_CONFIGS + 3], shadow_rows[2 * N_CONFIGS];
-    int n = 0, n_shadow = 0;
-    double base_precompute = 0.0;
-    for (int i = 0; i < N_CONFIGS; i++) {
-        if (quick && i > 0)
-            break;
-        double errors[BENCH_CLOUDS_VIEWS], precompute;
-        bench_shadow_error shadow = {0.0, 0.0, 0, 0};
-        const march_config *mc = &march_configs[i];
-        bench_row *row = &out[n++];
-        snprintf(row->method, sizeof row->method, "march");
-        snprintf(row->settings, sizeof row->settings, "%s", mc->settings);
-        if ((rc = march_error(mc->assignments, &ref, device, errors, &row->error, &row->seconds,
-                              &precompute, mc->shadow ? &shadow : NULL, e)))
-            return rc;
-        if (i == 0)
-            base_precompute = precompute;
-        /* the map's build: the precompute's seconds beyond the defaults', spread over a frame */
-        double build = fmax(precompute - base_precompute, 0.0);
-        int has_map = strstr(mc->settings, "shadow map") != NULL;
-        if (has_map)
-            row->seconds += build / BENCH_CLOUDS_FRAME_SAMPLES;
-        fprintf(stderr, "bench clouds: march %-18s %.4f s per sample%s, RMS error %.1f %% (",
-                row->settings, row->seconds, has_map ? " (build amortised)" : "",
-                100.0 * row->error);
-        for (int v = 0; v < BENCH_CLOUDS_VIEWS; v++)
-            fprintf(stderr, "%s%s %+.1f %%", v ? ", " : "", views[v].name, 100.0 * errors[v]);
-        fprintf(stderr, ")\n");
-        if (has_map)
-            fprintf(stderr, "bench clouds:   map build %.2f s over the %d views (%.2f s per view), "
-                            "%.2e s per sample amortised over a 1280x720 frame\n",
-                    build, BENCH_CLOUDS_VIEWS, build / BENCH_CLOUDS_VIEWS,
-                    build / BENCH_CLOUDS_FRAME_SAMPLES);
-        if (!mc->shadow)
-            continue;
-        bench_row *sr = &shadow_rows[n_shadow++], *sc = &shadow_rows[n_shadow++];
-        const char *term = has_map ? "shadow map" : "light march";
-        snprintf(sr->method, sizeof sr->method, "%s", term);
-        snprintf(sc->method, sizeof sc->method, "%s in cloud", term);
-        snprintf(sr->settings, sizeof sr->settings, "%s", mc->settings);
-        snprintf(sc->settings, sizeof sc->settings, "%s", mc->settings);
-        sr->seconds = sc->seconds = row->seconds;
-        sr->error = sqrt(shadow.sq_all / shadow.n_all);
-        sc->error = sqrt(shadow.sq_cloud / fmax(shadow.n_cloud, 1));
-        fprintf(stderr, "bench clouds:   sun transmittance vs the whole-chord quadrature: RMS "
-                        "%.4f over %d sample points, %.4f over the %d in cloud\n",
-                sr->error, shadow.n_all, sc->error, shadow.n_cloud);
-    }
-    /* the reference at 64, 128 and 256 paths: its relative standard error (RMS over the views)
-     * scaled from this run's to that many paths, and their time */
+    return ATMO_OK;
+}
+
+/* One marcher configuration against the reference: its row (time per sample, the map's build
+ * spread over a frame where it has one, RMS error), and with a shadow measurement its two rows
+ * of the sun transmittance's error (all sample points, those in cloud) in shadow_rows[*n_shadow]
+ * onward. *base_precompute: the first configuration's precompute, the defaults'. */
+static int march_row(const march_config *mc, int first, const reference_result *ref,
+                     const char *device, double *base_precompute, bench_row *row,
+                     bench_row *shadow_rows, int *n_shadow, atmo_err *e)
+{
+    double errors[BENCH_CLOUDS_VIEWS], precompute;
+    bench_shadow_error shadow = {0.0, 0.0, 0, 0};
+    snprintf(row->method, sizeof row->method, "march");
+    snprintf(row->settings, sizeof row->settings, "%s", mc->settings);
+    int rc = march_error(mc->assignments, ref, device, errors, &row->error, &row->seconds,
+                         &precompute, mc->shadow ? &shadow : NULL, e);
+    if (rc)
+        return rc;
+    if (first)
+        *base_precompute = precompute;
+    /* the map's build: the precompute's seconds beyond the defaults', spread over a frame */
+    double build = fmax(precompute - *base_precompute, 0.0);
+    int has_map = strstr(mc->settings, "shadow map") != NULL;
+    if (has_map)
+        row->seconds += build / BENCH_CLOUDS_FRAME_SAMPLES;
+    fprintf(stderr, "bench clouds: march %-18s %.4f s per sample%s, RMS error %.1f %% (",
+            row->settings, row->seconds, has_map ? " (build amortised)" : "",
+            100.0 * row->error);
+    for (int v = 0; v < BENCH_CLOUDS_VIEWS; v++)
+        fprintf(stderr, "%s%s %+.1f %%", v ? ", " : "", views[v].name, 100.0 * errors[v]);
+    fprintf(stderr, ")\n");
+    if (has_map)
+        fprintf(stderr, "bench clouds:   map build %.2f s over the %d views (%.2f s per view), "
+                        "%.2e s per sample amortised over a 1280x720 frame\n",
+                build, BENCH_CLOUDS_VIEWS, build / BENCH_CLOUDS_VIEWS,
+                build / BENCH_CLOUDS_FRAME_SAMPLES);
+    if (!mc->shadow)
+        return ATMO_OK;
+    bench_row *sr = &shadow_rows[(*n_shadow)++], *sc = &shadow_rows[(*n_shadow)++];
+    const char *term = has_map ? "shadow map" : "light march";
+    snprintf(sr->method, sizeof sr->method, "%s", term);
+    snprintf(sc->method, sizeof sc->method, "%s in cloud", term);
+    snprintf(sr->settings, sizeof sr->settings, "%s", mc->settings);
+    snprintf(sc->settings, sizeof sc->settings, "%s", mc->settings);
+    sr->seconds = sc->seconds = row->seconds;
+    sr->error = sqrt(shadow.sq_all / shadow.n_all);
+    sc->error = sqrt(shadow.sq_cloud / fmax(shadow.n_cloud, 1));
+    fprintf(stderr, "bench clouds:   sun transmittance vs the whole-chord quadrature: RMS "
+                    "%.4f over %d sample points, %.4f over the %d in cloud\n",
+            sr->error, shadow.n_all, sc->error, shadow.n_cloud);
+    return ATMO_OK;
+}
+
+/* The reference's rows at 64, 128 ... ref_samples paths into out: its relative standard error
+ * (RMS over the views) scaled from this run's to that many paths, and their time. Returns how
+ * many. */
+static int reference_rows(const reference_result *ref, int quick, int ref_samples, bench_row *out)
+{
     double sum = 0.0;
+    int n = 0;
     for (int v = 0; v < BENCH_CLOUDS_VIEWS; v++) {
-        double rel = ref.se[v] / ref.L[v];
+        double rel = ref->se[v] / ref->L[v];
         sum += rel * rel * (quick ? 64 : views[v].ref_samples) / ref_samples;
     }
     for (int paths = 64; paths <= ref_samples; paths *= 2) {
         bench_row *row = &out[n++];
         snprintf(row->method, sizeof row->method, "reference");
         snprintf(row->settings, sizeof row->settings, "%d paths", paths);
-        row->seconds = ref.seconds * paths;
+        row->seconds = ref->seconds * paths;
         row->error = sqrt(sum / BENCH_CLOUDS_VIEWS) * sqrt((double)ref_samples / paths);
     }
+    return n;
+}
+
+/* The sun transmittance's rows as clouds_shadow.csv and its chart. */
+static int write_shadow_chart(const char *dir, const bench_row *rows, int n, const char *device,
+                              atmo_err *e)
+{
+    char csv[4096], svg[4096];
+    snprintf(csv, sizeof csv, "%s/clouds_shadow.csv", dir);
+    snprintf(svg, sizeof svg, "%s/clouds_shadow.svg", dir);
+    int rc = bench_write_csv(csv, rows, n, device ? device : "default", e);
+    if (!rc)
+        rc = bench_chart(csv, svg,
+                         "fBm clouds: sun transmittance of the light march and the shadow map at the "
+                         "sample points of the marcher (6 views x 6 rays); time per sample of "
+                         "the 36 rays, the build of the map spread over a 1280x720 frame",
+                         "RMS error of T_sun (whole chord, 550 nm)", rows, n, e);
+    if (!rc)
+        printf("wrote %s and %s\n", csv, svg);
+    return rc;
+}
+
+int bench_clouds(const char *dir, const char *device, int quick, int fit, atmo_err *e)
+{
+    int rc, ref_samples = quick ? 64 : BENCH_CLOUDS_REF_SAMPLES;
+    reference_result ref;
+    if ((rc = measure_reference(device, quick, &ref, e)))
+        return rc;
+    if (fit)
+        return fit_octaves(dir, &ref, device, quick, e);
+    enum { N_CONFIGS = sizeof march_configs / sizeof march_configs[0] };
+    bench_row out[N_CONFIGS + 3], shadow_rows[2 * N_CONFIGS];
+    int n = 0, n_shadow = 0;
+    double base_precompute = 0.0;
+    for (int i = 0; i < N_CONFIGS && !(quick && i > 0); i++)
+        if ((rc = march_row(&march_configs[i], i == 0, &ref, device, &base_precompute, &out[n++],
+                            shadow_rows, &n_shadow, e)))
+            return rc;
+    n += reference_rows(&ref, quick, ref_samples, &out[n]);
     if ((rc = bench_write_suite(dir, "clouds", out, n, device ? device : "default",
                                 "fBm clouds: marcher knobs vs the reference (6 views x 6 rays, "
                                 "550 nm); time per sample of the 36 rays",
                                 "RMS relative error of the views", e)))
         return rc;
-    char csv[4096], svg[4096];
-    snprintf(csv, sizeof csv, "%s/clouds_shadow.csv", dir);
-    snprintf(svg, sizeof svg, "%s/clouds_shadow.svg", dir);
-    if ((rc = bench_write_csv(csv, shadow_rows, n_shadow, device ? device : "default", e)) ||
-        (rc = bench_chart(csv, svg,
-                          "fBm clouds: sun transmittance of the light march and the shadow map at the "
-                          "sample points of the marcher (6 views x 6 rays); time per sample of "
-                          "the 36 rays, the build of the map spread over a 1280x720 frame",
-                          "RMS error of T_sun (whole chord, 550 nm)", shadow_rows, n_shadow, e)))
-        return rc;
-    printf("wrote %s and %s\n", csv, svg);
-    return ATMO_OK;
+    return write_shadow_chart(dir, shadow_rows, n_shadow, device, e);
 }

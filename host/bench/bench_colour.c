@@ -153,100 +153,138 @@ static int write_outputs(const char *dir, const char *method, const colour_row *
     return ATMO_OK;
 }
 
+/* The scene of sun zenith colour_suns_deg[is] (sky-noon, the method, radiance) and its
+ * COLOUR_VIEWS probe rays (view zeniths 0, 30, 60, 80, 85 deg by azimuths 0, 90, 180 deg from
+ * the sun) as (r, mu, mu_s, nu). */
+static int sun_scene(const char *method, int is, atmo_scene *s, float4 rays[COLOUR_VIEWS],
+                     atmo_err *e)
+{
+    static const double view_zenith[] = {0, 30, 60, 80, 85}, view_azimuth[] = {0, 90, 180};
+    char buf[64];
+    int rc;
+    atmo_scene_defaults(s);
+    if ((rc = atmo_scene_apply_preset(s, "sky-noon", e)))
+        return rc;
+    snprintf(buf, sizeof buf, "atmosphere.method=%s", method);
+    if ((rc = atmo_scene_assign(s, buf, "bench", e)))
+        return rc;
+    snprintf(buf, sizeof buf, "sun.zenith_deg=%g", colour_suns_deg[is]);
+    if ((rc = atmo_scene_assign(s, buf, "bench", e)))
+        return rc;
+    s->render.quantity = ATMO_QUANTITY_RADIANCE;
+    atmo_plan plan;
+    if ((rc = atmo_plan_make(s, &plan, e)))
+        return rc;
+    double r = plan.gpu.camera.local_up.w, ts = colour_suns_deg[is] * M_PI / 180;
+    atmo_plan_free(&plan);
+    for (int i = 0; i < COLOUR_VIEWS; i++) {
+        double tv = view_zenith[i / 3] * M_PI / 180, pv = view_azimuth[i % 3] * M_PI / 180;
+        float4 q = {(float)r, (float)cos(tv), (float)cos(ts),
+                    (float)(sin(tv) * sin(ts) * cos(pv) + cos(tv) * cos(ts))};
+        rays[i] = q;
+    }
+    return ATMO_OK;
+}
+
+/* The views' XYZ in the 3-wavelength mode (Bruneton's sky constants), the probe's seconds
+ * added to *seconds. */
+static int probe_three(atmo_scene *s, const float4 *rays, const char *device,
+                       double xyz[COLOUR_VIEWS][3], double *seconds, char *device_name,
+                       atmo_err *e)
+{
+    double L[COLOUR_VIEWS][3], k[3];
+    int rc = run_probe(s, s->render.wavelengths_nm, rays, COLOUR_VIEWS, device, L, seconds,
+                       device_name, e);
+    if (rc)
+        return rc;
+    atmo_luminance_factors(s->render.wavelengths_nm, -3.0, k);
+    for (int i = 0; i < COLOUR_VIEWS; i++) {
+        double rgb[3] = {k[0] * L[i][0], k[1] * L[i][1], k[2] * L[i][2]};
+        atmo_linear_srgb_to_xyz(rgb, xyz[i]);
+    }
+    return ATMO_OK;
+}
+
+/* The views' XYZ from n spectral bands, probed three at a time, the seconds added. */
+static int probe_bands(atmo_scene *s, int n, const float4 *rays, const char *device,
+                       double xyz[COLOUR_VIEWS][3], double *seconds, char *device_name,
+                       atmo_err *e)
+{
+    static double band_L[ATMO_SPECTRAL_MAX_BANDS + 2][COLOUR_VIEWS]; /* + padding */
+    double centres[ATMO_SPECTRAL_MAX_BANDS], w[ATMO_SPECTRAL_MAX_BANDS][3];
+    atmo_spectral_bands(n, centres);
+    atmo_spectral_xyz_weights(n, centres, w);
+    for (int t = 0; t < (n + 2) / 3; t++) {
+        double wl[3], L[COLOUR_VIEWS][3];
+        for (int c = 0; c < 3; c++)
+            wl[c] = centres[3 * t + c < n ? 3 * t + c : n - 1];
+        int rc = run_probe(s, wl, rays, COLOUR_VIEWS, device, L, seconds, device_name, e);
+        if (rc)
+            return rc;
+        for (int i = 0; i < COLOUR_VIEWS; i++)
+            for (int c = 0; c < 3; c++)
+                band_L[3 * t + c][i] = L[i][c];
+    }
+    for (int i = 0; i < COLOUR_VIEWS; i++) {
+        xyz[i][0] = xyz[i][1] = xyz[i][2] = 0.0;
+        for (int b = 0; b < n; b++)
+            for (int c = 0; c < 3; c++)
+                xyz[i][c] += w[b][c] * band_L[b][i];
+    }
+    return ATMO_OK;
+}
+
+/* A row's colour differences: each view's 3-wavelength XYZ and the 48-band XYZ against this
+ * band count's, white the solar white at the zenith's 48-band luminance. */
+static void colour_differences(colour_row *row, double xyz3[COLOUR_VIEWS][3],
+                               double xyz48[COLOUR_VIEWS][3], double xyz[COLOUR_VIEWS][3],
+                               const double white[3])
+{
+    row->mean_de = row->max_de = row->max_de_48 = 0.0;
+    for (int i = 0; i < COLOUR_VIEWS; i++) {
+        double de = delta_e(xyz3[i], xyz[i], white);
+        row->mean_de += de / COLOUR_VIEWS;
+        row->max_de = fmax(row->max_de, de);
+        row->max_de_48 = fmax(row->max_de_48, delta_e(xyz48[i], xyz[i], white));
+    }
+}
+
 int bench_colour(const char *dir, const char *device, int quick, atmo_err *e)
 {
     const char *method = pick_method(e);
     if (!method)
         return atmo_fail(e, ATMO_ERR_RUNTIME, "no atmosphere method available for bench colour");
-    static const double view_zenith[] = {0, 30, 60, 80, 85}, view_azimuth[] = {0, 90, 180};
     colour_row rows[COLOUR_SUNS * COLOUR_COUNTS];
     char device_name[256] = "?";
     int n_rows = 0, rc;
-    double centres[ATMO_SPECTRAL_MAX_BANDS], w[ATMO_SPECTRAL_MAX_BANDS][3];
-    static double band_L[ATMO_SPECTRAL_MAX_BANDS + 2][COLOUR_VIEWS]; /* + padding */
     for (int is = 0; is < COLOUR_SUNS; is++) {
         if (quick && is % 2)
             continue;
         atmo_scene s;
-        char buf[64];
-        atmo_scene_defaults(&s);
-        if ((rc = atmo_scene_apply_preset(&s, "sky-noon", e)))
-            return rc;
-        snprintf(buf, sizeof buf, "atmosphere.method=%s", method);
-        if ((rc = atmo_scene_assign(&s, buf, "bench", e)))
-            return rc;
-        snprintf(buf, sizeof buf, "sun.zenith_deg=%g", colour_suns_deg[is]);
-        if ((rc = atmo_scene_assign(&s, buf, "bench", e)))
-            return rc;
-        s.render.quantity = ATMO_QUANTITY_RADIANCE;
-        atmo_plan plan;
-        if ((rc = atmo_plan_make(&s, &plan, e)))
-            return rc;
         float4 rays[COLOUR_VIEWS];
-        double r = plan.gpu.camera.local_up.w, ts = colour_suns_deg[is] * M_PI / 180;
-        for (int i = 0; i < COLOUR_VIEWS; i++) {
-            double tv = view_zenith[i / 3] * M_PI / 180, pv = view_azimuth[i % 3] * M_PI / 180;
-            float4 q = {(float)r, (float)cos(tv), (float)cos(ts),
-                        (float)(sin(tv) * sin(ts) * cos(pv) + cos(tv) * cos(ts))};
-            rays[i] = q;
-        }
-
-        /* 3 wavelengths: Bruneton's sky constants */
-        double L3[COLOUR_VIEWS][3], xyz3[COLOUR_VIEWS][3], k[3], seconds_3 = 0.0;
-        if ((rc = run_probe(&s, s.render.wavelengths_nm, rays, COLOUR_VIEWS, device, L3, &seconds_3,
-                          device_name, e)))
+        double xyz3[COLOUR_VIEWS][3], seconds_3 = 0.0;
+        if ((rc = sun_scene(method, is, &s, rays, e)) ||
+            (rc = probe_three(&s, rays, device, xyz3, &seconds_3, device_name, e)))
             return rc;
-        atmo_luminance_factors(s.render.wavelengths_nm, -3.0, k);
-        for (int i = 0; i < COLOUR_VIEWS; i++) {
-            double rgb[3] = {k[0] * L3[i][0], k[1] * L3[i][1], k[2] * L3[i][2]};
-            atmo_linear_srgb_to_xyz(rgb, xyz3[i]);
-        }
-
         /* spectral, largest band count first: its zenith view sets the white */
         double white[3] = {0, 0, 0}, xyz48[COLOUR_VIEWS][3];
         for (int ib = COLOUR_COUNTS - 1; ib >= 0; ib--) {
             int n = colour_bands[ib];
-            double seconds_n = 0.0;
-            atmo_spectral_bands(n, centres);
-            atmo_spectral_xyz_weights(n, centres, w);
-            for (int t = 0; t < (n + 2) / 3; t++) {
-                double wl[3];
-                for (int c = 0; c < 3; c++)
-                    wl[c] = centres[3 * t + c < n ? 3 * t + c : n - 1];
-                double L[COLOUR_VIEWS][3];
-                if ((rc = run_probe(&s, wl, rays, COLOUR_VIEWS, device, L, &seconds_n, device_name,
-                                  e)))
-                    return rc;
-                for (int i = 0; i < COLOUR_VIEWS; i++)
-                    for (int c = 0; c < 3; c++)
-                        band_L[3 * t + c][i] = L[i][c];
-            }
-            double xyz[COLOUR_VIEWS][3];
-            for (int i = 0; i < COLOUR_VIEWS; i++) {
-                xyz[i][0] = xyz[i][1] = xyz[i][2] = 0.0;
-                for (int b = 0; b < n; b++)
-                    for (int c = 0; c < 3; c++)
-                        xyz[i][c] += w[b][c] * band_L[b][i];
-            }
+            double seconds_n = 0.0, xyz[COLOUR_VIEWS][3];
+            if ((rc = probe_bands(&s, n, rays, device, xyz, &seconds_n, device_name, e)))
+                return rc;
             if (ib == COLOUR_COUNTS - 1) {
                 double wp[3], wxyz[3];
                 atmo_solar_white_point(wp);
                 atmo_linear_srgb_to_xyz(wp, wxyz);
                 for (int c = 0; c < 3; c++)
                     white[c] = wxyz[c] * xyz[0][1] / wxyz[1]; /* view 0 is the zenith */
+                memcpy(xyz48, xyz, sizeof xyz48);
             }
             colour_row *row = &rows[n_rows++];
             row->sun_zenith = colour_suns_deg[is];
             row->bands = n;
-            row->mean_de = row->max_de = row->max_de_48 = 0.0;
-            for (int i = 0; i < COLOUR_VIEWS; i++) {
-                double de = delta_e(xyz3[i], xyz[i], white);
-                row->mean_de += de / COLOUR_VIEWS;
-                row->max_de = fmax(row->max_de, de);
-                if (ib == COLOUR_COUNTS - 1)
-                    memcpy(xyz48[i], xyz[i], sizeof xyz48[i]);
-                row->max_de_48 = fmax(row->max_de_48, delta_e(xyz48[i], xyz[i], white));
-            }
+            colour_differences(row, xyz3, xyz48, xyz, white);
             row->seconds_3 = seconds_3;
             row->seconds_n = seconds_n;
             fprintf(stderr, "bench colour: %s sun zenith %2g deg, %2d bands: delta E mean %.3f, "
