@@ -1,4 +1,4 @@
-/* test_cloud_isotropy — the cloud noise's contours (kernels/media/cloud_noise.h's turned fBm)
+/* test_cloud_isotropy — the cloud noise's contours (kernels/clouds/cloud_noise.h's turned fBm)
  * have no preferred direction at the lattice's axes.
  * labels: unit stat
  *
@@ -33,7 +33,7 @@
 #include <stdio.h>
 #include "common/compat.h"
 #include "common/rng.h"
-#include "media/cloud_noise.h"
+#include "clouds/cloud_noise.h"
 #include "testlib.h"
 
 #define OCTAVES 6

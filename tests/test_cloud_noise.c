@@ -1,4 +1,4 @@
-/* test_cloud_noise — the cloud layer's noise (kernels/media/cloud_noise.h) is bitwise the same
+/* test_cloud_noise — the cloud layer's noise (kernels/clouds/cloud_noise.h) is bitwise the same
  * on the device as on the host, stays in its range, and its fBm has the spread the coverage
  * field's contrast assumes.
  * labels: kernel unit
@@ -18,7 +18,7 @@
 #include <math.h>
 #include <string.h>
 #include "common/compat.h"
-#include "media/cloud_noise.h"
+#include "clouds/cloud_noise.h"
 #include "testcl.h"
 #include "testlib.h"
 
@@ -50,7 +50,7 @@ int main(void)
     atmo_cl cl;
     test_cl_open(&cl);
     const char *fragments[] = {"kernels/common/compat.h", "kernels/common/rng.h",
-                               "kernels/media/cloud_noise.h"};
+                               "kernels/clouds/cloud_noise.h"};
     cl_program prog = test_cl_build(&cl, fragments, 3, probe);
     cl_int err;
     cl_kernel k = clCreateKernel(prog, "probe", &err);

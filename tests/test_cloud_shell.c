@@ -1,4 +1,4 @@
-/* test_cloud_shell — the cloud shell and observer (kernels/media/cloud_shell.h, observer.h) in
+/* test_cloud_shell — the cloud shell and observer (kernels/cloud_shell/cloud_shell.h, observer.h) in
  * the medium integrator (kernels/media/medium.h).
  * labels: kernel render
  * composes: atmosphere cloud visibility cloud_march medium

@@ -1,5 +1,5 @@
 /* test_cloud_shell_thin — a cloud shell of negligible optical depth changes the sky by about its
- * optical depth, for every method (kernels/media/cloud_shell.h in the medium integrator and the
+ * optical depth, for every method (kernels/cloud_shell/cloud_shell.h in the medium integrator and the
  * Monte Carlo reference), and a shell that no ray meets changes nothing.
  * labels: kernel
  * composes: atmosphere cloud visibility cloud_march medium

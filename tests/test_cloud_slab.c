@@ -1,5 +1,5 @@
 /* test_cloud_slab — the Monte Carlo reference (kernels/atmosphere/method_reference.h) through
- * the homogeneous cloud shell (kernels/media/cloud_shell.h), all orders of scattering, against
+ * the homogeneous cloud shell (kernels/cloud_shell/cloud_shell.h), all orders of scattering, against
  * an independent solution of the same plane-parallel problem.
  * labels: kernel stat slow
  *

@@ -1,6 +1,6 @@
 /* test_clouds_lod — the views seen from far away, filtered to the pixel's footprint, are the
  * same picture as the view rendered at twice the size and downsampled: the cloud layer's level
- * of detail (kernels/media/cloud_layer.h, "Level of detail") and the terrain from orbit.
+ * of detail (kernels/clouds/cloud_layer.h, "Level of detail") and the terrain from orbit.
  * labels: render kernel slow
  *
  * Views: thesis-4 (the planet from 2000 km) and thesis-5 (cloud tops from 42 km), reduced to a

@@ -1,4 +1,4 @@
-/* test_clouds_majorant — the fBm cloud layer's majorant grid (kernels/media/cloud_majorant.h,
+/* test_clouds_majorant — the fBm cloud layer's majorant grid (kernels/clouds/cloud_majorant.h,
  * its pass cloud_majorant.cl) bounds the density in every cell, and the reference's ratio
  * tracking through it (media_walk.h's media_walk_sun_transmittance: the one majorant walk over
  * the grid's cells, majorant_walk.h, with Russian roulette) estimates the transmittance
@@ -31,7 +31,7 @@
 #include "common/compat.h"
 #include "atmosphere/atmosphere.h"
 #include "common/geometry.h"
-#include "media/cloud_majorant.h"
+#include "clouds/cloud_majorant.h"
 #include "media/ray.h"
 #include "testlib.h"
 #include "testscene.h"

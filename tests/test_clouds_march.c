@@ -1,4 +1,4 @@
-/* test_clouds_march — the fBm cloud layer's marcher (kernels/media/cloud_march.h, host build of
+/* test_clouds_march — the fBm cloud layer's marcher (kernels/clouds/cloud_march.h, host build of
  * the shared headers) converges to single scattering through the clouds as its steps shrink.
  * labels: unit slow
  * composes: atmosphere clouds clouds_majorant clouds_tracked clouds_medium visibility clouds_march medium reference

@@ -1,4 +1,4 @@
-/* test_clouds_march_thick — the fBm cloud layer's marcher (kernels/media/cloud_march.h, host
+/* test_clouds_march_thick — the fBm cloud layer's marcher (kernels/clouds/cloud_march.h, host
  * build) under a thick absorbing overcast at noon: its multiple-scattering octaves must not
  * carry the sun's light through a deck that the light does not cross.
  * labels: unit slow

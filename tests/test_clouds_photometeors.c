@@ -19,7 +19,7 @@
 #include <string.h>
 #include "common/compat.h"
 #include "common/camera.h"
-#include "media/cloud_layer.h"
+#include "clouds/cloud_layer.h"
 #include "atmo/render.h"
 #include "testlib.h"
 #include "testscene.h"

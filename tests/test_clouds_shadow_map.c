@@ -1,4 +1,4 @@
-/* test_clouds_shadow_map — the fBm cloud layer's sun shadow map (kernels/media/cloud_shadow_map.h,
+/* test_clouds_shadow_map — the fBm cloud layer's sun shadow map (kernels/clouds/cloud_shadow_map.h,
  * its pass cloud_shadow_map.cl; the lookup and the node points in host builds of the headers,
  * the map from the device's pass). Scene: thesis-6 (the sun 28 degrees high) with method march
  * and clouds.shadow_map, the marcher's far plane at 20 km so the map's cells are small.
@@ -39,7 +39,7 @@
 #include <string.h>
 #include "common/compat.h"
 #include "common/geometry.h"
-#include "media/cloud_shadow_map.h"
+#include "clouds/cloud_shadow_map.h"
 #include "media/ray.h"
 #include "atmo/plan_clouds.h"
 #include "testlib.h"

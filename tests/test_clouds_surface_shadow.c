@@ -32,7 +32,7 @@
 #include "common/compat.h"
 #include "common/geometry.h"
 #include "common/rng.h"
-#include "media/cloud_layer.h"
+#include "clouds/cloud_layer.h"
 #include "testlib.h"
 #include "testscene.h"
 

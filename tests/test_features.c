@@ -122,7 +122,7 @@ static void test_methods(void)
         /* every method integrates the same media: the medium integrator comes before it */
         CHECK(fragment_at(&p, "kernels/media/medium.h") >= 0 &&
               fragment_at(&p, "kernels/media/medium.h") < fragment_at(&p, m->own));
-        CHECK(fragment_at(&p, "kernels/media/cloud_shell.h") < 0);
+        CHECK(fragment_at(&p, "kernels/cloud_shell/cloud_shell.h") < 0);
         /* common headers first, the render kernels last: the image's, then the guide pass's */
         CHECK(fragment_at(&p, "kernels/common/compat.h") == 0);
         CHECK(fragment_at(&p, "kernels/render/guides.cl") == p.fragment_count - 1);
@@ -163,7 +163,7 @@ static void test_cloud(void)
                                              "cloud_phase_cdf", "ms_lut", NULL};
     check_buffers(&cloud, with_table);
     CHECK(strcmp(cloud.defines, "-DATMO_CLOUD") == 0);
-    int shell = fragment_at(&cloud, "kernels/media/cloud_shell.h");
+    int shell = fragment_at(&cloud, "kernels/cloud_shell/cloud_shell.h");
     int media = fragment_at(&cloud, "plan/media");
     int intervals = fragment_at(&cloud, "plan/intervals");
     /* a medium: after the media's contract, before the composition of the media, which comes
@@ -172,8 +172,8 @@ static void test_cloud(void)
     CHECK(shell > fragment_at(&cloud, "kernels/media/media.h"));
     CHECK(shell < media && media < fragment_at(&cloud, "kernels/media/visibility.h"));
     CHECK(fragment_at(&cloud, "kernels/media/visibility.h") <
-          fragment_at(&cloud, "kernels/media/cloud_shell_march.h"));
-    CHECK(fragment_at(&cloud, "kernels/media/cloud_shell_march.h") < intervals);
+          fragment_at(&cloud, "kernels/cloud_shell/cloud_shell_march.h"));
+    CHECK(fragment_at(&cloud, "kernels/cloud_shell/cloud_shell_march.h") < intervals);
     CHECK(intervals < fragment_at(&cloud, "kernels/media/medium.h"));
     CHECK(shell < fragment_at(&cloud, "kernels/atmosphere/method_march.h"));
     /* the composition: the shell's component numbered after the air's, its functions called

@@ -272,16 +272,16 @@ if [ -n "$found" ]; then
     echo "$found" | sed 's/^/    /' >&2
 else ok; fi
 
-# The render stages (the preview's camera rays, the path tracer, the guides) and the methods
-# take the features through the plan's composition too: no feature #if in kernels/render,
-# kernels/atmosphere or kernels/common; a feature's own files (kernels/terrain, the objects'
-# render/objects*) may test their own flags, and the host-only block of a header (its
+# A feature's flags are tested in its own folder only (kernels/terrain, kernels/clouds,
+# kernels/cloud_shell, and the objects' render/objects*): the generic integrator, the render
+# stages (the preview's camera rays, the path tracer, the guides) and the methods take the
+# features through the plan's composition. The host-only block of a header (its
 # #if !defined(__OPENCL_VERSION__) lines: the host tests' buffer lists) is not kernel code.
-stage_files=$(find kernels/render kernels/atmosphere kernels/common -name '*.h' -o -name '*.cl' |
-    grep -v '^kernels/render/objects' | sort)
+stage_files=$(find kernels -name '*.h' -o -name '*.cl' |
+    grep -vE '^kernels/(terrain|clouds|cloud_shell)/|^kernels/render/objects' | sort)
 found=$(feature_ifs $stage_files | grep -v '!defined(__OPENCL_VERSION__)')
 if [ -n "$found" ]; then
-    bad "feature #if in a render stage or method (give the feature a slot of the composition):"
+    bad "feature #if outside the feature's folder (give the feature a slot of the composition):"
     echo "$found" | sed 's/^/    /' >&2
 else ok; fi
 

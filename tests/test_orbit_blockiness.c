@@ -45,7 +45,7 @@
  *   - the noise alone (seed 1 minus seed 2, plus the mean) gives |z(0)| < Z_MAX.
  * Measured: z(0) -0.89 and -0.18 (seeds 1 and 2); warp 0 +8.62; blocks +7.42; turned blocks
  * z(30) +13.95, z(0) -0.88; noise -0.62. Other views: thesis-4 and thesis-5 see the cloud
- * layer, whose noise lattices are turned off every world axis (kernels/media/cloud_noise.h), so
+ * layer, whose noise lattices are turned off every world axis (kernels/clouds/cloud_noise.h), so
  * no grid of theirs lies along the axes this statistic tests; their footprint filter is tested
  * against the view at twice the size (tests/test_clouds_lod.c). */
 #include <math.h>

@@ -55,7 +55,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "common/compat.h"
-#include "media/cloud_layer.h"
+#include "clouds/cloud_layer.h"
 #include "atmo/atmosphere_ref.h"
 #include "atmo/render.h"
 #include "testlib.h"

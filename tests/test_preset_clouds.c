@@ -4,7 +4,7 @@
  * a cumulus in its sunset sky beside the snowy peak and the sky around the sun clear.
  * labels: unit
  *
- * Oracle: the cloud layer's own density (kernels/media/cloud_layer.h's clouds_density, host
+ * Oracle: the cloud layer's own density (kernels/clouds/cloud_layer.h's clouds_density, host
  * build, bitwise the device's: test_cloud_noise) and the double-precision terrain
  * (host/terrain/terrain_ref.c), sampled on the host:
  *   - the camera in clear air: the density is 0 at the camera and at 2000 points within
@@ -57,7 +57,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "common/compat.h"
-#include "media/cloud_layer.h"
+#include "clouds/cloud_layer.h"
 #include "atmo/terrain_ref.h"
 #include "testlib.h"
 #include "testscene.h"

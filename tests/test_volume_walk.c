@@ -37,7 +37,7 @@
 #include <string.h>
 #include "common/compat.h"
 #include "common/geometry.h"
-#include "media/cloud_layer.h"
+#include "clouds/cloud_layer.h"
 #include "media/ray.h"
 #include "testlib.h"
 #include "testscene.h"

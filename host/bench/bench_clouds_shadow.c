@@ -21,8 +21,8 @@
 #include "common/compat.h"
 #include "common/geometry.h"
 #include "media/ray.h"
-#include "media/cloud_layer.h"
-#include "media/cloud_shadow_map.h"
+#include "clouds/cloud_layer.h"
+#include "clouds/cloud_shadow_map.h"
 
 #define BENCH_SHADOW_FINE_STEPS 2048
 

@@ -135,7 +135,7 @@ static const char *const medium_fragments[] = {"kernels/media/medium.h", NULL};
 #define MEDIUM_SOURCES                                                                             \
     "kernels/media/ray.h", "kernels/media/tracking.h", "kernels/media/media.h",                    \
         "kernels/media/quadrature_walk.h", "kernels/media/visibility.h",                           \
-        "kernels/media/observer.h", "kernels/media/medium.h"
+        "kernels/cloud_shell/observer.h", "kernels/media/medium.h"
 
 /* Psi_ms: its lookups (the source of march and fast) before the media's composition, its
  * passes (which march with the integrator) after the integrator. */
@@ -177,11 +177,11 @@ static const char *const lut_sources[] = {
     NULL};
 
 static const char *const needs_transmittance[] = {"atmosphere", NULL};
-static const char *const cloud_fragments[] = {"kernels/media/observer.h",
+static const char *const cloud_fragments[] = {"kernels/cloud_shell/observer.h",
                                               "kernels/media/phase_table.h",
-                                              "kernels/media/cloud_shell.h",
-                                              "kernels/media/cloud_shell_walk.h",
-                                              "kernels/media/observer_surface.h", NULL};
+                                              "kernels/cloud_shell/cloud_shell.h",
+                                              "kernels/cloud_shell/cloud_shell_walk.h",
+                                              "kernels/cloud_shell/observer_surface.h", NULL};
 static const atmo_slots cloud_slots = {.component = "CLOUD",
                                        .media_add = "cloud_shell_media_add",
                                        .media_phase = "cloud_shell_media_phase",
@@ -200,22 +200,22 @@ static const atmo_slots cloud_slots = {.component = "CLOUD",
                                        .roulette_gain = "cloud_shell_roulette_gain",
                                        .guide_depth = "cloud_shell_guide_depth"};
 /* the shell's own stepping, after the visibility it asks */
-static const char *const cloud_march_fragments[] = {"kernels/media/cloud_shell_march.h", NULL};
-static const char *const clouds_fragments[] = {"kernels/media/cloud_noise.h",
+static const char *const cloud_march_fragments[] = {"kernels/cloud_shell/cloud_shell_march.h", NULL};
+static const char *const clouds_fragments[] = {"kernels/clouds/cloud_noise.h",
                                                "kernels/media/phase_table.h",
-                                               "kernels/media/cloud_layer.h", NULL};
+                                               "kernels/clouds/cloud_layer.h", NULL};
 /* the layer in the denoiser's guides, in every mode */
 static const atmo_slots clouds_guides_slots = {.guide_block = "clouds_guide_block"};
 /* the grid and the layer's majorant over it, the layer in the one walk (cloud_track.h: the
  * slots below) */
-static const char *const clouds_majorant_fragments[] = {"kernels/media/cloud_majorant.h",
-                                                        "kernels/media/cloud_majorant.cl",
-                                                        "kernels/media/cloud_track.h", NULL};
+static const char *const clouds_majorant_fragments[] = {"kernels/clouds/cloud_majorant.h",
+                                                        "kernels/clouds/cloud_majorant.cl",
+                                                        "kernels/clouds/cloud_track.h", NULL};
 static const char *const clouds_shadow_map_fragments[] = {
-    "kernels/media/cloud_majorant.h", "kernels/media/cloud_shadow_map.h",
-    "kernels/media/cloud_shadow_map.cl", NULL};
+    "kernels/clouds/cloud_majorant.h", "kernels/clouds/cloud_shadow_map.h",
+    "kernels/clouds/cloud_shadow_map.cl", NULL};
 /* the layer as a medium of the methods, over its shadow map when there is one */
-static const char *const clouds_medium_fragments[] = {"kernels/media/cloud_layer_medium.h", NULL};
+static const char *const clouds_medium_fragments[] = {"kernels/clouds/cloud_layer_medium.h", NULL};
 static const atmo_slots clouds_slots = {.component = "CLOUDS",
                                         .media_add = "clouds_media_add",
                                         .media_phase = "clouds_media_phase",
@@ -240,7 +240,7 @@ static const atmo_slots clouds_tracked_slots = {.majorant_state = "clouds_track"
                                                 .walk_component = "CLOUDS",
                                                 .media_direction = "clouds_media_direction",
                                                 .roulette_gain = "clouds_roulette_gain"};
-static const char *const clouds_march_fragments[] = {"kernels/media/cloud_march.h", NULL};
+static const char *const clouds_march_fragments[] = {"kernels/clouds/cloud_march.h", NULL};
 /* The terrain: the height field, the tracer and shadows, the surface's light, and the
  * heightmap pass, which reads only the field (the camera's placement stays out of the key). */
 static const char *const terrain_fragments[] = {"kernels/terrain/noise.h",

@@ -13,7 +13,7 @@
  * is 0.
  *
  * The observer's centre is placed camera-relative in the world's axes, as the kernels' 3-D
- * visibility sources take it (kernels/media/observer.h): distance_m horizontally from the
+ * visibility sources take it (kernels/cloud_shell/observer.h): distance_m horizontally from the
  * camera away from the sun's azimuth and height_m along the camera's local vertical,
  *     c = -distance e_s + height up,  e_s = the horizontal unit vector toward the sun
  * (with the sun at the zenith, the horizontal axis medium_ray_from_cosines takes, so a probe's

@@ -28,7 +28,7 @@
 #include <string.h>
 #include "atmo/plan_cloud.h"
 #include "atmo/plan_clouds.h"
-#include "media/cloud_majorant.h"
+#include "clouds/cloud_majorant.h"
 
 /* A pixel's angle (rad) at the image's centre: the perspective's 2 tan(fov/2) / height, the
  * panorama's 2 pi / width, the fisheye's fov / height. */

@@ -139,7 +139,7 @@ const atmo_param atmo_params[] = {
              "march where the scene has clouds or the observer, else fast"),
     ROW_BOOL("cloud.enabled", cloud.enabled, 0,
              "a homogeneous cloud/fog shell (methods single, march and reference; "
-             "kernels/media/cloud_shell.h)"),
+             "kernels/cloud_shell/cloud_shell.h)"),
     ROW_FLOAT("cloud.bottom_m", cloud.bottom_m, "m", 0, 1e5, 1000,
               "altitude of the cloud shell's base above sea level"),
     ROW_FLOAT("cloud.top_m", cloud.top_m, "m", 0, 1e5, 2000,
@@ -161,7 +161,7 @@ const atmo_param atmo_params[] = {
               "forward-peaked phases)"),
     ROW_BOOL("clouds.enabled", clouds.enabled, 0,
              "the fBm cloud layer: coverage x shaped 3-D fBm between two altitudes (methods "
-             "single, march and reference; kernels/media/cloud_layer.h)"),
+             "single, march and reference; kernels/clouds/cloud_layer.h)"),
     ROW_FLOAT("clouds.bottom_m", clouds.bottom_m, "m", 0, 1e5, 1000,
               "altitude of the cloud layer's bottom above sea level"),
     ROW_FLOAT("clouds.top_m", clouds.top_m, "m", 0, 1e5, 8000,
@@ -237,7 +237,7 @@ const atmo_param atmo_params[] = {
     ROW_FLOAT("clouds.lod", clouds.lod, "", 0, 16, 1,
               "level of detail: octaves of the cloud noise finer than this many pixels' footprint "
               "at their distance are replaced by their mean and spread (0: every octave, "
-              "point-sampled; kernels/media/cloud_layer.h)"),
+              "point-sampled; kernels/clouds/cloud_layer.h)"),
     ROW_INT("clouds.ms_octaves", clouds.ms_octaves, "", 1, 16, 6,
             "multiple-scattering octaves of the marcher (1: single scattering and the diffuse "
             "orders only; 6 fitted to the reference by atmo bench clouds --fit)"),
@@ -250,7 +250,7 @@ const atmo_param atmo_params[] = {
     ROW_FLOAT("clouds.ms_d", clouds.ms_d, "", 0, 100, 2.8,
               "weight of the diffuse orders beyond the octaves: isotropic light times this and "
               "the similarity albedo of a semi-infinite cloud, decaying into it at the diffusion "
-              "exponent (kernels/media/cloud_march.h; 0: none; fitted: 2.8)"),
+              "exponent (kernels/clouds/cloud_march.h; 0: none; fitted: 2.8)"),
     ROW_ENUM("clouds.look", clouds.look, clouds_look_names, ATMO_CLOUDS_LOOK_PHYSICAL,
              "physical (octaves, sky ambient) or thesis (constant ambient, powder, soft clamp)"),
     ROW_BOOL("observer.enabled", observer.enabled, 0,

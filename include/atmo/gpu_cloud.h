@@ -1,5 +1,5 @@
 /* gpu_cloud.h — the homogeneous cloud shell and the observer sphere
- * (kernels/media/cloud_shell.h), at the three render wavelengths (x, y, z; w unused). Zero
+ * (kernels/cloud_shell/cloud_shell.h), at the three render wavelengths (x, y, z; w unused). Zero
  * unless the scene has a cloud or an observer. Shared byte for byte with OpenCL C (checked by
  * plan.c and tests/test_gpu_layout.c). */
 #ifndef ATMO_GPU_CLOUD_H

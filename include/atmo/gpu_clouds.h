@@ -1,4 +1,4 @@
-/* gpu_clouds.h — the fBm cloud layer (kernels/media/cloud_layer.h, cloud_noise.h) as the kernels
+/* gpu_clouds.h — the fBm cloud layer (kernels/clouds/cloud_layer.h, cloud_noise.h) as the kernels
  * see it: optics per unit density at the three render wavelengths (x, y, z; w unused), the
  * noise's placement and shape, the layer's altitudes and the marcher's knobs. Zero unless the
  * scene has clouds.enabled. Shared byte for byte with OpenCL C (checked by plan.c and

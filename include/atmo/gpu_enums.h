@@ -16,7 +16,7 @@ enum { ATMO_PHASE_CORNETTE_SHANKS = 0, ATMO_PHASE_HENYEY_GREENSTEIN = 1 };
  * g, or Jendersie and d'Eon's fit for the effective diameter) */
 enum { ATMO_CLOUD_PHASE_MIE = 0, ATMO_CLOUD_PHASE_HG, ATMO_CLOUD_PHASE_JENDERSIE_DEON };
 
-/* The fBm cloud layer's look (kernels/media/cloud_layer.h): multiple scattering by octaves and
+/* The fBm cloud layer's look (kernels/clouds/cloud_layer.h): multiple scattering by octaves and
  * sky ambient from the atmosphere, or the thesis' constant ambient, powder and soft clamp. */
 enum { ATMO_CLOUDS_LOOK_PHYSICAL = 0, ATMO_CLOUDS_LOOK_THESIS = 1 };
 

@@ -1,5 +1,5 @@
 /* plan_cloud.h — the plan's part for the homogeneous cloud shell and the observer sphere
- * (kernels/media/cloud_shell.h; host/plan/plan_cloud.c). */
+ * (kernels/cloud_shell/cloud_shell.h; host/plan/plan_cloud.c). */
 #ifndef ATMO_PLAN_CLOUD_H
 #define ATMO_PLAN_CLOUD_H
 #include "atmo/plan.h"

@@ -1,4 +1,4 @@
-/* plan_clouds.h — the plan's part for the fBm cloud layer (kernels/media/cloud_layer.h,
+/* plan_clouds.h — the plan's part for the fBm cloud layer (kernels/clouds/cloud_layer.h,
  * cloud_march.h; host/plan/plan_clouds.c). */
 #ifndef ATMO_PLAN_CLOUDS_H
 #define ATMO_PLAN_CLOUDS_H
@@ -16,7 +16,7 @@ int atmo_plan_clouds_volume(const atmo_scene *s);
 int atmo_plan_clouds(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 
 /* With clouds and method reference: the majorant grid of the Monte Carlo walk, the buffer
- * clouds_majorant (CLOUDS_GRID_NX x NY x NZ floats, kernels/media/cloud_majorant.h) and its pass
+ * clouds_majorant (CLOUDS_GRID_NX x NY x NZ floats, kernels/clouds/cloud_majorant.h) and its pass
  * clouds_majorant_grid; it follows the view (feature "clouds_majorant" of features.c). */
 int atmo_plan_clouds_majorant(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 
@@ -27,7 +27,7 @@ int atmo_plan_clouds_majorant(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 /* With clouds.shadow_map and a method other than reference (which ratio-tracks the sun's
  * transmittance): checks its size against ATMO_CLOUDS_SHADOW_MAP_MAX_BYTES, fills gpu.clouds'
  * shadow_map_* fields, the buffer clouds_shadow_map (size^2 x levels floats,
- * kernels/media/cloud_shadow_map.h) and its pass clouds_shadow_map_nodes; it follows the view
+ * kernels/clouds/cloud_shadow_map.h) and its pass clouds_shadow_map_nodes; it follows the view
  * (feature "clouds_shadow_map" of features.c, flag -DATMO_CLOUDS_SHADOW_MAP). */
 int atmo_plan_clouds_shadow_map(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 

@@ -107,7 +107,7 @@ typedef struct atmo_scene {
         int denoise;           /* ATMO_OUTPUT_DENOISE_*: Open Image Denoise (atmo/outputs.h) */
         int blender;           /* 0/1: outputs for Blender (atmo_scene_for_blender) */
     } output;
-    struct {                   /* homogeneous cloud/fog shell (kernels/media/cloud_shell.h) */
+    struct {                   /* homogeneous cloud/fog shell (kernels/cloud_shell/cloud_shell.h) */
         int enabled;
         double bottom_m, top_m; /* altitudes of the shell above sea level */
         int dsd;               /* index into mie_dsd_preset_names */
@@ -117,7 +117,7 @@ typedef struct atmo_scene {
         int sun_disc;          /* 0/1: Mie table convolved with the sun's disc */
         double sun_guiding;    /* reference: probability of the phase lobe around the sun */
     } cloud;
-    struct {                   /* the fBm cloud layer (kernels/media/cloud_layer.h) */
+    struct {                   /* the fBm cloud layer (kernels/clouds/cloud_layer.h) */
         int enabled;
         double bottom_m, top_m, fade_m; /* altitudes above sea level; fades inside them */
         double coverage;       /* mean of the coverage field, 0..1 */
@@ -140,7 +140,7 @@ typedef struct atmo_scene {
         double step_m;         /* its step in cloud near the camera */
         int light_steps;       /* steps of the light march toward the sun */
         double light_distance_m; /* its length */
-        int shadow_map;        /* 0/1: the sun shadow map (kernels/media/cloud_shadow_map.h) */
+        int shadow_map;        /* 0/1: the sun shadow map (kernels/clouds/cloud_shadow_map.h) */
         int shadow_map_size;   /* its nodes per horizontal axis */
         int shadow_map_levels; /* its nodes between the layer's bottom and top */
         int shadow_map_steps;  /* steps of each node's integral toward the sun */

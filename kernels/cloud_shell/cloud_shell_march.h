@@ -12,7 +12,7 @@
 #include "common/geometry.h"
 #include "common/phase.h"
 #include "media/ray.h"
-#include "media/cloud_shell.h"
+#include "cloud_shell/cloud_shell.h"
 #include "media/visibility.h"
 #include "media/medium_air.h"
 #include "media/quadrature_walk.h"

@@ -15,14 +15,14 @@
  * New directions: its phase mixed with its lobe around the sun (phase_table.h's
  * cloud_phase_direction, cloud.sun_guiding); roulette gain: phase_table.h's cloud_roulette_gain
  * of its phase toward the sun. Units: metres, 1/m. */
-#ifndef ATMO_MEDIA_CLOUD_SHELL_WALK_H
-#define ATMO_MEDIA_CLOUD_SHELL_WALK_H
+#ifndef ATMO_CLOUD_SHELL_WALK_H
+#define ATMO_CLOUD_SHELL_WALK_H
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
 #include "common/geometry.h"
 #include "media/tracking.h"
 #include "media/phase_table.h"
-#include "media/cloud_shell.h"
+#include "cloud_shell/cloud_shell.h"
 #include "atmo/gpu_types.h"
 #endif
 

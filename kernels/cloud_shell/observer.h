@@ -7,8 +7,8 @@
  * b < 0 and b^2 >= c'. A view ray that meets it ends there, on a Lambertian surface of albedo
  * OBSERVER_ALBEDO lit by the sun only (a dark silhouette: the Brocken spectre's figure). A
  * sphere around the camera is the photographer: it casts its shadow but is not seen. */
-#ifndef ATMO_MEDIA_OBSERVER_H
-#define ATMO_MEDIA_OBSERVER_H
+#ifndef ATMO_CLOUD_SHELL_OBSERVER_H
+#define ATMO_CLOUD_SHELL_OBSERVER_H
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
 #include "common/geometry.h"

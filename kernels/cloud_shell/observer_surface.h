@@ -3,15 +3,15 @@
  * an opaque surface the view ray can meet. The observer is small, so it is lit like the camera's
  * surroundings: sunlight with the atmosphere's and the cloud shell's transmittance at the ray's
  * origin (its own shadow test would block it). */
-#ifndef ATMO_MEDIA_OBSERVER_SURFACE_H
-#define ATMO_MEDIA_OBSERVER_SURFACE_H
+#ifndef ATMO_CLOUD_SHELL_OBSERVER_SURFACE_H
+#define ATMO_CLOUD_SHELL_OBSERVER_SURFACE_H
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
 #include "atmosphere/atmosphere.h"
 #include "atmosphere/sky_method.h"
 #include "media/ray.h"
-#include "media/observer.h"
-#include "media/cloud_shell.h"
+#include "cloud_shell/observer.h"
+#include "cloud_shell/cloud_shell.h"
 #include "atmo/gpu_types.h"
 #endif
 

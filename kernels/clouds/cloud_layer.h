@@ -58,8 +58,8 @@
  * clouds.coverage_scale_m=2.5e6: its 13 km towers leave the air below them in shadow, so the
  * defaults keep its noise and optics in a 7 km layer of fair-weather cumulus instead
  * (docs/notes/clouds.md). Units: metres, 1/m. */
-#ifndef ATMO_MEDIA_CLOUD_LAYER_H
-#define ATMO_MEDIA_CLOUD_LAYER_H
+#ifndef ATMO_CLOUDS_CLOUD_LAYER_H
+#define ATMO_CLOUDS_CLOUD_LAYER_H
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
 #include "common/geometry.h"
@@ -67,7 +67,7 @@
 #include "common/rng.h"
 #include "media/ray.h"
 #include "media/quadrature_walk.h"
-#include "media/cloud_noise.h"
+#include "clouds/cloud_noise.h"
 #include "media/phase_table.h"
 #include "atmo/gpu_types.h"
 #endif

@@ -14,16 +14,16 @@
  * hides the sun, and under a low sun those clouds lie tens of kilometres away (with the sun 10
  * degrees high a 7 km layer's chord is 40 km), so the same number of steps spreads over the
  * whole chord there, at the same cost. Units: metres, 1/m. */
-#ifndef ATMO_MEDIA_CLOUD_LAYER_MEDIUM_H
-#define ATMO_MEDIA_CLOUD_LAYER_MEDIUM_H
+#ifndef ATMO_CLOUDS_CLOUD_LAYER_MEDIUM_H
+#define ATMO_CLOUDS_CLOUD_LAYER_MEDIUM_H
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
 #include "atmosphere/sky_method.h"
 #include "media/ray.h"
 #include "media/media.h"
-#include "media/cloud_layer.h"
+#include "clouds/cloud_layer.h"
 #ifdef ATMO_CLOUDS_SHADOW_MAP
-#include "media/cloud_shadow_map.h"
+#include "clouds/cloud_shadow_map.h"
 #endif
 #include "atmo/gpu_types.h"
 #endif

@@ -51,12 +51,12 @@
  * and after the box (and for a ray that misses it) it returns -1: the caller uses the layer's
  * global bound there. Units: metres, density as cloud_layer.h's (extinction = density x
  * clouds.extinction). */
-#ifndef ATMO_MEDIA_CLOUD_MAJORANT_H
-#define ATMO_MEDIA_CLOUD_MAJORANT_H
+#ifndef ATMO_CLOUDS_CLOUD_MAJORANT_H
+#define ATMO_CLOUDS_CLOUD_MAJORANT_H
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
-#include "media/cloud_layer.h"
-#include "media/cloud_noise.h"
+#include "clouds/cloud_layer.h"
+#include "clouds/cloud_noise.h"
 #include "atmo/gpu_types.h"
 #endif
 

@@ -88,8 +88,8 @@
  * the light of the air; a ray that crosses the layer twice (under its bottom between the parts)
  * clamps each part alone. The physical look sums the two lights step by step, unclamped.
  * Units: radiance W m^-2 sr^-1 nm^-1, metres. */
-#ifndef ATMO_MEDIA_CLOUD_MARCH_H
-#define ATMO_MEDIA_CLOUD_MARCH_H
+#ifndef ATMO_CLOUDS_CLOUD_MARCH_H
+#define ATMO_CLOUDS_CLOUD_MARCH_H
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
 #include "atmosphere/atmosphere.h"
@@ -98,9 +98,9 @@
 #include "media/media.h"
 #include "media/quadrature_walk.h"
 #include "media/visibility.h"
-#include "media/cloud_layer_medium.h"
+#include "clouds/cloud_layer_medium.h"
 #include "media/tracking.h"
-#include "media/cloud_layer.h"
+#include "clouds/cloud_layer.h"
 #include "atmo/gpu_types.h"
 #endif
 

@@ -41,8 +41,8 @@
  * decimal literals that every compiler rounds to the same floats), and contraction
  * into fused multiply-adds is switched off for this file, so a GPU and PoCL compute the same
  * bits (tests/test_cloud_noise.c compares the device with the host). */
-#ifndef ATMO_MEDIA_CLOUD_NOISE_H
-#define ATMO_MEDIA_CLOUD_NOISE_H
+#ifndef ATMO_CLOUDS_CLOUD_NOISE_H
+#define ATMO_CLOUDS_CLOUD_NOISE_H
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
 #include "common/rng.h"

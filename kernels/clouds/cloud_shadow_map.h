@@ -33,14 +33,14 @@
  * one whose ray misses the layer gets 0; a point above the layer or horizontally outside the
  * map falls back to the light march. T_sun = exp(-extinction D) then, as for the light march.
  * Units: metres; D in metres of unit density. */
-#ifndef ATMO_MEDIA_CLOUD_SHADOW_MAP_H
-#define ATMO_MEDIA_CLOUD_SHADOW_MAP_H
+#ifndef ATMO_CLOUDS_CLOUD_SHADOW_MAP_H
+#define ATMO_CLOUDS_CLOUD_SHADOW_MAP_H
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
 #include "common/geometry.h"
 #include "media/ray.h"
-#include "media/cloud_layer.h"
-#include "media/cloud_majorant.h"
+#include "clouds/cloud_layer.h"
+#include "clouds/cloud_majorant.h"
 #include "atmo/gpu_types.h"
 #endif
 

@@ -22,16 +22,16 @@
  * for a grey layer (clouds.extinction_per_m > 0: k and the albedo the same in every channel)
  * the walk's spectral tracking is delta tracking with the absorption in the weight.
  * Units: metres, 1/m. */
-#ifndef ATMO_MEDIA_CLOUD_TRACK_H
-#define ATMO_MEDIA_CLOUD_TRACK_H
+#ifndef ATMO_CLOUDS_CLOUD_TRACK_H
+#define ATMO_CLOUDS_CLOUD_TRACK_H
 #ifndef __OPENCL_VERSION__
 #include "common/compat.h"
 #include "common/geometry.h"
 #include "common/rng.h"
 #include "media/ray.h"
 #include "media/tracking.h"
-#include "media/cloud_layer.h"
-#include "media/cloud_majorant.h"
+#include "clouds/cloud_layer.h"
+#include "clouds/cloud_majorant.h"
 #include "atmo/gpu_types.h"
 #endif
 
