@@ -42,7 +42,8 @@ typedef struct atmo_gpu_path {
     int sun_nee;         /* 1: next-event estimation to the sun disc */
     int sky_nee;         /* 1: sky sampling combined with BSDF sampling by MIS */
     int sky;             /* ATMO_PATH_SKY_* */
-    int ground;          /* 1: the planet's ground sphere is a surface */
+    int ground;          /* 1: the planet's ground sphere is a surface of render/surfaces.h
+                            (path mode: the scene's path.ground; the preview: 1) */
     int sampler;         /* ATMO_SAMPLER_*: the primary samples' sequence */
     float filter_radius; /* pixel filter: truncation radius, px */
     float filter_sigma;  /* pixel filter: Gaussian standard deviation, px */
