@@ -83,7 +83,7 @@ int main(void)
     vec3 dir = v3((float)(cos(el) * cos(az)), (float)sin(el), (float)(cos(el) * sin(az)));
     medium_ray m = medium_ray_from_camera(&s, dir);
     float lo[2], hi[2];
-    int parts = clouds_shell_parts(s.atmosphere.bottom_radius, c->bottom_m, c->top_m, m.r, m.mu,
+    int parts = geometry_shell_parts(s.atmosphere.bottom_radius, c->bottom_m, c->top_m, m.r, m.mu,
                                    0.0f, 1e7f, lo, hi);
     CHECK(parts == 1);
 

@@ -65,7 +65,7 @@ int main(void)
             vec3 dir = v3((float)(cos(el) * cos(az)), (float)sin(el), (float)(cos(el) * sin(az)));
             medium_ray m = medium_ray_from_camera(&s, dir);
             float lo[2], hi[2];
-            int parts = clouds_shell_parts(s.atmosphere.bottom_radius, c->bottom_m, c->top_m,
+            int parts = geometry_shell_parts(s.atmosphere.bottom_radius, c->bottom_m, c->top_m,
                                            m.r, m.mu, 0.0f, 1e7f, lo, hi);
             CHECK(parts == 1);
 
@@ -130,7 +130,7 @@ int main(void)
     s.atmosphere.solar_irradiance.z = 0.0f;
     medium_ray m = medium_ray_from_camera(&s, v3(0.6f, 0.8f, 0.0f));
     float lo[2], hi[2];
-    CHECK(clouds_shell_parts(s.atmosphere.bottom_radius, c->bottom_m, c->top_m, m.r, m.mu, 0.0f,
+    CHECK(geometry_shell_parts(s.atmosphere.bottom_radius, c->bottom_m, c->top_m, m.r, m.mu, 0.0f,
                              1e7f, lo, hi) == 1);
     vec3 L = v3(0.0f, 0.0f, 0.0f), T = v3(1.0f, 1.0f, 1.0f), medium_t = T;
     clouds_interval(&s, LUTS, &m, lo[0], hi[0], 0.5f, 0, 0, &L, &T, &medium_t);

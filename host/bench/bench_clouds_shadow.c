@@ -90,7 +90,7 @@ int bench_clouds_shadow_error(const atmo_plan *plan, const float4 *rays, int n_r
     for (int r = 0; r < n_rays; r++) {
         medium_ray m = medium_ray_from_cosines(s, rays[r].x, rays[r].y, rays[r].z, rays[r].w);
         float lo[2], hi[2];
-        int parts = clouds_shell_parts(R, c->bottom_m, c->top_m, m.r, m.mu, 0.0f,
+        int parts = geometry_shell_parts(R, c->bottom_m, c->top_m, m.r, m.mu, 0.0f,
                                        c->max_distance_m, lo, hi);
         int steps = 0;
         for (int part = 0; part < parts; part++)

@@ -136,23 +136,8 @@ ATMO_FN vec3 cloud_shell_sun_transmittance(ATMO_GLOBAL const atmo_gpu_scene *s,
 ATMO_FN int cloud_shell_intervals(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m,
                                   float t_start, float t_end, float *lo, float *hi)
 {
-    float R = s->atmosphere.bottom_radius, h = m->r - R, b = m->r * m->mu;
-    float base = cloud_shell_base(s), top = cloud_shell_top(s), o0, o1, i0, i1;
-    int n = 0;
-    if (!geometry_sphere_roots(b, (h - top) * (m->r + R + top), &o0, &o1))
-        return 0;
-    float part_lo[2] = {o0, 0.0f}, part_hi[2] = {o1, 0.0f};
-    int parts = 1;
-    if (geometry_sphere_roots(b, (h - base) * (m->r + R + base), &i0, &i1)) {
-        part_hi[0] = i0, part_lo[1] = i1, part_hi[1] = o1;
-        parts = 2;
-    }
-    for (int k = 0; k < parts; k++) {
-        float l = fmaxf(part_lo[k], t_start), u = fminf(part_hi[k], t_end);
-        if (u > l)
-            lo[n] = l, hi[n] = u, n++;
-    }
-    return n;
+    return geometry_shell_parts(s->atmosphere.bottom_radius, cloud_shell_base(s),
+                                cloud_shell_top(s), m->r, m->mu, t_start, t_end, lo, hi);
 }
 
 /* The shell's optical depth along the view ray m over [0, t_end] per channel, its chord

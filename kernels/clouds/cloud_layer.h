@@ -161,30 +161,6 @@ ATMO_FN vec3 clouds_phase_direction(ATMO_GLOBAL const atmo_gpu_scene *s,
                                  c->table_size, d, sun, c->sun_guiding, beta, u1, u2, g, weight);
 }
 
-/* The parts of [t_start, t_end] of the ray from radius r with cosine mu (R the ground's radius)
- * inside the shell between the altitudes base and top, in order: their count (0..2), their
- * ends in lo[], hi[]. */
-ATMO_FN int clouds_shell_parts(float R, float base, float top, float r, float mu, float t_start,
-                               float t_end, float *lo, float *hi)
-{
-    float h = r - R, b = r * mu, o0, o1, i0, i1;
-    int n = 0;
-    if (!geometry_sphere_roots(b, (h - top) * (r + R + top), &o0, &o1))
-        return 0;
-    float part_lo[2] = {o0, 0.0f}, part_hi[2] = {o1, 0.0f};
-    int parts = 1;
-    if (geometry_sphere_roots(b, (h - base) * (r + R + base), &i0, &i1)) {
-        part_hi[0] = i0, part_lo[1] = i1, part_hi[1] = o1;
-        parts = 2;
-    }
-    for (int k = 0; k < parts; k++) {
-        float l = fmaxf(part_lo[k], t_start), u = fminf(part_hi[k], t_end);
-        if (u > l)
-            lo[n] = l, hi[n] = u, n++;
-    }
-    return n;
-}
-
 /* The density integral D (m) from the point q toward the sun over the layer: the part of the
  * ray in the shell cut to `distance` from where it enters, in n steps growing as (i/n)^2 (the
  * quadrature walk's grid, quadrature_grid_segment) with the sample offset `jitter` in [0, 1),
@@ -194,7 +170,7 @@ ATMO_FN float clouds_sun_density_steps(ATMO_GLOBAL const atmo_gpu_scene *s, cons
 {
     ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
     float R = s->atmosphere.bottom_radius, lo[2], hi[2];
-    int parts = clouds_shell_parts(R, c->bottom_m, c->top_m, q->r, q->mu_s, 0.0f, INFINITY, lo, hi);
+    int parts = geometry_shell_parts(R, c->bottom_m, c->top_m, q->r, q->mu_s, 0.0f, INFINITY, lo, hi);
     if (parts == 0)
         return 0.0f;
     float a = lo[0], len = fminf(hi[parts - 1], a + distance) - a;
@@ -287,7 +263,7 @@ ATMO_FN void clouds_guide_block(ATMO_GLOBAL const atmo_gpu_scene *s, const mediu
         D[k] = 0.0f;
         t_far = fmaxf(t_far, ends[k]);
     }
-    int parts = t_far > 0.0f ? clouds_shell_parts(s->atmosphere.bottom_radius, c->bottom_m,
+    int parts = t_far > 0.0f ? geometry_shell_parts(s->atmosphere.bottom_radius, c->bottom_m,
                                                   c->top_m, m->r, m->mu, 0.0f, t_far, lo, hi)
                              : 0;
     float total = 0.0f;

@@ -79,7 +79,7 @@ ATMO_FN vec3 clouds_media_sun_surface(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_
 ATMO_FN int clouds_media_intervals(ATMO_GLOBAL const atmo_gpu_scene *s, const medium_ray *m,
                                    float t_start, float t_end, float *lo, float *hi)
 {
-    return clouds_shell_parts(s->atmosphere.bottom_radius, s->clouds.bottom_m, s->clouds.top_m,
+    return geometry_shell_parts(s->atmosphere.bottom_radius, s->clouds.bottom_m, s->clouds.top_m,
                               m->r, m->mu, t_start, t_end, lo, hi);
 }
 

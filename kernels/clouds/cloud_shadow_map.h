@@ -136,7 +136,7 @@ ATMO_FN float clouds_shadow_map_density(ATMO_GLOBAL const atmo_gpu_scene *s,
         D = clouds_shadow_map_lookup(s, map, &f, q->p, q->h);
     } else if (q->h < c->bottom_m) {
         float lo[2], hi[2];
-        if (clouds_shell_parts(s->atmosphere.bottom_radius, c->bottom_m, c->top_m, q->r, q->mu_s,
+        if (geometry_shell_parts(s->atmosphere.bottom_radius, c->bottom_m, c->top_m, q->r, q->mu_s,
                                0.0f, INFINITY, lo, hi) == 0)
             return 0.0f;
         vec3 entry = v3_add(q->p, v3_scale(v3_from4(s->sun_direction), lo[0]));

@@ -8,7 +8,7 @@
  * Majorant (clouds_track_begin, clouds_track_segment). The layer's extinction is
  * sigma_t(x) = d(x) k, d the density (cloud_layer.h) and k its extinction per unit density per
  * wavelength. Along the ray origin + t dir it is zero outside the layer's shell, so the majorant
- * is zero outside the parts of the ray inside the shell (clouds_shell_parts: at most two, in
+ * is zero outside the parts of the ray inside the shell (geometry_shell_parts: at most two, in
  * order; the shell's radii widened by CLOUDS_TRACK_MARGIN_M, which covers the float rounding
  * of the altitudes the density sees), and piecewise constant inside them:
  *     sigma_bar = b_cell max_c k_c x 1.001   inside the majorant grid (cloud_majorant.h's DDA,
@@ -51,7 +51,7 @@ ATMO_FN void clouds_track_begin(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PA
                                 vec3 dir, float r, float mu, float end, clouds_track *m)
 {
     ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
-    m->parts = clouds_shell_parts(s->atmosphere.bottom_radius, c->bottom_m - CLOUDS_TRACK_MARGIN_M,
+    m->parts = geometry_shell_parts(s->atmosphere.bottom_radius, c->bottom_m - CLOUDS_TRACK_MARGIN_M,
                                   c->top_m + CLOUDS_TRACK_MARGIN_M, r, mu, 0.0f, end, m->lo,
                                   m->hi);
     m->part = 0;

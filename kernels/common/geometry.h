@@ -67,4 +67,33 @@ ATMO_FN int geometry_sphere_roots(float b, float c, float *t0, float *t1)
     return 1;
 }
 
+/* The parts of [t_start, t_end] of the ray from radius r with cosine mu (R the ground's radius)
+ * inside the spherical shell between the altitudes base and top, in order: their count (0..2),
+ * their ends in lo[], hi[]. The ray is in the shell between the roots of the top sphere and
+ * outside those of the base sphere (geometry_sphere_roots, c = (h - z)(r + R + z) for the
+ * sphere at altitude z, h = r - R: the altitude difference formed first, so c keeps its
+ * precision at planet scale). The media shaped as shells (the cloud shell, the fBm layer's
+ * slab) take their parts from here, for the quadrature's parts and the majorant walk's
+ * segments alike. Units: metres. */
+ATMO_FN int geometry_shell_parts(float R, float base, float top, float r, float mu,
+                                 float t_start, float t_end, float *lo, float *hi)
+{
+    float h = r - R, b = r * mu, o0, o1, i0, i1;
+    int n = 0;
+    if (!geometry_sphere_roots(b, (h - top) * (r + R + top), &o0, &o1))
+        return 0;
+    float part_lo[2] = {o0, 0.0f}, part_hi[2] = {o1, 0.0f};
+    int parts = 1;
+    if (geometry_sphere_roots(b, (h - base) * (r + R + base), &i0, &i1)) {
+        part_hi[0] = i0, part_lo[1] = i1, part_hi[1] = o1;
+        parts = 2;
+    }
+    for (int k = 0; k < parts; k++) {
+        float l = fmaxf(part_lo[k], t_start), u = fminf(part_hi[k], t_end);
+        if (u > l)
+            lo[n] = l, hi[n] = u, n++;
+    }
+    return n;
+}
+
 #endif
