@@ -5,8 +5,9 @@
  * Majorant. The shell's extinction is sigma_c (per channel) between the spheres of radii
  * R + base and R + top, zero elsewhere. Along origin + t dir (radius r, cosine mu at the origin)
  * the distances to a sphere of radius R + z are the roots of t^2 + 2 r mu t + (h - z)(r + R + z),
- * h = r - R (geometry_sphere_roots); between the roots of the top sphere and outside those of
- * the base sphere the ray is in the shell: at most two parts. The majorant is
+ * h = r - R; between the roots of the top sphere and outside those of the base sphere the ray
+ * is in the shell: at most two parts (geometry_shell_parts, the parts the quadrature's
+ * intervals take too, cloud_shell_intervals). The majorant is
  * max_c sigma_c x 1.001 over those parts, widened by CLOUD_SHELL_MARGIN_M on both radii (the
  * margin covers the float rounding of the altitude cloud_shell_extinction tests, < 1 m at
  * 6400 km, so the majorant bounds the extinction everywhere), and 0 elsewhere, so the clear air
@@ -38,25 +39,18 @@ ATMO_FN void cloud_shell_majorant_begin(ATMO_GLOBAL const atmo_gpu_scene *s, ATM
                                         vec3 origin, vec3 dir, float r, float mu, float end,
                                         cloud_shell_majorant *m)
 {
-    float R = s->atmosphere.bottom_radius, h = r - R, b = r * mu;
     float base = s->cloud.base_m - CLOUD_SHELL_MARGIN_M;
-    float top = s->cloud.top_m + CLOUD_SHELL_MARGIN_M, o0, o1, i0, i1;
+    float top = s->cloud.top_m + CLOUD_SHELL_MARGIN_M;
     m->parts = 0;
     m->rate = tracking_max3(v3_from4(s->cloud.extinction)) * 1.001f;
-    if (!(s->cloud.top_m > s->cloud.base_m) ||
-        !geometry_sphere_roots(b, (h - top) * (r + R + top), &o0, &o1))
+    if (!(s->cloud.top_m > s->cloud.base_m))
         return;
-    float lo[2] = {o0, 0.0f}, hi[2] = {o1, 0.0f};
-    int parts = 1;
-    if (base > 0.0f && geometry_sphere_roots(b, (h - base) * (r + R + base), &i0, &i1))
-        hi[0] = i0, lo[1] = i1, hi[1] = o1, parts = 2;
-    for (int k = 0; k < parts; k++) {
-        float l = fmaxf(lo[k], 0.0f), u = fminf(hi[k], end);
-        if (u > l) {
-            m->lo[m->parts] = l, m->hi[m->parts] = u;
-            m->parts++;
-        }
-    }
+    /* a widened base at or below the ground has no inner sphere: the shell reaches down to
+     * the planet's centre (altitude -R), which no walk reaches, as every walk through the shell
+     * ends at the ground */
+    float R = s->atmosphere.bottom_radius;
+    m->parts = geometry_shell_parts(R, base > 0.0f ? base : -R, top, r, mu, 0.0f, end, m->lo,
+                                    m->hi);
 }
 
 ATMO_FN float cloud_shell_majorant_segment(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
