@@ -25,8 +25,8 @@
 ATMO_FN float objects_stage_distance(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                      const medium_ray *ray)
 {
-    float t;
-    if (objects_hit(objects, s->path.object_count, ray->origin, ray->dir, 0.0f, INFINITY, &t) < 0)
+    float t = objects_surface_hit(s, ATMO_LUT_ARGS, ray, INFINITY);
+    if (t < 0.0f)
         return -1.0f;
     float R = s->atmosphere.bottom_radius;
     if (geometry_ray_hits_ground(ray->r, ray->mu, R) &&
