@@ -1,10 +1,14 @@
-/* test_features — the feature registry (host/plan/features.c) and what a plan assembles from it.
+/* test_features — the feature registry (host/plan/features.c, host/features/) and what a plan
+ * assembles from it.
  * labels: unit
  *
  * Oracle: the registry's contract (atmo/features.h, DESIGN "models no more than a scene
  * needs"), written out per method:
  *  1. every fragment and source a row names is embedded (a misspelt source would silently drop
- *     out of a cache key);
+ *     out of a cache key); every feature folder registered its set and every row of the sets
+ *     and of the engine is in the registry once, with an order of its own (so the registry's
+ *     order does not hang on the order the build lists the folders in), in a band that
+ *     atmo/features.h names, the registry sorted by it; names are unique;
  *  2. each method's plan has exactly its named buffers, in registry order, its -D flags, and
  *     none of the fragments of features it does not contain; the generated parameter and
  *     argument lists name the buffers in that order;
@@ -50,10 +54,47 @@ static int fragment_at(const atmo_plan *p, const char *name)
     return -1;
 }
 
+/* Every set's rows are in the registry, which is sorted by order, one row per order and
+ * name, each order in a band (ATMO_BAND_BASE ... ATMO_BAND_GUIDES + 99); the feature
+ * folders of this tree registered their sets. */
+static void test_registry_order(void)
+{
+    int rows = 0, sets = 0;
+    for (const atmo_feature_set *const *set = atmo_feature_sets; *set; set++, sets++) {
+        CHECK((*set)->count > 0);
+        for (int k = 0; k < (*set)->count; k++, rows++)
+            CHECK(atmo_feature_find((*set)->rows[k].name) == &(*set)->rows[k]);
+    }
+    static const char *const folders[] = {"atmosphere", "cloud_shell", "clouds",
+                                          "objects",    "path",        "terrain"};
+    CHECK(sets == (int)(sizeof folders / sizeof folders[0]));
+    for (size_t k = 0; k < sizeof folders / sizeof folders[0]; k++) {
+        int found = 0;
+        for (const atmo_feature_set *const *set = atmo_feature_sets; *set; set++)
+            found += strcmp((*set)->name, folders[k]) == 0;
+        CHECK(found == 1);
+    }
+    int engine = 0;
+    for (int i = 0; i < atmo_feature_count(); i++) {
+        const atmo_feature *f = atmo_feature_at(i);
+        CHECK(f->order >= ATMO_BAND_BASE && f->order < ATMO_BAND_GUIDES + 100);
+        if (i > 0)
+            CHECK(atmo_feature_at(i - 1)->order < f->order);
+        for (int j = 0; j < i; j++)
+            CHECK(strcmp(atmo_feature_at(j)->name, f->name) != 0);
+        engine += f->compose != ATMO_COMPOSE_NONE;
+    }
+    /* the engine's rows: a composition per group, and the visibility, the integrator, the
+     * render kernels, the surface queries and the guides */
+    CHECK(engine == ATMO_COMPOSE_GROUPS - 1);
+    CHECK(atmo_feature_count() == rows + engine + 5);
+    CHECK(atmo_feature_at(atmo_feature_count()) == NULL && atmo_feature_at(-1) == NULL);
+}
+
 static void test_registry_files(void)
 {
-    for (int i = 0; i < atmo_feature_count; i++) {
-        const atmo_feature *f = &atmo_features[i];
+    for (int i = 0; i < atmo_feature_count(); i++) {
+        const atmo_feature *f = atmo_feature_at(i);
         /* a row is files, slots or a generated composition; a composition has no files */
         CHECK(f->fragments || f->slots || f->compose != ATMO_COMPOSE_NONE);
         CHECK(!(f->fragments && f->compose != ATMO_COMPOSE_NONE));
@@ -320,6 +361,7 @@ static void test_compose_stages(void)
 
 int main(void)
 {
+    test_registry_order();
     test_registry_files();
     test_compose_single_slots();
     test_compose_volume();

@@ -36,11 +36,16 @@ failed=0
 ok() { passed=$((passed + 1)); }
 bad() { failed=$((failed + 1)); echo "FAIL: $*" >&2; }
 
+# The feature folders host/features/NAME/ hold the plan's part of each feature (its registry
+# rows, its plan functions): they belong to the module plan, whose registry and composition
+# they fill.
 # owner HEADER_BASENAME: the module of include/atmo/HEADER_BASENAME.h, or nothing
 owner() {
     local x=$1 impl
     impl=$(ls host/*/"$x".c 2>/dev/null | head -n 1)
-    if [ -n "$impl" ]; then
+    if ls host/features/*/"$x".c > /dev/null 2>&1; then
+        echo plan
+    elif [ -n "$impl" ]; then
         basename "$(dirname "$impl")"
     elif [ "${x#gpu_}" != "$x" ]; then
         echo gpu
@@ -60,6 +65,7 @@ edges() {
     local file line target from to dir
     while read -r file line target; do
         case $file in
+        host/features/*) from=plan ;;
         host/*) from=$(echo "$file" | cut -d/ -f2) ;;
         include/atmo/*)
             from=$(owner "$(basename "$file" .h)")
@@ -164,7 +170,8 @@ generic_files="kernels/media/media.h kernels/media/medium.h kernels/media/visibi
     kernels/media/tracking.h kernels/media/majorant_walk.h kernels/media/media_walk.h
     kernels/media/quadrature_walk.h"
 # the registry's feature flags (its -D strings) and the features' identifier prefixes
-flags=$(grep -oE '"-D[A-Z_ =0-9-]*"' host/plan/features.c | tr -d '"' | tr ' ' '\n' |
+flags=$(cat host/plan/features.c host/features/*/*_feature.c |
+    grep -oE '"-D[A-Z_ =0-9-]*"' | tr -d '"' | tr ' ' '\n' |
     sed -n 's/^-D\([A-Z_0-9]*\).*/\1/p' | sort -u | paste -sd'|')
 feature_names='cloud|clouds|terrain|observer|ms_lut|lut|objects?|path'
 
@@ -290,6 +297,16 @@ else ok; fi
 found=$( (stage_ifs kernels/render/volume_stage.h; feature_identifiers kernels/render/volume_stage.h) )
 if [ -n "$found" ]; then
     bad "render/volume_stage.h tests a flag or names a feature (compose the volume medium instead):"
+    echo "$found" | sed 's/^/    /' >&2
+else ok; fi
+
+# A feature registers itself from its folder (host/features/NAME/NAME_feature.c): the engine's
+# registry (host/plan/) holds no feature's row, so it names no feature flag and no fragment
+# of a feature's kernels.
+found=$(grep -nE '"-D|"kernels/(terrain|clouds|cloud_shell)/|"kernels/render/(objects|path)' \
+    host/plan/*.c)
+if [ -n "$found" ]; then
+    bad "a feature's row in the engine's registry (move it to its folder's NAME_feature.c):"
     echo "$found" | sed 's/^/    /' >&2
 else ok; fi
 

@@ -1,4 +1,4 @@
-/* test_objects_terrain — objects placed on the terrain ("on_terrain", host/plan/plan_path.c)
+/* test_objects_terrain — objects placed on the terrain ("on_terrain", plan_objects.c)
  * and the checks of the keys (host/scene/scene_objects.c).
  * labels: kernel slow
  *

@@ -4,7 +4,7 @@
 # labels: render
 #
 # Objects reach the kernels as camera-relative rows, a host table uploaded once before the
-# precompute (host/plan/plan_path.c), so a camera move changes the table: the session must not
+# precompute (plan_objects.c), so a camera move changes the table: the session must not
 # take such a move as a view update (which only rewrites the scene struct) but as a scene
 # update (atmo_session_set_scene, which uploads the new table). A sphere of radius 3 m stands
 # 20 m ahead of the sky-sunset camera (16x8 pixels, 2 samples per pixel, method single); a

@@ -30,7 +30,7 @@ static int wanted(const atmo_feature *f, int argc, char **argv)
 static void put_defines(FILE *out, const char *defines)
 {
     char copy[256];
-    snprintf(copy, sizeof copy, "%s", defines);
+    snprintf(copy, sizeof copy, "%s", defines ? defines : "");
     for (char *tok = strtok(copy, " "); tok; tok = strtok(NULL, " ")) {
         if (strncmp(tok, "-D", 2) != 0)
             continue;
@@ -65,12 +65,15 @@ int main(int argc, char **argv)
     }
     for (int i = 2; i < argc; i++)
         if (!atmo_feature_find(argv[i])) {
-            fprintf(stderr, "compose: no registry row '%s' (host/plan/features.c)\n", argv[i]);
+            fprintf(stderr,
+                    "compose: no registry row '%s' (host/features/*/*_feature.c, "
+                    "host/plan/features.c)\n",
+                    argv[i]);
             return 2;
         }
-    for (int i = 0; i < atmo_feature_count && n < 64; i++)
-        if (wanted(&atmo_features[i], argc, argv))
-            rows[n++] = &atmo_features[i];
+    for (int i = 0; i < atmo_feature_count() && n < 64; i++)
+        if (wanted(atmo_feature_at(i), argc, argv))
+            rows[n++] = atmo_feature_at(i);
     FILE *out = fopen(argv[1], "w");
     if (!out) {
         fprintf(stderr, "compose: cannot write %s\n", argv[1]);

@@ -15,7 +15,7 @@
  * least "height_m", "normal" and "coverage".
  *
  * With terrain.heightmap_file the terrain is the file's heights resampled into the heightmap
- * (host/plan/plan_terrain.c: bicubic at the texel centres) and read back bilinearly, the
+ * (features/terrain/plan_terrain.c: bicubic at the texel centres) and read back bilinearly, the
  * procedural fBm beyond the heightmap's square: the probe looks up the same texels with the
  * kernels' terrain_height_at as floats (the derivatives format differs in the normal's
  * interpolation, the half format by its rounding, 2^-11 of the height), the reference height

@@ -374,7 +374,7 @@ static void compose_camera(text *t, const atmo_feature *const *f, int n)
 {
     int method = 0;
     for (int i = 0; i < n; i++)
-        method |= f[i]->method >= 0;
+        method |= f[i]->is_method;
     if (!method)
         return;
     put(t, "/* The preview's camera ray through the features' stages, else the method. */\n");

@@ -200,7 +200,7 @@ static int add_feature(const atmo_scene *s, const atmo_feature *f, atmo_plan *p,
             return atmo_fail(e, ATMO_ERR_RUNTIME, "too many kernel fragments (a build bug)");
         p->fragments[p->fragment_count++] = *frag;
     }
-    if (f->defines[0] && (rc = append(p->defines, sizeof p->defines, "%s%s",
+    if (f->defines && (rc = append(p->defines, sizeof p->defines, "%s%s",
                                       p->defines[0] ? " " : "", f->defines, e)))
         return rc;
     return f->plan ? f->plan(s, p, e) : ATMO_OK;
@@ -403,8 +403,8 @@ static int plan_features(const atmo_scene *s, atmo_plan *p, atmo_err *e)
                          atmo_plan_available_methods());
     p->method = m->name;
     p->render_kernel = "sky_render";
-    for (int i = 0; i < atmo_feature_count; i++)
-        if (atmo_features[i].wanted(s) && (rc = add_feature(s, &atmo_features[i], p, e)))
+    for (int i = 0; i < atmo_feature_count(); i++)
+        if (atmo_feature_at(i)->wanted(s) && (rc = add_feature(s, atmo_feature_at(i), p, e)))
             return rc;
     if ((rc = make_prelude(p, e)))
         return rc;

@@ -10,7 +10,7 @@
  * world (x, z) = "terrain_at_m": [x, z] when given (one point for a group of objects, so they
  * keep their relative heights), else at the sphere's centre or the centre of the box's base;
  * the plan takes the height the renderer draws there, procedural or a DEM
- * (host/plan/plan_terrain.c). on_terrain needs the terrain (terrain.enabled or
+ * (host/features/terrain/plan_terrain.c). on_terrain needs the terrain (terrain.enabled or
  * terrain.heightmap_file); terrain_at_m needs on_terrain. The geometry's members are
  * required; a member that does not belong to the
  * element's type, a duplicate, a wrong JSON type, a non-finite or out-of-range number is an

@@ -5,7 +5,7 @@
  *
  *   preview  method `fast` (per-frame LUTs: the quickest full image) at half the width and
  *            height, for moving around; a scene with the cloud shell or the observer sphere,
- *            which `fast` does not render (host/plan/plan_cloud.c), keeps its own method.
+ *            which `fast` does not render (plan_cloud.c), keeps its own method.
  *   quality  the scene as given: its method, its size and its sample count, so the image the
  *            viewer converges to is the one `atmo render` of the saved scene writes.
  *

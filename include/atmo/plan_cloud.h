@@ -1,5 +1,5 @@
 /* plan_cloud.h — the plan's part for the homogeneous cloud shell and the observer sphere
- * (kernels/cloud_shell/cloud_shell.h; host/plan/plan_cloud.c). */
+ * (kernels/cloud_shell/cloud_shell.h; host/features/cloud_shell/plan_cloud.c). */
 #ifndef ATMO_PLAN_CLOUD_H
 #define ATMO_PLAN_CLOUD_H
 #include "atmo/plan.h"
@@ -31,7 +31,7 @@ int atmo_plan_phase_cdf(float4 *rows, int n, atmo_plan *p, float **cdf, atmo_err
 /* When the scene enables the cloud or the observer: checks the method (single, march or, for
  * the cloud without an observer, reference), builds (or loads from the cache) the Mie tables
  * at the render wavelengths into the buffers cloud_phase_table and cloud_phase_cdf and fills
- * gpu.cloud (feature "cloud" of features.c, which is planned only when the scene has a cloud
+ * gpu.cloud (feature "cloud" of host/features/, which is planned only when the scene has a cloud
  * or an observer). */
 int atmo_plan_cloud(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 

@@ -1,5 +1,5 @@
 /* plan_clouds.h — the plan's part for the fBm cloud layer (kernels/clouds/cloud_layer.h,
- * cloud_march.h; host/plan/plan_clouds.c). */
+ * cloud_march.h; host/features/clouds/plan_clouds.c). */
 #ifndef ATMO_PLAN_CLOUDS_H
 #define ATMO_PLAN_CLOUDS_H
 #include "atmo/plan.h"
@@ -17,7 +17,7 @@ int atmo_plan_clouds(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 
 /* With clouds and method reference: the majorant grid of the Monte Carlo walk, the buffer
  * clouds_majorant (CLOUDS_GRID_NX x NY x NZ floats, kernels/clouds/cloud_majorant.h) and its pass
- * clouds_majorant_grid; it follows the view (feature "clouds_majorant" of features.c). */
+ * clouds_majorant_grid; it follows the view (feature "clouds_majorant" of host/features/). */
 int atmo_plan_clouds_majorant(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 
 /* The largest sun shadow map clouds.shadow_map_size^2 x clouds.shadow_map_levels floats may
@@ -28,7 +28,7 @@ int atmo_plan_clouds_majorant(const atmo_scene *s, atmo_plan *p, atmo_err *e);
  * transmittance): checks its size against ATMO_CLOUDS_SHADOW_MAP_MAX_BYTES, fills gpu.clouds'
  * shadow_map_* fields, the buffer clouds_shadow_map (size^2 x levels floats,
  * kernels/clouds/cloud_shadow_map.h) and its pass clouds_shadow_map_nodes; it follows the view
- * (feature "clouds_shadow_map" of features.c, flag -DATMO_CLOUDS_SHADOW_MAP). */
+ * (feature "clouds_shadow_map" of host/features/, flag -DATMO_CLOUDS_SHADOW_MAP). */
 int atmo_plan_clouds_shadow_map(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 
 /* The noise's origin: the camera's world position minus the wind's displacement by

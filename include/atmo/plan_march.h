@@ -15,7 +15,7 @@
 /* share of the order-3 anisotropy given to orders >= 4 (ms_lut.h) */
 #define ATMO_MS_HIGHER_ANISOTROPY 1.0f
 
-/* The Psi_ms LUT (feature "ms_lut" of features.c): gpu.ms, the buffer ms_lut and its passes. */
+/* The Psi_ms LUT (feature "ms_lut" of host/features/): gpu.ms, the buffer ms_lut and its passes. */
 int atmo_plan_ms_lut(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 
 #endif

@@ -1,5 +1,5 @@
 /* plan_terrain.h — the plan's part for the procedural terrain (kernels/terrain/;
- * host/plan/plan_terrain.c). */
+ * host/features/terrain/plan_terrain.c). */
 #ifndef ATMO_PLAN_TERRAIN_H
 #define ATMO_PLAN_TERRAIN_H
 #include "atmo/plan.h"
@@ -9,12 +9,12 @@
 
 /* Fills gpu.terrain from the scene's terrain.* keys and the camera, declares the buffer
  * heightmap (a 16-byte placeholder for direct evaluation) and, with a heightmap, its pass
- * terrain_heightmap (feature "terrain" of features.c, planned when terrain.enabled). */
+ * terrain_heightmap (feature "terrain" of host/features/, planned when terrain.enabled). */
 int atmo_plan_terrain(const atmo_scene *s, atmo_plan *p, atmo_err *e);
 
 /* With terrain.sun_visibility = map, outside path mode (feature "terrain_sun_map", flag
- * -DATMO_TERRAIN_SUN_MAP; host/plan/plan_terrain_sun.c): fills gpu.terrain's sun_map_* (the
- * map's frame from the camera's vertical and the sun) and declares the buffer
+ * -DATMO_TERRAIN_SUN_MAP; host/features/terrain/plan_terrain_sun.c): fills gpu.terrain's
+ * sun_map_* (the map's frame from the camera's vertical and the sun) and declares the buffer
  * terrain_sun_map (N x N floats, following the view) and its pass terrain_sun_map_rows; with
  * the sun below the camera's horizon (or at its zenith) the map is empty (sun_map_size 0) and
  * every point marches. */

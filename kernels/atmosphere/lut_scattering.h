@@ -52,7 +52,7 @@
 
 #define LUT_MU_S_MIN (-0.5f)
 
-/* Where the method's tables sit in its buffers (named by the plan, host/plan/plan_lut.c), in
+/* Where the method's tables sit in its buffers (named by the plan, plan_lut.c), in
  * float4 elements (method_lut.h), with N = LUT_TEXELS (one 4-D table), I = n_r n_mu_s (one
  * irradiance table), G = lut.rings^2 (the sphere grid):
  *   scattering_rayleigh: [0, N) single Rayleigh S_R   [N, 2N) orders 2..N summed (phase

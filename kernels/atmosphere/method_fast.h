@@ -31,7 +31,7 @@
  *
  * sky_trace: rays from the camera's (r_c, mu_s,c) read the LUT; any other ray (a camera above
  * the atmosphere or the air of path.clouds = volume, where the plan builds no sky-view LUT:
- * host/plan/plan_fast.c; or a probe from elsewhere) and every
+ * host/features/atmosphere/plan_fast.c; or a probe from elsewhere) and every
  * segment ending at a surface fall back to the march with one random offset per sample, like
  * method "march". The view transmittance of a whole ray comes from the transmittance LUT: to
  * the top, or for a ray that hits the ground at distance d the ratio T(R, -mu_g) / T(r, -mu)

@@ -14,7 +14,7 @@
  * transmittance to space. The whole ray is deterministic (no random numbers); a segment, the
  * aerial perspective to a point (below), marches with a random offset per sample.
  *
- * Knobs (scene keys -> s->lut, atmo_gpu_lut; host/plan/plan_lut.c), and the buffers
+ * Knobs (scene keys -> s->lut, atmo_gpu_lut; host/features/atmosphere/plan_lut.c), and the buffers
  * scattering_rayleigh, scattering_mie and scattering_scratch (layout in lut_scattering.h):
  *   lut.nu_size, lut.mu_s_size, lut.mu_size, lut.r_size -> lut.dims = {nu, mu_s, mu, r}
  *     (defaults 8, 32, 128, 32; mu even: half ground rays, half sky rays)

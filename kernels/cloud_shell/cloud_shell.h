@@ -4,7 +4,7 @@
  *
  * Medium: extinction sigma (1/m, per wavelength) = (sigma_ext / LWC) x LWC of a droplet size
  * distribution, albedo omega and a phase function p (per steradian): the 4pi-normalised Mie table
- * P(theta) / 4pi of the distribution (host/plan/plan_cloud.c builds it with mie_table_get, rows
+ * P(theta) / 4pi of the distribution (plan_cloud.c builds it with mie_table_get, rows
  * float4 (P_680, P_550, P_440, theta) ascending in theta: phase_table.h's format), or
  * Henyey-Greenstein with the table's g, or Jendersie & d'Eon 2023 for the effective diameter.
  *

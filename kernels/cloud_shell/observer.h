@@ -1,5 +1,5 @@
 /* observer.h — the observer sphere: a visibility source (it shadows the sun) and a surface the
- * view ray can meet (compiled under -DATMO_CLOUD with the cloud shell, host/plan/plan_cloud.c).
+ * view ray can meet (compiled under -DATMO_CLOUD with the cloud shell, plan_cloud.c).
  *
  * The sphere has centre s->cloud.observer.xyz, camera-relative in the world's axes (m), and radius
  * s->cloud.observer.w (0: none). A point p is in its shadow when the half-line p + t sun, t >= 0,

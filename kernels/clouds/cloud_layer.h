@@ -30,7 +30,7 @@
  * pixel's footprint within the far planes. The path tracer's bounces and the light march
  * toward the sun use the same rule (the distance from the camera), so every method sees one
  * medium.
- * Optics (host/plan/plan_clouds.c): sigma_t = d x extinction per unit density, sigma_s =
+ * Optics (host/features/clouds/plan_clouds.c): sigma_t = d x extinction per unit density, sigma_s =
  * albedo sigma_t, the phase function the droplet distribution's Mie table (phase_table.h), its
  * Henyey-Greenstein with the table's g, or Jendersie & d'Eon 2023.
  *

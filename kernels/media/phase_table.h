@@ -6,7 +6,7 @@
  * P_c the 4pi-normalised phase function at render wavelength c (host/mie: int P dOmega = 4pi);
  * between rows P is linear in theta. Its sampling CDF is `n` floats, C_j = int_0^theta_j
  * P_1 / (4 pi) dOmega of the middle wavelength (trapezoids in cos theta, host double precision,
- * host/plan/plan_clouds.c), C_0 = 0, C_{n-1} = 1. (phase.h's phase_table_* read another layout:
+ * plan_clouds.c), C_0 = 0, C_{n-1} = 1. (phase.h's phase_table_* read another layout:
  * cosines descending with a separate P array.) phase_rows_sample draws a row interval by
  * the CDF (binary search) and cos theta uniformly inside it, so its density per steradian is
  *     q(theta) = (C_{j+1} - C_j) / (2 pi (cos theta_j - cos theta_{j+1}))

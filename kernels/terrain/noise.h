@@ -46,7 +46,7 @@
  * its gradient in x: terrain_fbm starts its octaves' Jacobians J_i = (2 M)^i J instead of
  * (2 M)^i, which carries the erosion's Hessian term too (D_i sums gradients in each octave's
  * own coordinates, so d D_i / d x0 = sum_j H_j J_j). ||J|| <= 1 + A (15/4) sqrt 2 sum_o
- * 2^-o F_o (host/plan/plan_terrain.c's slope bound). One octave of warp leaves a preference
+ * 2^-o F_o (features/terrain/plan_terrain.c's slope bound). One octave of warp leaves a preference
  * of its own (contour normals scarce at the diagonals at A 1.5, at the world's axes at 2); two
  * octaves at A 1.25 to 1.5 leave none that tests/test_terrain_isotropy.c detects, and at 2
  * the first warp octave's lattice shows (docs/guide/terrain.md). A = 0 gives x = x0 and

@@ -6,7 +6,7 @@
  * P_i = 1 / (f 2^i) metres, M the octave rotation) with weight 0.5^i. Value noise of period P
  * varies on wavelengths of 2 P and longer (its lattice's Nyquist wavelength), so the octaves
  * i0 .. i0 + K - 1 with 2 P_i <= C, C the cell size the DEM is drawn at (the larger of the
- * file's cell and the heightmap's texel, host/plan/plan_terrain.c), hold no structure the cells
+ * file's cell and the heightmap's texel, plan_terrain.c), hold no structure the cells
  * already resolve; their leak to longer wavelengths is white noise of the lattice, whose mean
  * over a cell of side C has variance at most A_i^2 / 3 (P_i / C)^2 (the interpolation weights
  * sum to 1 and each is at most (P_i / C)^2 after averaging; the lattice values are independent
