@@ -37,8 +37,8 @@ ok() { passed=$((passed + 1)); }
 bad() { failed=$((failed + 1)); echo "FAIL: $*" >&2; }
 
 # The feature folders host/features/NAME/ hold the plan's part of each feature (its registry
-# rows, its plan functions): they belong to the module plan, whose registry and composition
-# they fill.
+# rows, its plan functions), which belongs to the module plan, whose registry and composition
+# it fills, and its scene parameters (NAME_params.c), which belong to the module scene.
 # owner HEADER_BASENAME: the module of include/atmo/HEADER_BASENAME.h, or nothing
 owner() {
     local x=$1 impl
@@ -65,6 +65,7 @@ edges() {
     local file line target from to dir
     while read -r file line target; do
         case $file in
+        host/features/*/*_params.c) from=scene ;;
         host/features/*) from=plan ;;
         host/*) from=$(echo "$file" | cut -d/ -f2) ;;
         include/atmo/*)

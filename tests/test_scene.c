@@ -21,6 +21,7 @@
 #include <unistd.h>
 #include "atmo/atmosphere.h"
 #include "atmo/scene.h"
+#include "atmo/scene_params.h"
 #include "testlib.h"
 
 #define PI 3.14159265358979323846
@@ -286,11 +287,58 @@ static void check_json_rejected(const char *json, const char *needle1, const cha
     remove(path);
 }
 
+/* The registry's rows from row i of *set to the end. */
+static int rows_after(const atmo_param_set *const *set, int i)
+{
+    int n = (*set)->count - i;
+    for (const atmo_param_set *const *next = set + 1; *next; next++)
+        n += (*next)->count;
+    return n;
+}
+
+/* The registry is the scene's own rows followed by every feature folder's set, each row once:
+ * the folders of this tree with keys registered their sets, and each set's keys are under the
+ * groups its feature owns. */
+static void test_param_sets(void)
+{
+    static const struct {
+        const char *folder, *groups;
+    } owners[] = {{"atmosphere", " atmosphere lut reference "},
+                  {"cloud_shell", " cloud observer "},
+                  {"clouds", " clouds "},
+                  {"path", " path "},
+                  {"terrain", " terrain "}};
+    int sets = 0, rows = 0, tail = 0;
+    /* the scene's last rows: from render.wavelengths_nm on */
+    for (int i = atmo_param_index(atmo_param_find("render.wavelengths_nm")); i >= 0 &&
+                                                                             i < atmo_param_count();
+         i++)
+        tail++;
+    CHECK(tail > 0);
+    for (const atmo_param_set *const *set = atmo_param_sets; *set; set++, sets++) {
+        const char *groups = NULL;
+        for (size_t k = 0; k < sizeof owners / sizeof owners[0]; k++)
+            if (strcmp(owners[k].folder, (*set)->name) == 0)
+                groups = owners[k].groups;
+        CHECK(groups != NULL && (*set)->count > 0);
+        for (int i = 0; i < (*set)->count; i++, rows++) {
+            const atmo_param *p = &(*set)->rows[i];
+            char group[64];
+            snprintf(group, sizeof group, " %.*s ", (int)strcspn(p->key, "."), p->key);
+            CHECK(groups && strstr(groups, group) != NULL);
+            CHECK(atmo_param_find(p->key) == p);
+            /* the sets follow the scene's first rows, in order, and its last rows follow them */
+            CHECK(atmo_param_index(p) == atmo_param_count() - tail - rows_after(set, i));
+        }
+    }
+    CHECK(sets == (int)(sizeof owners / sizeof owners[0]));
+    CHECK(rows < atmo_param_count());
+    CHECK(atmo_param_at(atmo_param_count()) == NULL && atmo_param_at(-1) == NULL);
+}
+
 static void test_registry(void)
 {
-    size_t n = 0;
-    while (atmo_params[n].key)
-        n++;
+    size_t n = (size_t)atmo_param_count();
     size_t n_spec = 0;
     while (spec_defaults[n_spec])
         n_spec++;
@@ -319,7 +367,7 @@ static void test_registry(void)
     }
 
     for (size_t i = 0; i < n; i++) {
-        const atmo_param *p = &atmo_params[i];
+        const atmo_param *p = atmo_param_at((int)i);
         double v[3];
         atmo_param_get(&a, p, v);
         int comps = atmo_param_components(p);
@@ -336,7 +384,7 @@ static void test_registry(void)
         size_t size_i = param_bytes(p);
         CHECK(p->offset + size_i <= sizeof(atmo_scene));
         for (size_t j = 0; j < i; j++) {
-            const atmo_param *q = &atmo_params[j];
+            const atmo_param *q = atmo_param_at((int)j);
             size_t size_j = param_bytes(q);
             CHECK(p->offset >= q->offset + size_j || q->offset >= p->offset + size_i);
         }
@@ -519,7 +567,8 @@ static void test_validate(void)
 static void unusual_scene(atmo_scene *s)
 {
     atmo_scene_defaults(s);
-    for (const atmo_param *p = atmo_params; p->key; p++) {
+    for (int i = 0; i < atmo_param_count(); i++) {
+        const atmo_param *p = atmo_param_at(i);
         double v[3];
         atmo_err e;
         atmo_param_get(s, p, v);
@@ -556,7 +605,8 @@ static void test_json(void)
     unusual_scene(&a);
     atmo_scene defaults;
     atmo_scene_defaults(&defaults);
-    for (const atmo_param *p = atmo_params; p->key; p++) {
+    for (int i = 0; i < atmo_param_count(); i++) {
+        const atmo_param *p = atmo_param_at(i);
         double va[3], vd[3];
         atmo_param_get(&a, p, va);
         atmo_param_get(&defaults, p, vd);
@@ -569,7 +619,8 @@ static void test_json(void)
     atmo_scene_defaults(&b);
     CHECK(atmo_scene_load_json(&b, path, &e) == ATMO_OK);
     CHECK(memcmp(&a, &b, sizeof a) == 0);
-    for (const atmo_param *p = atmo_params; p->key; p++) { /* name the field if not */
+    for (int i = 0; i < atmo_param_count(); i++) { /* name the field if not */
+        const atmo_param *p = atmo_param_at(i);
         double va[3], vb[3];
         atmo_param_get(&a, p, va);
         atmo_param_get(&b, p, vb);
@@ -586,7 +637,8 @@ static void test_json(void)
     CHECK(ta && strstr(ta, "\"wavelengths_nm\":\t["));
     CHECK(ta && strstr(ta, "\"kind\":\t\"panorama\""));
     if (ta) {
-        for (const atmo_param *p = atmo_params; p->key; p++) {
+        for (int i = 0; i < atmo_param_count(); i++) {
+            const atmo_param *p = atmo_param_at(i);
             char quoted[80];
             snprintf(quoted, sizeof quoted, "\"%s\":", strchr(p->key, '.') + 1);
             CHECK(strstr(ta, quoted) != NULL);
@@ -825,6 +877,7 @@ int main(void)
         return 1;
     }
     test_registry();
+    test_param_sets();
     test_set();
     test_set_rejections();
     test_validate();

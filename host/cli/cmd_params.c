@@ -1,6 +1,7 @@
 /* cmd_params.c — `atmo params`: every scene parameter with its unit, default, valid range and
  * meaning, as a table (default) or as JSON (--json, for tools). Both are printed from the
- * registry in scene.c, so they cannot drift from what --set and scene files accept. */
+ * registry (scene.c and the feature folders), so they cannot drift from what --set and scene
+ * files accept. */
 #include <cjson/cJSON.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -76,7 +77,8 @@ static int print_json(void)
     cJSON *list = cJSON_CreateArray();
     if (!list)
         goto cleanup;
-    for (const atmo_param *p = atmo_params; p->key; p++) {
+    for (int i = 0; i < atmo_param_count(); i++) {
+        const atmo_param *p = atmo_param_at(i);
         cJSON *row = cJSON_CreateObject();
         if (!row || !cJSON_AddItemToArray(list, row))
             goto cleanup;
@@ -134,7 +136,8 @@ int cmd_params(int argc, char **argv)
     if (a.json)
         return print_json();
     printf("%-36s %-9s %-16s %-44s %s\n", "key", "unit", "default", "valid range", "meaning");
-    for (const atmo_param *p = atmo_params; p->key; p++) {
+    for (int i = 0; i < atmo_param_count(); i++) {
+        const atmo_param *p = atmo_param_at(i);
         char def[64], range[160];
         default_text(p, def, sizeof def);
         range_text(p, range, sizeof range);

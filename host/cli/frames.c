@@ -79,7 +79,8 @@ int frames_add_animate(frames_animation *a, const char *text, atmo_err *e)
 int frames_add_scene_end(frames_animation *a, const atmo_scene *start, const atmo_scene *end,
                          const char *where, atmo_err *e)
 {
-    for (const atmo_param *p = atmo_params; p->key; p++) {
+    for (int i = 0; i < atmo_param_count(); i++) {
+        const atmo_param *p = atmo_param_at(i);
         double v0[3], v1[3];
         atmo_param_get(start, p, v0);
         atmo_param_get(end, p, v1);

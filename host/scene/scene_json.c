@@ -1,4 +1,4 @@
-/* scene_json.c — scene files: JSON in, JSON out, through the parameter registry (scene.c).
+/* scene_json.c — scene files: JSON in, JSON out, through the parameter registry.
  *
  * A scene file is a JSON object whose keys are the registry's dotted keys, nested by their
  * dots ({"sun": {"zenith_deg": 60}}); dotted keys at the top level ({"sun.zenith_deg": 60}) are
@@ -237,9 +237,11 @@ static void syntax_error(const char *text, const char *at, const char *path, atm
 static int param_group(const char *key)
 {
     size_t n = strlen(key);
-    for (const atmo_param *p = atmo_params; p->key; p++)
+    for (int i = 0; i < atmo_param_count(); i++) {
+        const atmo_param *p = atmo_param_at(i);
         if (strncmp(p->key, key, n) == 0 && p->key[n] == '.')
             return 1;
+    }
     return 0;
 }
 
@@ -263,7 +265,7 @@ static int load_object(atmo_scene *s, const cJSON *obj, const char *prefix, cons
             if (rc)
                 return rc;
         } else if (p) {
-            size_t index = (size_t)(p - atmo_params);
+            size_t index = (size_t)atmo_param_index(p);
             if (seen[index])
                 return atmo_fail(e, ATMO_ERR_USAGE,
                                  "%s appears twice in %s; keep one of the two values", key, path);
@@ -297,14 +299,6 @@ static int load_object(atmo_scene *s, const cJSON *obj, const char *prefix, cons
     return ATMO_OK;
 }
 
-static size_t param_count(void)
-{
-    size_t n = 0;
-    while (atmo_params[n].key)
-        n++;
-    return n;
-}
-
 int atmo_scene_load_json_text(atmo_scene *s, const char *text, size_t length, const char *path,
                               atmo_err *e)
 {
@@ -334,7 +328,7 @@ int atmo_scene_load_json_text(atmo_scene *s, const char *text, size_t length, co
             "%s: a scene file must be a JSON object such as {\"sun\": {\"zenith_deg\": 60}}", path);
         goto cleanup;
     }
-    seen = calloc(param_count(), 1);
+    seen = calloc((size_t)atmo_param_count(), 1);
     if (!seen) {
         rc = atmo_fail(e, ATMO_ERR_RUNTIME, "out of memory reading '%s'", path);
         goto cleanup;
@@ -394,7 +388,8 @@ char *atmo_scene_to_json(const atmo_scene *s)
     cJSON *root = cJSON_CreateObject();
     if (!root)
         goto cleanup;
-    for (const atmo_param *p = atmo_params; p->key; p++) {
+    for (int k = 0; k < atmo_param_count(); k++) {
+        const atmo_param *p = atmo_param_at(k);
         const char *leaf;
         cJSON *obj = json_group(root, p->key, &leaf);
         double v[3];

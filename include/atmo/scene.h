@@ -1,9 +1,10 @@
 /* scene.h — everything a render depends on, as the user states it.
  *
  * A scene is the default values of every parameter, then a preset's or a JSON file's values, then
- * --set overrides (dotted keys, e.g. sun.zenith_deg=60). The parameter registry (scene.c) lists
- * each key with its type, unit, default, valid range and meaning; `atmo params` prints it, the
- * JSON reader and --set go through it, and --save-scene writes every key back. Units are those
+ * --set overrides (dotted keys, e.g. sun.zenith_deg=60). The parameter registry (scene.c and the
+ * feature folders, atmo/scene_params.h) lists each key with its type, unit, default, valid
+ * range and meaning; `atmo params` prints it, the JSON reader and --set go through it, and
+ * --save-scene writes every key back. Units are those
  * of the key's name: degrees where a key says _deg, metres for _m, SI elsewhere.
  *
  * Derived quantities (the atmosphere at the render wavelengths, the camera basis, the sun
@@ -243,10 +244,15 @@ typedef struct atmo_preset {
     const char *const *settings;  /* NULL-terminated "key=value" applied over the defaults */
 } atmo_preset;
 
-extern const atmo_param atmo_params[];   /* terminated by key == NULL */
 extern const atmo_preset atmo_presets[]; /* terminated by name == NULL */
 extern const char *const atmo_default_preset;
 
+/* The parameter registry (host/scene/scene.c and the feature folders' sets,
+ * atmo/scene_params.h): how many rows, row i of them (NULL outside 0 .. count-1), and the
+ * index of a row (-1: not in the registry). */
+int atmo_param_count(void);
+const atmo_param *atmo_param_at(int i);
+int atmo_param_index(const atmo_param *p);
 const atmo_param *atmo_param_find(const char *key);
 const atmo_preset *atmo_preset_find(const char *name);
 /* The registry key, or the preset name, near enough to `key` (`name`) to be what a typo meant
