@@ -30,7 +30,8 @@
 #include "testscene.h"
 
 /* the host build's buffer list (sky_method.h): the transmittance LUT, then the tables */
-#define LUTS lut, lut, lut, lut, lut, table, NULL, NULL, NULL, lut
+#define LUTS                                                                                       \
+    lut, lut, lut, lut, lut, table, NULL, NULL, NULL, lut, NULL, NULL, NULL, NULL, NULL, NULL, NULL
 
 static void slab_tests(void)
 {

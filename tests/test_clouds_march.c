@@ -37,7 +37,8 @@
 /* |marcher / reference - 1| on the overcast ray: 0.414 measured with the octaves alone (see the
  * top of the file), rounded up; the defaults read 0.332 */
 #define FAST_BIAS_BOUND 0.42
-#define LUTS lut, lut, lut, lut, lut, lut, lut, lut, cdf, grid
+#define LUTS                                                                                       \
+    lut, lut, lut, lut, lut, lut, NULL, NULL, NULL, lut, lut, cdf, grid, NULL, NULL, NULL, NULL
 
 static double sigma_at(const atmo_gpu_scene *s, const medium_ray *m, double t, double *h)
 {

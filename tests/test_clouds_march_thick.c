@@ -27,7 +27,8 @@
 #include "testlib.h"
 
 #define BIAS_BOUND 0.42
-#define LUTS lut, lut, lut, lut, lut, lut, lut, lut, cdf, grid
+#define LUTS                                                                                       \
+    lut, lut, lut, lut, lut, lut, NULL, NULL, NULL, lut, lut, cdf, grid, NULL, NULL, NULL, NULL
 enum { PATHS = 4000, JITTERS = 16 };
 
 static float grid[CLOUDS_GRID_NX * CLOUDS_GRID_NY * CLOUDS_GRID_NZ];

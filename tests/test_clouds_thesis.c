@@ -26,7 +26,8 @@
 #include "testclouds.h"
 #include "testlib.h"
 
-#define LUTS lut, lut, lut, lut, lut, lut, lut, lut, cdf, grid
+#define LUTS                                                                                       \
+    lut, lut, lut, lut, lut, lut, NULL, NULL, NULL, lut, lut, cdf, grid, NULL, NULL, NULL, NULL
 #define REL_FLOAT 1e-6
 
 static double closed_form(double L, double level) { return -level * expm1(-L / level); }

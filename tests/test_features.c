@@ -43,6 +43,8 @@
 #include "atmo/cl_runtime.h"
 #include "atmo/embedded.h"
 #include "atmo/features.h"
+#include "atmo/scene.h"
+#include "atmosphere/sky_method.h"
 #include "testlib.h"
 #include "testscene.h"
 
@@ -359,6 +361,67 @@ static void test_compose_stages(void)
     atmo_plan_free(&p);
 }
 
+#define ARGS_TEXT(...) #__VA_ARGS__
+#define EXPANDED_TEXT(...) ARGS_TEXT(__VA_ARGS__)
+
+/* 1 when the comma-separated list `list` names `name`. */
+static int list_names(const char *list, const char *name)
+{
+    size_t n = strlen(name);
+    for (const char *at = strstr(list, name); at; at = strstr(at + 1, name))
+        if ((at == list || at[-1] == ' ' || at[-1] == ',') && (at[n] == ',' || at[n] == '\0'))
+            return 1;
+    return 0;
+}
+
+/* The host build's buffer list (atmosphere/sky_method.h, one list for every scene) names every
+ * buffer that the plans of scenes holding every feature declare, and declares no other. */
+static void test_host_buffer_list(void)
+{
+    static const char *const scenes[][3] = {
+        {"thesis-1", "clouds.shadow_map=true", NULL},       /* layer, shadow map, terrain */
+        {"thesis-2", "atmosphere.method=fast", NULL},        /* objects, sky-view LUT */
+        {"thesis-7", NULL},                                  /* the path tracer's sky table */
+        {"glory", "atmosphere.method=reference", NULL},      /* the cloud shell's tables */
+        {"thesis-6", "atmosphere.method=reference", NULL},   /* the layer's majorant grid */
+        {"sky-noon", "atmosphere.method=lut", NULL},         /* lut's tables */
+    };
+    const char *list = EXPANDED_TEXT(ATMO_LUT_ARGS);
+    int used[64] = {0}, names = 1;
+    for (const char *c = list; *c; c++)
+        names += *c == ',';
+    for (size_t k = 0; k < sizeof scenes / sizeof scenes[0]; k++) {
+        atmo_scene sc;
+        atmo_err e;
+        atmo_plan p;
+        atmo_scene_defaults(&sc);
+        int rc = atmo_scene_apply_preset(&sc, scenes[k][0], &e);
+        for (int i = 1; i < 3 && scenes[k][i] && !rc; i++)
+            rc = atmo_scene_assign(&sc, scenes[k][i], "test", &e);
+        sc.image.width = sc.image.height = 8;
+        CHECK(rc == ATMO_OK && atmo_plan_make(&sc, &p, &e) == ATMO_OK);
+        if (rc)
+            continue;
+        for (int b = 0; b < p.buffer_count; b++) {
+            CHECK(list_names(list, p.buffers[b].name));
+            /* its place in the list */
+            const char *at = list;
+            int index = 0;
+            for (; at < list + strlen(list); at += strcspn(at, ",") + 1, index++) {
+                at += strspn(at, " ");
+                if (strncmp(at, p.buffers[b].name, strcspn(at, ",")) == 0 &&
+                    strlen(p.buffers[b].name) == strcspn(at, ","))
+                    break;
+            }
+            if (index < 64)
+                used[index] = 1;
+        }
+        atmo_plan_free(&p);
+    }
+    for (int i = 0; i < names && i < 64; i++)
+        CHECK(used[i]);
+}
+
 int main(void)
 {
     test_registry_order();
@@ -368,5 +431,6 @@ int main(void)
     test_compose_stages();
     test_methods();
     test_cloud();
+    test_host_buffer_list();
     return test_finish();
 }

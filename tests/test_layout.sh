@@ -283,11 +283,10 @@ else ok; fi
 # A feature's flags are tested in its own folder only (kernels/terrain, kernels/clouds,
 # kernels/cloud_shell, and the objects' render/objects*): the generic integrator, the render
 # stages (the preview's camera rays, the path tracer, the guides) and the methods take the
-# features through the plan's composition. The host-only block of a header (its
-# #if !defined(__OPENCL_VERSION__) lines: the host tests' buffer lists) is not kernel code.
+# features through the plan's composition.
 stage_files=$(find kernels -name '*.h' -o -name '*.cl' |
     grep -vE '^kernels/(terrain|clouds|cloud_shell)/|^kernels/render/objects' | sort)
-found=$(feature_ifs $stage_files | grep -v '!defined(__OPENCL_VERSION__)')
+found=$(feature_ifs $stage_files)
 if [ -n "$found" ]; then
     bad "feature #if outside the feature's folder (give the feature a slot of the composition):"
     echo "$found" | sed 's/^/    /' >&2

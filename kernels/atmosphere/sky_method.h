@@ -33,44 +33,24 @@
 #ifndef ATMO_SKY_METHOD_H
 #define ATMO_SKY_METHOD_H
 
-#if !defined(__OPENCL_VERSION__) && !defined(ATMO_LUT_PARAMS) && defined(ATMO_CLOUDS) &&             \
-    defined(ATMO_CLOUDS_SHADOW_MAP)
-/* ... and its sun shadow map last (a host build under -DATMO_CLOUDS_SHADOW_MAP) */
-#define ATMO_LUT_PARAMS                                                                            \
-    const float4 *transmittance_lut, const float4 *ms_lut, const float4 *scattering_rayleigh,     \
-        const float4 *scattering_mie, const float4 *scattering_scratch,                           \
-        const float4 *cloud_phase_table, const float4 *sky_view_lut,                              \
-        const float4 *clouds_phase_table, const float *clouds_phase_cdf,                          \
-        const float *clouds_majorant, const float *clouds_shadow_map
-#define ATMO_LUT_ARGS                                                                              \
-    transmittance_lut, ms_lut, scattering_rayleigh, scattering_mie, scattering_scratch,           \
-        cloud_phase_table, sky_view_lut, clouds_phase_table, clouds_phase_cdf, clouds_majorant,  \
-        clouds_shadow_map
-#endif
-#if !defined(__OPENCL_VERSION__) && !defined(ATMO_LUT_PARAMS) && defined(ATMO_CLOUDS)
-/* ... with the fBm cloud layer's tables and majorant grid after them (a host build under
- * -DATMO_CLOUDS) */
-#define ATMO_LUT_PARAMS                                                                            \
-    const float4 *transmittance_lut, const float4 *ms_lut, const float4 *scattering_rayleigh,     \
-        const float4 *scattering_mie, const float4 *scattering_scratch,                           \
-        const float4 *cloud_phase_table, const float4 *sky_view_lut,                              \
-        const float4 *clouds_phase_table, const float *clouds_phase_cdf,                          \
-        const float *clouds_majorant
-#define ATMO_LUT_ARGS                                                                              \
-    transmittance_lut, ms_lut, scattering_rayleigh, scattering_mie, scattering_scratch,           \
-        cloud_phase_table, sky_view_lut, clouds_phase_table, clouds_phase_cdf, clouds_majorant
-#endif
+/* A host build of the kernels' headers (the tests and the host references call them in C): every
+ * buffer any feature declares, in this one order whatever the scene, so every entry point
+ * compiles (test_features checks that it names each buffer a plan declares); kernels always get
+ * the plan's list instead. */
 #if !defined(__OPENCL_VERSION__) && !defined(ATMO_LUT_PARAMS)
-/* A host build of a method header (the tests call its helpers in C): every buffer any feature
- * declares, so the entry points compile; kernels always get the plan's list instead. */
 #define ATMO_LUT_PARAMS                                                                            \
     const float4 *transmittance_lut, const float4 *ms_lut, const float4 *scattering_rayleigh,     \
         const float4 *scattering_mie, const float4 *scattering_scratch,                           \
         const float4 *cloud_phase_table, const float *cloud_phase_cdf, const float *heightmap,  \
-        const float *terrain_base, const float4 *sky_view_lut
+        const float *terrain_base, const float4 *sky_view_lut, const float4 *clouds_phase_table, \
+        const float *clouds_phase_cdf, const float *clouds_majorant,                              \
+        const float *clouds_shadow_map, const float *terrain_sun_map,                             \
+        const atmo_gpu_object *objects, const float4 *sky_env
 #define ATMO_LUT_ARGS                                                                              \
     transmittance_lut, ms_lut, scattering_rayleigh, scattering_mie, scattering_scratch,           \
-        cloud_phase_table, cloud_phase_cdf, heightmap, terrain_base, sky_view_lut
+        cloud_phase_table, cloud_phase_cdf, heightmap, terrain_base, sky_view_lut,               \
+        clouds_phase_table, clouds_phase_cdf, clouds_majorant, clouds_shadow_map,                 \
+        terrain_sun_map, objects, sky_env
 #endif
 
 #endif
