@@ -201,7 +201,7 @@ static int add_feature(const atmo_scene *s, const atmo_feature *f, atmo_plan *p,
         p->fragments[p->fragment_count++] = *frag;
     }
     if (f->defines && (rc = append(p->defines, sizeof p->defines, "%s%s",
-                                      p->defines[0] ? " " : "", f->defines, e)))
+                                   p->defines[0] ? " " : "", f->defines, e)))
         return rc;
     return f->plan ? f->plan(s, p, e) : ATMO_OK;
 }
