@@ -22,6 +22,19 @@ const char test_trace_probe_src[] =
     "  out[i] = (float4)(hit ? t : -1.0f, (float)used, 0.0f, 0.0f);\n"
     "}\n";
 
+void test_trace_plan_above_site(test_trace_setup *u, const char *extra1, const char *extra2,
+                                const char *extra3)
+{
+    double cam[3] = {TEST_TRACE_SITE_X, 0.0, TEST_TRACE_SITE_Z}, p[3], n[3];
+    test_trace_plan_at3(u, cam, extra1, extra2, extra3); /* for the field */
+    const atmo_gpu_terrain_field f = u->plan.gpu.terrain.field;
+    test_trace_surface_point(&f, NULL, 0.0, TEST_TRACE_SITE_X, TEST_TRACE_SITE_Z, p, n);
+    atmo_plan_free(&u->plan);
+    for (int k = 0; k < 3; k++)
+        cam[k] = p[k] + 300.0 * n[k];
+    test_trace_plan_at3(u, cam, extra1, extra2, extra3);
+}
+
 double test_trace_urand(unsigned *state)
 {
     *state = *state * 1664525u + 1013904223u;

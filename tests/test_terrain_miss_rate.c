@@ -37,21 +37,15 @@ static int miss_rate(atmo_cl *cl, const char *label, const char *extra1, const c
                      const char *extra3, float optimism, int *hits)
 {
     test_trace_setup u;
-    double cam[3] = {TEST_TRACE_SITE_X, 0.0, TEST_TRACE_SITE_Z}, p[3], n[3];
-    test_trace_plan_at3(&u, cam, extra1, extra2, extra3); /* for the field */
+    test_trace_plan_above_site(&u, extra1, extra2, extra3);
     const atmo_gpu_terrain_field f = u.plan.gpu.terrain.field;
-    test_trace_surface_point(&f, NULL, 0.0, TEST_TRACE_SITE_X, TEST_TRACE_SITE_Z, p, n);
-    atmo_plan_free(&u.plan);
-    for (int k = 0; k < 3; k++)
-        cam[k] = p[k] + 300.0 * n[k];
-    test_trace_plan_at3(&u, cam, extra1, extra2, extra3);
     if (optimism > 0.0f)
         u.plan.gpu.terrain.optimism = optimism;
     cl_program prog = test_plan_program(cl, &u.plan, test_trace_probe_src);
     test_trace_ray *rays = calloc(N_RAYS, sizeof *rays);
     float4 *out = calloc(N_RAYS, sizeof *out);
     unsigned rng = 20261201u;
-    test_trace_make_rays(&f, NULL, cam, N_DOWN, N_GRAZE, N_SKIM, &rng, rays);
+    test_trace_make_rays(&f, NULL, u.cam, N_DOWN, N_GRAZE, N_SKIM, &rng, rays);
     test_trace_run(cl, prog, &u.plan, rays, N_RAYS, out);
     static const char *const names[3] = {"downward", "grazing", "ridge-skimming"};
     const int first[4] = {0, N_DOWN, N_DOWN + N_GRAZE, N_RAYS};

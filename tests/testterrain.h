@@ -44,6 +44,10 @@ void test_trace_plan_at(test_trace_setup *u, const double cam[3], const char *ex
 /* test_trace_plan_at with a third setting (may be NULL). */
 void test_trace_plan_at3(test_trace_setup *u, const double cam[3], const char *extra1,
                          const char *extra2, const char *extra3);
+/* test_trace_plan_at3 with the camera 300 m above the surface point of thesis-1's site (along
+ * its vertical), in u->cam. */
+void test_trace_plan_above_site(test_trace_setup *u, const char *extra1, const char *extra2,
+                                const char *extra3);
 /* The surface point above planar (x, z) and its vertical, world coordinates (hm: a float
  * heightmap under the field, terrain_ref_height_map, or NULL). */
 void test_trace_surface_point(const atmo_gpu_terrain_field *f, const float *hm, double sea,

@@ -358,6 +358,14 @@ static void compose_path_surfaces(text *t, const atmo_feature *const *f, int n)
         if (SLOT(f[i], path_hit))
             put(t, "    %s(s, ATMO_LUT_ARGS, m, h);\n", f[i]->slots->path_hit);
     put(t, "}\n\n");
+    put(t, "/* The least of the marched surfaces' cone starts (surfaces.h); 0 without one. */\n");
+    put(t, HEAD "const medium_ray *m, float spread)\n{\n", "float",
+        "surfaces_features_cone_start");
+    put(t, "    float t = INFINITY;\n");
+    for (int i = 0; i < n; i++)
+        if (SLOT(f[i], cone_start))
+            put(t, "    t = fminf(t, %s(s, ATMO_LUT_ARGS, m, spread));\n", f[i]->slots->cone_start);
+    put(t, "    return t < INFINITY ? t : 0.0f;\n}\n\n");
     put(t, "/* 1 where a feature's surface blocks the shadow ray from o along d. */\n");
     put(t, HEAD "vec3 o, vec3 d)\n{\n", "int", "surfaces_features_occluded");
     for (int i = 0; i < n; i++)

@@ -84,6 +84,10 @@ typedef struct atmo_gpu_field {
  *   path_occluded         int (s, ATMO_LUT_PARAMS, vec3 o, vec3 d): 1 where its surface blocks
  *                         the shadow ray from o along d
  *   path_replaces_ground  1: its surface replaces the planet's ground sphere (the terrain)
+ *   cone_start            float (s, ATMO_LUT_PARAMS, const medium_ray *m, float spread): for a
+ *                         surface found by a march, a distance before which no ray from m's
+ *                         origin within the chord spread of its direction meets it; its path_hit
+ *                         then marches from the record's march_from
  * The denoiser's guides (kernels/render/guides.cl):
  *   guide_depth           vec3 (s, const medium_ray *m, float t_end, vec3 *albedo): a
  *                         medium's optical depth along m over [0, t_end], its single-
@@ -133,6 +137,7 @@ typedef struct atmo_slots {
     const char *surface_hit, *surface_radiance;
     const char *path_hit, *path_occluded;
     int path_replaces_ground;
+    const char *cone_start;
     const char *camera_stage;
     const char *guide_depth, *guide_block, *pixel_ray, *media_shown;
     int guides_grid;

@@ -18,6 +18,10 @@
  * its radial distribution at the same cell centres taken as (u1, u2) — its samples' own
  * mapping, on a stratified grid instead of the Sobol sequence. The rays are the pinhole's
  * (a thin lens blurs what the guide would keep sharp; the host does not use the guides then).
+ * The pattern's rays lie in a cone about the pixel's centre ray (its spread the largest chord
+ * between their unit directions and the centre's); the marched surfaces (the terrain) walk the
+ * cone once to where it first comes within the tracer's tolerance of them
+ * (render/surfaces.h's surfaces_cone_start), and each ray's own march starts there.
  * Nothing random is drawn: the guides of a pixel are the same for any seed, sample count,
  * tile size or launch, and a 4-spp image gets the guides of the converged image. A fisheye's
  * corners outside its circle (no ray) get albedo 0 and normal 0, as their image is black.
@@ -74,6 +78,14 @@
 /* the clouds' view optical depth is integrated to this (e^-9.2 = 1e-4 of the guide behind) */
 #define GUIDES_TAU_STOP 9.2f
 
+/* Ray (i, j) of pixel (x, y)'s pattern: the mode's camera ray at the centre of cell (i, j) of
+ * GUIDES_GRID x GUIDES_GRID; 0 where there is none (a fisheye's corner). */
+float3 guides_pattern_ray(__global const atmo_gpu_scene *scene, int x, int y, int i, int j)
+{
+    const float cell = 1.0f / (float)GUIDES_GRID;
+    return guides_pixel_ray(scene, x, y, ((float)i + 0.5f) * cell, ((float)j + 0.5f) * cell);
+}
+
 __kernel void guide_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS,
                            __global float4 *albedo, __global float4 *normal, uint first,
                            uint count)
@@ -88,6 +100,23 @@ __kernel void guide_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS
     float depth = 0.0f, disc = 0.0f;
     float4 sun = scene->sun_direction;
     const float cell = 1.0f / (float)GUIDES_GRID;
+    /* the pattern's cone: its axis the mean of the pattern's rays, its spread the largest
+     * chord from the axis to one of them; the marched surfaces start where it first meets
+     * them */
+    float3 axis = (float3)(0.0f);
+    float spread = 0.0f, march_from = 0.0f;
+    for (int k = 0; k < GUIDES_GRID * GUIDES_GRID; k++)
+        axis += guides_pattern_ray(scene, x, y, k % GUIDES_GRID, k / GUIDES_GRID);
+    if (dot(axis, axis) > 0.0f) {
+        axis = normalize(axis);
+        for (int k = 0; k < GUIDES_GRID * GUIDES_GRID; k++) {
+            float3 d = guides_pattern_ray(scene, x, y, k % GUIDES_GRID, k / GUIDES_GRID);
+            if (dot(d, d) > 0.0f)
+                spread = fmax(spread, length(d - axis));
+        }
+        medium_ray cone = medium_ray_from_camera(scene, axis);
+        march_from = surfaces_cone_start(scene, ATMO_LUT_ARGS, &cone, spread);
+    }
     for (int bj = 0; bj < GUIDES_GRID; bj += GUIDES_CLOUD_STRIDE)
         for (int bi = 0; bi < GUIDES_GRID; bi += GUIDES_CLOUD_STRIDE) {
             /* the block's rays: their surfaces, and where the layer in front of each ends */
@@ -98,13 +127,12 @@ __kernel void guide_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS
             int any_ray = 0;
             for (int k = 0; k < GUIDES_BLOCK_RAYS; k++) {
                 int i = bi + k % GUIDES_CLOUD_STRIDE, j = bj + k / GUIDES_CLOUD_STRIDE;
-                dirs[k] = guides_pixel_ray(scene, x, y, ((float)i + 0.5f) * cell,
-                                           ((float)j + 0.5f) * cell);
+                dirs[k] = guides_pattern_ray(scene, x, y, i, j);
                 ends[k] = 0.0f;
                 if (dot(dirs[k], dirs[k]) == 0.0f)
                     continue;
                 medium_ray ray = medium_ray_from_camera(scene, dirs[k]);
-                hit[k] = surfaces_hit(scene, ATMO_LUT_ARGS, &ray, INFINITY);
+                hit[k] = surfaces_hit_from(scene, ATMO_LUT_ARGS, &ray, march_from, INFINITY);
                 ends[k] = (guides_media_shown(scene, hit[k].t) | (MEDIA_VOLUME > 0))
                               ? hit[k].t
                               : 0.0f;

@@ -30,6 +30,7 @@ typedef struct path_hit {
     vec3 emission;
     int kind;      /* SURFACES_* */
     float lift;    /* m: new rays start this far off the surface along the normal */
+    float march_from; /* m: where the marched surfaces start looking (surfaces.h) */
 } path_hit;
 
 /* The lift of the ground's and the objects' new rays at the camera-relative point p:
@@ -47,6 +48,7 @@ ATMO_FN path_hit path_hit_none(float t_max)
     h.albedo = v3(0.0f, 0.0f, 0.0f);
     h.emission = v3(0.0f, 0.0f, 0.0f);
     h.lift = 0.0f;
+    h.march_from = 0.0f;
     return h;
 }
 

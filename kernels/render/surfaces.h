@@ -15,7 +15,14 @@
  * sun's disc that light_sun.h sampled (surfaces_features_occluded over the slots
  * `path_occluded`), so they cast shadows with the disc's penumbra; the planet's shadow and the
  * shadowing media are the visibility's (media/visibility.h, visibility_sun_surface), asked at
- * the point. Units: metres. */
+ * the point.
+ * Cones: the guides trace a pixel's rays, which differ by a fraction of a pixel, and a marched
+ * surface (the terrain's sphere tracing) would walk each of them the same way to its hit.
+ * surfaces_cone_start gives, for a cone of rays (an axis and a chord `spread`), the least over
+ * the marched surfaces' slots `cone_start` of a distance before which no ray of the cone meets
+ * that surface; surfaces_hit_from hands it to every slot in the record's march_from, and the
+ * marched surfaces start there (the analytic ones, the ground sphere and the objects, ignore
+ * it: they cost no march). 0 where no surface marches. Units: metres. */
 #ifndef ATMO_RENDER_SURFACES_H
 #define ATMO_RENDER_SURFACES_H
 #ifndef __OPENCL_VERSION__
@@ -26,11 +33,14 @@
 #include "atmo/gpu_types.h"
 #endif
 
-/* The first surface along the ray m before t_max; kind SURFACES_NONE when there is none. */
-ATMO_FN path_hit surfaces_hit(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
-                              const medium_ray *m, float t_max)
+/* The first surface along the ray m before t_max, the marched surfaces looked for from
+ * march_from on (0, or surfaces_cone_start's bound for a cone that holds m); kind
+ * SURFACES_NONE when there is none. */
+ATMO_FN path_hit surfaces_hit_from(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                   const medium_ray *m, float march_from, float t_max)
 {
     path_hit h = path_hit_none(t_max);
+    h.march_from = march_from;
     ATMO_GLOBAL const atmo_gpu_atmosphere *a = &s->atmosphere;
     if ((SURFACES_GROUND_SPHERE & s->path.ground) &&
         geometry_ray_hits_ground(m->r, m->mu, a->bottom_radius)) {
@@ -46,6 +56,21 @@ ATMO_FN path_hit surfaces_hit(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
     }
     surfaces_features_hit(s, ATMO_LUT_ARGS, m, &h);
     return h;
+}
+
+/* The first surface along the ray m before t_max; kind SURFACES_NONE when there is none. */
+ATMO_FN path_hit surfaces_hit(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                              const medium_ray *m, float t_max)
+{
+    return surfaces_hit_from(s, ATMO_LUT_ARGS, m, 0.0f, t_max);
+}
+
+/* The distance before which no ray from m's origin within the chord `spread` of its direction
+ * meets a marched surface (see the top of the file); 0 where none marches. */
+ATMO_FN float surfaces_cone_start(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                  const medium_ray *m, float spread)
+{
+    return surfaces_features_cone_start(s, ATMO_LUT_ARGS, m, spread);
 }
 
 /* 1 when a feature's surface blocks the shadow ray from o along d (the shadow ray toward the

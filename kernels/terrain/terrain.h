@@ -371,6 +371,46 @@ ATMO_FN int terrain_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const
     return hit;
 }
 
+/* Where a cone of rays from o first comes near the terrain: a distance t_s such that every ray
+ * o + t d' with unit d', |d' - d| <= spread (a chord), keeps its clearance above the tracer's
+ * hit tolerance eps(t) = TERRAIN_EPS_M + tolerance t for all t in [0, t_s], so that tracing
+ * such a ray from t_s (terrain_trace's t0) finds the hit it finds from 0, up to where a
+ * grazing ray's steps land within eps of a ridge. Math: at equal t the ray's point lies within
+ * t |d' - d| <= t spread of the axis's, and the clearance g = alt - S is Lipschitz in space
+ * with constant 1 + L (the altitude's gradient is the unit vertical; the surface's height
+ * changes at most L = slope_bound per metre of its foot, which moves at most as far as the
+ * point), so
+ *     g(o + t d') >= G(t) + eps(t),   G(t) = g(o + t d) - w t - TERRAIN_EPS_M,
+ *     w = (1 + L) spread + tolerance.
+ * G falls along the axis at most at the tracer's rate plus w, so the march takes the safe
+ * steps G / (rate + w) from 0 (g from terrain_clearance_bounded's lower bound) while the
+ * axis's clearance is at least twice TERRAIN_EPS_M + w t (nearer, the steps shrink toward the
+ * cone's surface and cost more than they save the rays), for at most `steps` steps; every
+ * step ends where G >= 0 still holds. 0 where the axis misses the terrain's shell (the cone's
+ * rays trace from 0). */
+ATMO_FN float terrain_cone_start(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float *hm,
+                                 vec3 o, vec3 d, float spread, int steps)
+{
+    ATMO_GLOBAL const atmo_gpu_terrain *tr = &s->terrain;
+    float t_in, t_out, slope;
+    int ends_low;
+    if (!terrain_shell(s, o, d, &t_in, &t_out, &ends_low))
+        return 0.0f;
+    float r_o = s->atmosphere.bottom_radius + terrain_locate(s, o).alt;
+    float mu_o = v3_dot(terrain_vertical(s, o), d);
+    float w = (1.0f + tr->slope_bound) * spread + tr->tolerance, t = 0.0f;
+    for (int n = 0; n < steps && t < t_out; n++) {
+        float margin = TERRAIN_EPS_M + w * t;
+        float G = terrain_clearance_bounded(s, hm, v3_add(o, v3_scale(d, t)), 2.0f * margin,
+                                            &slope) - margin;
+        if (G < margin)
+            break;
+        float mu = terrain_ray_cosine(r_o, mu_o, t), sin_t = atmo_safe_sqrt(1.0f - mu * mu);
+        t += G / (fmaxf(tr->slope_bound * sin_t - mu, 0.05f) + w);
+    }
+    return t;
+}
+
 /* The visible fraction of a disc cut by a straight edge x disc radii from its centre. */
 ATMO_FN float terrain_disc_fraction(float x)
 {
@@ -435,11 +475,11 @@ ATMO_FN float terrain_sun_visible(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOB
 }
 
 /* For the path tracer's surfaces: the first terrain hit along the camera-relative ray o + t d
- * within t_max, its distance and the surface's unit normal there. */
+ * with t0 <= t <= t_max, its distance and the surface's unit normal there. */
 ATMO_FN int terrain_intersect(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const float *hm,
-                              vec3 o, vec3 d, float t_max, float *t, vec3 *normal)
+                              vec3 o, vec3 d, float t0, float t_max, float *t, vec3 *normal)
 {
-    if (!terrain_trace(s, hm, o, d, 0.0f, t_max, s->terrain.steps, t, 0))
+    if (!terrain_trace(s, hm, o, d, t0, t_max, s->terrain.steps, t, 0))
         return 0;
     *normal = terrain_normal(s, hm, v3_add(o, v3_scale(d, *t)));
     return 1;

@@ -1,7 +1,8 @@
 /* terrain_path.h — the terrain as a surface of the path tracer and its guides (the slots
  * `path_hit` and `path_occluded`, composed by the plan into render/surfaces.h's queries).
  *
- * Hit: terrain_intersect's sphere-traced hit and normal before the record's distance,
+ * Hit: terrain_intersect's sphere-traced hit and normal before the record's distance (from
+ * its march_from: the guides' cone start, terrain_path_cone_start below, else 0),
  * terrain_material's albedo (grass, dirt, rock, snow by altitude and slope); where the height
  * is at or below sea level the hit is the sea (SURFACES_WATER: the vertical for its normal, the
  * water body's dark albedo, shaded by render/bsdf_water.h). Lift: TERRAIN_SHADOW_OFFSET_M +
@@ -35,7 +36,8 @@ ATMO_FN void terrain_path_hit(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
 {
     float t;
     vec3 n;
-    if (!terrain_intersect(s, heightmap, m->origin, m->dir, h->t, &t, &n) || !(t < h->t))
+    if (!terrain_intersect(s, heightmap, m->origin, m->dir, h->march_from, h->t, &t, &n) ||
+        !(t < h->t))
         return;
     vec3 p = v3_add(m->origin, v3_scale(m->dir, t));
     float distance = v3_length(p);
@@ -46,6 +48,15 @@ ATMO_FN void terrain_path_hit(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARA
     h->normal = water ? sp.vertical : n;
     h->albedo = sp.albedo;
     h->lift = TERRAIN_SHADOW_OFFSET_M + 2.0f * s->terrain.tolerance * t + 1e-6f * distance;
+}
+
+/* Where the rays from m's origin within the chord `spread` of its direction may first meet the
+ * terrain (terrain.h's terrain_cone_start, in the tracer's step budget): the guides' rays of
+ * one pixel start their march there. */
+ATMO_FN float terrain_path_cone_start(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
+                                      const medium_ray *m, float spread)
+{
+    return terrain_cone_start(s, heightmap, m->origin, m->dir, spread, s->terrain.steps);
 }
 
 /* 1 when the terrain blocks the shadow ray from o along d (see the top of the file). */

@@ -92,7 +92,8 @@ static const atmo_slots terrain_water_stage_slots = {.camera_stage = "terrain_st
 static const char *const terrain_path_fragments[] = {"kernels/terrain/terrain_path.h", NULL};
 static const atmo_slots terrain_path_slots = {.path_hit = "terrain_path_hit",
                                               .path_occluded = "terrain_path_occluded",
-                                              .path_replaces_ground = 1};
+                                              .path_replaces_ground = 1,
+                                              .cone_start = "terrain_path_cone_start"};
 
 static const atmo_feature rows[] = {
     /* an opaque surface and a visibility source */
