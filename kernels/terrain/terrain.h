@@ -384,7 +384,7 @@ ATMO_FN int terrain_trace(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_GLOBAL const
  *     w = (1 + L) spread + tolerance.
  * G falls along the axis at most at the tracer's rate plus w, so the march takes the safe
  * steps G / (rate + w) from 0 (g from terrain_clearance_bounded's lower bound) while the
- * axis's clearance is at least twice TERRAIN_EPS_M + w t (nearer, the steps shrink toward the
+ * axis's clearance is at least 2 (TERRAIN_EPS_M + w t) (nearer, the steps shrink toward the
  * cone's surface and cost more than they save the rays), for at most `steps` steps; every
  * step ends where G >= 0 still holds. 0 where the axis misses the terrain's shell (the cone's
  * rays trace from 0). */
