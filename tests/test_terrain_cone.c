@@ -46,6 +46,7 @@
 #define WALL_SLOPE 2.6      /* |grad h| at a wall's point */
 #define WALL_DISTANCE_M 300.0
 #define WALL_CLEARANCE 2.2  /* the axis's clearance at the wall, in (spread t + eps) */
+#define WALL_TRIES 100000   /* points drawn for the walls (one in eight is steep enough) */
 
 /* The probe: the cone start of the axis o + t d with the spread in d.w (test_trace_run's
  * t_max slot). */
@@ -73,14 +74,16 @@ static void rim_direction(const double d[3], double spread, int k, double out[3]
         out[c] = d[c] * cos(theta) + (e1[c] * cos(phi) + e2[c] * sin(phi)) * sin(theta);
 }
 
-/* n cones along walls (see the top of the file) for `spread`: their axes in rays[], the
- * horizontal unit vector toward each wall in toward[]. */
-static void make_walls(const test_trace_setup *u, double spread, int n, unsigned *rng,
-                       test_trace_ray *rays, double (*toward)[3])
+/* Up to n cones along walls (see the top of the file) for `spread`, from at most
+ * WALL_TRIES points drawn: their axes in rays[], the horizontal unit vector toward each wall
+ * in toward[]; returns how many. */
+static int make_walls(const test_trace_setup *u, double spread, int n, unsigned *rng,
+                      test_trace_ray *rays, double (*toward)[3])
 {
     const atmo_gpu_terrain_field *f = &u->plan.gpu.terrain.field;
     double tol = (double)u->plan.gpu.terrain.tolerance;
-    for (int i = 0; i < n;) {
+    int i = 0;
+    for (int tries = 0; i < n && tries < WALL_TRIES; tries++) {
         double x = TEST_TRACE_SITE_X + (test_trace_urand(rng) - 0.5) * 4000;
         double z = TEST_TRACE_SITE_Z + (test_trace_urand(rng) - 0.5) * 4000;
         double grad[2], q[3], up[3];
@@ -110,6 +113,7 @@ static void make_walls(const test_trace_setup *u, double spread, int n, unsigned
         memcpy(toward[i], g, sizeof toward[i]);
         i++;
     }
+    return i;
 }
 
 /* Checks one ray of a cone from world point o along unit d over [0, t_s]: returns 1 on a
@@ -165,7 +169,7 @@ static int run_terrain(atmo_cl *cl, const char *name, const char *e1, const char
     for (int s = 0; s < 2; s++) {
         int n_kinds = walls && s == 1 ? 4 : 3;
         if (n_kinds == 4)
-            make_walls(&u, spreads[s], N_KIND, &rng, rays + 3 * N_KIND, toward);
+            CHECK(make_walls(&u, spreads[s], N_KIND, &rng, rays + 3 * N_KIND, toward) == N_KIND);
         for (int i = 0; i < N_AXES; i++)
             rays[i].t_max = spreads[s]; /* the probe's spread */
         test_trace_run(cl, prog, &u.plan, rays, n_kinds * N_KIND, out);
