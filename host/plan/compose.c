@@ -346,12 +346,16 @@ static void compose_surfaces(text *t, const atmo_feature *const *f, int n)
  * only where it is nearer, so the order does not change which surface is found). */
 static void compose_path_surfaces(text *t, const atmo_feature *const *f, int n)
 {
-    int ground = 1;
-    for (int i = 0; i < n; i++)
+    int ground = 1, marched = 0;
+    for (int i = 0; i < n; i++) {
         if (f[i]->slots && f[i]->slots->path_replaces_ground)
             ground = 0;
+        marched += SLOT(f[i], cone_start) != NULL;
+    }
     put(t, "/* Whether the planet's ground sphere is a surface (no feature's replaces it). */\n");
     put(t, "#define SURFACES_GROUND_SPHERE %d\n\n", ground);
+    put(t, "/* How many surfaces are found by a march (and give a cone start). */\n");
+    put(t, "#define SURFACES_MARCHED %d\n\n", marched);
     put(t, "/* The features' surfaces along m, each replacing h where it is nearer. */\n");
     put(t, HEAD "const medium_ray *m, path_hit *h)\n{\n", "void", "surfaces_features_hit");
     for (int i = 0; i < n; i++)

@@ -100,12 +100,12 @@ __kernel void guide_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS
     float depth = 0.0f, disc = 0.0f;
     float4 sun = scene->sun_direction;
     const float cell = 1.0f / (float)GUIDES_GRID;
-    /* the pattern's cone: its axis the mean of the pattern's rays, its spread the largest
-     * chord from the axis to one of them; the marched surfaces start where it first meets
-     * them */
+    /* the pattern's cone (where a surface is marched): its axis the mean of the pattern's
+     * rays, its spread the largest chord from the axis to one of them; the marched surfaces
+     * start where it first meets them */
     float3 axis = (float3)(0.0f);
     float spread = 0.0f, march_from = 0.0f;
-    for (int k = 0; k < GUIDES_GRID * GUIDES_GRID; k++)
+    for (int k = 0; k < GUIDES_GRID * GUIDES_GRID && SURFACES_MARCHED > 0; k++)
         axis += guides_pattern_ray(scene, x, y, k % GUIDES_GRID, k / GUIDES_GRID);
     if (dot(axis, axis) > 0.0f) {
         axis = normalize(axis);

@@ -22,7 +22,8 @@
  * the marched surfaces' slots `cone_start` of a distance before which no ray of the cone meets
  * that surface; surfaces_hit_from hands it to every slot in the record's march_from, and the
  * marched surfaces start there (the analytic ones, the ground sphere and the objects, ignore
- * it: they cost no march). 0 where no surface marches. Units: metres. */
+ * it: they cost no march). 0 where no surface marches (SURFACES_MARCHED, composed: how many
+ * do, so a caller skips the cone where none does). Units: metres. */
 #ifndef ATMO_RENDER_SURFACES_H
 #define ATMO_RENDER_SURFACES_H
 #ifndef __OPENCL_VERSION__
