@@ -105,8 +105,9 @@ __kernel void guide_render(__global const atmo_gpu_scene *scene, ATMO_LUT_PARAMS
      * start where it first meets them */
     float3 axis = (float3)(0.0f);
     float spread = 0.0f, march_from = 0.0f;
-    for (int k = 0; k < GUIDES_GRID * GUIDES_GRID && SURFACES_MARCHED > 0; k++)
-        axis += guides_pattern_ray(scene, x, y, k % GUIDES_GRID, k / GUIDES_GRID);
+    if (SURFACES_MARCHED > 0)
+        for (int k = 0; k < GUIDES_GRID * GUIDES_GRID; k++)
+            axis += guides_pattern_ray(scene, x, y, k % GUIDES_GRID, k / GUIDES_GRID);
     if (dot(axis, axis) > 0.0f) {
         axis = normalize(axis);
         for (int k = 0; k < GUIDES_GRID * GUIDES_GRID; k++) {
