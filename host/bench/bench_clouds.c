@@ -17,8 +17,8 @@
  * fitted nor in the RMS. It is thesis view 8's without its terrain: from 5.8 km, inside the
  * layer, 28-44 degrees down onto the face of a near cloud turned away from a sun 9.8 degrees
  * high (scattering angles of 42-54 degrees), where the octaves and the diffuse orders that the
- * six views fit give twice the reference's light and no setting of them serves it and the six
- * together (docs/bench/README.md, "Thesis views").
+ * six views fit give 2.5 times the reference's light and no setting of them serves it and the
+ * six together (docs/bench/README.md, "Thesis views").
  * The reference: 256 paths per ray (4096 on the cheap overcast view, 2048 on the sunset, whose
  * forward-peaked light is noisier; 64 with --quick), drawn
  * with its own seed (image.seed = BENCH_CLOUDS_REF_SEED; the marcher keeps the scene's 0), so
@@ -510,7 +510,9 @@ int bench_clouds(const char *dir, const char *device, int quick, int fit, atmo_e
                                 "fBm clouds: marcher knobs vs the reference (6 views x 6 rays, "
                                 "550 nm; a seventh, held out, charted alone); time per sample "
                                 "of the 36 rays",
-                                "relative error: RMS over the six views, or the held-out view alone", e)))
+                                "relative error: RMS over the six views, or the held-out "
+                                "view alone",
+                                e)))
         return rc;
     return write_shadow_chart(dir, shadow_rows, n_shadow, device, e);
 }
