@@ -201,8 +201,8 @@ static int run_terrain(atmo_cl *cl, const char *name, const char *e1, const char
             ratio = hits ? ratio / hits : 0.0;
             printf("%s, spread %.0e, %-14s %d cones x %d rays: %d violations; mean start "
                    "%.1f m, %.3f of the axis's hit distance (%d hits)\n",
-                   name, spreads[s], kinds[kind], N_KIND, 1 + N_RIM + (kind == 3), kind_bad, start, ratio,
-                   hits);
+                   name, spreads[s], kinds[kind], N_KIND, 1 + N_RIM + (kind == 3), kind_bad,
+                   start, ratio, hits);
             if (s == 0 && kind == 0)
                 CHECK(ratio >= 0.5);
             bad += kind_bad;
