@@ -13,8 +13,8 @@
  * majorant grid, host build, all orders, PATHS paths) on the same ray. The marcher may be off
  * by its bias on the moderate deck (test_clouds_march's FAST_BIAS_BOUND, 0.42: 41.4 % measured
  * with the octaves alone), so it must lie below (1 + BIAS_BOUND) (reference + 4.5 standard
- * errors). Measured with the defaults: density 1 -30.9 % (reference 1.422e-1 +-4.5 %), 2
- * -9.4 % (3.926e-2 +-8.2 %), 4 -5.9 % (5.537e-3 +-31 %). Octaves that carry the sun's
+ * errors). Measured with the defaults: density 1 -30.1 % (reference 1.422e-1 +-4.5 %), 2
+ * -25.2 % (3.926e-2 +-8.2 %), 4 -38.2 % (5.537e-3 +-31 %). Octaves that carry the sun's
  * light through the deck without the deep decay (cloud_march.h: diffusion exponent, light
  * march stop) exceed the bound many times over on the denser decks; the diffuse orders decay
  * at the same exponent. The numbers are printed. */

@@ -17,8 +17,8 @@
  * fitted nor in the RMS. It is thesis view 8's without its terrain: from 5.8 km, inside the
  * layer, 28-44 degrees down onto the face of a near cloud turned away from a sun 9.8 degrees
  * high (scattering angles of 42-54 degrees), where the octaves and the diffuse orders that the
- * six views fit give 2.5 times the reference's light and no setting of them serves it and the
- * six together (docs/bench/README.md, "Thesis views").
+ * six views fit give 1.7 times the reference's light (docs/bench/README.md, "Thesis views"
+ * and "The build-up").
  * The reference: 256 paths per ray (4096 on the cheap overcast view, 2048 on the sunset, whose
  * forward-peaked light is noisier; 64 with --quick), drawn
  * with its own seed (image.seed = BENCH_CLOUDS_REF_SEED; the marcher keeps the scene's 0), so

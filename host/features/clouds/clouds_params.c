@@ -86,19 +86,19 @@ static const atmo_param rows[] = {
               "level of detail: octaves of the cloud noise finer than this many pixels' footprint "
               "at their distance are replaced by their mean and spread (0: every octave, "
               "point-sampled; kernels/clouds/cloud_layer.h)"),
-    ROW_INT("clouds.ms_octaves", clouds.ms_octaves, "", 1, 16, 6,
+    ROW_INT("clouds.ms_octaves", clouds.ms_octaves, "", 1, 16, 2,
             "multiple-scattering octaves of the marcher (1: single scattering and the diffuse "
-            "orders only; 6 fitted to the reference by atmo bench clouds --fit)"),
-    ROW_FLOAT("clouds.ms_a", clouds.ms_a, "", 0, 1, 0.05,
-              "per octave: factor on the optical depth toward the sun (fitted: 0.05)"),
-    ROW_FLOAT("clouds.ms_b", clouds.ms_b, "", 0, 1, 0.39,
-              "per octave: factor on the contribution (fitted: 0.39)"),
-    ROW_FLOAT("clouds.ms_c", clouds.ms_c, "", 0, 1, 0.5,
-              "per octave: factor on the phase function's anisotropy (fitted: 0.5)"),
-    ROW_FLOAT("clouds.ms_d", clouds.ms_d, "", 0, 100, 2.8,
+            "orders only; 2 fitted to the reference by atmo bench clouds --fit)"),
+    ROW_FLOAT("clouds.ms_a", clouds.ms_a, "", 0, 1, 0.2,
+              "per octave: factor on the optical depth toward the sun (fitted: 0.2)"),
+    ROW_FLOAT("clouds.ms_b", clouds.ms_b, "", 0, 1, 0.99,
+              "per octave: factor on the contribution (fitted: 0.99)"),
+    ROW_FLOAT("clouds.ms_c", clouds.ms_c, "", 0, 1, 0.7,
+              "per octave: factor on the phase function's anisotropy (fitted: 0.7)"),
+    ROW_FLOAT("clouds.ms_d", clouds.ms_d, "", 0, 100, 6.81,
               "weight of the diffuse orders beyond the octaves: isotropic light times this and "
               "the similarity albedo of a semi-infinite cloud, decaying into it at the diffusion "
-              "exponent (kernels/clouds/cloud_march.h; 0: none; fitted: 2.8)"),
+              "exponent (kernels/clouds/cloud_march.h; 0: none; fitted: 6.81)"),
     ROW_ENUM("clouds.look", clouds.look, clouds_look_names, ATMO_CLOUDS_LOOK_PHYSICAL,
              "physical (octaves, sky ambient) or thesis (constant ambient, powder, soft clamp)"),
 };
