@@ -55,9 +55,9 @@
  * sum Tw S - t_c(end) sum Tw S / t_c(t): two sums in one pass. B sees three directions of the
  * cloud around the point, not the sphere: it is a weight the fit scales, 1 deep in a cloud,
  * 1/3 to 2/3 at a thick cloud's face toward the camera (as its sun's side is clear or not) and
- * 0 in a wisp. Without the two factors, the
- * fit reaches 2.4 % RMS over the six views and the bench's held-out near cloud (a cumulus' face
- * turned away from a low sun, seen from inside the layer) reads +150 %; with them, +70 %.
+ * 0 in a wisp. The bench's held-out near cloud (a cumulus' face turned away from a low sun,
+ * seen from inside the layer) measures what the two factors do (docs/bench/README.md, "The
+ * build-up").
  *
  * Deep decay. In an absorbing cloud (albedo w < 1) diffuse light decays with depth at least as
  * e^{-k_d tau}, the diffusion exponent
