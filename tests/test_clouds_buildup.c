@@ -28,6 +28,7 @@
 #include "kernels_composed.h"
 #include "atmo/scene.h"
 #include "testclouds.h"
+#include "testclouds_oracle.h"
 #include "testlib.h"
 
 #define LUTS                                                                                       \
@@ -36,29 +37,6 @@
 #define OCTAVE_B 0.99f
 #define OCTAVE_C 0.7f
 #define DIFFUSE_D 6.81f
-
-/* The clouds' extinction at t along m (1/m). */
-static double sigma_at(const atmo_gpu_scene *s, const medium_ray *m, double t)
-{
-    medium_point q = medium_ray_at(m, (float)t, s->atmosphere.bottom_radius);
-    return (double)clouds_density(&s->clouds, q.p, q.h) * s->clouds.extinction.y;
-}
-
-/* The sun's optical depth from the point at t along m, over the layer. */
-static double sun_depth(const atmo_gpu_scene *s, const medium_ray *m, double t)
-{
-    medium_point q = medium_ray_at(m, (float)t, s->atmosphere.bottom_radius);
-    vec3 sun = v3_from4(s->sun_direction);
-    double tau = 0.0, du = 10.0;
-    for (double u = 0.5 * du;; u += du) {
-        float h = geometry_altitude_at(q.r, q.mu_s, (float)u, s->atmosphere.bottom_radius);
-        if (h > s->clouds.top_m)
-            break;
-        vec3 x = v3_add(q.p, v3_scale(sun, (float)u));
-        tau += (double)clouds_density(&s->clouds, x, h) * s->clouds.extinction.y * du;
-    }
-    return tau;
-}
 
 static double henyey_greenstein(double g, double nu)
 {
@@ -73,12 +51,7 @@ int main(void)
     atmo_gpu_scene s;
     test_overcast_scene(&s);
     atmo_gpu_clouds *c = &s.clouds;
-    clouds_grid_frame frame = clouds_grid_frame_make(&s); /* the layer's majorant grid */
-    for (int k = 0; k < CLOUDS_GRID_NZ; k++)
-        for (int j = 0; j < CLOUDS_GRID_NY; j++)
-            for (int i = 0; i < CLOUDS_GRID_NX; i++)
-                grid[(k * CLOUDS_GRID_NY + j) * CLOUDS_GRID_NX + i] =
-                    clouds_grid_cell_bound(&s, &frame, i, j, k);
+    test_clouds_fill_grid(&s, grid);
     c->ms_octaves = 2, c->ms_a = OCTAVE_A, c->ms_b = OCTAVE_B, c->ms_c = OCTAVE_C;
     c->ms_d = DIFFUSE_D;
 
@@ -95,16 +68,16 @@ int main(void)
     const double dt = 2.0, w = c->albedo.y, nu = m.nu;
     double tau_total = 0.0;
     for (double t = lo[0] + 0.5 * dt; t < hi[0]; t += dt)
-        tau_total += sigma_at(&s, &m, t) * dt;
+        tau_total += test_clouds_sigma(&s, &m, t) * dt;
     float k_d = clouds_diffusion_exponent(c).y, R = clouds_similarity_albedo(c).y;
     double p0 = henyey_greenstein(c->g.y, nu), p1 = henyey_greenstein(c->g.y * OCTAVE_C, nu);
     double L = 0.0, L_plain = 0.0, tau_front = 0.0;
     for (double t = lo[0] + 0.5 * dt; t < hi[0]; t += dt) {
-        double sig = sigma_at(&s, &m, t);
+        double sig = test_clouds_sigma(&s, &m, t);
         /* the view's optical depth to the step's midpoint, and behind it to the layer's top */
         double front = tau_front + 0.5 * sig * dt, back = tau_total - front;
         if (sig > 0.0) {
-            double tau_sun = sun_depth(&s, &m, t), t0 = exp(-tau_sun);
+            double tau_sun = test_clouds_sun_depth(&s, &m, t), t0 = exp(-tau_sun);
             double t1 = clouds_octave_channel((float)tau_sun, OCTAVE_A, k_d);
             double diffuse = DIFFUSE_D * R * exp(-k_d * tau_sun) / (4.0 * M_PI);
             double B = ((1.0 - exp(-front)) + (1.0 - exp(-back)) + (1.0 - t0)) / 3.0;
@@ -124,12 +97,7 @@ int main(void)
     for (int k = 0; k < 4; k++) {
         c->step_m = steps_m[k];
         c->light_steps = light[k];
-        double sum = 0.0;
-        for (int j = 0; j < 16; j++) {
-            medium_result r;
-            medium_integrate(&s, LUTS, &m, 0.0f, INFINITY, 8, ((float)j + 0.5f) / 16.0f, 0, &r);
-            sum += medium_radiance(&s, LUTS, &r, m.nu).y / 16.0;
-        }
+        double sum = test_clouds_marcher_mean(&s, LUTS, &m, 16);
         double err = fabs(sum / L - 1.0);
         printf("marcher step %.0f m, %d light steps: %.6e, error %.3f %%\n", steps_m[k],
                light[k], sum, 100.0 * err);

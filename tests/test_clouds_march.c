@@ -32,6 +32,7 @@
 #include "kernels_composed.h"
 #include "atmo/scene.h"
 #include "testclouds.h"
+#include "testclouds_oracle.h"
 #include "testlib.h"
 
 /* |marcher / reference - 1| on the overcast ray: 0.414 measured with the octaves alone (see the
@@ -39,29 +40,6 @@
 #define FAST_BIAS_BOUND 0.42
 #define LUTS                                                                                       \
     lut, lut, lut, lut, lut, lut, NULL, NULL, NULL, lut, lut, cdf, grid, NULL, NULL, NULL, NULL
-
-static double sigma_at(const atmo_gpu_scene *s, const medium_ray *m, double t, double *h)
-{
-    medium_point q = medium_ray_at(m, (float)t, s->atmosphere.bottom_radius);
-    *h = q.h;
-    return (double)clouds_density(&s->clouds, q.p, q.h) * s->clouds.extinction.y;
-}
-
-/* The sun's optical depth from the point at t along m, over the layer. */
-static double sun_depth(const atmo_gpu_scene *s, const medium_ray *m, double t)
-{
-    medium_point q = medium_ray_at(m, (float)t, s->atmosphere.bottom_radius);
-    vec3 sun = v3_from4(s->sun_direction);
-    double tau = 0.0, du = 10.0;
-    for (double u = 0.5 * du;; u += du) {
-        float h = geometry_altitude_at(q.r, q.mu_s, (float)u, s->atmosphere.bottom_radius);
-        if (h > s->clouds.top_m)
-            break;
-        vec3 x = v3_add(q.p, v3_scale(sun, (float)u));
-        tau += (double)clouds_density(&s->clouds, x, h) * s->clouds.extinction.y * du;
-    }
-    return tau;
-}
 
 int main(void)
 {
@@ -71,13 +49,7 @@ int main(void)
     atmo_gpu_scene s;
     test_overcast_scene(&s);
     atmo_gpu_clouds *c = &s.clouds;
-    /* the reference's majorant grid, as its pass fills it */
-    clouds_grid_frame frame = clouds_grid_frame_make(&s);
-    for (int k = 0; k < CLOUDS_GRID_NZ; k++)
-        for (int j = 0; j < CLOUDS_GRID_NY; j++)
-            for (int i = 0; i < CLOUDS_GRID_NX; i++)
-                grid[(k * CLOUDS_GRID_NY + j) * CLOUDS_GRID_NX + i] =
-                    clouds_grid_cell_bound(&s, &frame, i, j, k);
+    test_clouds_fill_grid(&s, grid); /* the reference's majorant grid */
 
     /* the view: 60 degrees up, 100 degrees of azimuth away from the sun */
     double el = 60.0 * M_PI / 180.0, az = 100.0 * M_PI / 180.0;
@@ -92,10 +64,10 @@ int main(void)
     double dt = 2.0, T = 1.0, L = 0.0, g = 0.85, nu = m.nu, tau_view = 0.0;
     double p = (1 - g * g) / (4 * M_PI * pow(1 + g * g - 2 * g * nu, 1.5));
     for (double t = lo[0] + 0.5 * dt; t < hi[0]; t += dt) {
-        double h, sig = sigma_at(&s, &m, t, &h);
+        double sig = test_clouds_sigma(&s, &m, t);
         double Tm = T * exp(-0.5 * sig * dt); /* T at the midpoint */
         if (sig > 0.0)
-            L += Tm * sig * 0.9512 * p * exp(-sun_depth(&s, &m, t)) * dt;
+            L += Tm * sig * 0.9512 * p * exp(-test_clouds_sun_depth(&s, &m, t)) * dt;
         T *= exp(-sig * dt);
         tau_view += sig * dt;
     }
@@ -108,12 +80,7 @@ int main(void)
     for (int k = 0; k < 4; k++) {
         c->step_m = steps_m[k];
         c->light_steps = light[k];
-        double sum = 0.0;
-        for (int j = 0; j < 16; j++) {
-            medium_result r;
-            medium_integrate(&s, LUTS, &m, 0.0f, INFINITY, 8, ((float)j + 0.5f) / 16.0f, 0, &r);
-            sum += medium_radiance(&s, LUTS, &r, m.nu).y / 16.0;
-        }
+        double sum = test_clouds_marcher_mean(&s, LUTS, &m, 16);
         double err = fabs(sum / L - 1.0);
         printf("marcher step %.0f m, %d light steps: %.6e, error %.3f %%\n", steps_m[k],
                light[k], sum, 100.0 * err);
@@ -126,12 +93,7 @@ int main(void)
     for (int k = 0; k < 2; k++) {
         c->step_m = lone_step[k];
         c->light_steps = (int)lone_light[k];
-        double sum = 0.0;
-        for (int j = 0; j < 16; j++) {
-            medium_result r;
-            medium_integrate(&s, LUTS, &m, 0.0f, INFINITY, 8, ((float)j + 0.5f) / 16.0f, 0, &r);
-            sum += medium_radiance(&s, LUTS, &r, m.nu).y / 16.0;
-        }
+        double sum = test_clouds_marcher_mean(&s, LUTS, &m, 16);
         printf("marcher step %.0f m, %d light steps: error %.3f %%\n", lone_step[k],
                c->light_steps, 100.0 * fabs(sum / L - 1.0));
     }
@@ -165,13 +127,7 @@ int main(void)
             c->ms_b = (float)atmo_param_find("clouds.ms_b")->def[0];
             c->ms_c = (float)atmo_param_find("clouds.ms_c")->def[0];
             c->ms_d = (float)atmo_param_find("clouds.ms_d")->def[0];
-            double fast = 0.0;
-            for (int j = 0; j < 16; j++) {
-                medium_result r;
-                medium_integrate(&s, LUTS, &m, 0.0f, INFINITY, 8, ((float)j + 0.5f) / 16.0f, 0,
-                                 &r);
-                fast += medium_radiance(&s, LUTS, &r, m.nu).y / 16.0;
-            }
+            double fast = test_clouds_marcher_mean(&s, LUTS, &m, 16);
             printf("reference, all orders: %.6e +- %.2e (single scattering %.1f %% of it); "
                    "marcher with %d octaves (a %.2f b %.2f c %.2f) %.6e: %+.1f %%\n",
                    mean, se, 100.0 * L / mean, c->ms_octaves, c->ms_a, c->ms_b, c->ms_c, fast,

@@ -24,6 +24,7 @@
 #include "kernels_composed.h"
 #include "atmo/scene.h"
 #include "testclouds.h"
+#include "testclouds_oracle.h"
 #include "testlib.h"
 
 #define BIAS_BOUND 0.42
@@ -44,12 +45,7 @@ int main(void)
         atmo_gpu_clouds *c = &s.clouds;
         c->density = c->majorant = densities[d];
         s.sun_direction.x = 0.0f, s.sun_direction.y = 1.0f;
-        clouds_grid_frame frame = clouds_grid_frame_make(&s);
-        for (int k = 0; k < CLOUDS_GRID_NZ; k++)
-            for (int j = 0; j < CLOUDS_GRID_NY; j++)
-                for (int i = 0; i < CLOUDS_GRID_NX; i++)
-                    grid[(k * CLOUDS_GRID_NY + j) * CLOUDS_GRID_NX + i] =
-                        clouds_grid_cell_bound(&s, &frame, i, j, k);
+        test_clouds_fill_grid(&s, grid);
         double el = 60.0 * M_PI / 180.0;
         vec3 dir = v3((float)cos(el), (float)sin(el), 0.0f);
         medium_ray m = medium_ray_from_camera(&s, dir);
