@@ -221,16 +221,16 @@ ATMO_FN float clouds_octave_light_density(ATMO_GLOBAL const atmo_gpu_scene *s, A
 }
 
 /* The physical look's cloud light at a point per unit scattering coefficient and of the sun's
- * irradiance sun_e there (the header): octave 0 (single scattering, phase p0) and the sky's
- * light to *direct; the octaves beyond it, each the scattered part of its beam, and the
- * diffuse orders to *scattered, which the caller weights by the build-up. */
+ * irradiance sun_e there (the header): octave 0 (single scattering, phase p0, transmittance
+ * t_0 = e^{-tau_sun}) and the sky's light to *direct; the octaves beyond it, each the
+ * scattered part of its beam, and the diffuse orders to *scattered, which the caller weights
+ * by the build-up. */
 ATMO_FN void clouds_physical_source(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS,
                                     const medium_ray *m, const medium_point *q, vec3 sun_e,
-                                    vec3 tau_sun, vec3 p0, int use_ms, vec3 k_d,
+                                    vec3 tau_sun, vec3 t_0, vec3 p0, int use_ms, vec3 k_d,
                                     vec3 diffuse_albedo, vec3 *direct, vec3 *scattered)
 {
     ATMO_GLOBAL const atmo_gpu_clouds *c = &s->clouds;
-    vec3 t_0 = v3_exp(v3_scale(tau_sun, -1.0f));
     *direct = v3_mul(v3_mul(p0, sun_e), t_0);
     *scattered = v3_scale(v3_mul(v3_mul(sun_e, diffuse_albedo),
                                  v3_exp(v3_scale(v3_mul(k_d, tau_sun), -1.0f))),
@@ -313,8 +313,8 @@ ATMO_FN void clouds_step(ATMO_GLOBAL const atmo_gpu_scene *s, ATMO_LUT_PARAMS, c
                                     CLOUDS_THESIS_AMBIENT / (4.0f * ATMO_PI)));
         } else {
             vec3 scattered;
-            clouds_physical_source(s, ATMO_LUT_ARGS, m, &q, sun_e, tau_sun, p0, use_ms, k_d,
-                                   diffuse_albedo, &cloud, &scattered);
+            clouds_physical_source(s, ATMO_LUT_ARGS, m, &q, sun_e, tau_sun, cloud_t, p0, use_ms,
+                                   k_d, diffuse_albedo, &cloud, &scattered);
             scattered = v3_mul(sigma_c, scattered);
             S = v3_add(S, v3_mul(scattered, clouds_buildup_known(*medium_t, cloud_t)));
             *deferred = v3_add(*deferred, clouds_buildup_deferred(Tw, *medium_t, scattered));
